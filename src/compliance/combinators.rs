@@ -1,0 +1,121 @@
+//! Compliances built from others: sums, multiples, a constant added to v', and
+//! the load scaling that models scaled roughness.
+
+use super::Compliance;
+use crate::real::Real;
+
+/// v = Σ vᵢ: compliances in series add.
+#[derive(Debug)]
+pub struct Sum<R: Real> {
+    /// The terms.
+    pub terms: Vec<Box<dyn Compliance<R>>>,
+}
+
+impl<R: Real> Sum<R> {
+    fn total(&self, load: &R, term: impl Fn(&dyn Compliance<R>) -> R) -> R {
+        self.terms.iter().fold(load.int(0), |acc, c| acc + term(c.as_ref()))
+    }
+}
+
+impl<R: Real> Compliance<R> for Sum<R> {
+    fn approach(&self, load: &R) -> R {
+        self.total(load, |c| c.approach(load))
+    }
+    fn slope(&self, load: &R) -> R {
+        self.total(load, |c| c.slope(load))
+    }
+    fn curvature(&self, load: &R) -> R {
+        self.total(load, |c| c.curvature(load))
+    }
+    fn slope_change(&self, reference: &R, offset: &R) -> R {
+        self.total(reference, |c| c.slope_change(reference, offset))
+    }
+    fn describe(&self) -> String {
+        let parts: Vec<String> = self.terms.iter().map(|c| c.describe()).collect();
+        parts.join(" + ")
+    }
+}
+
+/// a·v: a scalar multiple.
+#[derive(Debug)]
+pub struct Scaled<R: Real> {
+    /// The multiplier a.
+    pub factor: R,
+    /// v.
+    pub inner: Box<dyn Compliance<R>>,
+}
+
+impl<R: Real> Compliance<R> for Scaled<R> {
+    fn approach(&self, load: &R) -> R {
+        self.factor.clone() * &self.inner.approach(load)
+    }
+    fn slope(&self, load: &R) -> R {
+        self.factor.clone() * &self.inner.slope(load)
+    }
+    fn curvature(&self, load: &R) -> R {
+        self.factor.clone() * &self.inner.curvature(load)
+    }
+    fn slope_change(&self, reference: &R, offset: &R) -> R {
+        self.factor.clone() * &self.inner.slope_change(reference, offset)
+    }
+    fn describe(&self) -> String {
+        format!("{} × ({})", self.factor.to_scientific(6), self.inner.describe())
+    }
+}
+
+/// v + c·P, i.e. v' + c: a constant added to the incremental compliance
+/// (e.g. the bulk compliance of a finite body). It does not change the dissipation.
+#[derive(Debug)]
+pub struct Shifted<R: Real> {
+    /// The constant c added to v'.
+    pub extra_slope: R,
+    /// v.
+    pub inner: Box<dyn Compliance<R>>,
+}
+
+impl<R: Real> Compliance<R> for Shifted<R> {
+    fn approach(&self, load: &R) -> R {
+        self.inner.approach(load) + &(self.extra_slope.clone() * load)
+    }
+    fn slope(&self, load: &R) -> R {
+        self.inner.slope(load) + &self.extra_slope
+    }
+    fn curvature(&self, load: &R) -> R {
+        self.inner.curvature(load)
+    }
+    fn slope_change(&self, reference: &R, offset: &R) -> R {
+        self.inner.slope_change(reference, offset)
+    }
+    fn describe(&self) -> String {
+        format!("({}) + {}·P", self.inner.describe(), self.extra_slope.to_scientific(6))
+    }
+}
+
+/// v_k(P) = k·v(P/k), so v_k'(P) = v'(P/k): the compliance of the same surface
+/// with every roughness height multiplied by k (lateral structure fixed).
+#[derive(Debug)]
+pub struct LoadScaled<R: Real> {
+    /// The height factor k.
+    pub factor: R,
+    /// v.
+    pub inner: Box<dyn Compliance<R>>,
+}
+
+impl<R: Real> Compliance<R> for LoadScaled<R> {
+    fn approach(&self, load: &R) -> R {
+        self.factor.clone() * &self.inner.approach(&(load.clone() / &self.factor))
+    }
+    fn slope(&self, load: &R) -> R {
+        self.inner.slope(&(load.clone() / &self.factor))
+    }
+    fn curvature(&self, load: &R) -> R {
+        self.inner.curvature(&(load.clone() / &self.factor)) / &self.factor
+    }
+    fn slope_change(&self, reference: &R, offset: &R) -> R {
+        self.inner
+            .slope_change(&(reference.clone() / &self.factor), &(offset.clone() / &self.factor))
+    }
+    fn describe(&self) -> String {
+        format!("({}) with loads scaled by 1/{}", self.inner.describe(), self.factor.to_scientific(6))
+    }
+}

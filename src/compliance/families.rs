@@ -1,0 +1,262 @@
+//! The built-in compliance families.
+
+use super::Compliance;
+use crate::real::Real;
+
+/// v'(P) = C·P^β (β < 0 for a stiffening contact). Eq. (20) of the paper with the
+/// misprint corrected (errata item 1): the power law is on v', not on v.
+#[derive(Clone, Debug)]
+pub struct PowerLaw<R> {
+    /// The coefficient C.
+    pub coefficient: R,
+    /// The exponent β.
+    pub exponent: R,
+}
+
+impl<R: Real> Compliance<R> for PowerLaw<R> {
+    fn approach(&self, load: &R) -> R {
+        let exponent_plus_one = self.exponent.clone() + load.int(1);
+        if exponent_plus_one == load.int(0) {
+            self.coefficient.clone() * &load.ln()
+        } else {
+            self.coefficient.clone() * &load.powr(&exponent_plus_one) / exponent_plus_one
+        }
+    }
+    fn slope(&self, load: &R) -> R {
+        self.coefficient.clone() * &load.powr(&self.exponent)
+    }
+    fn curvature(&self, load: &R) -> R {
+        self.coefficient.clone() * &self.exponent * &load.powr(&(self.exponent.clone() - load.int(1)))
+    }
+    fn slope_change(&self, reference: &R, offset: &R) -> R {
+        // C·x^β·[(1 + t)^β − 1] with t = offset/x, formed without cancellation.
+        let relative = (offset.clone() / reference).ln_1p() * &self.exponent;
+        self.slope(reference) * &relative.exp_m1()
+    }
+    fn describe(&self) -> String {
+        format!(
+            "power law v' = {}·P^{}",
+            self.coefficient.to_scientific(6),
+            self.exponent.to_scientific(6)
+        )
+    }
+}
+
+/// Persson's rough-surface compliance v'(P) = γσ/P (Akarapu et al. 2011; paper Section 5.2),
+/// with σ the RMS roughness and γ a dimensionless constant of order one.
+#[derive(Clone, Debug)]
+pub struct Persson<R> {
+    /// γ, dimensionless.
+    pub gamma: R,
+    /// σ, the RMS roughness height.
+    pub sigma: R,
+}
+
+impl<R: Real> Persson<R> {
+    fn as_power_law(&self) -> PowerLaw<R> {
+        PowerLaw {
+            coefficient: self.gamma.clone() * &self.sigma,
+            exponent: self.gamma.int(-1),
+        }
+    }
+}
+
+impl<R: Real> Compliance<R> for Persson<R> {
+    fn approach(&self, load: &R) -> R {
+        self.as_power_law().approach(load)
+    }
+    fn slope(&self, load: &R) -> R {
+        self.gamma.clone() * &self.sigma / load
+    }
+    fn curvature(&self, load: &R) -> R {
+        -(self.gamma.clone() * &self.sigma / &load.square())
+    }
+    fn slope_change(&self, reference: &R, offset: &R) -> R {
+        // γσ/(x + d) − γσ/x = −γσ·d/(x(x + d)), exact in form.
+        -(self.gamma.clone() * &self.sigma * offset / &(reference.clone() * &(reference.clone() + offset)))
+    }
+    fn describe(&self) -> String {
+        format!(
+            "Persson v' = γσ/P with γ = {}, σ = {}",
+            self.gamma.to_scientific(6),
+            self.sigma.to_scientific(6)
+        )
+    }
+}
+
+/// A smooth elastic sphere of radius R pressed by load P (Hertz):
+/// v(P) = (9P²/(16·R·E*²))^(1/3), so v' = 1/(2E*·a(P)) with a the contact radius.
+#[derive(Clone, Debug)]
+pub struct Hertz<R> {
+    /// Sphere radius R (relative radius for two spheres).
+    pub radius: R,
+    /// Contact modulus E*.
+    pub contact_modulus: R,
+}
+
+impl<R: Real> Hertz<R> {
+    /// The contact radius a(P) = (3PR/(4E*))^(1/3).
+    pub fn contact_radius(&self, load: &R) -> R {
+        (load.int(3) * load * &self.radius / (load.int(4) * &self.contact_modulus)).cbrt()
+    }
+
+    /// v'(P) = (2/3)·K·P^(−1/3) with K = (9/(16 R E*²))^(1/3): a power law with β = −1/3.
+    pub fn as_power_law(&self) -> PowerLaw<R> {
+        let r = &self.radius;
+        let k = (r.int(9) / (r.int(16) * r * &self.contact_modulus.square())).cbrt();
+        PowerLaw {
+            coefficient: k * &r.ratio(2, 3),
+            exponent: r.ratio(-1, 3),
+        }
+    }
+}
+
+impl<R: Real> Compliance<R> for Hertz<R> {
+    fn approach(&self, load: &R) -> R {
+        let r = &self.radius;
+        (load.int(9) * &load.square() / (r.int(16) * r * &self.contact_modulus.square())).cbrt()
+    }
+    fn slope(&self, load: &R) -> R {
+        self.as_power_law().slope(load)
+    }
+    fn curvature(&self, load: &R) -> R {
+        self.as_power_law().curvature(load)
+    }
+    fn slope_change(&self, reference: &R, offset: &R) -> R {
+        self.as_power_law().slope_change(reference, offset)
+    }
+    fn describe(&self) -> String {
+        format!(
+            "Hertz sphere R = {}, E* = {}",
+            self.radius.to_scientific(6),
+            self.contact_modulus.to_scientific(6)
+        )
+    }
+}
+
+/// v'(P) = Σₖ cₖ (P − P_ref)^k, a polynomial in the offset from a reference load.
+#[derive(Clone, Debug)]
+pub struct Polynomial<R> {
+    /// The reference load P_ref.
+    pub reference: R,
+    /// c₀, c₁, … (at least one).
+    pub coefficients: Vec<R>,
+}
+
+impl<R: Real> Polynomial<R> {
+    fn horner(coefficients: &[R], x: &R) -> R {
+        coefficients
+            .iter()
+            .rev()
+            .fold(x.int(0), |acc, c| acc * x + c)
+    }
+}
+
+impl<R: Real> Compliance<R> for Polynomial<R> {
+    fn approach(&self, load: &R) -> R {
+        let x = load.clone() - &self.reference;
+        let integrated: Vec<R> = std::iter::once(x.int(0))
+            .chain(
+                self.coefficients
+                    .iter()
+                    .enumerate()
+                    .map(|(k, c)| c.clone() / x.int(k as i64 + 1)),
+            )
+            .collect();
+        Self::horner(&integrated, &x)
+    }
+    fn slope(&self, load: &R) -> R {
+        Self::horner(&self.coefficients, &(load.clone() - &self.reference))
+    }
+    fn curvature(&self, load: &R) -> R {
+        let x = load.clone() - &self.reference;
+        let derived: Vec<R> = self
+            .coefficients
+            .iter()
+            .enumerate()
+            .skip(1)
+            .map(|(k, c)| c.clone() * &x.int(k as i64))
+            .collect();
+        Self::horner(&derived, &x)
+    }
+    fn describe(&self) -> String {
+        let terms: Vec<String> = self.coefficients.iter().map(|c| c.to_scientific(6)).collect();
+        format!(
+            "polynomial v' = Σ cₖ (P − {})^k, c = [{}]",
+            self.reference.to_scientific(6),
+            terms.join(", ")
+        )
+    }
+}
+
+/// v'(P) = a + b/(P + c): a rational compliance (b > 0 stiffens).
+#[derive(Clone, Debug)]
+pub struct Rational<R> {
+    /// The constant part a.
+    pub constant: R,
+    /// The numerator b.
+    pub numerator: R,
+    /// The load offset c.
+    pub offset: R,
+}
+
+impl<R: Real> Compliance<R> for Rational<R> {
+    fn approach(&self, load: &R) -> R {
+        self.constant.clone() * load + &(self.numerator.clone() * &(load.clone() + &self.offset).ln())
+    }
+    fn slope(&self, load: &R) -> R {
+        self.constant.clone() + &(self.numerator.clone() / &(load.clone() + &self.offset))
+    }
+    fn curvature(&self, load: &R) -> R {
+        -(self.numerator.clone() / &(load.clone() + &self.offset).square())
+    }
+    fn slope_change(&self, reference: &R, offset: &R) -> R {
+        let shifted = reference.clone() + &self.offset;
+        -(self.numerator.clone() * offset / &(shifted.clone() * &(shifted + offset)))
+    }
+    fn describe(&self) -> String {
+        format!(
+            "rational v' = {} + {}/(P + {})",
+            self.constant.to_scientific(6),
+            self.numerator.to_scientific(6),
+            self.offset.to_scientific(6)
+        )
+    }
+}
+
+/// v'(P) = a·e^(−P/c) + d: an exponential-type compliance (a, c > 0 stiffens).
+#[derive(Clone, Debug)]
+pub struct Exponential<R> {
+    /// The amplitude a.
+    pub amplitude: R,
+    /// The decay load c.
+    pub decay_load: R,
+    /// The constant part d.
+    pub constant: R,
+}
+
+impl<R: Real> Compliance<R> for Exponential<R> {
+    fn approach(&self, load: &R) -> R {
+        let decay = (-(load.clone() / &self.decay_load)).exp();
+        self.constant.clone() * load - &(self.amplitude.clone() * &self.decay_load * &decay)
+    }
+    fn slope(&self, load: &R) -> R {
+        self.amplitude.clone() * &(-(load.clone() / &self.decay_load)).exp() + &self.constant
+    }
+    fn curvature(&self, load: &R) -> R {
+        -(self.amplitude.clone() / &self.decay_load * &(-(load.clone() / &self.decay_load)).exp())
+    }
+    fn slope_change(&self, reference: &R, offset: &R) -> R {
+        self.amplitude.clone()
+            * &(-(reference.clone() / &self.decay_load)).exp()
+            * &(-(offset.clone() / &self.decay_load)).exp_m1()
+    }
+    fn describe(&self) -> String {
+        format!(
+            "exponential v' = {}·exp(−P/{}) + {}",
+            self.amplitude.to_scientific(6),
+            self.decay_load.to_scientific(6),
+            self.constant.to_scientific(6)
+        )
+    }
+}

@@ -1,0 +1,89 @@
+//! Normal compliance v(P): the rigid-body approach of the two bodies as a function
+//! of the normal load, the only property of the rough contact the dissipation needs.
+//!
+//! The dissipation depends on v only through v'(P) (and, at small amplitude,
+//! v''(P0)). Physical compliances have v' > 0 and v'' ≤ 0 (the contact stiffens
+//! as it is pressed); [`check_admissible`] tests that over a load range. The
+//! dissipation functional itself is linear in v' and accepts any smooth v', which
+//! the verification suite uses (e.g. v' = P − P0 for the small-amplitude coefficient).
+
+mod combinators;
+mod families;
+mod spec;
+
+pub use combinators::{LoadScaled, Scaled, Shifted, Sum};
+pub use families::{Exponential, Hertz, Persson, Polynomial, PowerLaw, Rational};
+pub use spec::{parse_spec, SpecError};
+
+use std::fmt::Debug;
+
+use crate::real::Real;
+
+/// A normal compliance function v(P) with its first two derivatives.
+pub trait Compliance<R: Real>: Debug + Send + Sync {
+    /// v(P), the normal approach under load P (defined up to an additive constant).
+    fn approach(&self, load: &R) -> R;
+    /// v'(P), the incremental normal compliance (inverse of the contact stiffness).
+    fn slope(&self, load: &R) -> R;
+    /// v''(P).
+    fn curvature(&self, load: &R) -> R;
+    /// v'(reference + offset) − v'(reference).
+    ///
+    /// The dissipation integrals use this difference: a constant part of v' does
+    /// not dissipate, and removing it before integrating keeps small-amplitude
+    /// results from cancelling away. Families with a closed form override it to
+    /// compute the difference without cancellation.
+    fn slope_change(&self, reference: &R, offset: &R) -> R {
+        self.slope(&(reference.clone() + offset)) - self.slope(reference)
+    }
+    /// A short human-readable description, e.g. `power law v' = 1·P^-1`.
+    fn describe(&self) -> String;
+}
+
+/// Why a compliance is not physical over a load range.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum AdmissibilityError {
+    /// v' ≤ 0 somewhere: the contact would not resist the load.
+    #[error("the compliance has v'(P) = {slope:e} ≤ 0 at P = {load:e}; a contact needs v' > 0 over the loads the cycle reaches [{low:e}, {high:e}]")]
+    NonPositiveSlope { load: f64, slope: f64, low: f64, high: f64 },
+    /// v'' > 0 somewhere: the contact would soften as it is pressed.
+    #[error("the compliance has v''(P) = {curvature:e} > 0 at P = {load:e}; a contact needs v'' ≤ 0 over the loads the cycle reaches [{low:e}, {high:e}]")]
+    PositiveCurvature { load: f64, curvature: f64, low: f64, high: f64 },
+    /// v' or v'' is not a finite number somewhere.
+    #[error("the compliance is not finite at P = {load:e} (v' = {slope:e}, v'' = {curvature:e})")]
+    NotFinite { load: f64, slope: f64, curvature: f64 },
+}
+
+/// Checks v' > 0 and v'' ≤ 0 at 65 evenly spaced loads in [low, high] (both ends
+/// included). v'' is allowed a rounding-level excess over 0 so that a linear v
+/// (v'' = 0 exactly) computed with rounding error still passes.
+pub fn check_admissible<R: Real>(
+    compliance: &dyn Compliance<R>,
+    low: &R,
+    high: &R,
+) -> Result<(), AdmissibilityError> {
+    const SAMPLES: i64 = 64;
+    let (low_f, high_f) = (low.to_f64_lossy(), high.to_f64_lossy());
+    for i in 0..=SAMPLES {
+        let load = low.clone() + &((high.clone() - low) * low.ratio(i, SAMPLES));
+        let slope = compliance.slope(&load);
+        let curvature = compliance.curvature(&load);
+        let (load_f, slope_f, curvature_f) = (load.to_f64_lossy(), slope.to_f64_lossy(), curvature.to_f64_lossy());
+        if !slope.is_finite() || !curvature.is_finite() {
+            return Err(AdmissibilityError::NotFinite { load: load_f, slope: slope_f, curvature: curvature_f });
+        }
+        if slope <= load.int(0) {
+            return Err(AdmissibilityError::NonPositiveSlope { load: load_f, slope: slope_f, low: low_f, high: high_f });
+        }
+        let tolerance = slope.abs() / load.abs().max_of(&load.epsilon_like()) * load.epsilon_like() * load.int(64);
+        if curvature > tolerance {
+            return Err(AdmissibilityError::PositiveCurvature {
+                load: load_f,
+                curvature: curvature_f,
+                low: low_f,
+                high: high_f,
+            });
+        }
+    }
+    Ok(())
+}

@@ -1,0 +1,417 @@
+//! The load cycle P(θ) = P0 + P1 cos θ, Q(θ) = Q0 + Q1 cos(θ − φ): its validation
+//! and the geometry of its ellipse in the (P, Q) plane.
+//!
+//! The steady cycle splits into four segments at the points E, B, C, H (paper
+//! Section 3.4, located as in errata item 4), taken in the order the angle θ
+//! increases, i.e. the ellipse traversed anticlockwise (0 < φ < π):
+//!
+//! - C minimises Q − fP and E maximises it (θ_E = θ_C − π);
+//! - B minimises Q + fP;
+//! - H is the mirror image of B about θ_C (θ_H = 2θ_C − θ_B): the line of slope f
+//!   through B meets the ellipse again there.
+//!
+//! With σ₊ and σ₋ the amplitudes of Q + fP and Q − fP, and δ = θ_C − θ_B, the
+//! segments EB, BC, CH, HE have lengths π − δ, δ, δ, π − δ in θ.
+
+use crate::real::Real;
+
+/// The loads of one harmonic cycle, with the friction coefficient and the
+/// tangential/normal compliance ratio of the contact.
+#[derive(Clone, Debug)]
+pub struct LoadCycle<R> {
+    /// P0, the mean normal load (compressive, > 0).
+    pub mean_normal_load: R,
+    /// P1, the normal load amplitude (≥ 0, < P0).
+    pub normal_amplitude: R,
+    /// Q0, the mean tangential load.
+    pub mean_tangential_load: R,
+    /// Q1, the tangential load amplitude (≥ 0).
+    pub tangential_amplitude: R,
+    /// φ, the phase lag of Q behind P, in radians.
+    pub phase: R,
+    /// f, the Coulomb friction coefficient (> 0).
+    pub friction: R,
+    /// λ = (2 − ν)/(2(1 − ν)), the tangential/normal compliance ratio, in [1, 2].
+    pub compliance_ratio: R,
+}
+
+/// Why a load cycle is not one the theory covers.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum CycleError {
+    /// An input is NaN or infinite.
+    #[error("{quantity} is not a finite number (got {value})")]
+    NotFinite { quantity: &'static str, value: f64 },
+    /// P0 ≤ 0.
+    #[error("the mean normal load P0 = {p0:e} must be positive (the contact is compressed)")]
+    NonPositiveMeanLoad { p0: f64 },
+    /// P1 < 0 or Q1 < 0.
+    #[error("the amplitude {quantity} = {value:e} must not be negative (a phase of π reverses a load)")]
+    NegativeAmplitude { quantity: &'static str, value: f64 },
+    /// P0 − P1 ≤ 0.
+    #[error("the contact separates: P0 − P1 = {margin:e} ≤ 0 (P0 = {p0:e}, P1 = {p1:e}); the normal amplitude must stay below the mean load")]
+    Separation { p0: f64, p1: f64, margin: f64 },
+    /// f ≤ 0.
+    #[error("the friction coefficient f = {f:e} must be positive")]
+    NonPositiveFriction { f: f64 },
+    /// λ outside [1, 2].
+    #[error("the compliance ratio λ = {lambda} lies outside [1, 2] (λ = (2 − ν)/(2(1 − ν)) is 1 for ν = 0 and 1.5 for ν = 0.5)")]
+    ComplianceRatioOutOfRange { lambda: f64 },
+    /// Poisson's ratio that gives λ outside [1, 2].
+    #[error("Poisson's ratio ν = {nu} gives λ outside [1, 2]; ν must lie in [0, 2/3]")]
+    PoissonRatioOutOfRange { nu: f64 },
+    /// |φ| too large to reduce modulo π without losing the phase.
+    #[error("the phase φ = {phi:e} rad is too large: |φ| must be below 1e6 rad to be reduced modulo π accurately")]
+    PhaseTooLarge { phi: f64 },
+    /// The ellipse reaches |Q| = fP: periods of gross slip (sliding).
+    #[error("gross slip: the load ellipse reaches the line Q = {sign}fP (max({sign_word}Q − fP) = {excess:e} ≥ 0, i.e. {relative:.3e} of fP0 beyond it); the theory needs |Q| < fP throughout the cycle: reduce Q1 or |Q0|, or raise P0")]
+    GrossSlip {
+        sign: &'static str,
+        sign_word: &'static str,
+        excess: f64,
+        relative: f64,
+    },
+}
+
+/// λ = (2 − ν)/(2(1 − ν)) from Poisson's ratio ν, checked to lie in [1, 2].
+pub fn compliance_ratio_from_poisson<R: Real>(nu: &R) -> Result<R, CycleError> {
+    let value = nu.to_f64_lossy();
+    if !nu.is_finite() {
+        return Err(CycleError::NotFinite { quantity: "Poisson's ratio ν", value });
+    }
+    if *nu < nu.int(0) || *nu > nu.ratio(2, 3) {
+        return Err(CycleError::PoissonRatioOutOfRange { nu: value });
+    }
+    Ok((nu.int(2) - nu) / (nu.int(2) * &(nu.int(1) - nu)))
+}
+
+/// Which of the two degenerate or general cases a valid cycle is.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CycleKind {
+    /// Q1 = 0: no tangential oscillation, no dissipation.
+    NoTangentialOscillation,
+    /// P1 = 0: the Cattaneo–Mindlin / Ciavarella–Jäger constant-normal-load case.
+    ConstantNormalLoad,
+    /// φ ≡ 0 (mod π): the ellipse degenerates to a line (the paper's appendix).
+    InPhase,
+    /// A true ellipse.
+    Elliptic,
+}
+
+impl<R: Real> LoadCycle<R> {
+    /// Checks that the cycle is one the theory covers: finite, compressive, within
+    /// the friction cone throughout, with physical f and λ.
+    pub fn validate(&self) -> Result<(), CycleError> {
+        let named = [
+            ("P0", &self.mean_normal_load),
+            ("P1", &self.normal_amplitude),
+            ("Q0", &self.mean_tangential_load),
+            ("Q1", &self.tangential_amplitude),
+            ("φ", &self.phase),
+            ("f", &self.friction),
+            ("λ", &self.compliance_ratio),
+        ];
+        for (quantity, value) in named {
+            if !value.is_finite() {
+                return Err(CycleError::NotFinite {
+                    quantity,
+                    value: value.to_f64_lossy(),
+                });
+            }
+        }
+        let zero = self.mean_normal_load.int(0);
+        if self.mean_normal_load <= zero {
+            return Err(CycleError::NonPositiveMeanLoad {
+                p0: self.mean_normal_load.to_f64_lossy(),
+            });
+        }
+        for (quantity, value) in [("P1", &self.normal_amplitude), ("Q1", &self.tangential_amplitude)] {
+            if *value < zero {
+                return Err(CycleError::NegativeAmplitude {
+                    quantity,
+                    value: value.to_f64_lossy(),
+                });
+            }
+        }
+        let margin = self.mean_normal_load.clone() - &self.normal_amplitude;
+        if margin <= zero {
+            return Err(CycleError::Separation {
+                p0: self.mean_normal_load.to_f64_lossy(),
+                p1: self.normal_amplitude.to_f64_lossy(),
+                margin: margin.to_f64_lossy(),
+            });
+        }
+        if self.friction <= zero {
+            return Err(CycleError::NonPositiveFriction {
+                f: self.friction.to_f64_lossy(),
+            });
+        }
+        if self.compliance_ratio < zero.int(1) || self.compliance_ratio > zero.int(2) {
+            return Err(CycleError::ComplianceRatioOutOfRange {
+                lambda: self.compliance_ratio.to_f64_lossy(),
+            });
+        }
+        if self.phase.abs() > zero.int(1_000_000) {
+            return Err(CycleError::PhaseTooLarge {
+                phi: self.phase.to_f64_lossy(),
+            });
+        }
+        // The actual phase, not the reduced one: with Q0 ≠ 0 the cycle and its mirror image differ here.
+        let (sum_amplitude, difference_amplitude) = self.slip_line_amplitudes_at(&self.phase);
+        let friction_limit = self.friction.clone() * &self.mean_normal_load;
+        // max(Q − fP) = Q0 − fP0 + σ₋ and max(−Q − fP) = −Q0 − fP0 + σ₊.
+        let forward = self.mean_tangential_load.clone() - &friction_limit + &difference_amplitude;
+        let reverse = -self.mean_tangential_load.clone() - &friction_limit + &sum_amplitude;
+        for (excess, sign, sign_word) in [(forward, "+", ""), (reverse, "−", "−")] {
+            if excess >= zero {
+                return Err(CycleError::GrossSlip {
+                    sign,
+                    sign_word,
+                    excess: excess.to_f64_lossy(),
+                    relative: (excess / &friction_limit).to_f64_lossy(),
+                });
+            }
+        }
+        Ok(())
+    }
+
+    /// Which case the cycle is (assumes it is valid).
+    pub fn kind(&self) -> CycleKind {
+        let zero = self.mean_normal_load.int(0);
+        if self.tangential_amplitude == zero {
+            CycleKind::NoTangentialOscillation
+        } else if self.normal_amplitude == zero {
+            CycleKind::ConstantNormalLoad
+        } else if self.reduced_phase() == zero {
+            CycleKind::InPhase
+        } else {
+            CycleKind::Elliptic
+        }
+    }
+
+    /// φ reduced to [0, π). The dissipation has period π in φ: φ + π is the same
+    /// cycle with Q − Q0 reversed, which is its mirror image in the P axis.
+    pub fn reduced_phase(&self) -> R {
+        let pi = self.phase.pi_like();
+        let turns = (self.phase.clone() / &pi).floor();
+        let reduced = self.phase.clone() - &(turns * &pi);
+        // Guard the rounding of the last step: keep the result inside [0, π).
+        if reduced < self.phase.int(0) || reduced >= pi {
+            self.phase.int(0)
+        } else {
+            reduced
+        }
+    }
+
+    /// (σ₊, σ₋): the amplitudes of Q + fP and of Q − fP over the cycle (for φ reduced to [0, π)).
+    pub fn slip_line_amplitudes(&self) -> (R, R) {
+        self.slip_line_amplitudes_at(&self.reduced_phase())
+    }
+
+    fn slip_line_amplitudes_at(&self, phi: &R) -> (R, R) {
+        let q1 = &self.tangential_amplitude;
+        let fp1 = self.friction.clone() * &self.normal_amplitude;
+        let (sin_phi, half_sin) = (phi.sin(), (phi.clone() / phi.int(2)).sin());
+        let q1_sin = q1.clone() * &sin_phi;
+        // Q1 cos φ ∓ fP1, the second written as (Q1 − fP1) − 2 Q1 sin²(φ/2) to keep it accurate near φ = 0.
+        let plus = q1.clone() * &phi.cos() + &fp1;
+        let minus = (q1.clone() - &fp1) - &(q1.clone() * &half_sin.square() * &phi.int(2));
+        let hypot = |x: R, y: &R| (x.square() + &y.square()).sqrt();
+        (hypot(plus, &q1_sin), hypot(minus, &q1_sin))
+    }
+
+    /// P_T, the permanent-stick load: the contact area A(P_T) sticks throughout the
+    /// steady cycle. P_T = ½[min(Q + fP) − max(Q − fP)]/f = P0 − (σ₊ + σ₋)/(2f).
+    pub fn permanent_stick_load(&self) -> R {
+        let (plus, minus) = self.slip_line_amplitudes();
+        self.mean_normal_load.clone() - &((plus + &minus) / &(self.friction.clone() * &self.friction.int(2)))
+    }
+
+    /// The ellipse geometry (for φ reduced to [0, π)); validates the cycle first.
+    pub fn geometry(&self) -> Result<EllipseGeometry<R>, CycleError> {
+        self.validate()?;
+        Ok(EllipseGeometry::new(self))
+    }
+
+    /// P(θ).
+    pub fn normal_load(&self, theta: &R) -> R {
+        self.mean_normal_load.clone() + &(self.normal_amplitude.clone() * &theta.cos())
+    }
+
+    /// Q(θ) for the phase as given (not reduced).
+    pub fn tangential_load(&self, theta: &R) -> R {
+        self.mean_tangential_load.clone() + &(self.tangential_amplitude.clone() * &(theta.clone() - &self.phase).cos())
+    }
+}
+
+/// The points E, B, C, H of the ellipse and the loads that govern each segment,
+/// for the cycle with its phase reduced to [0, π).
+#[derive(Clone, Debug)]
+pub struct EllipseGeometry<R> {
+    /// P0.
+    pub mean_normal_load: R,
+    /// P1.
+    pub normal_amplitude: R,
+    /// Q1.
+    pub tangential_amplitude: R,
+    /// φ reduced to [0, π).
+    pub phase: R,
+    /// f.
+    pub friction: R,
+    /// σ₊, the amplitude of Q + fP.
+    pub sum_amplitude: R,
+    /// σ₋, the amplitude of Q − fP.
+    pub difference_amplitude: R,
+    /// θ_E ∈ [0, π]: Q − fP is largest.
+    pub theta_e: R,
+    /// θ_B = θ_C − δ: Q + fP is smallest.
+    pub theta_b: R,
+    /// θ_C = θ_E + π: Q − fP is smallest.
+    pub theta_c: R,
+    /// θ_H = θ_C + δ: the mirror of B about C.
+    pub theta_h: R,
+    /// δ = θ_C − θ_B, the length of BC and of CH in θ.
+    pub stick_angle: R,
+    /// π − δ, the length of EB and of HE in θ (computed directly, not by subtraction).
+    pub slip_angle: R,
+    /// P_T − P0 = −(σ₊ + σ₋)/(2f).
+    pub permanent_stick_offset: R,
+}
+
+impl<R: Real> EllipseGeometry<R> {
+    fn new(cycle: &LoadCycle<R>) -> Self {
+        let phi = cycle.reduced_phase();
+        let (sum_amplitude, difference_amplitude) = cycle.slip_line_amplitudes();
+        let q1 = cycle.tangential_amplitude.clone();
+        let fp1 = cycle.friction.clone() * &cycle.normal_amplitude;
+        let q1_sin = q1.clone() * &phi.sin();
+        let pi = phi.pi_like();
+        let half_sin = (phi.clone() / phi.int(2)).sin();
+        let minus = (q1.clone() - &fp1) - &(q1.clone() * &half_sin.square() * &phi.int(2));
+        let theta_e = q1_sin.atan2(&minus);
+        // δ = θ_E − θ_A, the angle between (Q1 cos φ + fP1, Q1 sin φ) and (Q1 cos φ − fP1, Q1 sin φ).
+        let cross = q1_sin.clone() * &fp1 * &phi.int(2);
+        let dot = (q1.clone() - &fp1) * &(q1.clone() + &fp1);
+        let stick_angle = cross.atan2(&dot);
+        let slip_angle = cross.atan2(&(-dot));
+        let theta_c = theta_e.clone() + &pi;
+        let theta_b = theta_c.clone() - &stick_angle;
+        let theta_h = theta_c.clone() + &stick_angle;
+        let permanent_stick_offset =
+            -((sum_amplitude.clone() + &difference_amplitude) / &(cycle.friction.clone() * &phi.int(2)));
+        EllipseGeometry {
+            mean_normal_load: cycle.mean_normal_load.clone(),
+            normal_amplitude: cycle.normal_amplitude.clone(),
+            tangential_amplitude: q1,
+            phase: phi,
+            friction: cycle.friction.clone(),
+            sum_amplitude,
+            difference_amplitude,
+            theta_e,
+            theta_b,
+            theta_c,
+            theta_h,
+            stick_angle,
+            slip_angle,
+            permanent_stick_offset,
+        }
+    }
+
+    /// P_T, the permanent-stick load.
+    pub fn permanent_stick_load(&self) -> R {
+        self.mean_normal_load.clone() + &self.permanent_stick_offset
+    }
+
+    /// P(θ) − P0 = P1 cos θ.
+    pub fn normal_offset(&self, theta: &R) -> R {
+        self.normal_amplitude.clone() * &theta.cos()
+    }
+
+    /// dP/dθ = −P1 sin θ.
+    pub fn normal_rate(&self, theta: &R) -> R {
+        -(self.normal_amplitude.clone() * &theta.sin())
+    }
+
+    /// Q(θ) − Q0 = Q1 cos(θ − φ).
+    pub fn tangential_offset(&self, theta: &R) -> R {
+        self.tangential_amplitude.clone() * &(theta.clone() - &self.phase).cos()
+    }
+
+    /// dQ/dθ = −Q1 sin(θ − φ).
+    pub fn tangential_rate(&self, theta: &R) -> R {
+        -(self.tangential_amplitude.clone() * &(theta.clone() - &self.phase).sin())
+    }
+
+    /// P_S − P0 in segment EB, as a function of the angle past B (θ − θ_B):
+    /// P_S = ½(Q/f + P − Q_E/f + P_E) = P_T + σ₊ sin²((θ − θ_B)/2)/f (errata item 2: no u₀).
+    pub fn reverse_slip_offset(&self, angle_from_b: &R) -> R {
+        let half = (angle_from_b.clone() / angle_from_b.int(2)).sin();
+        self.permanent_stick_offset.clone() + &(self.sum_amplitude.clone() * &half.square() / &self.friction)
+    }
+
+    /// P_K − P0 in segment HE, as a function of the angle past E (θ − θ_E):
+    /// P_K = P_T + ½(P − Q/f − P_E + Q_E/f) = P_T + σ₋ sin²((θ − θ_E)/2)/f.
+    pub fn forward_slip_offset(&self, angle_from_e: &R) -> R {
+        let half = (angle_from_e.clone() / angle_from_e.int(2)).sin();
+        self.permanent_stick_offset.clone() + &(self.difference_amplitude.clone() * &half.square() / &self.friction)
+    }
+
+    /// The mirror map Y of Eq. (15): the point of BC with Q_Y − fP_Y = Q − fP,
+    /// θ_Y = 2θ_C − θ.
+    pub fn mirror(&self, theta: &R) -> R {
+        self.theta_c.clone() * &theta.int(2) - theta
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn cycle(phase: f64) -> LoadCycle<f64> {
+        LoadCycle {
+            mean_normal_load: 1.0,
+            normal_amplitude: 0.4,
+            mean_tangential_load: 0.1,
+            tangential_amplitude: 0.5,
+            phase,
+            friction: 1.0,
+            compliance_ratio: 1.0,
+        }
+    }
+
+    #[test]
+    fn tangent_points_are_the_extremes_of_the_slip_line_functions() {
+        let c = cycle(0.4 * std::f64::consts::PI);
+        let g = c.geometry().unwrap();
+        let minus = |t: f64| c.tangential_load(&t) - c.friction * c.normal_load(&t);
+        let plus = |t: f64| c.tangential_load(&t) + c.friction * c.normal_load(&t);
+        let h = 1e-4;
+        for (theta, func, is_max) in [
+            (g.theta_e, &minus as &dyn Fn(f64) -> f64, true),
+            (g.theta_c, &minus, false),
+            (g.theta_b, &plus, false),
+        ] {
+            let (l, m, r) = (func(theta - h), func(theta), func(theta + h));
+            if is_max {
+                assert!(m > l && m > r);
+            } else {
+                assert!(m < l && m < r);
+            }
+        }
+        // H lies on the line of slope f through B.
+        assert!((minus(g.theta_h) - minus(g.theta_b)).abs() < 1e-14);
+        assert!(g.theta_e < g.theta_b && g.theta_b < g.theta_c && g.theta_c < g.theta_h);
+        assert!(g.theta_h < g.theta_e + 2.0 * std::f64::consts::PI);
+        // P_T from the two extremes directly.
+        let pt = 0.5 * (plus(g.theta_b) - minus(g.theta_e)) / c.friction;
+        assert!((pt - g.permanent_stick_load()).abs() < 1e-14);
+        assert!((c.permanent_stick_load() - pt).abs() < 1e-14);
+    }
+
+    #[test]
+    fn phase_reduces_modulo_pi() {
+        let c = cycle(0.4 * std::f64::consts::PI + 3.0 * std::f64::consts::PI);
+        assert!((c.reduced_phase() - 0.4 * std::f64::consts::PI).abs() < 1e-14);
+        let c = cycle(-0.25 * std::f64::consts::PI);
+        assert!((c.reduced_phase() - 0.75 * std::f64::consts::PI).abs() < 1e-14);
+    }
+}

@@ -1,0 +1,169 @@
+//! Closed forms for the degenerate cycles, each a one-dimensional integral of v'
+//! against a linear weight, valid for any compliance:
+//!
+//! - in phase (φ ≡ 0 mod π), the paper's appendix (Eqs. 26–32), derived again in
+//!   proofs/in-phase.md;
+//! - constant normal load (P1 = 0): the Cattaneo–Mindlin initial loading curve
+//!   u = λf[v(P0) − v(P0 − Q/f)] with Masing's rule gives
+//!   W = 4λf² ∫ₐᵇ (a + b − 2y) v'(y) dy, a = P0 − Q1/f, b = P0 (proofs/constant-normal-load.md);
+//! - for the Hertz sphere, the Mindlin–Deresiewicz formula.
+//!
+//! The integrals are written in the offset x = P − P0 and use v'(P0 + x) − v'(P0)
+//! where the options ask for it (the weights integrate a constant to zero).
+
+use super::driver::{converge, Piece};
+use super::{prepare, scaled_result, slope_at, Dissipation, DissipationError, Method, Options};
+use crate::compliance::Compliance;
+use crate::cycle::LoadCycle;
+use crate::real::Real;
+
+/// W for an in-phase cycle (φ ≡ 0 mod π), the paper's appendix. No slip occurs
+/// when Q1 ≤ fP1; otherwise the loading half (HE, the appendix's BA) gives W1 + W2
+/// and the unloading half (EB, the appendix's AB) gives W3 + W4, with W3 = W1:
+///
+/// ```text
+/// W1 = λf (Q1/P1) ∫_{−P1}^{P1} x v'(P0 + x) dx
+/// W2 = 2λfQ1/(Q1/f − P1) ∫_{−P1}^{−Q1/f} (2x + P1 + Q1/f) v'(P0 + x) dx
+/// W4 = 2λfQ1/(Q1/f + P1) ∫_{P1}^{−Q1/f} (2x − P1 + Q1/f) v'(P0 + x) dx
+/// ```
+/// The phase is not checked: the formula is that of the line the ellipse collapses to.
+pub fn in_phase<R: Real>(
+    cycle: &LoadCycle<R>,
+    compliance: &dyn Compliance<R>,
+    options: &Options<R>,
+) -> Result<Dissipation<R>, DissipationError> {
+    prepare(cycle, compliance, options)?;
+    let f = &cycle.friction;
+    let p1 = &cycle.normal_amplitude;
+    let q1 = &cycle.tangential_amplitude;
+    let zero = p1.int(0);
+    if q1.clone() <= f.clone() * p1 {
+        return Ok(scaled_result(cycle, vec![], zero, 0, Method::InPhase));
+    }
+    let q = q1.clone() / f;
+    let slope = slope_at(compliance, &cycle.mean_normal_load, options.remove_constant_slope);
+    let slope = &slope;
+    let (q_ref, p1_ref) = (&q, p1);
+    let pieces = vec![
+        Piece {
+            name: "W1",
+            integrand: Box::new(move |x: &R| x.clone() * &slope(x)),
+            start: -p1.clone(),
+            end: p1.clone(),
+        },
+        Piece {
+            name: "W2",
+            integrand: Box::new(move |x: &R| (x.clone() * &x.int(2) + p1_ref + q_ref) * &slope(x)),
+            start: -p1.clone(),
+            end: -q.clone(),
+        },
+        Piece {
+            name: "W4",
+            integrand: Box::new(move |x: &R| (x.clone() * &x.int(2) - p1_ref + q_ref) * &slope(x)),
+            start: p1.clone(),
+            end: -q.clone(),
+        },
+    ];
+    let converged = converge(&pieces, &options.tolerance_for(&zero), options.max_points)?;
+    let [j1, j2, j4]: [R; 3] = converged
+        .values
+        .try_into()
+        .unwrap_or_else(|_| unreachable!("three pieces in, three values out"));
+    let w1 = f.clone() * q1 / p1 * &j1;
+    let w2 = f.clone() * q1 * &zero.int(2) / &(q.clone() - p1) * &j2;
+    let w4 = f.clone() * q1 * &zero.int(2) / &(q.clone() + p1) * &j4;
+    // Error: each piece's estimate carries at most the largest of the three prefactors.
+    let prefactor = (f.clone() * q1 * &zero.int(2) / &(q.clone() - p1)).max_of(&(f.clone() * q1 / p1));
+    let error = converged.error * &prefactor;
+    // Segment order EB, BC, CH, HE: unloading, (empty), (empty), loading.
+    let values = vec![w1.clone() + &w4, zero.clone(), zero, w1 + &w2];
+    Ok(scaled_result(cycle, values, error, converged.evaluations, Method::InPhase))
+}
+
+/// W at constant normal load (P1 = 0; the phase is irrelevant):
+/// W = 4λf² ∫_{−Q1/f}^{0} (−Q1/f − 2x) v'(P0 + x) dx. By the symmetry Q → −Q the
+/// unloading (EB) and reloading (HE) halves carry W/2 each.
+pub fn constant_normal_load<R: Real>(
+    cycle: &LoadCycle<R>,
+    compliance: &dyn Compliance<R>,
+    options: &Options<R>,
+) -> Result<Dissipation<R>, DissipationError> {
+    prepare(cycle, compliance, options)?;
+    let f = &cycle.friction;
+    let zero = f.int(0);
+    let q = cycle.tangential_amplitude.clone() / f;
+    let slope = slope_at(compliance, &cycle.mean_normal_load, options.remove_constant_slope);
+    let q_ref = &q;
+    let pieces = vec![Piece {
+        name: "Masing loop",
+        integrand: Box::new(|x: &R| (-(x.clone() * &x.int(2)) - q_ref) * &slope(x)),
+        start: -q.clone(),
+        end: zero.clone(),
+    }];
+    let converged = converge(&pieces, &options.tolerance_for(&zero), options.max_points)?;
+    let factor = f.clone() * f * &zero.int(2);
+    let half = converged.values[0].clone() * &factor;
+    let values = vec![half.clone(), zero.clone(), zero, half];
+    Ok(scaled_result(
+        cycle,
+        values,
+        converged.error * &factor * &f.int(2),
+        converged.evaluations,
+        Method::ConstantNormalLoad,
+    ))
+}
+
+/// How the elastic constants of a Hertz contact map onto E* (λ is (2 − ν)/(2(1 − ν)) in both).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum HertzConfiguration {
+    /// One elastic sphere (G, ν) on a rigid flat: E* = 2G/(1 − ν); the constant k is 10.
+    SphereOnRigidFlat,
+    /// Two identical elastic bodies (G, ν): E* = G/(1 − ν); the constant k is 5.
+    TwoIdenticalBodies,
+}
+
+/// The Mindlin–Deresiewicz dissipation of a Hertz contact under constant normal
+/// load P0 and tangential amplitude Q1 (errata item 8):
+/// W = 9(2 − ν) f² P0² / (k G a) · [1 − (1 − q)^(5/3) − (5q/6)(1 + (1 − q)^(2/3))], q = Q1/(fP0).
+#[derive(Clone, Debug)]
+pub struct MindlinDeresiewicz<R> {
+    /// Shear modulus G.
+    pub shear_modulus: R,
+    /// Poisson's ratio ν.
+    pub poisson_ratio: R,
+    /// Which bodies are elastic.
+    pub configuration: HertzConfiguration,
+}
+
+impl<R: Real> MindlinDeresiewicz<R> {
+    /// E* for this configuration.
+    pub fn contact_modulus(&self) -> R {
+        let g = &self.shear_modulus;
+        let one_minus_nu = g.int(1) - &self.poisson_ratio;
+        match self.configuration {
+            HertzConfiguration::SphereOnRigidFlat => g.clone() * &g.int(2) / one_minus_nu,
+            HertzConfiguration::TwoIdenticalBodies => g.clone() / one_minus_nu,
+        }
+    }
+
+    /// The constant k of the formula.
+    fn k(&self) -> i64 {
+        match self.configuration {
+            HertzConfiguration::SphereOnRigidFlat => 10,
+            HertzConfiguration::TwoIdenticalBodies => 5,
+        }
+    }
+
+    /// W for friction f, normal load P0, tangential amplitude Q1 < fP0 and Hertz contact radius a at P0.
+    pub fn dissipation(&self, friction: &R, normal_load: &R, tangential_amplitude: &R, contact_radius: &R) -> R {
+        let nu = &self.poisson_ratio;
+        let q = tangential_amplitude.clone() / &(friction.clone() * normal_load);
+        let remaining = q.int(1) - &q;
+        let bracket = q.int(1)
+            - remaining.powr(&q.ratio(5, 3))
+            - q.clone() * &q.ratio(5, 6) * &(q.int(1) + &remaining.powr(&q.ratio(2, 3)));
+        let prefactor = (nu.int(2) - nu) * &nu.int(9) * &friction.square() * &normal_load.square()
+            / (nu.int(self.k()) * &self.shear_modulus * contact_radius);
+        prefactor * &bracket
+    }
+}

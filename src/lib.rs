@@ -1,0 +1,13 @@
+//! microslip: frictional (microslip) energy dissipation per cycle in elastic
+//! contacts of rough surfaces under oscillating normal and tangential loads.
+//!
+//! Read top-down: [`real`] (the number type), [`quad`] (quadrature rules),
+//! [`compliance`] (the contact's normal compliance v(P)), [`cycle`] (the load
+//! cycle and its ellipse), [`dissipation`] (W over the four segments, and the
+//! closed forms).
+
+pub mod compliance;
+pub mod cycle;
+pub mod dissipation;
+pub mod quad;
+pub mod real;

@@ -1,0 +1,341 @@
+//! The one number type every integral in microslip runs on.
+//!
+//! [`Real`] is implemented for `f64` and for [`rug::Float`] (MPFR) at a precision
+//! chosen at run time. Generic code never names either type: it builds constants
+//! at the precision of the values it already holds (`x.int(2)`, `x.ratio(5, 6)`)
+//! or at an explicit [`Precision`], and calls the elementary functions through
+//! this trait. Arithmetic follows the owned-left, borrowed-right pattern
+//! (`a.clone() * &b`), which both types support without copies for `f64`.
+
+use std::fmt::Debug;
+use std::ops::Neg;
+
+use num_traits::{NumAssignOps, NumOps, ToPrimitive};
+use rug::float::{Constant, Round};
+use rug::ops::Pow;
+use rug::Float;
+
+/// Working precision: the number of bits in the significand.
+///
+/// `f64` always works at 53 bits whatever is asked; `rug::Float` works at
+/// exactly the precision asked.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Precision(u32);
+
+impl Precision {
+    /// The precision of an IEEE double.
+    pub const DOUBLE: Precision = Precision(53);
+
+    /// A precision of `bits` significand bits (at least 2).
+    pub fn bits(bits: u32) -> Precision {
+        Precision(bits.max(2))
+    }
+
+    /// The smallest precision that holds `digits` significant decimal digits.
+    pub fn decimal_digits(digits: u32) -> Precision {
+        Precision::bits((f64::from(digits) * std::f64::consts::LOG2_10).ceil() as u32 + 1)
+    }
+
+    /// Significand bits.
+    pub fn in_bits(self) -> u32 {
+        self.0
+    }
+
+    /// Decimal digits this precision carries (rounded down).
+    pub fn in_decimal_digits(self) -> u32 {
+        (f64::from(self.0 - 1) / std::f64::consts::LOG2_10).floor() as u32
+    }
+}
+
+/// A decimal string that is not a number.
+#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
+#[error("'{text}' is not a decimal number")]
+pub struct ParseRealError {
+    /// The text that failed to parse.
+    pub text: String,
+}
+
+/// A real number at a definite precision: `f64`, or `rug::Float` at any precision.
+pub trait Real:
+    Clone
+    + Debug
+    + PartialOrd
+    + Send
+    + Sync
+    + 'static
+    + Neg<Output = Self>
+    + NumOps<Self, Self>
+    + for<'a> NumOps<&'a Self, Self>
+    + NumAssignOps<Self>
+    + for<'a> NumAssignOps<&'a Self>
+    + ToPrimitive
+{
+    /// The precision this value carries.
+    fn precision(&self) -> Precision;
+    /// `x` exactly (every f64 is representable at 53 bits or more).
+    fn from_f64(x: f64, precision: Precision) -> Self;
+    /// The integer `n`, rounded to the precision.
+    fn from_i64(n: i64, precision: Precision) -> Self;
+    /// A decimal string read as an exact decimal, rounded once to the precision
+    /// (`"0.4"` means 4/10, not the double nearest to it).
+    fn parse_decimal(text: &str, precision: Precision) -> Result<Self, ParseRealError>;
+    /// π at the precision.
+    fn pi(precision: Precision) -> Self;
+    /// The distance from 1 to the next larger number at the precision.
+    fn epsilon(precision: Precision) -> Self;
+
+    fn sqrt(&self) -> Self;
+    fn cbrt(&self) -> Self;
+    fn ln(&self) -> Self;
+    /// ln(1 + x), accurate for small x.
+    fn ln_1p(&self) -> Self;
+    fn exp(&self) -> Self;
+    /// eˣ − 1, accurate for small x.
+    fn exp_m1(&self) -> Self;
+    /// `self` raised to a real power.
+    fn powr(&self, exponent: &Self) -> Self;
+    /// `self` raised to an integer power.
+    fn powi(&self, exponent: i32) -> Self;
+    fn sin(&self) -> Self;
+    fn cos(&self) -> Self;
+    /// The angle of the point (x, y) = (`x`, `self`), in (−π, π].
+    fn atan2(&self, x: &Self) -> Self;
+    fn abs(&self) -> Self;
+    /// The largest integer not above `self`.
+    fn floor(&self) -> Self;
+    fn is_finite(&self) -> bool;
+    /// Scientific notation with `digits` significant digits, e.g. `1.2345e-3`.
+    fn to_scientific(&self, digits: usize) -> String;
+
+    /// The integer `n` at this value's precision.
+    fn int(&self, n: i64) -> Self {
+        Self::from_i64(n, self.precision())
+    }
+    /// The ratio `n / d` at this value's precision, rounded once.
+    fn ratio(&self, n: i64, d: i64) -> Self {
+        self.int(n) / self.int(d)
+    }
+    /// π at this value's precision.
+    fn pi_like(&self) -> Self {
+        Self::pi(self.precision())
+    }
+    /// The machine epsilon of this value's precision.
+    fn epsilon_like(&self) -> Self {
+        Self::epsilon(self.precision())
+    }
+    /// The nearest f64 (NaN if it has none).
+    fn to_f64_lossy(&self) -> f64 {
+        self.to_f64().unwrap_or(f64::NAN)
+    }
+    /// The larger of two values.
+    fn max_of(&self, other: &Self) -> Self {
+        if *self >= *other {
+            self.clone()
+        } else {
+            other.clone()
+        }
+    }
+    /// The smaller of two values.
+    fn min_of(&self, other: &Self) -> Self {
+        if *self <= *other {
+            self.clone()
+        } else {
+            other.clone()
+        }
+    }
+    /// The square.
+    fn square(&self) -> Self {
+        self.clone() * self
+    }
+}
+
+impl Real for f64 {
+    fn precision(&self) -> Precision {
+        Precision::DOUBLE
+    }
+    fn from_f64(x: f64, _: Precision) -> Self {
+        x
+    }
+    fn from_i64(n: i64, _: Precision) -> Self {
+        n as f64
+    }
+    fn parse_decimal(text: &str, _: Precision) -> Result<Self, ParseRealError> {
+        text.trim().parse::<f64>().map_err(|_| ParseRealError {
+            text: text.to_string(),
+        })
+    }
+    fn pi(_: Precision) -> Self {
+        std::f64::consts::PI
+    }
+    fn epsilon(_: Precision) -> Self {
+        f64::EPSILON
+    }
+    fn sqrt(&self) -> Self {
+        f64::sqrt(*self)
+    }
+    fn cbrt(&self) -> Self {
+        f64::cbrt(*self)
+    }
+    fn ln(&self) -> Self {
+        f64::ln(*self)
+    }
+    fn ln_1p(&self) -> Self {
+        f64::ln_1p(*self)
+    }
+    fn exp(&self) -> Self {
+        f64::exp(*self)
+    }
+    fn exp_m1(&self) -> Self {
+        f64::exp_m1(*self)
+    }
+    fn powr(&self, exponent: &Self) -> Self {
+        f64::powf(*self, *exponent)
+    }
+    fn powi(&self, exponent: i32) -> Self {
+        f64::powi(*self, exponent)
+    }
+    fn sin(&self) -> Self {
+        f64::sin(*self)
+    }
+    fn cos(&self) -> Self {
+        f64::cos(*self)
+    }
+    fn atan2(&self, x: &Self) -> Self {
+        f64::atan2(*self, *x)
+    }
+    fn abs(&self) -> Self {
+        f64::abs(*self)
+    }
+    fn floor(&self) -> Self {
+        f64::floor(*self)
+    }
+    fn is_finite(&self) -> bool {
+        f64::is_finite(*self)
+    }
+    fn to_scientific(&self, digits: usize) -> String {
+        format!("{:.*e}", digits.max(1) - 1, self)
+    }
+}
+
+impl Real for Float {
+    fn precision(&self) -> Precision {
+        Precision::bits(self.prec())
+    }
+    fn from_f64(x: f64, precision: Precision) -> Self {
+        Float::with_val(precision.in_bits().max(53), x)
+    }
+    fn from_i64(n: i64, precision: Precision) -> Self {
+        Float::with_val(precision.in_bits(), n)
+    }
+    fn parse_decimal(text: &str, precision: Precision) -> Result<Self, ParseRealError> {
+        let error = || ParseRealError {
+            text: text.to_string(),
+        };
+        let trimmed = text.trim();
+        // MPFR also reads "@inf@", hexadecimal and other radices; only plain decimals are numbers here.
+        if trimmed.is_empty()
+            || !trimmed
+                .chars()
+                .all(|c| c.is_ascii_digit() || matches!(c, '.' | 'e' | 'E' | '+' | '-'))
+        {
+            return Err(error());
+        }
+        let parsed = Float::parse(trimmed).map_err(|_| error())?;
+        Ok(Float::with_val(precision.in_bits(), parsed))
+    }
+    fn pi(precision: Precision) -> Self {
+        Float::with_val(precision.in_bits(), Constant::Pi)
+    }
+    fn epsilon(precision: Precision) -> Self {
+        Float::with_val(precision.in_bits(), 1) >> (precision.in_bits() - 1)
+    }
+    fn sqrt(&self) -> Self {
+        self.clone().sqrt()
+    }
+    fn cbrt(&self) -> Self {
+        self.clone().cbrt()
+    }
+    fn ln(&self) -> Self {
+        self.clone().ln()
+    }
+    fn ln_1p(&self) -> Self {
+        self.clone().ln_1p()
+    }
+    fn exp(&self) -> Self {
+        self.clone().exp()
+    }
+    fn exp_m1(&self) -> Self {
+        self.clone().exp_m1()
+    }
+    fn powr(&self, exponent: &Self) -> Self {
+        self.clone().pow(exponent)
+    }
+    fn powi(&self, exponent: i32) -> Self {
+        self.clone().pow(exponent)
+    }
+    fn sin(&self) -> Self {
+        self.clone().sin()
+    }
+    fn cos(&self) -> Self {
+        self.clone().cos()
+    }
+    fn atan2(&self, x: &Self) -> Self {
+        self.clone().atan2(x)
+    }
+    fn abs(&self) -> Self {
+        self.clone().abs()
+    }
+    fn floor(&self) -> Self {
+        self.clone().floor()
+    }
+    fn is_finite(&self) -> bool {
+        Float::is_finite(self)
+    }
+    fn to_scientific(&self, digits: usize) -> String {
+        if self.is_zero() {
+            return Real::to_scientific(&0.0f64, digits);
+        }
+        self.to_string_radix_round(10, Some(digits.max(1)), Round::Nearest)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn decimal_strings_are_read_exactly_at_high_precision() {
+        let p = Precision::bits(256);
+        let tenth = Float::parse_decimal("0.1", p).unwrap();
+        let ten = tenth.int(10);
+        let one = tenth.clone() * &ten;
+        assert!((one - 1i32).abs() < Float::epsilon(p) * 2i32);
+        // The double nearest 0.1 differs from 1/10 by about 5.5e-18.
+        let from_double = Float::from_f64(0.1, p);
+        let gap = (from_double - &tenth).abs().to_f64();
+        assert!(gap > 5e-18 && gap < 6e-18, "gap {gap}");
+    }
+
+    #[test]
+    fn non_decimal_text_is_rejected() {
+        for text in ["", "abc", "@inf@", "0x10", "nan", "1.0.0"] {
+            assert!(Float::parse_decimal(text, Precision::bits(64)).is_err(), "{text}");
+        }
+        assert!(f64::parse_decimal("abc", Precision::DOUBLE).is_err());
+    }
+
+    #[test]
+    fn precision_in_digits_round_trips() {
+        let p = Precision::decimal_digits(50);
+        assert!(p.in_decimal_digits() >= 50);
+        assert!(p.in_bits() < 170);
+    }
+
+    #[test]
+    fn scientific_format_agrees_between_types() {
+        let x = 1.0 / 3.0f64;
+        let y = Float::from_f64(x, Precision::bits(53));
+        assert_eq!(x.to_scientific(6), y.to_scientific(6));
+        assert_eq!(x.to_scientific(6), "3.33333e-1");
+    }
+}
