@@ -76,7 +76,10 @@ pub enum CycleError {
 pub fn compliance_ratio_from_poisson<R: Real>(nu: &R) -> Result<R, CycleError> {
     let value = nu.to_f64_lossy();
     if !nu.is_finite() {
-        return Err(CycleError::NotFinite { quantity: "Poisson's ratio ν", value });
+        return Err(CycleError::NotFinite {
+            quantity: "Poisson's ratio ν",
+            value,
+        });
     }
     if *nu < nu.int(0) || *nu > nu.ratio(2, 3) {
         return Err(CycleError::PoissonRatioOutOfRange { nu: value });

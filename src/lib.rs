@@ -9,5 +9,7 @@
 pub mod compliance;
 pub mod cycle;
 pub mod dissipation;
+pub mod inputs;
 pub mod quad;
 pub mod real;
+pub mod reference;

@@ -1,1 +1,256 @@
-fn main() {}
+//! `microslip`: the command line. Parsing and printing only; the work is in the library.
+
+use std::process::ExitCode;
+use std::time::Duration;
+
+use clap::{Args, Parser, Subcommand};
+use serde_json::json;
+
+use microslip::dissipation::{dissipation, Method, Options};
+use microslip::inputs::{Case, CaseText};
+use microslip::real::{Precision, Real};
+use microslip::reference::verified_dissipation;
+
+#[derive(Parser)]
+#[command(
+    name = "microslip",
+    version,
+    about = "Frictional microslip dissipation per cycle in rough elastic contacts"
+)]
+struct Cli {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand)]
+enum Command {
+    /// The dissipation per cycle W and its four segment contributions.
+    Dissipation(Box<DissipationArgs>),
+    /// A table of Ŵ = W/(γσλf²) against the phase φ for Persson's compliance
+    /// v' = γσ/P, P0 = 1, P1 = 0.4 (the paper's Fig. 5).
+    Table,
+}
+
+/// A load cycle P = P0 + P1 cos θ, Q = Q0 + Q1 cos(θ − φ) on a contact.
+#[derive(Args)]
+struct CaseArgs {
+    /// Mean normal load P0 (> 0).
+    #[arg(long, allow_hyphen_values = true)]
+    p0: String,
+    /// Normal load amplitude P1 (0 ≤ P1 < P0).
+    #[arg(long, allow_hyphen_values = true)]
+    p1: String,
+    /// Mean tangential load Q0.
+    #[arg(long, allow_hyphen_values = true, default_value = "0")]
+    q0: String,
+    /// Tangential load amplitude Q1 (≥ 0).
+    #[arg(long, allow_hyphen_values = true)]
+    q1: String,
+    /// Phase lag φ of Q behind P, in radians or as a multiple of π (`0.4pi`).
+    #[arg(long, allow_hyphen_values = true)]
+    phi: String,
+    /// Coulomb friction coefficient f (> 0).
+    #[arg(long, allow_hyphen_values = true)]
+    friction: String,
+    /// Tangential/normal compliance ratio λ, in [1, 2].
+    #[arg(
+        long,
+        allow_hyphen_values = true,
+        conflicts_with = "nu",
+        required_unless_present = "nu"
+    )]
+    lambda: Option<String>,
+    /// Poisson's ratio ν, giving λ = (2 − ν)/(2(1 − ν)).
+    #[arg(long, allow_hyphen_values = true)]
+    nu: Option<String>,
+    /// Normal compliance SPEC, e.g. `persson:gamma=1,sigma=1`, `power:c=1,beta=-1`,
+    /// `hertz:r=1,estar=1`, `poly:p0=1,coeffs=2;0.5;-0.1`, terms joined by `+`.
+    #[arg(long, allow_hyphen_values = true)]
+    compliance: String,
+}
+
+impl CaseArgs {
+    fn text(&self) -> CaseText {
+        CaseText {
+            p0: self.p0.clone(),
+            p1: self.p1.clone(),
+            q0: self.q0.clone(),
+            q1: self.q1.clone(),
+            phi: self.phi.clone(),
+            friction: self.friction.clone(),
+            lambda: self.lambda.clone(),
+            nu: self.nu.clone(),
+            compliance: self.compliance.clone(),
+        }
+    }
+}
+
+#[derive(Args)]
+struct DissipationArgs {
+    #[command(flatten)]
+    case: CaseArgs,
+    /// Significant digits to compute and verify (1–1000); without it, f64 and 15 digits.
+    #[arg(long)]
+    digits: Option<u32>,
+    /// Time budget for --digits, in seconds.
+    #[arg(long, default_value_t = 60.0)]
+    max_seconds: f64,
+    /// Print one JSON object.
+    #[arg(long)]
+    json: bool,
+}
+
+/// A failure to report: one line on stderr, exit code 2.
+struct Failure(String);
+
+impl<E: std::fmt::Display> From<E> for Failure {
+    fn from(error: E) -> Self {
+        Failure(error.to_string())
+    }
+}
+
+fn method_name(method: Method) -> &'static str {
+    match method {
+        Method::FourSegment => "four-segment integrals in the cycle angle",
+        Method::InPhase => "in-phase closed form (paper appendix)",
+        Method::ConstantNormalLoad => "constant-normal-load closed form",
+        Method::NoTangentialOscillation => "no tangential oscillation (W = 0)",
+    }
+}
+
+/// The result as printed: W and segments as decimal strings.
+struct Printed {
+    total: String,
+    segments: Vec<(&'static str, String)>,
+    digits: u32,
+    method: Method,
+    precision_bits: u32,
+}
+
+fn run_dissipation(args: &DissipationArgs) -> Result<String, Failure> {
+    let case = args.case.text();
+    let printed = match args.digits {
+        None => {
+            let Case { cycle, compliance } = case.read::<f64>(Precision::DOUBLE)?;
+            let result = dissipation(&cycle, compliance.as_ref(), &Options::default())?;
+            Printed {
+                total: result.total.to_scientific(15),
+                segments: result
+                    .segments
+                    .named()
+                    .iter()
+                    .map(|(name, value)| (*name, value.to_scientific(15)))
+                    .collect(),
+                digits: 15,
+                method: result.method,
+                precision_bits: 53,
+            }
+        }
+        Some(digits) => {
+            if !(args.max_seconds.is_finite() && args.max_seconds > 0.0) {
+                return Err(Failure(format!(
+                    "--max-seconds must be a positive number, got {}",
+                    args.max_seconds
+                )));
+            }
+            let verified = verified_dissipation(&case, digits, Duration::from_secs_f64(args.max_seconds))?;
+            Printed {
+                total: verified.total,
+                segments: verified.segments.to_vec(),
+                digits: verified.digits_verified,
+                method: verified.method,
+                precision_bits: verified.precision_bits,
+            }
+        }
+    };
+    if args.json {
+        let segments: serde_json::Map<String, serde_json::Value> = printed
+            .segments
+            .iter()
+            .map(|(name, value)| (name.to_string(), json!(value)))
+            .collect();
+        let object = json!({
+            "W": printed.total,
+            "digits": printed.digits,
+            "digits_verified": args.digits.map(|_| printed.digits),
+            "precision_bits": printed.precision_bits,
+            "method": method_name(printed.method),
+            "segments": segments,
+            "inputs": case,
+        });
+        return Ok(object.to_string());
+    }
+    let mut out = format!(
+        "W = {}   ({}; {} significant digits{})\n",
+        printed.total,
+        method_name(printed.method),
+        printed.digits,
+        if args.digits.is_some() { ", verified" } else { ", f64" }
+    );
+    for (name, value) in &printed.segments {
+        out.push_str(&format!("  {name}  {value}\n"));
+    }
+    Ok(out.trim_end().to_string())
+}
+
+fn run_table() -> Result<String, Failure> {
+    let amplitudes = ["0.2", "0.4", "0.5", "0.6"];
+    let mut out = String::from("Ŵ = W/(γσλf²) for v' = γσ/P, P0 = 1, P1 = 0.4, f = 1 (f64)\n   φ/π");
+    for q1 in amplitudes {
+        out.push_str(&format!("   Q1 = {q1:<11}"));
+    }
+    for tenths in 0..=10 {
+        out.push_str(&format!("\n  {:>4.1}", f64::from(tenths) / 10.0));
+        for q1 in amplitudes {
+            let case = CaseText {
+                p0: "1".into(),
+                p1: "0.4".into(),
+                q0: "0".into(),
+                q1: q1.into(),
+                phi: format!("{}pi", f64::from(tenths) / 10.0),
+                friction: "1".into(),
+                lambda: Some("1".into()),
+                nu: None,
+                compliance: "persson:gamma=1,sigma=1".into(),
+            };
+            let Case { cycle, compliance } = case.read::<f64>(Precision::DOUBLE)?;
+            let cell = match dissipation(&cycle, compliance.as_ref(), &Options::default()) {
+                Ok(result) => result.total.to_scientific(8),
+                Err(_) => "gross slip".to_string(),
+            };
+            out.push_str(&format!("   {cell:<16}"));
+        }
+    }
+    Ok(out)
+}
+
+fn main() -> ExitCode {
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(error) => {
+            use clap::error::ErrorKind;
+            if matches!(error.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion) {
+                print!("{error}");
+                return ExitCode::SUCCESS;
+            }
+            let rendered = error.to_string();
+            let first = rendered.lines().next().unwrap_or("invalid arguments");
+            eprintln!("microslip: {}", first.trim_start_matches("error: "));
+            return ExitCode::from(2);
+        }
+    };
+    let outcome = match &cli.command {
+        Command::Dissipation(args) => run_dissipation(args),
+        Command::Table => run_table(),
+    };
+    match outcome {
+        Ok(text) => {
+            println!("{text}");
+            ExitCode::SUCCESS
+        }
+        Err(Failure(message)) => {
+            eprintln!("microslip: {message}");
+            ExitCode::from(2)
+        }
+    }
+}

@@ -160,9 +160,9 @@ impl Real for f64 {
         n as f64
     }
     fn parse_decimal(text: &str, _: Precision) -> Result<Self, ParseRealError> {
-        text.trim().parse::<f64>().map_err(|_| ParseRealError {
-            text: text.to_string(),
-        })
+        text.trim()
+            .parse::<f64>()
+            .map_err(|_| ParseRealError { text: text.to_string() })
     }
     fn pi(_: Precision) -> Self {
         std::f64::consts::PI
@@ -228,9 +228,7 @@ impl Real for Float {
         Float::with_val(precision.in_bits(), n)
     }
     fn parse_decimal(text: &str, precision: Precision) -> Result<Self, ParseRealError> {
-        let error = || ParseRealError {
-            text: text.to_string(),
-        };
+        let error = || ParseRealError { text: text.to_string() };
         let trimmed = text.trim();
         // MPFR also reads "@inf@", hexadecimal and other radices; only plain decimals are numbers here.
         if trimmed.is_empty()

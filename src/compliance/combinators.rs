@@ -116,6 +116,10 @@ impl<R: Real> Compliance<R> for LoadScaled<R> {
             .slope_change(&(reference.clone() / &self.factor), &(offset.clone() / &self.factor))
     }
     fn describe(&self) -> String {
-        format!("({}) with loads scaled by 1/{}", self.inner.describe(), self.factor.to_scientific(6))
+        format!(
+            "({}) with loads scaled by 1/{}",
+            self.inner.describe(),
+            self.factor.to_scientific(6)
+        )
     }
 }

@@ -145,10 +145,7 @@ pub struct Polynomial<R> {
 
 impl<R: Real> Polynomial<R> {
     fn horner(coefficients: &[R], x: &R) -> R {
-        coefficients
-            .iter()
-            .rev()
-            .fold(x.int(0), |acc, c| acc * x + c)
+        coefficients.iter().rev().fold(x.int(0), |acc, c| acc * x + c)
     }
 }
 
@@ -178,6 +175,20 @@ impl<R: Real> Compliance<R> for Polynomial<R> {
             .map(|(k, c)| c.clone() * &x.int(k as i64))
             .collect();
         Self::horner(&derived, &x)
+    }
+    fn slope_change(&self, reference: &R, offset: &R) -> R {
+        // (x + d)^k − x^k = d · Σ_{j<k} (x + d)^j x^(k−1−j): no cancellation for small d.
+        let x = reference.clone() - &self.reference;
+        let shifted = x.clone() + offset;
+        let mut total = x.int(0);
+        for (k, c) in self.coefficients.iter().enumerate().skip(1) {
+            let mut bracket = x.int(0);
+            for j in 0..k {
+                bracket += shifted.powi(j as i32) * &x.powi((k - 1 - j) as i32);
+            }
+            total += bracket * c;
+        }
+        total * offset
     }
     fn describe(&self) -> String {
         let terms: Vec<String> = self.coefficients.iter().map(|c| c.to_scientific(6)).collect();

@@ -48,7 +48,12 @@ pub enum AdmissibilityError {
     NonPositiveSlope { load: f64, slope: f64, low: f64, high: f64 },
     /// v'' > 0 somewhere: the contact would soften as it is pressed.
     #[error("the compliance has v''(P) = {curvature:e} > 0 at P = {load:e}; a contact needs v'' ≤ 0 over the loads the cycle reaches [{low:e}, {high:e}]")]
-    PositiveCurvature { load: f64, curvature: f64, low: f64, high: f64 },
+    PositiveCurvature {
+        load: f64,
+        curvature: f64,
+        low: f64,
+        high: f64,
+    },
     /// v' or v'' is not a finite number somewhere.
     #[error("the compliance is not finite at P = {load:e} (v' = {slope:e}, v'' = {curvature:e})")]
     NotFinite { load: f64, slope: f64, curvature: f64 },
@@ -57,11 +62,7 @@ pub enum AdmissibilityError {
 /// Checks v' > 0 and v'' ≤ 0 at 65 evenly spaced loads in [low, high] (both ends
 /// included). v'' is allowed a rounding-level excess over 0 so that a linear v
 /// (v'' = 0 exactly) computed with rounding error still passes.
-pub fn check_admissible<R: Real>(
-    compliance: &dyn Compliance<R>,
-    low: &R,
-    high: &R,
-) -> Result<(), AdmissibilityError> {
+pub fn check_admissible<R: Real>(compliance: &dyn Compliance<R>, low: &R, high: &R) -> Result<(), AdmissibilityError> {
     const SAMPLES: i64 = 64;
     let (low_f, high_f) = (low.to_f64_lossy(), high.to_f64_lossy());
     for i in 0..=SAMPLES {
@@ -70,10 +71,19 @@ pub fn check_admissible<R: Real>(
         let curvature = compliance.curvature(&load);
         let (load_f, slope_f, curvature_f) = (load.to_f64_lossy(), slope.to_f64_lossy(), curvature.to_f64_lossy());
         if !slope.is_finite() || !curvature.is_finite() {
-            return Err(AdmissibilityError::NotFinite { load: load_f, slope: slope_f, curvature: curvature_f });
+            return Err(AdmissibilityError::NotFinite {
+                load: load_f,
+                slope: slope_f,
+                curvature: curvature_f,
+            });
         }
         if slope <= load.int(0) {
-            return Err(AdmissibilityError::NonPositiveSlope { load: load_f, slope: slope_f, low: low_f, high: high_f });
+            return Err(AdmissibilityError::NonPositiveSlope {
+                load: load_f,
+                slope: slope_f,
+                low: low_f,
+                high: high_f,
+            });
         }
         let tolerance = slope.abs() / load.abs().max_of(&load.epsilon_like()) * load.epsilon_like() * load.int(64);
         if curvature > tolerance {

@@ -102,13 +102,21 @@ impl<'a> Parameters<'a> {
             ));
         }
         if let Some(missing) = keys.iter().find(|k| !self.pairs.iter().any(|(key, _)| key == *k)) {
-            return Err(format!("{} needs {missing}= (it takes {})", self.family, keys.join(", ")));
+            return Err(format!(
+                "{} needs {missing}= (it takes {})",
+                self.family,
+                keys.join(", ")
+            ));
         }
         Ok(())
     }
 
     fn text(&self, key: &str) -> &'a str {
-        self.pairs.iter().find(|(k, _)| *k == key).map(|(_, v)| *v).unwrap_or("")
+        self.pairs
+            .iter()
+            .find(|(k, _)| *k == key)
+            .map(|(_, v)| *v)
+            .unwrap_or("")
     }
 
     fn value<R: Real>(&self, key: &str, precision: Precision) -> Result<R, String> {

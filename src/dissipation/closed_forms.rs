@@ -11,7 +11,7 @@
 //! The integrals are written in the offset x = P − P0 and use v'(P0 + x) − v'(P0)
 //! where the options ask for it (the weights integrate a constant to zero).
 
-use super::driver::{converge, Piece};
+use super::driver::{converge, Converged, Piece};
 use super::{prepare, scaled_result, slope_at, Dissipation, DissipationError, Method, Options};
 use crate::compliance::Compliance;
 use crate::cycle::LoadCycle;
@@ -38,7 +38,11 @@ pub fn in_phase<R: Real>(
     let q1 = &cycle.tangential_amplitude;
     let zero = p1.int(0);
     if q1.clone() <= f.clone() * p1 {
-        return Ok(scaled_result(cycle, vec![], zero, 0, Method::InPhase));
+        return Ok(scaled_result(
+            cycle,
+            Converged::combined(vec![], zero, 0, 0),
+            Method::InPhase,
+        ));
     }
     let q = q1.clone() / f;
     let slope = slope_at(compliance, &cycle.mean_normal_load, options.remove_constant_slope);
@@ -64,7 +68,7 @@ pub fn in_phase<R: Real>(
             end: -q.clone(),
         },
     ];
-    let converged = converge(&pieces, &options.tolerance_for(&zero), options.max_points)?;
+    let converged = converge(&pieces, &options.tolerance_for(&zero), options)?;
     let [j1, j2, j4]: [R; 3] = converged
         .values
         .try_into()
@@ -77,7 +81,8 @@ pub fn in_phase<R: Real>(
     let error = converged.error * &prefactor;
     // Segment order EB, BC, CH, HE: unloading, (empty), (empty), loading.
     let values = vec![w1.clone() + &w4, zero.clone(), zero, w1 + &w2];
-    Ok(scaled_result(cycle, values, error, converged.evaluations, Method::InPhase))
+    let combined = Converged::combined(values, error, converged.evaluations, converged.points);
+    Ok(scaled_result(cycle, combined, Method::InPhase))
 }
 
 /// W at constant normal load (P1 = 0; the phase is irrelevant):
@@ -100,17 +105,13 @@ pub fn constant_normal_load<R: Real>(
         start: -q.clone(),
         end: zero.clone(),
     }];
-    let converged = converge(&pieces, &options.tolerance_for(&zero), options.max_points)?;
+    let converged = converge(&pieces, &options.tolerance_for(&zero), options)?;
     let factor = f.clone() * f * &zero.int(2);
     let half = converged.values[0].clone() * &factor;
     let values = vec![half.clone(), zero.clone(), zero, half];
-    Ok(scaled_result(
-        cycle,
-        values,
-        converged.error * &factor * &f.int(2),
-        converged.evaluations,
-        Method::ConstantNormalLoad,
-    ))
+    let error = converged.error * &factor * &f.int(2);
+    let combined = Converged::combined(values, error, converged.evaluations, converged.points);
+    Ok(scaled_result(cycle, combined, Method::ConstantNormalLoad))
 }
 
 /// How the elastic constants of a Hertz contact map onto E* (λ is (2 − ν)/(2(1 − ν)) in both).

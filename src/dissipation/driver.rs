@@ -1,8 +1,16 @@
 //! Drives a set of one-dimensional integrals ("pieces", e.g. the four segments)
-//! to a common relative tolerance with Gauss–Legendre rules of doubling degree.
+//! to a common relative tolerance.
+//!
+//! Each piece starts with Gauss–Legendre rules of doubling degree, which converge
+//! geometrically when the integrand is analytic well beyond the interval. When a
+//! singularity sits close to an end of the interval (v' singular at P → 0 with the
+//! cycle near separation, or P_T → 0 near gross slip) that stalls; the piece then
+//! falls back to tanh–sinh, whose nodes crowd double-exponentially toward the ends.
+//! Callers split their intervals so that such near-singularities lie at ends.
 
-use super::DissipationError;
+use super::{DissipationError, Options};
 use crate::quad::gauss_legendre::node_table;
+use crate::quad::tanh_sinh;
 use crate::real::Real;
 
 /// ∫ₛₜₐᵣₜ^ₑₙd integrand: one piece of a sum of integrals.
@@ -14,68 +22,122 @@ pub(crate) struct Piece<'a, R> {
 }
 
 /// The converged pieces: values in the order given, the summed error estimate,
-/// and the integrand evaluations spent.
+/// the integrand evaluations spent and the largest Gauss–Legendre rule used.
 pub(crate) struct Converged<R> {
     pub values: Vec<R>,
     pub error: R,
     pub evaluations: usize,
+    pub points: usize,
 }
 
-/// Doubles each piece's rule from 8 points until successive values differ by at
-/// most `relative_tolerance` × Σ|pieces| (the scale of the sum, which is what a
-/// cancelling sum can be trusted to), or fails with `NotConverged` past `max_points`.
+impl<R: Real> Converged<R> {
+    /// Pieces already combined by the caller: values with a common error estimate.
+    pub fn combined(values: Vec<R>, error: R, evaluations: usize, points: usize) -> Self {
+        Converged {
+            values,
+            error,
+            evaluations,
+            points,
+        }
+    }
+}
+
+/// Tanh–sinh levels allowed after Gauss–Legendre gives up (each doubles the nodes).
+const MAX_TANH_SINH_LEVEL: u32 = 16;
+
+fn gauss<R: Real>(piece: &Piece<'_, R>, points: usize) -> Result<R, DissipationError> {
+    if piece.start == piece.end {
+        return Ok(piece.start.int(0));
+    }
+    let precision = piece.start.precision();
+    let value = node_table::<R>(points, precision).integrate(&piece.integrand, &piece.start, &piece.end);
+    finite(value, piece)
+}
+
+fn finite<R: Real>(value: R, piece: &Piece<'_, R>) -> Result<R, DissipationError> {
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(DissipationError::NotFinite { segment: piece.name })
+    }
+}
+
+/// Each piece to an absolute accuracy of `relative_tolerance` × Σ|pieces| / (number of
+/// pieces): the scale of the sum, which is what a cancelling sum can be trusted to.
+/// Fails with `NotConverged` when neither rule gets there.
 pub(crate) fn converge<R: Real>(
     pieces: &[Piece<'_, R>],
     relative_tolerance: &R,
-    max_points: usize,
+    options: &Options<R>,
 ) -> Result<Converged<R>, DissipationError> {
-    let precision = relative_tolerance.precision();
     let zero = relative_tolerance.int(0);
-    let mut points = 8usize;
-    let mut evaluations = 0usize;
-    let integrate = |piece: &Piece<'_, R>, points: usize| -> Result<R, DissipationError> {
+    let first_points = options.min_points.max(2);
+    let max_points = options.max_points.max(first_points);
+    let mut evaluations = 0;
+    let mut largest_rule = first_points;
+    // A first look at every piece sets the scale.
+    let mut values = Vec::with_capacity(pieces.len());
+    for piece in pieces {
+        values.push(gauss(piece, first_points)?);
+        evaluations += first_points;
+    }
+    let scale = |values: &[R]| values.iter().fold(zero.clone(), |acc, v| acc + &v.abs());
+    let count = zero.int(pieces.len().max(1) as i64);
+    let mut allowed = scale(&values) * relative_tolerance / &count;
+    let mut errors = vec![zero.clone(); pieces.len()];
+    for (i, piece) in pieces.iter().enumerate() {
         if piece.start == piece.end {
-            return Ok(piece.start.int(0));
+            continue;
         }
-        let value = node_table::<R>(points, precision).integrate(&piece.integrand, &piece.start, &piece.end);
-        if value.is_finite() {
-            Ok(value)
-        } else {
-            Err(DissipationError::NotFinite { segment: piece.name })
-        }
-    };
-    let mut values = pieces
-        .iter()
-        .map(|p| integrate(p, points))
-        .collect::<Result<Vec<_>, _>>()?;
-    evaluations += points * pieces.len();
-    let mut changes: Vec<Option<R>> = vec![None; pieces.len()];
-    loop {
-        let scale = values.iter().fold(zero.clone(), |acc, v| acc + &v.abs());
-        let allowed = scale.clone() * relative_tolerance / &zero.int(pieces.len().max(1) as i64);
-        let done = |change: &Option<R>| change.as_ref().is_some_and(|c| *c <= allowed);
-        if changes.iter().all(done) {
-            let error = changes.iter().flatten().fold(zero.clone(), |acc, c| acc + c);
-            return Ok(Converged { values, error, evaluations });
-        }
-        if points * 2 > max_points {
-            let error = changes.iter().flatten().fold(zero.clone(), |acc, c| acc + c);
-            let total = values.iter().fold(zero.clone(), |acc, v| acc + v);
-            return Err(DissipationError::NotConverged {
-                points,
-                relative_error: (error / &total.abs().max_of(&scale.max_of(&R::epsilon(precision)))).to_f64_lossy(),
-                requested: relative_tolerance.to_f64_lossy(),
-            });
-        }
-        points *= 2;
-        for (i, piece) in pieces.iter().enumerate() {
-            if done(&changes[i]) {
-                continue;
+        let mut points = first_points;
+        loop {
+            if points * 2 > max_points {
+                // Gauss–Legendre stalled: a near-singularity at an end. Tanh–sinh resolves it.
+                let estimate = tanh_sinh::integrate(
+                    &piece.integrand,
+                    &piece.start,
+                    &piece.end,
+                    &allowed,
+                    MAX_TANH_SINH_LEVEL,
+                );
+                evaluations += estimate.evaluations;
+                values[i] = finite(estimate.value, piece)?;
+                if !estimate.converged {
+                    return Err(not_converged(&values, &estimate.error, relative_tolerance, points));
+                }
+                errors[i] = estimate.error;
+                break;
             }
-            let refined = integrate(piece, points)?;
+            points *= 2;
+            largest_rule = largest_rule.max(points);
+            let refined = gauss(piece, points)?;
             evaluations += points;
-            changes[i] = Some((refined.clone() - &values[i]).abs());
+            let change = (refined.clone() - &values[i]).abs();
             values[i] = refined;
+            if change <= allowed {
+                errors[i] = change;
+                break;
+            }
         }
+        // Later pieces are held to the scale as now known.
+        allowed = scale(&values) * relative_tolerance / &count;
+    }
+    let error = errors.iter().fold(zero.clone(), |acc, e| acc + e);
+    Ok(Converged {
+        values,
+        error,
+        evaluations,
+        points: largest_rule,
+    })
+}
+
+fn not_converged<R: Real>(values: &[R], error: &R, relative_tolerance: &R, points: usize) -> DissipationError {
+    let zero = relative_tolerance.int(0);
+    let total = values.iter().fold(zero.clone(), |acc, v| acc + v).abs();
+    let scale = total.max_of(&relative_tolerance.epsilon_like());
+    DissipationError::NotConverged {
+        points,
+        relative_error: (error.clone() / &scale).to_f64_lossy(),
+        requested: relative_tolerance.to_f64_lossy(),
     }
 }

@@ -14,12 +14,14 @@
 //! (the CH form uses Q_Y − fP_Y = Q − fP, Eq. 15). Every integrand is smooth in θ,
 //! so Gauss–Legendre rules in θ converge geometrically, where the same integrals in
 //! P would have square-root end points. Because u closes over the cycle, W is the
-//! sum of ∫ (Q − Q0) du over the segments; the segment values reported are those
-//! of the oscillating load Q − Q0, which do not depend on Q0.
+//! sum of ∫ (Q − Q0) du over the segments.
 //!
-//! By default v'(x) is replaced by v'(x) − v'(P0): a constant v' gives du/dθ = λ c Q'
-//! in every segment, which integrates to zero segment by segment, so removing it
-//! changes nothing but the rounding error (see proofs/constant-term.md).
+//! By default v'(x) is replaced by v'(x) − v'(P0). A constant v' = c gives
+//! du/dθ = λ c Q' in every segment, so its contribution λc ∮ (Q − Q0) dQ vanishes
+//! over the cycle (proofs/constant-term.md); removing it before integrating changes
+//! W only by rounding, and keeps small-amplitude results from cancelling away.
+//! The segment values reported are ∫ (Q − Q0) du with u from v' − v'(P0): so
+//! defined they depend neither on Q0 nor on a constant added to v'.
 
 mod closed_forms;
 mod driver;
@@ -29,7 +31,7 @@ pub use closed_forms::{constant_normal_load, in_phase, HertzConfiguration, Mindl
 use crate::compliance::{check_admissible, AdmissibilityError, Compliance};
 use crate::cycle::{CycleError, CycleKind, LoadCycle};
 use crate::real::Real;
-use driver::{converge, Piece};
+use driver::{converge, Converged, Piece};
 
 /// The four segment contributions to W, each ∫ (Q − Q0) du over the segment.
 #[derive(Clone, Debug, PartialEq)]
@@ -80,6 +82,8 @@ pub struct Dissipation<R> {
     pub error_estimate: R,
     /// Integrand evaluations spent.
     pub evaluations: usize,
+    /// The largest Gauss–Legendre rule used on any one piece.
+    pub points: usize,
     /// Which formula produced it.
     pub method: Method,
 }
@@ -89,6 +93,8 @@ pub struct Dissipation<R> {
 pub struct Options<R> {
     /// Target relative accuracy; `None` is 256 ulps of the working precision.
     pub relative_tolerance: Option<R>,
+    /// The smallest Gauss–Legendre rule per segment (the first of the doubling sequence).
+    pub min_points: usize,
     /// The largest Gauss–Legendre rule per segment before giving up.
     pub max_points: usize,
     /// Integrate with v'(x) − v'(P0) in place of v'(x) (exact, and free of cancellation).
@@ -103,7 +109,8 @@ impl<R> Default for Options<R> {
     fn default() -> Self {
         Options {
             relative_tolerance: None,
-            max_points: 2048,
+            min_points: 8,
+            max_points: 512,
             remove_constant_slope: true,
             check_compliance: true,
         }
@@ -160,6 +167,7 @@ pub fn dissipation<R: Real>(
                 },
                 error_estimate: zero,
                 evaluations: 0,
+                points: 0,
                 method: Method::NoTangentialOscillation,
             })
         }
@@ -219,68 +227,122 @@ fn integrate_segments<R: Real>(
     let g = &geometry;
     let slope = slope_at(compliance, &g.mean_normal_load, options.remove_constant_slope);
     let slope = &slope;
-    let zero = g.phase.int(0);
     // f v'(P) dP/dθ, shared by EB (with the opposite sign), CH and HE.
     let normal_term = move |theta: &R| g.friction.clone() * &slope(&g.normal_offset(theta)) * &g.normal_rate(theta);
-    let pieces = vec![
-        Piece {
+    // Each integrand takes s, the angle from the start of its segment.
+    let eb = move |s: &R| {
+        let theta = g.theta_e.clone() + s;
+        let from_b = s.clone() - &g.slip_angle;
+        let reverse = slope(&g.reverse_slip_offset(&from_b)) * &g.sum_amplitude * &from_b.sin();
+        g.tangential_offset(&theta) * &(reverse - &normal_term(&theta))
+    };
+    let bc = move |s: &R| {
+        let theta = g.theta_b.clone() + s;
+        g.tangential_offset(&theta) * &slope(&g.normal_offset(&theta)) * &g.tangential_rate(&theta)
+    };
+    let ch = move |s: &R| {
+        let theta = g.theta_c.clone() + s;
+        let mirror = g.theta_c.clone() - s;
+        // sin(θ − θ_E) = sin(π + s) = −sin s.
+        let forward = slope(&g.normal_offset(&mirror)) * &g.difference_amplitude * &s.sin();
+        g.tangential_offset(&theta) * &(normal_term(&theta) + &forward)
+    };
+    let he = move |s: &R| {
+        let theta = g.theta_h.clone() + s;
+        let from_e = s.clone() - &g.slip_angle;
+        let forward = slope(&g.forward_slip_offset(&from_e)) * &g.difference_amplitude * &from_e.sin();
+        g.tangential_offset(&theta) * &(normal_term(&theta) - &forward)
+    };
+    let segments = [
+        Segment {
             name: "EB",
-            integrand: Box::new(move |s: &R| {
-                let theta = g.theta_e.clone() + s;
-                let from_b = s.clone() - &g.slip_angle;
-                let reverse = slope(&g.reverse_slip_offset(&from_b)) * &g.sum_amplitude * &from_b.sin();
-                g.tangential_offset(&theta) * &(reverse - &normal_term(&theta))
-            }),
-            start: zero.clone(),
-            end: g.slip_angle.clone(),
+            integrand: &eb,
+            start: &g.theta_e,
+            length: &g.slip_angle,
+            mirrored: false,
         },
-        Piece {
+        Segment {
             name: "BC",
-            integrand: Box::new(move |s: &R| {
-                let theta = g.theta_b.clone() + s;
-                g.tangential_offset(&theta) * &slope(&g.normal_offset(&theta)) * &g.tangential_rate(&theta)
-            }),
-            start: zero.clone(),
-            end: g.stick_angle.clone(),
+            integrand: &bc,
+            start: &g.theta_b,
+            length: &g.stick_angle,
+            mirrored: false,
         },
-        Piece {
+        Segment {
             name: "CH",
-            integrand: Box::new(move |s: &R| {
-                let theta = g.theta_c.clone() + s;
-                let mirror = g.theta_c.clone() - s;
-                // sin(θ − θ_E) = sin(π + s) = −sin s.
-                let forward = slope(&g.normal_offset(&mirror)) * &g.difference_amplitude * &s.sin();
-                g.tangential_offset(&theta) * &(normal_term(&theta) + &forward)
-            }),
-            start: zero.clone(),
-            end: g.stick_angle.clone(),
+            integrand: &ch,
+            start: &g.theta_c,
+            length: &g.stick_angle,
+            mirrored: true,
         },
-        Piece {
+        Segment {
             name: "HE",
-            integrand: Box::new(move |s: &R| {
-                let theta = g.theta_h.clone() + s;
-                let from_e = s.clone() - &g.slip_angle;
-                let forward = slope(&g.forward_slip_offset(&from_e)) * &g.difference_amplitude * &from_e.sin();
-                g.tangential_offset(&theta) * &(normal_term(&theta) - &forward)
-            }),
-            start: zero.clone(),
-            end: g.slip_angle.clone(),
+            integrand: &he,
+            start: &g.theta_h,
+            length: &g.slip_angle,
+            mirrored: false,
         },
     ];
-    let converged = converge(&pieces, &options.tolerance_for(&zero), options.max_points)?;
-    Ok(scaled_result(cycle, converged.values, converged.error, converged.evaluations, Method::FourSegment))
+    let mut pieces = Vec::new();
+    let mut owners = Vec::new();
+    for (index, segment) in segments.iter().enumerate() {
+        let breaks = lowest_load_points(segment, &g.theta_c);
+        for window in breaks.windows(2) {
+            pieces.push(Piece {
+                name: segment.name,
+                integrand: Box::new(segment.integrand),
+                start: window[0].clone(),
+                end: window[1].clone(),
+            });
+            owners.push(index);
+        }
+    }
+    let zero = g.phase.int(0);
+    let converged = converge(&pieces, &options.tolerance_for(&zero), options)?;
+    let mut values = vec![zero.clone(); 4];
+    for (value, owner) in converged.values.iter().zip(&owners) {
+        values[*owner] += value;
+    }
+    let combined = Converged::combined(values, converged.error, converged.evaluations, converged.points);
+    Ok(scaled_result(cycle, combined, Method::FourSegment))
+}
+
+/// One segment's integrand in s, the angle from the segment's start θ = `start`.
+struct Segment<'a, R> {
+    name: &'static str,
+    integrand: &'a dyn Fn(&R) -> R,
+    start: &'a R,
+    length: &'a R,
+    /// Whether the integrand also reads P at the mirror point θ_C − s (segment CH).
+    mirrored: bool,
+}
+
+/// The break points 0 = s₀ < s₁ < … < L of a segment: the angles where P (and,
+/// for CH, P at the mirror point θ_C − s) is least, θ ≡ π (mod 2π). A compliance
+/// singular at P → 0 is nearly singular there when the cycle nears separation,
+/// and a break puts the trouble at an end of a piece.
+fn lowest_load_points<R: Real>(segment: &Segment<'_, R>, theta_c: &R) -> Vec<R> {
+    let length = segment.length;
+    let zero = length.int(0);
+    let pi = length.pi_like();
+    let mut breaks = vec![zero.clone()];
+    for k in -2..=3i64 {
+        let lowest = pi.clone() * &pi.int(2 * k + 1);
+        let mut candidates = vec![lowest.clone() - segment.start];
+        if segment.mirrored {
+            candidates.push(theta_c.clone() - &lowest);
+        }
+        breaks.extend(candidates.into_iter().filter(|s| *s > zero && s < length));
+    }
+    breaks.push(length.clone());
+    breaks.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
+    breaks
 }
 
 /// Multiplies the per-unit-λ segment integrals by λ and assembles the result.
-pub(crate) fn scaled_result<R: Real>(
-    cycle: &LoadCycle<R>,
-    values: Vec<R>,
-    error: R,
-    evaluations: usize,
-    method: Method,
-) -> Dissipation<R> {
+pub(crate) fn scaled_result<R: Real>(cycle: &LoadCycle<R>, converged: Converged<R>, method: Method) -> Dissipation<R> {
     let lambda = &cycle.compliance_ratio;
-    let mut scaled = values.into_iter().map(|v| v * lambda);
+    let mut scaled = converged.values.into_iter().map(|v| v * lambda);
     let mut next = || scaled.next().unwrap_or_else(|| lambda.int(0));
     let segments = Segments {
         eb: next(),
@@ -291,8 +353,9 @@ pub(crate) fn scaled_result<R: Real>(
     Dissipation {
         total: segments.total(),
         segments,
-        error_estimate: error * lambda,
-        evaluations,
+        error_estimate: converged.error * lambda,
+        evaluations: converged.evaluations,
+        points: converged.points,
         method,
     }
 }

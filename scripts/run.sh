@@ -1,0 +1,37 @@
+#!/bin/sh
+# Installs what the build needs on a fresh Debian machine (run as root), then runs
+#   sh scripts/run.sh main   the main job
+#   sh scripts/run.sh test   the test suite
+set -eu
+cd "$(dirname "$0")/.."
+
+need_packages=""
+command -v m4 >/dev/null 2>&1 || need_packages="$need_packages m4"
+command -v cc >/dev/null 2>&1 || need_packages="$need_packages gcc libc6-dev"
+command -v make >/dev/null 2>&1 || need_packages="$need_packages make"
+command -v cargo >/dev/null 2>&1 || [ -x "$HOME/.cargo/bin/cargo" ] || need_packages="$need_packages curl ca-certificates"
+if [ -n "$need_packages" ]; then
+    echo "installing:$need_packages" >&2
+    apt-get update -qq
+    DEBIAN_FRONTEND=noninteractive apt-get install -y -qq $need_packages >/dev/null
+fi
+if ! command -v cargo >/dev/null 2>&1; then
+    if [ ! -x "$HOME/.cargo/bin/cargo" ]; then
+        curl --proto '=https' --tlsv1.2 -sSf https://sh.rustup.rs | sh -s -- -y --profile minimal --component clippy,rustfmt
+    fi
+    PATH="$HOME/.cargo/bin:$PATH"
+    export PATH
+fi
+
+case "${1:-}" in
+    main)
+        cargo run --release --quiet -- table
+        ;;
+    test)
+        cargo test --release
+        ;;
+    *)
+        echo "usage: sh scripts/run.sh main|test" >&2
+        exit 2
+        ;;
+esac

@@ -1,0 +1,268 @@
+//! The dissipation per cycle: precision agreement, limits, closed forms and invariants.
+
+use microslip::compliance::{Compliance, Hertz, Polynomial, PowerLaw};
+use microslip::cycle::LoadCycle;
+use microslip::dissipation::{
+    constant_normal_load, dissipation, four_segment, in_phase, HertzConfiguration, Method, MindlinDeresiewicz, Options,
+};
+use microslip::real::{Precision, Real};
+use rug::Float;
+
+/// The first acceptance case: v' = 1/P, P0 = f = λ = 1, P1 = 0.4, Q1 = 0.5, Q0 = 0.
+fn acceptance_cycle<R: Real>(phase: R) -> LoadCycle<R> {
+    let one = phase.int(1);
+    LoadCycle {
+        mean_normal_load: one.clone(),
+        normal_amplitude: one.ratio(2, 5),
+        mean_tangential_load: one.int(0),
+        tangential_amplitude: one.ratio(1, 2),
+        phase,
+        friction: one.clone(),
+        compliance_ratio: one,
+    }
+}
+
+fn inverse_load<R: Real>(p: Precision) -> PowerLaw<R> {
+    PowerLaw {
+        coefficient: R::from_i64(1, p),
+        exponent: R::from_i64(-1, p),
+    }
+}
+
+fn w<R: Real>(cycle: &LoadCycle<R>, compliance: &dyn Compliance<R>) -> R {
+    dissipation(cycle, compliance, &Options::default()).unwrap().total
+}
+
+fn relative(a: f64, b: f64) -> f64 {
+    (a - b).abs() / b.abs()
+}
+
+#[test]
+fn f64_and_256_bits_agree_to_1e_13_and_the_phase_ordering_holds() {
+    let p = Precision::bits(256);
+    let mut values = Vec::new();
+    for tenths in [1, 4, 5, 9] {
+        let double = w(
+            &acceptance_cycle(tenths as f64 * 0.1 * std::f64::consts::PI),
+            &inverse_load(Precision::DOUBLE),
+        );
+        let phase = Float::pi(p) * Float::from_i64(tenths, p) / Float::from_i64(10, p);
+        let multi = w(&acceptance_cycle(phase), &inverse_load::<Float>(p)).to_f64();
+        assert!(relative(double, multi) < 1e-13, "φ = {tenths}π/10: {double} vs {multi}");
+        values.push(multi);
+    }
+    let (w01, w04, w05) = (values[0], values[1], values[2]);
+    assert!(
+        w04 > w05 && w05 > w01,
+        "W(0.4π) = {w04}, W(0.5π) = {w05}, W(0.1π) = {w01}"
+    );
+}
+
+#[test]
+fn four_segment_result_has_70_correct_digits_at_256_bits() {
+    let value_at = |bits: u32| {
+        let p = Precision::bits(bits);
+        let phase = Float::pi(p) * Float::from_i64(2, p) / Float::from_i64(5, p);
+        w(&acceptance_cycle(phase), &inverse_load::<Float>(p))
+    };
+    let (at_256, at_512) = (value_at(256), value_at(512));
+    let error = (Float::with_val(512, &at_256) - &at_512).abs() / &at_512;
+    assert!(
+        error < Float::with_val(64, 1e-70),
+        "relative error {:e}",
+        error.to_f64()
+    );
+}
+
+#[test]
+fn general_integrator_tends_linearly_to_the_in_phase_closed_form() {
+    let compliance = inverse_load::<f64>(Precision::DOUBLE);
+    let options = Options::default();
+    for (phase, base) in [(0.0, 0.0), (std::f64::consts::PI, std::f64::consts::PI)] {
+        let closed = in_phase(&acceptance_cycle(base), &compliance, &options).unwrap();
+        assert_eq!(closed.method, Method::InPhase);
+        let error_at = |offset: f64| {
+            let phi = if phase == 0.0 { offset } else { phase - offset };
+            let general = four_segment(&acceptance_cycle(phi), &compliance, &options).unwrap();
+            relative(general.total, closed.total)
+        };
+        assert!(error_at(1e-8) < 1e-7, "φ offset 1e-8: {:e}", error_at(1e-8));
+        // Linear convergence: the error falls tenfold when the offset does.
+        let ratio = error_at(1e-4) / error_at(1e-5);
+        assert!((ratio - 10.0).abs() < 0.5, "error ratio {ratio}");
+    }
+    // dissipation() routes an exactly in-phase cycle to the closed form.
+    let routed = dissipation(&acceptance_cycle(0.0), &compliance, &options).unwrap();
+    assert_eq!(routed.method, Method::InPhase);
+    assert!(routed.total > 0.0);
+}
+
+#[test]
+fn in_phase_dissipation_vanishes_when_the_load_line_is_inside_the_friction_cone() {
+    let mut cycle = acceptance_cycle(0.0);
+    cycle.tangential_amplitude = 0.35; // < f·P1 = 0.4
+    let compliance = inverse_load::<f64>(Precision::DOUBLE);
+    let closed = in_phase(&cycle, &compliance, &Options::default()).unwrap();
+    assert_eq!(closed.total, 0.0);
+    // The ellipse at small φ dissipates in proportion to φ.
+    cycle.phase = 1e-6;
+    let general = four_segment(&cycle, &compliance, &Options::default()).unwrap();
+    assert!(general.total > 0.0 && general.total < 1e-5, "{}", general.total);
+}
+
+#[test]
+fn constant_normal_load_closed_form_is_the_limit_of_the_general_integrator() {
+    let compliance = inverse_load::<f64>(Precision::DOUBLE);
+    let mut cycle = acceptance_cycle(0.3);
+    cycle.normal_amplitude = 0.0;
+    let closed = dissipation(&cycle, &compliance, &Options::default()).unwrap();
+    assert_eq!(closed.method, Method::ConstantNormalLoad);
+    cycle.normal_amplitude = 1e-10 * cycle.mean_normal_load;
+    let general = four_segment(&cycle, &compliance, &Options::default()).unwrap();
+    assert!(
+        relative(general.total, closed.total) < 1e-8,
+        "{} vs {}",
+        general.total,
+        closed.total
+    );
+}
+
+/// A Hertz sphere of radius R = 1 with constants (G, ν) in the given configuration,
+/// under P0 = 1, f = 0.5, Q1 = q·f·P0: the closed form against Mindlin–Deresiewicz.
+fn mindlin_deresiewicz_mismatch(configuration: HertzConfiguration, q: &str, p: Precision) -> f64 {
+    let number = |text: &str| Float::parse_decimal(text, p).unwrap();
+    let md = MindlinDeresiewicz {
+        shear_modulus: number("80"),
+        poisson_ratio: number("0.3"),
+        configuration,
+    };
+    let hertz = Hertz {
+        radius: number("1"),
+        contact_modulus: md.contact_modulus(),
+    };
+    let nu = md.poisson_ratio.clone();
+    let lambda = (nu.int(2) - &nu) / (nu.int(2) * &(nu.int(1) - &nu));
+    let (f, p0) = (number("0.5"), number("1"));
+    let q1 = number(q) * &f * &p0;
+    let cycle = LoadCycle {
+        mean_normal_load: p0.clone(),
+        normal_amplitude: number("0"),
+        mean_tangential_load: number("0"),
+        tangential_amplitude: q1.clone(),
+        phase: number("0"),
+        friction: f.clone(),
+        compliance_ratio: lambda,
+    };
+    let closed = constant_normal_load(&cycle, &hertz, &Options::default()).unwrap().total;
+    let formula = md.dissipation(&f, &p0, &q1, &hertz.contact_radius(&p0));
+    ((closed - &formula) / formula).abs().to_f64()
+}
+
+#[test]
+fn hertz_constant_load_closed_form_equals_mindlin_deresiewicz() {
+    for q in ["0.001", "0.1", "0.37", "0.5", "0.9", "0.999"] {
+        for configuration in [
+            HertzConfiguration::SphereOnRigidFlat,
+            HertzConfiguration::TwoIdenticalBodies,
+        ] {
+            let mismatch = mindlin_deresiewicz_mismatch(configuration, q, Precision::bits(256));
+            assert!(mismatch < 1e-14, "q = {q}, {configuration:?}: {mismatch:e}");
+        }
+    }
+    // In f64 the two agree too where the bracket does not cancel.
+    let mismatch = mindlin_deresiewicz_mismatch(HertzConfiguration::SphereOnRigidFlat, "0.5", Precision::DOUBLE);
+    assert!(mismatch < 1e-12, "{mismatch:e}");
+}
+
+#[test]
+fn constant_slope_dissipates_nothing_through_the_raw_segment_formulas() {
+    // Integrate v' itself, not v' − v'(P0), so that the segment formulas must cancel it.
+    let raw = |p: Precision| Options::<Float> {
+        remove_constant_slope: false,
+        relative_tolerance: Some(Float::epsilon(p) * Float::from_i64(256, p)),
+        ..Options::default()
+    };
+    for (bits, bound) in [(53u32, 1e-14), (256, 1e-70)] {
+        let p = Precision::bits(bits);
+        let constant = Polynomial {
+            reference: Float::from_i64(0, p),
+            coefficients: vec![Float::from_i64(3, p)],
+        };
+        let phase = Float::pi(p) * Float::from_i64(2, p) / Float::from_i64(5, p);
+        let result = four_segment(&acceptance_cycle(phase), &constant, &raw(p)).unwrap();
+        let scale = result
+            .segments
+            .named()
+            .iter()
+            .map(|(_, v)| v.to_f64().abs())
+            .fold(0.0, f64::max);
+        assert!(scale > 0.01, "segments should not vanish one by one: {scale}");
+        assert!(
+            result.total.to_f64().abs() < bound * scale,
+            "{bits} bits: W = {:e}",
+            result.total.to_f64()
+        );
+    }
+}
+
+#[test]
+fn dissipation_does_not_depend_on_the_mean_tangential_load_and_has_period_pi_in_phase() {
+    let compliance = inverse_load::<f64>(Precision::DOUBLE);
+    let base = w(&acceptance_cycle(1.1), &compliance);
+    for q0 in [-0.05, 0.02, 0.08] {
+        let mut cycle = acceptance_cycle(1.1);
+        cycle.mean_tangential_load = q0;
+        assert!(relative(w(&cycle, &compliance), base) < 1e-14);
+    }
+    for shift in [-2.0, 1.0, 3.0] {
+        let shifted = w(&acceptance_cycle(1.1 + shift * std::f64::consts::PI), &compliance);
+        assert!(relative(shifted, base) < 1e-13, "shift {shift}π: {shifted} vs {base}");
+    }
+    // The same at 256 bits, with φ + π formed exactly at that precision.
+    let p = Precision::bits(256);
+    let phase = Float::from_f64(1.1, p);
+    let compliance = inverse_load::<Float>(p);
+    let at = w(&acceptance_cycle(phase.clone()), &compliance);
+    let shifted = w(&acceptance_cycle(phase + Float::pi(p)), &compliance);
+    let difference = ((at.clone() - shifted) / at).abs().to_f64();
+    assert!(difference < 1e-70, "{difference:e}");
+}
+
+#[test]
+fn no_tangential_oscillation_dissipates_nothing() {
+    let mut cycle = acceptance_cycle(1.0);
+    cycle.tangential_amplitude = 0.0;
+    let result = dissipation(&cycle, &inverse_load::<f64>(Precision::DOUBLE), &Options::default()).unwrap();
+    assert_eq!(result.method, Method::NoTangentialOscillation);
+    assert_eq!(result.total, 0.0);
+}
+
+#[test]
+fn segment_contributions_sum_to_the_total_and_the_stick_segment_is_elastic() {
+    let compliance = inverse_load::<f64>(Precision::DOUBLE);
+    let cycle = acceptance_cycle(0.4 * std::f64::consts::PI);
+    let result = dissipation(&cycle, &compliance, &Options::default()).unwrap();
+    let s = &result.segments;
+    assert!(relative(s.eb + s.bc + s.ch + s.he, result.total) < 1e-15);
+    // In BC the whole contact sticks: du = λ v'(P) dQ, so ∫ (Q − Q0) du there is an
+    // independent one-line integral in θ.
+    let g = cycle.geometry().unwrap();
+    let n = 2000;
+    let h = (g.theta_c - g.theta_b) / n as f64;
+    let mut simpson = 0.0;
+    for i in 0..=n {
+        let theta = g.theta_b + h * i as f64;
+        let p = cycle.normal_load(&theta);
+        let value = g.tangential_offset(&theta) * (1.0 / p - 1.0) * g.tangential_rate(&theta);
+        let weight = if i == 0 || i == n {
+            1.0
+        } else if i % 2 == 1 {
+            4.0
+        } else {
+            2.0
+        };
+        simpson += weight * value;
+    }
+    simpson *= h / 3.0;
+    assert!(relative(s.bc, simpson) < 1e-10, "{} vs {}", s.bc, simpson);
+}

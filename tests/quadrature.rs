@@ -1,0 +1,132 @@
+//! The quadrature rules against exact values.
+
+use microslip::quad::{gauss_legendre, tanh_sinh};
+use microslip::real::{Precision, Real};
+use rug::Float;
+
+/// ∫₋₁¹ x^k dx.
+fn monomial_integral<R: Real>(k: i64, like: &R) -> R {
+    if k % 2 == 1 {
+        like.int(0)
+    } else {
+        like.ratio(2, k + 1)
+    }
+}
+
+fn check_polynomial_exactness<R: Real>(precision: Precision, tolerance: f64) {
+    for n in [1usize, 2, 3, 8, 13, 32] {
+        let table = gauss_legendre::node_table::<R>(n, precision);
+        let one = R::from_i64(1, precision);
+        for k in 0..(2 * n as i64) {
+            let value = table.integrate(|x: &R| x.powi(k as i32), &(-one.clone()), &one);
+            let exact = monomial_integral(k, &one);
+            let error = (value - &exact).abs().to_f64_lossy();
+            assert!(error < tolerance, "n={n}, x^{k}: error {error:e}");
+        }
+        // Degree 2n is the first the rule misses, by exactly 2^(2n+1) (n!)^4 / ((2n+1) ((2n)!)^2).
+        let k = 2 * n as i64;
+        let value = table.integrate(|x: &R| x.powi(k as i32), &(-one.clone()), &one);
+        let shortfall = monomial_integral(k, &one) - value;
+        let expected = gauss_error_on_x_to_the_2n(n, &one);
+        if expected.to_f64_lossy() > 1e6 * tolerance {
+            let relative = ((shortfall - &expected) / &expected).abs().to_f64_lossy();
+            assert!(relative < 1e-6, "n={n}: x^{k} shortfall off by {relative:e} relative");
+        }
+    }
+}
+
+/// The Gauss–Legendre error on x^(2n): 2^(2n+1) (n!)^4 / ((2n+1) ((2n)!)^2).
+fn gauss_error_on_x_to_the_2n<R: Real>(n: usize, one: &R) -> R {
+    let factorial = |m: usize| (1..=m as i64).fold(one.clone(), |acc, i| acc * &one.int(i));
+    one.int(2).powi(2 * n as i32 + 1) * &factorial(n).powi(4) / (one.int(2 * n as i64 + 1) * &factorial(2 * n).square())
+}
+
+#[test]
+fn gauss_legendre_is_exact_on_polynomials_of_degree_2n_minus_1_in_f64() {
+    check_polynomial_exactness::<f64>(Precision::DOUBLE, 1e-13);
+}
+
+#[test]
+fn gauss_legendre_is_exact_on_polynomials_of_degree_2n_minus_1_at_200_bits() {
+    check_polynomial_exactness::<Float>(Precision::bits(200), 1e-55);
+}
+
+#[test]
+fn gauss_legendre_gives_pi_to_100_digits() {
+    let p = Precision::bits(360);
+    let (zero, one) = (Float::from_i64(0, p), Float::from_i64(1, p));
+    let tolerance = Float::parse_decimal("1e-104", p).unwrap();
+    let estimate = gauss_legendre::integrate(
+        |x: &Float| x.int(4) / (x.int(1) + &x.square()),
+        &zero,
+        &one,
+        &tolerance,
+        8,
+        1024,
+    );
+    assert!(estimate.converged);
+    let error = (estimate.value - Float::pi(p)).abs();
+    assert!(
+        error < Float::parse_decimal("1e-100", p).unwrap(),
+        "error {}",
+        error.to_f64()
+    );
+    assert!(estimate.error < tolerance);
+}
+
+/// ∫₀¹ x^(−1/2) cos x dx = Σₖ (−1)^k / ((2k)! (2k + 1/2)), summed until the terms vanish.
+fn cos_over_sqrt_series(p: Precision) -> Float {
+    let mut sum = Float::from_i64(0, p);
+    let mut factorial = Float::from_i64(1, p);
+    for k in 0..200i64 {
+        if k > 0 {
+            factorial *= Float::from_i64((2 * k - 1) * (2 * k), p);
+        }
+        let denominator = factorial.clone() * &(Float::from_i64(4 * k + 1, p) / Float::from_i64(2, p));
+        let term = Float::from_i64(1, p) / denominator;
+        if k % 2 == 0 {
+            sum += term;
+        } else {
+            sum -= term;
+        }
+    }
+    sum
+}
+
+#[test]
+fn tanh_sinh_integrates_an_inverse_square_root_singularity_to_50_digits() {
+    let p = Precision::bits(200);
+    let reference = cos_over_sqrt_series(p);
+    let (zero, one) = (Float::from_i64(0, p), Float::from_i64(1, p));
+    let tolerance = Float::parse_decimal("1e-55", p).unwrap();
+    let estimate = tanh_sinh::integrate(|x: &Float| x.cos() / x.sqrt(), &zero, &one, &tolerance, 12);
+    assert!(estimate.converged, "error estimate {}", estimate.error.to_f64());
+    let error = (estimate.value.clone() - &reference).abs() / &reference;
+    assert!(
+        error < Float::parse_decimal("1e-50", p).unwrap(),
+        "relative error {:e}",
+        error.to_f64()
+    );
+    // The same integral by Gauss–Legendre converges only algebraically: far from 50 digits at 512 points.
+    let gauss = gauss_legendre::node_table::<Float>(512, p).integrate(|x: &Float| x.cos() / x.sqrt(), &zero, &one);
+    let gauss_error = ((gauss - &reference).abs() / &reference).to_f64();
+    assert!(gauss_error > 1e-10, "Gauss–Legendre error {gauss_error:e}");
+}
+
+#[test]
+fn tanh_sinh_in_f64_reaches_full_precision_on_smooth_and_singular_integrands() {
+    let estimate = tanh_sinh::integrate(|x: &f64| 4.0 / (1.0 + x * x), &0.0, &1.0, &1e-15, 10);
+    assert!(
+        (estimate.value - std::f64::consts::PI).abs() < 4e-15,
+        "{}",
+        estimate.value
+    );
+    let reference = cos_over_sqrt_series(Precision::bits(64)).to_f64();
+    let estimate = tanh_sinh::integrate(|x: &f64| x.cos() / x.sqrt(), &0.0, &1.0, &1e-15, 10);
+    assert!(
+        (estimate.value - reference).abs() < 1e-14 * reference,
+        "{} vs {}",
+        estimate.value,
+        reference
+    );
+}

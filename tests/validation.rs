@@ -1,0 +1,262 @@
+//! Every validation error, through the library and through the command line
+//! (exit code 2, one line on stderr naming the problem, nothing on stdout).
+
+use std::process::Command;
+
+use microslip::compliance::{parse_spec, AdmissibilityError};
+use microslip::cycle::{compliance_ratio_from_poisson, CycleError, LoadCycle};
+use microslip::dissipation::{dissipation, DissipationError, Options};
+use microslip::real::Precision;
+
+fn base() -> LoadCycle<f64> {
+    LoadCycle {
+        mean_normal_load: 1.0,
+        normal_amplitude: 0.4,
+        mean_tangential_load: 0.0,
+        tangential_amplitude: 0.5,
+        phase: 1.0,
+        friction: 1.0,
+        compliance_ratio: 1.0,
+    }
+}
+
+fn validate(change: impl Fn(&mut LoadCycle<f64>)) -> CycleError {
+    let mut cycle = base();
+    change(&mut cycle);
+    cycle.validate().expect_err("the cycle should be rejected")
+}
+
+#[test]
+fn library_rejects_each_invalid_cycle_with_its_own_error() {
+    assert!(base().validate().is_ok());
+    assert!(matches!(
+        validate(|c| c.mean_normal_load = f64::NAN),
+        CycleError::NotFinite { quantity: "P0", .. }
+    ));
+    assert!(matches!(
+        validate(|c| c.phase = f64::INFINITY),
+        CycleError::NotFinite { quantity: "φ", .. }
+    ));
+    assert!(matches!(
+        validate(|c| c.mean_normal_load = -1.0),
+        CycleError::NonPositiveMeanLoad { .. }
+    ));
+    assert!(matches!(
+        validate(|c| c.normal_amplitude = -0.1),
+        CycleError::NegativeAmplitude { quantity: "P1", .. }
+    ));
+    assert!(matches!(
+        validate(|c| c.tangential_amplitude = -0.1),
+        CycleError::NegativeAmplitude { quantity: "Q1", .. }
+    ));
+    let separation = validate(|c| c.normal_amplitude = 1.0);
+    assert!(matches!(separation, CycleError::Separation { margin, .. } if margin == 0.0));
+    assert!(matches!(
+        validate(|c| c.friction = 0.0),
+        CycleError::NonPositiveFriction { .. }
+    ));
+    for lambda in [0.5, 2.5] {
+        assert!(matches!(
+            validate(|c| c.compliance_ratio = lambda),
+            CycleError::ComplianceRatioOutOfRange { .. }
+        ));
+    }
+    assert!(matches!(validate(|c| c.phase = 1e7), CycleError::PhaseTooLarge { .. }));
+    // max(Q − fP) = Q0 − fP0 + σ₋: Q0 = 0.7 crosses Q = +fP, Q0 = −0.7 crosses Q = −fP.
+    match validate(|c| c.mean_tangential_load = 0.7) {
+        CycleError::GrossSlip { sign: "+", excess, .. } => assert!(excess > 0.0),
+        other => panic!("expected gross slip on Q = +fP, got {other:?}"),
+    }
+    match validate(|c| c.mean_tangential_load = -0.7) {
+        CycleError::GrossSlip {
+            sign: "−", excess, ..
+        } => assert!(excess > 0.0),
+        other => panic!("expected gross slip on Q = −fP, got {other:?}"),
+    }
+    assert!(matches!(
+        compliance_ratio_from_poisson(&0.9),
+        Err(CycleError::PoissonRatioOutOfRange { .. })
+    ));
+    assert!((compliance_ratio_from_poisson(&0.5).unwrap() - 1.5).abs() < 1e-15);
+}
+
+#[test]
+fn gross_slip_margin_is_exact_at_the_boundary() {
+    // σ₋ at φ = π/2 is √(Q1² + f²P1²); Q0 exactly fP0 − σ₋ touches the line.
+    let mut cycle = base();
+    cycle.phase = std::f64::consts::FRAC_PI_2;
+    let sigma_minus = (0.5f64 * 0.5 + 0.4 * 0.4).sqrt();
+    cycle.mean_tangential_load = 1.0 - sigma_minus + 1e-9;
+    assert!(matches!(cycle.validate(), Err(CycleError::GrossSlip { .. })));
+    cycle.mean_tangential_load = 1.0 - sigma_minus - 1e-9;
+    assert!(cycle.validate().is_ok());
+}
+
+#[test]
+fn library_rejects_non_physical_compliance() {
+    let cycle = base();
+    let negative = parse_spec::<f64>("power:c=-1,beta=-1", Precision::DOUBLE).unwrap();
+    assert!(matches!(
+        dissipation(&cycle, negative.as_ref(), &Options::default()),
+        Err(DissipationError::Compliance(
+            AdmissibilityError::NonPositiveSlope { .. }
+        ))
+    ));
+    let softening = parse_spec::<f64>("poly:p0=1,coeffs=1;0.5", Precision::DOUBLE).unwrap();
+    assert!(matches!(
+        dissipation(&cycle, softening.as_ref(), &Options::default()),
+        Err(DissipationError::Compliance(
+            AdmissibilityError::PositiveCurvature { .. }
+        ))
+    ));
+}
+
+fn microslip(args: &[&str]) -> (i32, String, String) {
+    let output = Command::new(env!("CARGO_BIN_EXE_microslip"))
+        .args(args)
+        .output()
+        .expect("the binary runs");
+    (
+        output.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&output.stdout).into_owned(),
+        String::from_utf8_lossy(&output.stderr).into_owned(),
+    )
+}
+
+/// `microslip dissipation` on the base case with one flag replaced (or added).
+fn dissipation_with(flag: &str, value: &str, extra: &[&str]) -> (i32, String, String) {
+    let mut args = vec!["dissipation".to_string()];
+    let defaults = [
+        ("--compliance", "persson:gamma=1,sigma=1"),
+        ("--p0", "1"),
+        ("--p1", "0.4"),
+        ("--q1", "0.5"),
+        ("--phi", "0.4pi"),
+        ("--friction", "1"),
+        ("--lambda", "1"),
+    ];
+    for (name, default) in defaults {
+        args.push(name.to_string());
+        args.push(if name == flag { value } else { default }.to_string());
+    }
+    if !defaults.iter().any(|(name, _)| *name == flag) && !flag.is_empty() {
+        args.push(flag.to_string());
+        args.push(value.to_string());
+    }
+    args.extend(extra.iter().map(|s| s.to_string()));
+    let refs: Vec<&str> = args.iter().map(String::as_str).collect();
+    microslip(&refs)
+}
+
+fn assert_rejected(outcome: (i32, String, String), expected: &str) {
+    let (code, stdout, stderr) = outcome;
+    assert_eq!(code, 2, "exit code; stderr: {stderr}");
+    assert!(stdout.is_empty(), "stdout should be empty, got {stdout}");
+    assert_eq!(stderr.trim_end().lines().count(), 1, "one line on stderr, got {stderr}");
+    assert!(
+        stderr.contains(expected),
+        "stderr should mention '{expected}': {stderr}"
+    );
+}
+
+#[test]
+fn command_line_reports_each_invalid_cycle_in_one_line_with_exit_code_2() {
+    let (code, stdout, _) = dissipation_with("", "", &[]);
+    assert_eq!(code, 0);
+    assert!(stdout.starts_with("W = "), "{stdout}");
+    assert_rejected(dissipation_with("--p0", "nan", &[]), "P0 is not a finite number");
+    assert_rejected(dissipation_with("--p0", "-1", &[]), "must be positive");
+    assert_rejected(dissipation_with("--p1", "-0.1", &[]), "P1 = ");
+    assert_rejected(dissipation_with("--q1", "-0.1", &[]), "Q1 = ");
+    assert_rejected(dissipation_with("--p1", "1", &[]), "the contact separates");
+    assert_rejected(dissipation_with("--friction", "0", &[]), "friction coefficient");
+    assert_rejected(dissipation_with("--lambda", "2.5", &[]), "compliance ratio");
+    assert_rejected(dissipation_with("--phi", "1e7", &[]), "too large");
+    assert_rejected(
+        dissipation_with("--q0", "0.7", &[]),
+        "gross slip: the load ellipse reaches the line Q = +fP",
+    );
+    assert_rejected(dissipation_with("--q0", "-0.7", &[]), "Q = −fP");
+    assert_rejected(dissipation_with("--p0", "abc", &[]), "'abc' is not a decimal number");
+    assert_rejected(dissipation_with("--phi", "xpi", &[]), "--phi");
+}
+
+#[test]
+fn command_line_reports_bad_compliance_poisson_ratio_and_flags() {
+    assert_rejected(dissipation_with("--compliance", "power:c=-1,beta=-1", &[]), "v'(P) = ");
+    assert_rejected(
+        dissipation_with("--compliance", "poly:p0=1,coeffs=1;0.5", &[]),
+        "v''(P)",
+    );
+    assert_rejected(
+        dissipation_with("--compliance", "bogus:x=1", &[]),
+        "unknown family 'bogus'",
+    );
+    assert_rejected(dissipation_with("--compliance", "power:c=1", &[]), "power needs beta=");
+    assert_rejected(dissipation_with("--compliance", "power:c=1,beta=x", &[]), "beta='x'");
+    assert_rejected(
+        dissipation_with("--compliance", "persson:gamma=1,sigma=1+", &[]),
+        "empty term",
+    );
+    // --nu in place of --lambda: out of range, and both at once.
+    let nu_case = |nu: &str| {
+        microslip(&[
+            "dissipation",
+            "--p0",
+            "1",
+            "--p1",
+            "0.4",
+            "--q1",
+            "0.5",
+            "--phi",
+            "1",
+            "--friction",
+            "1",
+            "--nu",
+            nu,
+            "--compliance",
+            "persson:gamma=1,sigma=1",
+        ])
+    };
+    assert_rejected(nu_case("0.9"), "Poisson's ratio");
+    assert_eq!(nu_case("0.3").0, 0);
+    assert_rejected(dissipation_with("--nu", "0.3", &[]), "cannot be used with");
+    assert_rejected(microslip(&["dissipation", "--p0", "1"]), "required");
+    assert_rejected(
+        dissipation_with("--digits", "0", &[]),
+        "--digits must be between 1 and 1000",
+    );
+    assert_rejected(
+        dissipation_with("--digits", "1001", &[]),
+        "--digits must be between 1 and 1000",
+    );
+    assert_rejected(
+        dissipation_with("--p0", "nan", &["--digits", "20"]),
+        "'nan' is not a decimal number",
+    );
+}
+
+#[test]
+fn command_line_json_carries_w_segments_digits_and_inputs() {
+    let (code, stdout, stderr) = dissipation_with("", "", &["--json"]);
+    assert_eq!(code, 0, "{stderr}");
+    let value: serde_json::Value = serde_json::from_str(stdout.trim()).expect("one JSON object");
+    let w: f64 = value["W"].as_str().unwrap().parse().unwrap();
+    assert!(w > 0.0);
+    assert_eq!(value["digits"], 15);
+    let segments: f64 = ["EB", "BC", "CH", "HE"]
+        .iter()
+        .map(|k| value["segments"][k].as_str().unwrap().parse::<f64>().unwrap())
+        .sum();
+    assert!((segments - w).abs() < 1e-13 * w);
+    assert_eq!(value["inputs"]["phi"], "0.4pi");
+    // With --digits, the same W to 30 verified digits, agreeing with f64 to 1e-13.
+    let (code, stdout, stderr) = dissipation_with("", "", &["--json", "--digits", "30"]);
+    assert_eq!(code, 0, "{stderr}");
+    let precise: serde_json::Value = serde_json::from_str(stdout.trim()).unwrap();
+    assert_eq!(precise["digits_verified"], 30);
+    let text = precise["W"].as_str().unwrap();
+    assert_eq!(text.split('e').next().unwrap().replace('.', "").len(), 30, "{text}");
+    let precise_w: f64 = text.parse().unwrap();
+    assert!((precise_w - w).abs() < 1e-13 * w, "{precise_w} vs {w}");
+}
