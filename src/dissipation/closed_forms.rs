@@ -11,7 +11,7 @@
 //! The integrals are written in the offset x = P − P0 and use v'(P0 + x) − v'(P0)
 //! where the options ask for it (the weights integrate a constant to zero).
 
-use super::driver::{converge, Converged, Piece};
+use super::driver::{converge, Converged, Integral};
 use super::{prepare, scaled_result, slope_at, Dissipation, DissipationError, Method, Options};
 use crate::compliance::Compliance;
 use crate::cycle::LoadCycle;
@@ -49,20 +49,23 @@ pub fn in_phase<R: Real>(
     let slope = &slope;
     let (q_ref, p1_ref) = (&q, p1);
     let pieces = vec![
-        Piece {
+        Integral {
             name: "W1",
+            segment: 3,
             integrand: Box::new(move |x: &R| x.clone() * &slope(x)),
             start: -p1.clone(),
             end: p1.clone(),
         },
-        Piece {
+        Integral {
             name: "W2",
+            segment: 3,
             integrand: Box::new(move |x: &R| (x.clone() * &x.int(2) + p1_ref + q_ref) * &slope(x)),
             start: -p1.clone(),
             end: -q.clone(),
         },
-        Piece {
+        Integral {
             name: "W4",
+            segment: 0,
             integrand: Box::new(move |x: &R| (x.clone() * &x.int(2) - p1_ref + q_ref) * &slope(x)),
             start: p1.clone(),
             end: -q.clone(),
@@ -99,8 +102,9 @@ pub fn constant_normal_load<R: Real>(
     let q = cycle.tangential_amplitude.clone() / f;
     let slope = slope_at(compliance, &cycle.mean_normal_load, options.remove_constant_slope);
     let q_ref = &q;
-    let pieces = vec![Piece {
+    let pieces = vec![Integral {
         name: "Masing loop",
+        segment: 0,
         integrand: Box::new(|x: &R| (-(x.clone() * &x.int(2)) - q_ref) * &slope(x)),
         start: -q.clone(),
         end: zero.clone(),

@@ -14,10 +14,16 @@ use crate::quad::tanh_sinh;
 use crate::real::Real;
 
 /// ∫ₛₜₐᵣₜ^ₑₙd integrand: one piece of a sum of integrals.
-pub(crate) struct Piece<'a, R> {
+pub struct Integral<'a, R> {
+    /// What the piece is (a segment name, or a closed form's term).
     pub name: &'static str,
+    /// For segment pieces, the index of the segment (0 EB, 1 BC, 2 CH, 3 HE) it belongs to.
+    pub segment: usize,
+    /// The integrand.
     pub integrand: Box<dyn Fn(&R) -> R + 'a>,
+    /// Lower limit.
     pub start: R,
+    /// Upper limit.
     pub end: R,
 }
 
@@ -45,7 +51,7 @@ impl<R: Real> Converged<R> {
 /// Tanh–sinh levels allowed after Gauss–Legendre gives up (each doubles the nodes).
 const MAX_TANH_SINH_LEVEL: u32 = 16;
 
-fn gauss<R: Real>(piece: &Piece<'_, R>, points: usize) -> Result<R, DissipationError> {
+fn gauss<R: Real>(piece: &Integral<'_, R>, points: usize) -> Result<R, DissipationError> {
     if piece.start == piece.end {
         return Ok(piece.start.int(0));
     }
@@ -54,7 +60,7 @@ fn gauss<R: Real>(piece: &Piece<'_, R>, points: usize) -> Result<R, DissipationE
     finite(value, piece)
 }
 
-fn finite<R: Real>(value: R, piece: &Piece<'_, R>) -> Result<R, DissipationError> {
+fn finite<R: Real>(value: R, piece: &Integral<'_, R>) -> Result<R, DissipationError> {
     if value.is_finite() {
         Ok(value)
     } else {
@@ -66,7 +72,7 @@ fn finite<R: Real>(value: R, piece: &Piece<'_, R>) -> Result<R, DissipationError
 /// pieces): the scale of the sum, which is what a cancelling sum can be trusted to.
 /// Fails with `NotConverged` when neither rule gets there.
 pub(crate) fn converge<R: Real>(
-    pieces: &[Piece<'_, R>],
+    pieces: &[Integral<'_, R>],
     relative_tolerance: &R,
     options: &Options<R>,
 ) -> Result<Converged<R>, DissipationError> {

@@ -25,13 +25,16 @@
 
 mod closed_forms;
 mod driver;
+mod segments;
 
 pub use closed_forms::{constant_normal_load, in_phase, HertzConfiguration, MindlinDeresiewicz};
+pub use driver::Integral;
+pub use segments::{SegmentIntegrands, SEGMENT_NAMES};
 
 use crate::compliance::{check_admissible, AdmissibilityError, Compliance};
 use crate::cycle::{CycleError, CycleKind, LoadCycle};
 use crate::real::Real;
-use driver::{converge, Converged, Piece};
+use driver::{converge, Converged};
 
 /// The four segment contributions to W, each ∫ (Q − Q0) du over the segment.
 #[derive(Clone, Debug, PartialEq)]
@@ -224,119 +227,20 @@ fn integrate_segments<R: Real>(
     options: &Options<R>,
 ) -> Result<Dissipation<R>, DissipationError> {
     let geometry = cycle.geometry()?;
-    let g = &geometry;
-    let slope = slope_at(compliance, &g.mean_normal_load, options.remove_constant_slope);
-    let slope = &slope;
-    // f v'(P) dP/dθ, shared by EB (with the opposite sign), CH and HE.
-    let normal_term = move |theta: &R| g.friction.clone() * &slope(&g.normal_offset(theta)) * &g.normal_rate(theta);
-    // Each integrand takes s, the angle from the start of its segment.
-    let eb = move |s: &R| {
-        let theta = g.theta_e.clone() + s;
-        let from_b = s.clone() - &g.slip_angle;
-        let reverse = slope(&g.reverse_slip_offset(&from_b)) * &g.sum_amplitude * &from_b.sin();
-        g.tangential_offset(&theta) * &(reverse - &normal_term(&theta))
+    let integrands = SegmentIntegrands {
+        geometry: &geometry,
+        compliance,
+        remove_constant_slope: options.remove_constant_slope,
     };
-    let bc = move |s: &R| {
-        let theta = g.theta_b.clone() + s;
-        g.tangential_offset(&theta) * &slope(&g.normal_offset(&theta)) * &g.tangential_rate(&theta)
-    };
-    let ch = move |s: &R| {
-        let theta = g.theta_c.clone() + s;
-        let mirror = g.theta_c.clone() - s;
-        // sin(θ − θ_E) = sin(π + s) = −sin s.
-        let forward = slope(&g.normal_offset(&mirror)) * &g.difference_amplitude * &s.sin();
-        g.tangential_offset(&theta) * &(normal_term(&theta) + &forward)
-    };
-    let he = move |s: &R| {
-        let theta = g.theta_h.clone() + s;
-        let from_e = s.clone() - &g.slip_angle;
-        let forward = slope(&g.forward_slip_offset(&from_e)) * &g.difference_amplitude * &from_e.sin();
-        g.tangential_offset(&theta) * &(normal_term(&theta) - &forward)
-    };
-    let segments = [
-        Segment {
-            name: "EB",
-            integrand: &eb,
-            start: &g.theta_e,
-            length: &g.slip_angle,
-            mirrored: false,
-        },
-        Segment {
-            name: "BC",
-            integrand: &bc,
-            start: &g.theta_b,
-            length: &g.stick_angle,
-            mirrored: false,
-        },
-        Segment {
-            name: "CH",
-            integrand: &ch,
-            start: &g.theta_c,
-            length: &g.stick_angle,
-            mirrored: true,
-        },
-        Segment {
-            name: "HE",
-            integrand: &he,
-            start: &g.theta_h,
-            length: &g.slip_angle,
-            mirrored: false,
-        },
-    ];
-    let mut pieces = Vec::new();
-    let mut owners = Vec::new();
-    for (index, segment) in segments.iter().enumerate() {
-        let breaks = lowest_load_points(segment, &g.theta_c);
-        for window in breaks.windows(2) {
-            pieces.push(Piece {
-                name: segment.name,
-                integrand: Box::new(segment.integrand),
-                start: window[0].clone(),
-                end: window[1].clone(),
-            });
-            owners.push(index);
-        }
-    }
-    let zero = g.phase.int(0);
+    let pieces = integrands.pieces();
+    let zero = geometry.phase.int(0);
     let converged = converge(&pieces, &options.tolerance_for(&zero), options)?;
     let mut values = vec![zero.clone(); 4];
-    for (value, owner) in converged.values.iter().zip(&owners) {
-        values[*owner] += value;
+    for (value, piece) in converged.values.iter().zip(&pieces) {
+        values[piece.segment] += value;
     }
     let combined = Converged::combined(values, converged.error, converged.evaluations, converged.points);
     Ok(scaled_result(cycle, combined, Method::FourSegment))
-}
-
-/// One segment's integrand in s, the angle from the segment's start θ = `start`.
-struct Segment<'a, R> {
-    name: &'static str,
-    integrand: &'a dyn Fn(&R) -> R,
-    start: &'a R,
-    length: &'a R,
-    /// Whether the integrand also reads P at the mirror point θ_C − s (segment CH).
-    mirrored: bool,
-}
-
-/// The break points 0 = s₀ < s₁ < … < L of a segment: the angles where P (and,
-/// for CH, P at the mirror point θ_C − s) is least, θ ≡ π (mod 2π). A compliance
-/// singular at P → 0 is nearly singular there when the cycle nears separation,
-/// and a break puts the trouble at an end of a piece.
-fn lowest_load_points<R: Real>(segment: &Segment<'_, R>, theta_c: &R) -> Vec<R> {
-    let length = segment.length;
-    let zero = length.int(0);
-    let pi = length.pi_like();
-    let mut breaks = vec![zero.clone()];
-    for k in -2..=3i64 {
-        let lowest = pi.clone() * &pi.int(2 * k + 1);
-        let mut candidates = vec![lowest.clone() - segment.start];
-        if segment.mirrored {
-            candidates.push(theta_c.clone() - &lowest);
-        }
-        breaks.extend(candidates.into_iter().filter(|s| *s > zero && s < length));
-    }
-    breaks.push(length.clone());
-    breaks.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
-    breaks
 }
 
 /// Multiplies the per-unit-λ segment integrals by λ and assembles the result.
