@@ -59,21 +59,31 @@ pub enum InputError {
     Cycle(#[from] CycleError),
 }
 
-/// Reads a decimal at the precision, or a multiple of π when it ends in `pi` (`0.4pi`, `pi`, `-2pi`).
+/// Reads a phase: a decimal (radians), a multiple of π (`0.4pi`, `pi`, `-2pi`), or a
+/// multiple of π plus a decimal offset (`pi-1e-6`, `0.5pi+0.01`), each part read
+/// exactly at the precision.
 pub fn parse_phase<R: Real>(text: &str, precision: Precision) -> Result<R, ParseRealError> {
-    let trimmed = text.trim();
-    match trimmed.strip_suffix("pi").or_else(|| trimmed.strip_suffix('π')) {
-        Some(multiple) => {
-            let multiple = multiple.trim().trim_end_matches('*');
-            let factor = match multiple {
-                "" | "+" => R::from_i64(1, precision),
-                "-" => R::from_i64(-1, precision),
-                m => R::parse_decimal(m, precision).map_err(|_| ParseRealError { text: text.to_string() })?,
-            };
-            Ok(factor * &R::pi(precision))
-        }
-        None => R::parse_decimal(trimmed, precision),
+    let error = || ParseRealError { text: text.to_string() };
+    let trimmed = text.trim().replace('π', "pi");
+    let Some((multiple, offset)) = trimmed.split_once("pi") else {
+        return R::parse_decimal(&trimmed, precision);
+    };
+    let multiple = multiple.trim().trim_end_matches('*');
+    let factor = match multiple {
+        "" | "+" => R::from_i64(1, precision),
+        "-" => R::from_i64(-1, precision),
+        m => R::parse_decimal(m, precision).map_err(|_| error())?,
+    };
+    let angle = factor * &R::pi(precision);
+    let offset = offset.trim();
+    if offset.is_empty() {
+        return Ok(angle);
     }
+    if !offset.starts_with(['+', '-']) {
+        return Err(error());
+    }
+    let offset = R::parse_decimal(offset, precision).map_err(|_| error())?;
+    Ok(angle + &offset)
 }
 
 /// A case read at a precision: the load cycle and the compliance.
@@ -127,6 +137,10 @@ mod tests {
         let z: f64 = parse_phase("-0.5pi", Precision::DOUBLE).unwrap();
         assert_eq!(z, -std::f64::consts::FRAC_PI_2);
         assert!(parse_phase::<f64>("xpi", Precision::DOUBLE).is_err());
+        assert!(parse_phase::<f64>("pi1", Precision::DOUBLE).is_err());
+        let w: Float = parse_phase("pi-1e-6", p).unwrap();
+        let expected = Float::pi(p) - Float::parse_decimal("1e-6", p).unwrap();
+        assert_eq!(w, expected);
         assert!(parse_phase::<f64>("0.3", Precision::DOUBLE).is_ok());
     }
 }

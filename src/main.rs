@@ -1,11 +1,14 @@
 //! `microslip`: the command line. Parsing and printing only; the work is in the library.
 
+use std::io::IsTerminal;
+use std::path::PathBuf;
 use std::process::ExitCode;
 use std::time::Duration;
 
 use clap::{Args, Parser, Subcommand};
 use serde_json::json;
 
+use microslip::catalogue;
 use microslip::dissipation::{dissipation, Method, Options};
 use microslip::inputs::{Case, CaseText};
 use microslip::real::{Precision, Real};
@@ -26,6 +29,8 @@ struct Cli {
 enum Command {
     /// The dissipation per cycle W and its four segment contributions.
     Dissipation(Box<DissipationArgs>),
+    /// Recompute the reference values of a catalogue of cases, in place.
+    Reference(ReferenceArgs),
     /// A table of Ŵ = W/(γσλf²) against the phase φ for Persson's compliance
     /// v' = γσ/P, P0 = 1, P1 = 0.4 (the paper's Fig. 5).
     Table,
@@ -98,6 +103,19 @@ struct DissipationArgs {
     /// Print one JSON object.
     #[arg(long)]
     json: bool,
+}
+
+#[derive(Args)]
+struct ReferenceArgs {
+    /// The catalogue file (JSON), rewritten with the new reference values.
+    #[arg(long)]
+    catalogue: PathBuf,
+    /// Verified significant digits per case.
+    #[arg(long, default_value_t = 50)]
+    digits: u32,
+    /// Time budget per case, in seconds.
+    #[arg(long, default_value_t = 120.0)]
+    max_seconds: f64,
 }
 
 /// A failure to report: one line on stderr, exit code 2.
@@ -193,6 +211,37 @@ fn run_dissipation(args: &DissipationArgs) -> Result<String, Failure> {
     Ok(out.trim_end().to_string())
 }
 
+fn run_reference(args: &ReferenceArgs) -> Result<String, Failure> {
+    if !(args.max_seconds.is_finite() && args.max_seconds > 0.0) {
+        return Err(Failure(format!(
+            "--max-seconds must be a positive number, got {}",
+            args.max_seconds
+        )));
+    }
+    let entries = catalogue::load(&args.catalogue)?;
+    let total = entries.len();
+    let updated = catalogue::regenerate(
+        &entries,
+        args.digits,
+        Duration::from_secs_f64(args.max_seconds),
+        |index, name| {
+            if std::io::stderr().is_terminal() {
+                eprint!("\r\x1b[K[{}/{total}] {name}", index + 1);
+            }
+        },
+    )?;
+    if std::io::stderr().is_terminal() {
+        eprintln!();
+    }
+    catalogue::save(&args.catalogue, &updated)?;
+    Ok(format!(
+        "{} reference values to {} verified digits written to {}",
+        updated.len(),
+        args.digits,
+        args.catalogue.display()
+    ))
+}
+
 fn run_table() -> Result<String, Failure> {
     let amplitudes = ["0.2", "0.4", "0.5", "0.6"];
     let mut out = String::from("Ŵ = W/(γσλf²) for v' = γσ/P, P0 = 1, P1 = 0.4, f = 1 (f64)\n   φ/π");
@@ -241,6 +290,7 @@ fn main() -> ExitCode {
     };
     let outcome = match &cli.command {
         Command::Dissipation(args) => run_dissipation(args),
+        Command::Reference(args) => run_reference(args),
         Command::Table => run_table(),
     };
     match outcome {

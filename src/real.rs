@@ -290,10 +290,19 @@ impl Real for Float {
         Float::is_finite(self)
     }
     fn to_scientific(&self, digits: usize) -> String {
-        if self.is_zero() {
-            return Real::to_scientific(&0.0f64, digits);
+        if !Float::is_finite(self) || self.is_zero() {
+            return Real::to_scientific(&self.to_f64(), digits);
         }
-        self.to_string_radix_round(10, Some(digits.max(1)), Round::Nearest)
+        // MPFR gives the digits d₁d₂… and e with value 0.d₁d₂… × 10^e; print d₁.d₂… e(e − 1) as f64 does.
+        let (negative, mantissa, exponent) = self.to_sign_string_exp_round(10, Some(digits.max(1)), Round::Nearest);
+        let exponent = exponent.unwrap_or(1) - 1;
+        let (first, rest) = mantissa.split_at(1);
+        let sign = if negative { "-" } else { "" };
+        if rest.is_empty() {
+            format!("{sign}{first}e{exponent}")
+        } else {
+            format!("{sign}{first}.{rest}e{exponent}")
+        }
     }
 }
 
@@ -335,5 +344,10 @@ mod tests {
         let y = Float::from_f64(x, Precision::bits(53));
         assert_eq!(x.to_scientific(6), y.to_scientific(6));
         assert_eq!(x.to_scientific(6), "3.33333e-1");
+        for value in [30.677678, -0.00123, 1.0, 9.999999e20] {
+            let y = Float::from_f64(value, Precision::bits(80));
+            assert_eq!(value.to_scientific(5), y.to_scientific(5), "{value}");
+        }
+        assert_eq!(Float::from_f64(0.0, Precision::bits(80)).to_scientific(3), "0.00e0");
     }
 }
