@@ -229,6 +229,16 @@ impl<R: Real> LoadCycle<R> {
         self.mean_normal_load.clone() - &((plus + &minus) / &(self.friction.clone() * &self.friction.int(2)))
     }
 
+    /// How much the cycle amplifies relative rounding errors of order ε in its loads:
+    /// P0 / min(P0 − P1, P_T). Both margins are differences of loads of order P0, so
+    /// each carries an absolute error of order εP0, and W is sensitive to them where
+    /// v' is steep at low load (near separation, and near gross slip where P_T → 0).
+    pub fn rounding_amplification(&self) -> R {
+        let separation_margin = self.mean_normal_load.clone() - &self.normal_amplitude;
+        let margin = separation_margin.min_of(&self.permanent_stick_load());
+        self.mean_normal_load.clone() / &margin
+    }
+
     /// The ellipse geometry (for φ reduced to [0, π)); validates the cycle first.
     pub fn geometry(&self) -> Result<EllipseGeometry<R>, CycleError> {
         self.validate()?;
@@ -278,6 +288,10 @@ pub struct EllipseGeometry<R> {
     pub slip_angle: R,
     /// P_T − P0 = −(σ₊ + σ₋)/(2f).
     pub permanent_stick_offset: R,
+    /// (sin φ, cos φ), for Q at angles whose sine and cosine are known.
+    pub phase_sin_cos: (R, R),
+    /// (sin θ_C, cos θ_C), for P at θ_C ± s.
+    pub theta_c_sin_cos: (R, R),
 }
 
 impl<R: Real> EllipseGeometry<R> {
@@ -301,7 +315,11 @@ impl<R: Real> EllipseGeometry<R> {
         let theta_h = theta_c.clone() + &stick_angle;
         let permanent_stick_offset =
             -((sum_amplitude.clone() + &difference_amplitude) / &(cycle.friction.clone() * &phi.int(2)));
+        let phase_sin_cos = phi.sin_cos();
+        let theta_c_sin_cos = theta_c.sin_cos();
         EllipseGeometry {
+            phase_sin_cos,
+            theta_c_sin_cos,
             mean_normal_load: cycle.mean_normal_load.clone(),
             normal_amplitude: cycle.normal_amplitude.clone(),
             tangential_amplitude: q1,
@@ -358,11 +376,39 @@ impl<R: Real> EllipseGeometry<R> {
         self.permanent_stick_offset.clone() + &(self.difference_amplitude.clone() * &half.square() / &self.friction)
     }
 
+    /// The loads at an angle θ given by (sin θ, cos θ): (P − P0, dP/dθ, Q − Q0, dQ/dθ).
+    pub fn loads_at(&self, sin_cos: &(R, R)) -> LoadsAt<R> {
+        let (sin, cos) = sin_cos;
+        let (phase_sin, phase_cos) = &self.phase_sin_cos;
+        // cos(θ − φ) and sin(θ − φ) by the subtraction formulas.
+        let lag_cos = cos.clone() * phase_cos + &(sin.clone() * phase_sin);
+        let lag_sin = sin.clone() * phase_cos - &(cos.clone() * phase_sin);
+        LoadsAt {
+            normal_offset: self.normal_amplitude.clone() * cos,
+            normal_rate: -(self.normal_amplitude.clone() * sin),
+            tangential_offset: self.tangential_amplitude.clone() * &lag_cos,
+            tangential_rate: -(self.tangential_amplitude.clone() * &lag_sin),
+        }
+    }
+
     /// The mirror map Y of Eq. (15): the point of BC with Q_Y − fP_Y = Q − fP,
     /// θ_Y = 2θ_C − θ.
     pub fn mirror(&self, theta: &R) -> R {
         self.theta_c.clone() * &theta.int(2) - theta
     }
+}
+
+/// The loads and their rates at one angle of the cycle.
+#[derive(Clone, Debug)]
+pub struct LoadsAt<R> {
+    /// P − P0.
+    pub normal_offset: R,
+    /// dP/dθ.
+    pub normal_rate: R,
+    /// Q − Q0.
+    pub tangential_offset: R,
+    /// dQ/dθ.
+    pub tangential_rate: R,
 }
 
 #[cfg(test)]

@@ -98,6 +98,8 @@ pub trait Real:
     fn powi(&self, exponent: i32) -> Self;
     fn sin(&self) -> Self;
     fn cos(&self) -> Self;
+    /// (sin, cos) together, for about the price of one.
+    fn sin_cos(&self) -> (Self, Self);
     /// The angle of the point (x, y) = (`x`, `self`), in (−π, π].
     fn atan2(&self, x: &Self) -> Self;
     fn abs(&self) -> Self;
@@ -197,6 +199,9 @@ impl Real for f64 {
     fn sin(&self) -> Self {
         f64::sin(*self)
     }
+    fn sin_cos(&self) -> (Self, Self) {
+        f64::sin_cos(*self)
+    }
     fn cos(&self) -> Self {
         f64::cos(*self)
     }
@@ -273,6 +278,9 @@ impl Real for Float {
     }
     fn sin(&self) -> Self {
         self.clone().sin()
+    }
+    fn sin_cos(&self) -> (Self, Self) {
+        self.clone().sin_cos(Float::new(self.prec()))
     }
     fn cos(&self) -> Self {
         self.clone().cos()

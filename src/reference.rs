@@ -106,9 +106,11 @@ pub fn verified_dissipation(
             let ten = Float::with_val(p.in_bits(), 10);
             ten.powi(-(target as i32 + extra))
         };
+        let deadline = Some(started + budget);
         let first_options = Options {
             relative_tolerance: Some(tolerance(precision, 2)),
             max_points,
+            deadline,
             ..Options::default()
         };
         let higher = Precision::bits(precision.in_bits() + 32 + precision.in_bits() / 8);
@@ -117,6 +119,7 @@ pub fn verified_dissipation(
                 relative_tolerance: Some(tolerance(higher, 4)),
                 min_points: (2 * first.points).max(16),
                 max_points: max_points.max(4 * first.points),
+                deadline,
                 ..Options::default()
             };
             let second = attempt(case, higher, &second_options)?;
@@ -145,7 +148,7 @@ pub fn verified_dissipation(
                 }
                 best_digits = best_digits.max(agreed.min(digits));
             }
-            Err(ReferenceError::Dissipation(DissipationError::NotConverged { .. })) => {}
+            Err(ReferenceError::Dissipation(DissipationError::NotConverged { .. } | DissipationError::OutOfTime)) => {}
             Err(other) => return Err(other),
         }
         if started.elapsed() >= budget {

@@ -1,7 +1,7 @@
 //! Compliances built from others: sums, multiples, a constant added to v', and
 //! the load scaling that models scaled roughness.
 
-use super::Compliance;
+use super::{Compliance, SlopeChange};
 use crate::real::Real;
 
 /// v = Σ vᵢ: compliances in series add.
@@ -29,6 +29,11 @@ impl<R: Real> Compliance<R> for Sum<R> {
     }
     fn slope_change(&self, reference: &R, offset: &R) -> R {
         self.total(reference, |c| c.slope_change(reference, offset))
+    }
+    fn slope_change_about<'a>(&'a self, reference: &R) -> SlopeChange<'a, R> {
+        let terms: Vec<SlopeChange<'a, R>> = self.terms.iter().map(|c| c.slope_change_about(reference)).collect();
+        let zero = reference.int(0);
+        Box::new(move |offset: &R| terms.iter().fold(zero.clone(), |acc, term| acc + term(offset)))
     }
     fn describe(&self) -> String {
         let parts: Vec<String> = self.terms.iter().map(|c| c.describe()).collect();
@@ -58,6 +63,10 @@ impl<R: Real> Compliance<R> for Scaled<R> {
     fn slope_change(&self, reference: &R, offset: &R) -> R {
         self.factor.clone() * &self.inner.slope_change(reference, offset)
     }
+    fn slope_change_about<'a>(&'a self, reference: &R) -> SlopeChange<'a, R> {
+        let inner = self.inner.slope_change_about(reference);
+        Box::new(move |offset: &R| self.factor.clone() * &inner(offset))
+    }
     fn describe(&self) -> String {
         format!("{} × ({})", self.factor.to_scientific(6), self.inner.describe())
     }
@@ -85,6 +94,9 @@ impl<R: Real> Compliance<R> for Shifted<R> {
     }
     fn slope_change(&self, reference: &R, offset: &R) -> R {
         self.inner.slope_change(reference, offset)
+    }
+    fn slope_change_about<'a>(&'a self, reference: &R) -> SlopeChange<'a, R> {
+        self.inner.slope_change_about(reference)
     }
     fn describe(&self) -> String {
         format!("({}) + {}·P", self.inner.describe(), self.extra_slope.to_scientific(6))

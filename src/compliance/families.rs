@@ -1,6 +1,6 @@
 //! The built-in compliance families.
 
-use super::Compliance;
+use super::{Compliance, SlopeChange};
 use crate::real::Real;
 
 /// v'(P) = C·P^β (β < 0 for a stiffening contact). Eq. (20) of the paper with the
@@ -29,9 +29,15 @@ impl<R: Real> Compliance<R> for PowerLaw<R> {
         self.coefficient.clone() * &self.exponent * &load.powr(&(self.exponent.clone() - load.int(1)))
     }
     fn slope_change(&self, reference: &R, offset: &R) -> R {
+        self.slope_change_about(reference)(offset)
+    }
+    fn slope_change_about<'a>(&'a self, reference: &R) -> SlopeChange<'a, R> {
         // C·x^β·[(1 + t)^β − 1] with t = offset/x, formed without cancellation.
-        let relative = (offset.clone() / reference).ln_1p() * &self.exponent;
-        self.slope(reference) * &relative.exp_m1()
+        let (slope, inverse) = (self.slope(reference), reference.int(1) / reference);
+        Box::new(move |offset: &R| {
+            let relative = (offset.clone() * &inverse).ln_1p() * &self.exponent;
+            slope.clone() * &relative.exp_m1()
+        })
     }
     fn describe(&self) -> String {
         format!(
@@ -124,6 +130,14 @@ impl<R: Real> Compliance<R> for Hertz<R> {
     }
     fn slope_change(&self, reference: &R, offset: &R) -> R {
         self.as_power_law().slope_change(reference, offset)
+    }
+    fn slope_change_about<'a>(&'a self, reference: &R) -> SlopeChange<'a, R> {
+        let power_law = self.as_power_law();
+        let (slope, inverse) = (power_law.slope(reference), reference.int(1) / reference);
+        Box::new(move |offset: &R| {
+            let relative = (offset.clone() * &inverse).ln_1p() * &power_law.exponent;
+            slope.clone() * &relative.exp_m1()
+        })
     }
     fn describe(&self) -> String {
         format!(

@@ -19,6 +19,9 @@ use std::fmt::Debug;
 
 use crate::real::Real;
 
+/// x ↦ v'(P0 + x) − v'(P0) about a fixed P0 (see [`Compliance::slope_change_about`]).
+pub type SlopeChange<'a, R> = Box<dyn Fn(&R) -> R + Send + Sync + 'a>;
+
 /// A normal compliance function v(P) with its first two derivatives.
 pub trait Compliance<R: Real>: Debug + Send + Sync {
     /// v(P), the normal approach under load P (defined up to an additive constant).
@@ -35,6 +38,13 @@ pub trait Compliance<R: Real>: Debug + Send + Sync {
     /// compute the difference without cancellation.
     fn slope_change(&self, reference: &R, offset: &R) -> R {
         self.slope(&(reference.clone() + offset)) - self.slope(reference)
+    }
+    /// x ↦ v'(reference + x) − v'(reference), prepared once for many offsets x
+    /// (the dissipation integrals evaluate it thousands of times about one P0).
+    /// Families override it to hoist what does not depend on x.
+    fn slope_change_about<'a>(&'a self, reference: &R) -> SlopeChange<'a, R> {
+        let reference = reference.clone();
+        Box::new(move |offset: &R| self.slope_change(&reference, offset))
     }
     /// A short human-readable description, e.g. `power law v' = 1·P^-1`.
     fn describe(&self) -> String;

@@ -8,6 +8,8 @@
 //! falls back to tanh–sinh, whose nodes crowd double-exponentially toward the ends.
 //! Callers split their intervals so that such near-singularities lie at ends.
 
+use std::time::Instant;
+
 use super::{DissipationError, Options};
 use crate::quad::gauss_legendre::node_table;
 use crate::quad::tanh_sinh;
@@ -96,6 +98,7 @@ pub(crate) fn converge<R: Real>(
             continue;
         }
         let mut points = first_points;
+        let mut previous_change: Option<R> = None;
         loop {
             if points * 2 > max_points {
                 // Gauss–Legendre stalled: a near-singularity at an end. Tanh–sinh resolves it.
@@ -114,6 +117,9 @@ pub(crate) fn converge<R: Real>(
                 errors[i] = estimate.error;
                 break;
             }
+            if options.deadline.is_some_and(|deadline| Instant::now() >= deadline) {
+                return Err(DissipationError::OutOfTime);
+            }
             points *= 2;
             largest_rule = largest_rule.max(points);
             let refined = gauss(piece, points)?;
@@ -124,6 +130,11 @@ pub(crate) fn converge<R: Real>(
                 errors[i] = change;
                 break;
             }
+            if let Some(predicted) = predicted_error(&change, previous_change.as_ref(), &allowed) {
+                errors[i] = predicted;
+                break;
+            }
+            previous_change = Some(change);
         }
         // Later pieces are held to the scale as now known.
         allowed = scale(&values) * relative_tolerance / &count;
@@ -135,6 +146,24 @@ pub(crate) fn converge<R: Real>(
         evaluations,
         points: largest_rule,
     })
+}
+
+/// The error of the latest rule predicted from the last two changes, when the
+/// prediction is safely below `allowed`.
+///
+/// Gauss–Legendre on an analytic integrand has error E(n) ≈ K ρ^(−2n), so doubling
+/// the points squares the relative error: E(2n) = E(n)²/K. With d = |I_2n − I_n| ≈ E(n)
+/// and d' = |I_n − I_{n/2}| ≈ E(n/2), K = d'²/d and E(2n) ≈ d³/d'². The prediction is
+/// trusted only in the asymptotic regime — the last doubling gained at least three
+/// digits (d < d'/1000) — and when it clears `allowed` a hundredfold; the error then
+/// reported is 100× the prediction. This saves the last doubling, about half the work.
+fn predicted_error<R: Real>(change: &R, previous: Option<&R>, allowed: &R) -> Option<R> {
+    let previous = previous?;
+    if change.clone() * &change.int(1000) >= *previous {
+        return None;
+    }
+    let reported = change.clone() * change * change / &previous.square() * &change.int(100);
+    (reported <= *allowed).then_some(reported)
 }
 
 fn not_converged<R: Real>(values: &[R], error: &R, relative_tolerance: &R, points: usize) -> DissipationError {

@@ -31,7 +31,7 @@ pub use closed_forms::{constant_normal_load, in_phase, HertzConfiguration, Mindl
 pub use driver::Integral;
 pub use segments::{SegmentIntegrands, SEGMENT_NAMES};
 
-use crate::compliance::{check_admissible, AdmissibilityError, Compliance};
+use crate::compliance::{check_admissible, AdmissibilityError, Compliance, SlopeChange};
 use crate::cycle::{CycleError, CycleKind, LoadCycle};
 use crate::real::Real;
 use driver::{converge, Converged};
@@ -102,6 +102,13 @@ pub struct Options<R> {
     pub max_points: usize,
     /// Integrate with v'(x) − v'(P0) in place of v'(x) (exact, and free of cancellation).
     pub remove_constant_slope: bool,
+    /// Refuse cycles whose loads alone, rounded at the working precision, would move W
+    /// by more than this relative amount (ε × `LoadCycle::rounding_amplification`):
+    /// in f64 that is a cycle within about P0/4500 of separation or of gross slip.
+    pub rounding_limit: f64,
+    /// Give up with [`DissipationError::OutOfTime`] once this instant has passed
+    /// (checked between refinements).
+    pub deadline: Option<std::time::Instant>,
     /// Refuse compliances with v' ≤ 0 or v'' > 0 over the loads the cycle reaches.
     /// The dissipation functional is linear in v' and defined for any v'; turn this
     /// off to apply it to non-physical v' (as the small-amplitude coefficient does).
@@ -115,6 +122,8 @@ impl<R> Default for Options<R> {
             min_points: 8,
             max_points: 512,
             remove_constant_slope: true,
+            rounding_limit: 1e-12,
+            deadline: None,
             check_compliance: true,
         }
     }
@@ -144,6 +153,17 @@ pub enum DissipationError {
         relative_error: f64,
         requested: f64,
     },
+    /// The working precision cannot resolve the cycle: rounding alone moves W too much.
+    #[error("the case is ill-conditioned at {bits} bits: min(P0 − P1, P_T) = P0/{amplification:.3e}, so rounding alone can change W by ~{expected:.1e} relative (limit {limit:.0e}); compute it with more precision (--digits N)")]
+    IllConditioned {
+        bits: u32,
+        amplification: f64,
+        expected: f64,
+        limit: f64,
+    },
+    /// The deadline passed before the integrals converged.
+    #[error("the time budget ran out before the integrals converged")]
+    OutOfTime,
     /// An integrand produced NaN or infinity (compliance undefined at some load).
     #[error("the {segment} integral is not finite: the compliance is undefined at some load the cycle reaches")]
     NotFinite { segment: &'static str },
@@ -198,6 +218,16 @@ fn prepare<R: Real>(
     options: &Options<R>,
 ) -> Result<(), DissipationError> {
     cycle.validate()?;
+    let amplification = cycle.rounding_amplification();
+    let expected = (amplification.clone() * &amplification.epsilon_like()).to_f64_lossy();
+    if expected > options.rounding_limit {
+        return Err(DissipationError::IllConditioned {
+            bits: amplification.precision().in_bits(),
+            amplification: amplification.to_f64_lossy(),
+            expected,
+            limit: options.rounding_limit,
+        });
+    }
     if options.check_compliance {
         let low = (cycle.mean_normal_load.clone() - &cycle.normal_amplitude).min_of(&cycle.permanent_stick_load());
         let high = cycle.mean_normal_load.clone() + &cycle.normal_amplitude;
@@ -206,18 +236,18 @@ fn prepare<R: Real>(
     Ok(())
 }
 
-/// v'(P0 + offset), or v'(P0 + offset) − v'(P0) when the constant slope is removed.
+/// x ↦ v'(P0 + x) − v'(P0) (prepared once), or x ↦ v'(P0 + x) when the constant
+/// slope is kept.
 pub(crate) fn slope_at<'a, R: Real>(
     compliance: &'a dyn Compliance<R>,
-    mean_load: &'a R,
+    mean_load: &R,
     remove_constant_slope: bool,
-) -> impl Fn(&R) -> R + 'a {
-    move |offset: &R| {
-        if remove_constant_slope {
-            compliance.slope_change(mean_load, offset)
-        } else {
-            compliance.slope(&(mean_load.clone() + offset))
-        }
+) -> SlopeChange<'a, R> {
+    if remove_constant_slope {
+        compliance.slope_change_about(mean_load)
+    } else {
+        let mean_load = mean_load.clone();
+        Box::new(move |offset: &R| compliance.slope(&(mean_load.clone() + offset)))
     }
 }
 
@@ -254,10 +284,13 @@ pub(crate) fn scaled_result<R: Real>(cycle: &LoadCycle<R>, converged: Converged<
         ch: next(),
         he: next(),
     };
+    let total = segments.total();
+    // Quadrature error plus what rounding of the loads can do (see Options::rounding_limit).
+    let rounding = total.abs() * &cycle.rounding_amplification() * &total.epsilon_like();
     Dissipation {
-        total: segments.total(),
+        total,
         segments,
-        error_estimate: converged.error * lambda,
+        error_estimate: converged.error * lambda + &rounding,
         evaluations: converged.evaluations,
         points: converged.points,
         method,

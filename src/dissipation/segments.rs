@@ -11,9 +11,11 @@
 //! ```
 
 use super::driver::Integral;
+use std::rc::Rc;
+
 use super::slope_at;
-use crate::compliance::Compliance;
-use crate::cycle::EllipseGeometry;
+use crate::compliance::{Compliance, SlopeChange};
+use crate::cycle::{EllipseGeometry, LoadsAt};
 use crate::real::Real;
 
 /// The segment names in cycle order; a piece's `segment` indexes this.
@@ -39,46 +41,82 @@ impl<R> Clone for SegmentIntegrands<'_, R> {
 impl<R> Copy for SegmentIntegrands<'_, R> {}
 
 impl<'a, R: Real> SegmentIntegrands<'a, R> {
-    fn slope(&self, offset: &R) -> R {
+    /// The slope function the integrands use, prepared about P0.
+    fn prepared_slope(&self) -> SlopeChange<'a, R> {
         slope_at(
             self.compliance,
             &self.geometry.mean_normal_load,
             self.remove_constant_slope,
-        )(offset)
+        )
     }
 
-    /// f v'(P) dP/dθ, shared by EB (with the opposite sign), CH and HE.
-    fn normal_term(&self, theta: &R) -> R {
+    /// (Q − Q0)·[f v'(P) dP/dθ] and Q − Q0 at an angle with the given (sin, cos):
+    /// the term shared by EB (with the opposite sign), CH and HE.
+    fn loads_and_normal_term(&self, sin_cos: &(R, R), slope: &dyn Fn(&R) -> R) -> (LoadsAt<R>, R) {
         let g = self.geometry;
-        g.friction.clone() * &self.slope(&g.normal_offset(theta)) * &g.normal_rate(theta)
+        let loads = g.loads_at(sin_cos);
+        let term = g.friction.clone() * &slope(&loads.normal_offset) * &loads.normal_rate;
+        (loads, term)
+    }
+
+    /// (sin θ, cos θ) at θ = θ_C ± s from (sin s, cos s), by the addition formulas.
+    fn around_c(&self, s_sin_cos: &(R, R), sign: bool) -> (R, R) {
+        let (c_sin, c_cos) = &self.geometry.theta_c_sin_cos;
+        let (s_sin, s_cos) = s_sin_cos;
+        let (sin_part, cos_part) = (c_sin.clone() * s_cos, c_cos.clone() * s_sin);
+        let (cos_a, sin_b) = (c_cos.clone() * s_cos, c_sin.clone() * s_sin);
+        if sign {
+            (sin_part + &cos_part, cos_a - &sin_b)
+        } else {
+            (sin_part - &cos_part, cos_a + &sin_b)
+        }
     }
 
     /// The integrand of segment `index` (0 EB, 1 BC, 2 CH, 3 HE) at angle `s` from its start.
+    /// (For many evaluations use [`Self::pieces`], which prepares the slope once.)
     pub fn integrand(&self, index: usize, s: &R) -> R {
+        self.integrand_with(index, s, &self.prepared_slope())
+    }
+
+    fn integrand_with(&self, index: usize, s: &R, slope: &dyn Fn(&R) -> R) -> R {
         let g = self.geometry;
+        let two = s.int(2);
         match index {
-            0 => {
-                let theta = g.theta_e.clone() + s;
-                let from_b = s.clone() - &g.slip_angle;
-                let reverse = self.slope(&g.reverse_slip_offset(&from_b)) * &g.sum_amplitude * &from_b.sin();
-                g.tangential_offset(&theta) * &(reverse - &self.normal_term(&theta))
+            0 | 3 => {
+                // EB: θ = θ_E + s; HE: θ = θ_H + s. Both read a slip load at the angle
+                // past B (EB) or past E (HE), s − (π − δ), through its half angle.
+                let theta = if index == 0 {
+                    g.theta_e.clone()
+                } else {
+                    g.theta_h.clone()
+                } + s;
+                let (loads, normal) = self.loads_and_normal_term(&theta.sin_cos(), slope);
+                let (half_sin, half_cos) = ((s.clone() - &g.slip_angle) / &two).sin_cos();
+                let full_sin = half_sin.clone() * &half_cos * &two;
+                if index == 0 {
+                    let offset = g.permanent_stick_offset.clone()
+                        + &(g.sum_amplitude.clone() * &half_sin.square() / &g.friction);
+                    let reverse = slope(&offset) * &g.sum_amplitude * &full_sin;
+                    loads.tangential_offset * &(reverse - &normal)
+                } else {
+                    let offset = g.permanent_stick_offset.clone()
+                        + &(g.difference_amplitude.clone() * &half_sin.square() / &g.friction);
+                    let forward = slope(&offset) * &g.difference_amplitude * &full_sin;
+                    loads.tangential_offset * &(normal - &forward)
+                }
             }
             1 => {
-                let theta = g.theta_b.clone() + s;
-                g.tangential_offset(&theta) * &self.slope(&g.normal_offset(&theta)) * &g.tangential_rate(&theta)
-            }
-            2 => {
-                let theta = g.theta_c.clone() + s;
-                let mirror = g.theta_c.clone() - s;
-                // sin(θ − θ_E) = sin(π + s) = −sin s.
-                let forward = self.slope(&g.normal_offset(&mirror)) * &g.difference_amplitude * &s.sin();
-                g.tangential_offset(&theta) * &(self.normal_term(&theta) + &forward)
+                let loads = g.loads_at(&(g.theta_b.clone() + s).sin_cos());
+                loads.tangential_offset * &slope(&loads.normal_offset) * &loads.tangential_rate
             }
             _ => {
-                let theta = g.theta_h.clone() + s;
-                let from_e = s.clone() - &g.slip_angle;
-                let forward = self.slope(&g.forward_slip_offset(&from_e)) * &g.difference_amplitude * &from_e.sin();
-                g.tangential_offset(&theta) * &(self.normal_term(&theta) - &forward)
+                // θ = θ_C + s, the mirror point θ_C − s; sin(θ − θ_E) = sin(π + s) = −sin s.
+                let s_sin_cos = s.sin_cos();
+                let (loads, normal) = self.loads_and_normal_term(&self.around_c(&s_sin_cos, true), slope);
+                let mirror_cos = self.around_c(&s_sin_cos, false).1;
+                let mirror_offset = g.normal_amplitude.clone() * &mirror_cos;
+                let forward = slope(&mirror_offset) * &g.difference_amplitude * &s_sin_cos.0;
+                loads.tangential_offset * &(normal + &forward)
             }
         }
     }
@@ -96,15 +134,16 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
 
     /// The integrals whose sum times λ is W: each segment split at its lowest-load points.
     pub fn pieces(&self) -> Vec<Integral<'a, R>> {
+        let slope = Rc::new(self.prepared_slope());
         let mut pieces = Vec::new();
         for (index, name) in SEGMENT_NAMES.iter().enumerate() {
             let breaks = self.lowest_load_points(index);
             for window in breaks.windows(2) {
-                let integrands = *self;
+                let (integrands, slope) = (*self, Rc::clone(&slope));
                 pieces.push(Integral {
                     name,
                     segment: index,
-                    integrand: Box::new(move |s: &R| integrands.integrand(index, s)),
+                    integrand: Box::new(move |s: &R| integrands.integrand_with(index, s, slope.as_ref())),
                     start: window[0].clone(),
                     end: window[1].clone(),
                 });

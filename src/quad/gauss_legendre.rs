@@ -53,13 +53,16 @@ pub fn clear_node_cache() {
     cache().lock().unwrap_or_else(|e| e.into_inner()).clear();
 }
 
-/// P_n(x) and P_n'(x) by the three-term recurrence.
-fn legendre_with_derivative<R: Real>(points: usize, x: &R) -> (R, R) {
+/// P_n(x) and P_n'(x) by the three-term recurrence, written as
+/// P_{j+1} = t + (t − P_{j−1})·j/(j+1) with t = x P_j, where `ratios[j]` = j/(j+1):
+/// two multiplications a step and no division.
+fn legendre_with_derivative<R: Real>(ratios: &[R], x: &R) -> (R, R) {
+    let points = ratios.len();
     let mut previous = x.int(1);
     let mut current = x.clone();
-    for j in 1..points {
-        let j = j as i64;
-        let next = (x.clone() * &current * x.int(2 * j + 1) - previous.clone() * x.int(j)) / x.int(j + 1);
+    for ratio in ratios.iter().take(points).skip(1) {
+        let t = x.clone() * &current;
+        let next = (t.clone() - &previous) * ratio + &t;
         previous = current;
         current = next;
     }
@@ -67,11 +70,19 @@ fn legendre_with_derivative<R: Real>(points: usize, x: &R) -> (R, R) {
     (current, derivative)
 }
 
+/// j/(j + 1) for j = 0 … n − 1, the recurrence's coefficients.
+fn recurrence_ratios<R: Real>(points: usize, precision: Precision) -> Vec<R> {
+    (0..points as i64)
+        .map(|j| R::from_i64(j, precision) / R::from_i64(j + 1, precision))
+        .collect()
+}
+
 /// Computes the table from scratch (no cache).
 pub fn compute_node_table<R: Real>(points: usize, precision: Precision) -> NodeTable<R> {
     assert!(points >= 1, "a Gauss–Legendre rule needs at least one point");
-    let eps = R::epsilon(precision);
     let half = points / 2;
+    let ratios = recurrence_ratios::<R>(points, precision);
+    let double_ratios = recurrence_ratios::<f64>(points, Precision::DOUBLE);
     let mut positive_nodes = Vec::with_capacity(half + 1);
     let mut positive_weights = Vec::with_capacity(half + 1);
     for k in 1..=points.div_ceil(2) {
@@ -80,7 +91,7 @@ pub fn compute_node_table<R: Real>(points: usize, precision: Precision) -> NodeT
         let angle = std::f64::consts::PI * (k as f64 - 0.25) / (n + 0.5);
         let mut guess = (1.0 - (n - 1.0) / (8.0 * n * n * n)) * angle.cos();
         for _ in 0..100 {
-            let (p, dp) = legendre_with_derivative(points, &guess);
+            let (p, dp) = legendre_with_derivative(&double_ratios, &guess);
             let step = p / dp;
             guess -= step;
             if step.abs() <= 4.0 * f64::EPSILON * guess.abs().max(1e-300) {
@@ -91,18 +102,19 @@ pub fn compute_node_table<R: Real>(points: usize, precision: Precision) -> NodeT
         if 2 * k - 1 == points {
             x = R::from_i64(0, precision);
         } else if precision > Precision::DOUBLE {
-            // Newton doubles the correct bits per step: from ~50 bits, log2(bits/50) + 2 steps.
-            let steps = (f64::from(precision.in_bits()) / 50.0).log2().ceil().max(0.0) as usize + 2;
-            for _ in 0..steps {
-                let (p, dp) = legendre_with_derivative(points, &x);
-                let step = p / dp;
-                x -= &step;
-                if step.abs() <= eps.clone() * &x.abs() {
-                    break;
-                }
+            // Newton doubles the correct bits per step, so each step need only carry twice
+            // the bits of the last: from ~50 bits, the steps run at 100, 200, … bits and
+            // just the last one or two at the working precision.
+            let mut bits = 50u32;
+            while bits < precision.in_bits() + 8 {
+                bits = (2 * bits).min(precision.in_bits() + 8);
+                let step_precision = Precision::bits(bits.min(precision.in_bits()));
+                let at_step = R::from_f64(0.0, step_precision) + &x;
+                let (p, dp) = legendre_with_derivative(&ratios, &at_step);
+                x -= &(p / dp);
             }
         }
-        let (_, dp) = legendre_with_derivative(points, &x);
+        let (_, dp) = legendre_with_derivative(&ratios, &x);
         let weight = x.int(2) / ((x.int(1) - x.square()) * dp.square());
         positive_nodes.push(x);
         positive_weights.push(weight);
