@@ -218,8 +218,7 @@ impl<R: Real> LoadCycle<R> {
         // Q1 cos φ ∓ fP1, the second written as (Q1 − fP1) − 2 Q1 sin²(φ/2) to keep it accurate near φ = 0.
         let plus = q1.clone() * &phi.cos() + &fp1;
         let minus = (q1.clone() - &fp1) - &(q1.clone() * &half_sin.square() * &phi.int(2));
-        let hypot = |x: R, y: &R| (x.square() + &y.square()).sqrt();
-        (hypot(plus, &q1_sin), hypot(minus, &q1_sin))
+        (plus.hypot(&q1_sin), minus.hypot(&q1_sin))
     }
 
     /// P_T, the permanent-stick load: the contact area A(P_T) sticks throughout the
@@ -305,9 +304,13 @@ impl<R: Real> EllipseGeometry<R> {
         let half_sin = (phi.clone() / phi.int(2)).sin();
         let minus = (q1.clone() - &fp1) - &(q1.clone() * &half_sin.square() * &phi.int(2));
         let theta_e = q1_sin.atan2(&minus);
-        // δ = θ_E − θ_A, the angle between (Q1 cos φ + fP1, Q1 sin φ) and (Q1 cos φ − fP1, Q1 sin φ).
-        let cross = q1_sin.clone() * &fp1 * &phi.int(2);
-        let dot = (q1.clone() - &fp1) * &(q1.clone() + &fp1);
+        // δ = θ_E − θ_A, the angle between (Q1 cos φ + fP1, Q1 sin φ) and (Q1 cos φ − fP1, Q1 sin φ),
+        // from their cross and dot products, formed with the loads scaled to at most 1 so
+        // that products of loads near the top of the range cannot overflow.
+        let largest = q1.max_of(&fp1).max_of(&phi.epsilon_like());
+        let (q, p) = (q1.clone() / &largest, fp1.clone() / &largest);
+        let cross = q.clone() * &phi.sin() * &p * &phi.int(2);
+        let dot = (q.clone() - &p) * &(q + &p);
         let stick_angle = cross.atan2(&dot);
         let slip_angle = cross.atan2(&(-dot));
         let theta_c = theta_e.clone() + &pi;

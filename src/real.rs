@@ -83,6 +83,9 @@ pub trait Real:
     fn pi(precision: Precision) -> Self;
     /// The distance from 1 to the next larger number at the precision.
     fn epsilon(precision: Precision) -> Self;
+    /// The smallest magnitude that still carries the full precision: below it (f64
+    /// subnormals) results lose digits silently.
+    fn smallest_full_precision(precision: Precision) -> Self;
 
     fn sqrt(&self) -> Self;
     fn cbrt(&self) -> Self;
@@ -100,6 +103,8 @@ pub trait Real:
     fn cos(&self) -> Self;
     /// (sin, cos) together, for about the price of one.
     fn sin_cos(&self) -> (Self, Self);
+    /// √(self² + other²) without overflow or underflow in the squares.
+    fn hypot(&self, other: &Self) -> Self;
     /// The angle of the point (x, y) = (`x`, `self`), in (−π, π].
     fn atan2(&self, x: &Self) -> Self;
     fn abs(&self) -> Self;
@@ -172,6 +177,9 @@ impl Real for f64 {
     fn epsilon(_: Precision) -> Self {
         f64::EPSILON
     }
+    fn smallest_full_precision(_: Precision) -> Self {
+        f64::MIN_POSITIVE / f64::EPSILON
+    }
     fn sqrt(&self) -> Self {
         f64::sqrt(*self)
     }
@@ -207,6 +215,9 @@ impl Real for f64 {
     }
     fn atan2(&self, x: &Self) -> Self {
         f64::atan2(*self, *x)
+    }
+    fn hypot(&self, other: &Self) -> Self {
+        f64::hypot(*self, *other)
     }
     fn abs(&self) -> Self {
         f64::abs(*self)
@@ -252,6 +263,10 @@ impl Real for Float {
     fn epsilon(precision: Precision) -> Self {
         Float::with_val(precision.in_bits(), 1) >> (precision.in_bits() - 1)
     }
+    fn smallest_full_precision(precision: Precision) -> Self {
+        // MPFR has no subnormals; its exponent range reaches far below anything physical.
+        Float::with_val(precision.in_bits(), 1) >> (1u32 << 28)
+    }
     fn sqrt(&self) -> Self {
         self.clone().sqrt()
     }
@@ -287,6 +302,9 @@ impl Real for Float {
     }
     fn atan2(&self, x: &Self) -> Self {
         self.clone().atan2(x)
+    }
+    fn hypot(&self, other: &Self) -> Self {
+        self.clone().hypot(other)
     }
     fn abs(&self) -> Self {
         self.clone().abs()

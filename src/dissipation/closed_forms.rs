@@ -38,11 +38,7 @@ pub fn in_phase<R: Real>(
     let q1 = &cycle.tangential_amplitude;
     let zero = p1.int(0);
     if q1.clone() <= f.clone() * p1 {
-        return Ok(scaled_result(
-            cycle,
-            Converged::combined(vec![], zero, 0, 0),
-            Method::InPhase,
-        ));
+        return scaled_result(cycle, Converged::combined(vec![], zero, 0, 0), Method::InPhase, options);
     }
     let q = q1.clone() / f;
     let slope = slope_at(compliance, &cycle.mean_normal_load, options.remove_constant_slope);
@@ -85,7 +81,7 @@ pub fn in_phase<R: Real>(
     // Segment order EB, BC, CH, HE: unloading, (empty), (empty), loading.
     let values = vec![w1.clone() + &w4, zero.clone(), zero, w1 + &w2];
     let combined = Converged::combined(values, error, converged.evaluations, converged.points);
-    Ok(scaled_result(cycle, combined, Method::InPhase))
+    scaled_result(cycle, combined, Method::InPhase, options)
 }
 
 /// W at constant normal load (P1 = 0; the phase is irrelevant):
@@ -115,7 +111,7 @@ pub fn constant_normal_load<R: Real>(
     let values = vec![half.clone(), zero.clone(), zero, half];
     let error = converged.error * &factor * &f.int(2);
     let combined = Converged::combined(values, error, converged.evaluations, converged.points);
-    Ok(scaled_result(cycle, combined, Method::ConstantNormalLoad))
+    scaled_result(cycle, combined, Method::ConstantNormalLoad, options)
 }
 
 /// How the elastic constants of a Hertz contact map onto E* (λ is (2 − ν)/(2(1 − ν)) in both).

@@ -161,6 +161,12 @@ pub enum DissipationError {
         expected: f64,
         limit: f64,
     },
+    /// The segment values are so small that f64 would hold them with fewer digits.
+    #[error("the segment contributions ({scale:e}) fall below the range the working precision holds in full; rescale the loads (W scales with the load scale) or use --digits")]
+    OutOfRange { scale: f64 },
+    /// W came out negative beyond its error estimate (a physical compliance dissipates).
+    #[error("W = {total:e} is negative beyond its error estimate {error:e}; the compliance may violate v'' ≤ 0 between the sampled loads")]
+    Negative { total: f64, error: f64 },
     /// The deadline passed before the integrals converged.
     #[error("the time budget ran out before the integrals converged")]
     OutOfTime,
@@ -179,20 +185,8 @@ pub fn dissipation<R: Real>(
     prepare(cycle, compliance, options)?;
     match cycle.kind() {
         CycleKind::NoTangentialOscillation => {
-            let zero = cycle.mean_normal_load.int(0);
-            Ok(Dissipation {
-                total: zero.clone(),
-                segments: Segments {
-                    eb: zero.clone(),
-                    bc: zero.clone(),
-                    ch: zero.clone(),
-                    he: zero.clone(),
-                },
-                error_estimate: zero,
-                evaluations: 0,
-                points: 0,
-                method: Method::NoTangentialOscillation,
-            })
+            let nothing = Converged::combined(vec![], cycle.mean_normal_load.int(0), 0, 0);
+            scaled_result(cycle, nothing, Method::NoTangentialOscillation, options)
         }
         CycleKind::ConstantNormalLoad => constant_normal_load(cycle, compliance, options),
         CycleKind::InPhase => in_phase(cycle, compliance, options),
@@ -270,11 +264,22 @@ fn integrate_segments<R: Real>(
         values[piece.segment] += value;
     }
     let combined = Converged::combined(values, converged.error, converged.evaluations, converged.points);
-    Ok(scaled_result(cycle, combined, Method::FourSegment))
+    scaled_result(cycle, combined, Method::FourSegment, options)
 }
 
 /// Multiplies the per-unit-λ segment integrals by λ and assembles the result.
-pub(crate) fn scaled_result<R: Real>(cycle: &LoadCycle<R>, converged: Converged<R>, method: Method) -> Dissipation<R> {
+///
+/// The error estimate adds to the quadrature's what rounding can do: of the loads
+/// (ε × `rounding_amplification` × |W|) and of the segment sum (16ε × Σ|segment|).
+/// A W that overflowed, or whose segments fell below the full-precision range, is
+/// refused; for a physical compliance (`check_compliance`) a W below zero by less
+/// than its error estimate is reported as 0, and one below by more is refused.
+pub(crate) fn scaled_result<R: Real>(
+    cycle: &LoadCycle<R>,
+    converged: Converged<R>,
+    method: Method,
+    options: &Options<R>,
+) -> Result<Dissipation<R>, DissipationError> {
     let lambda = &cycle.compliance_ratio;
     let mut scaled = converged.values.into_iter().map(|v| v * lambda);
     let mut next = || scaled.next().unwrap_or_else(|| lambda.int(0));
@@ -284,15 +289,35 @@ pub(crate) fn scaled_result<R: Real>(cycle: &LoadCycle<R>, converged: Converged<
         ch: next(),
         he: next(),
     };
-    let total = segments.total();
-    // Quadrature error plus what rounding of the loads can do (see Options::rounding_limit).
-    let rounding = total.abs() * &cycle.rounding_amplification() * &total.epsilon_like();
-    Dissipation {
+    let mut total = segments.total();
+    let eps = total.epsilon_like();
+    let scale = segments.named().iter().fold(total.int(0), |acc, (_, v)| acc + &v.abs());
+    let rounding = total.abs() * &(cycle.rounding_amplification() * &eps) + &(scale.clone() * &eps * &eps.int(16));
+    let error_estimate = converged.error * lambda + &rounding;
+    if !total.is_finite() || !error_estimate.is_finite() {
+        return Err(DissipationError::NotFinite { segment: "total" });
+    }
+    let zero = total.int(0);
+    if scale > zero && scale < R::smallest_full_precision(total.precision()) {
+        return Err(DissipationError::OutOfRange {
+            scale: scale.to_f64_lossy(),
+        });
+    }
+    if options.check_compliance && total < zero {
+        if -total.clone() > error_estimate {
+            return Err(DissipationError::Negative {
+                total: total.to_f64_lossy(),
+                error: error_estimate.to_f64_lossy(),
+            });
+        }
+        total = zero;
+    }
+    Ok(Dissipation {
         total,
         segments,
-        error_estimate: converged.error * lambda + &rounding,
+        error_estimate,
         evaluations: converged.evaluations,
         points: converged.points,
         method,
-    }
+    })
 }
