@@ -266,3 +266,46 @@ fn segment_contributions_sum_to_the_total_and_the_stick_segment_is_elastic() {
     simpson *= h / 3.0;
     assert!(relative(s.bc, simpson) < 1e-10, "{} vs {}", s.bc, simpson);
 }
+
+#[test]
+fn small_amplitude_f64_keeps_its_digits_once_the_constant_slope_is_removed() {
+    // P1/P0 = 1e-8: integrating v' itself loses about eight digits to cancellation; with
+    // v' − v'(P0) (the default), or with the linear part split off as well, f64 keeps them.
+    let p = Precision::bits(300);
+    let exact = {
+        let number = |t: &str| Float::parse_decimal(t, p).unwrap();
+        let cycle = LoadCycle {
+            mean_normal_load: number("1"),
+            normal_amplitude: number("1e-8"),
+            mean_tangential_load: number("0"),
+            tangential_amplitude: number("1.25e-8"),
+            phase: Float::pi(p) * number("0.4"),
+            friction: number("1"),
+            compliance_ratio: number("1"),
+        };
+        w(&cycle, &inverse_load::<Float>(p)).to_f64()
+    };
+    let cycle = LoadCycle {
+        mean_normal_load: 1.0,
+        normal_amplitude: 1e-8,
+        mean_tangential_load: 0.0,
+        tangential_amplitude: 1.25e-8,
+        phase: 0.4 * std::f64::consts::PI,
+        friction: 1.0,
+        compliance_ratio: 1.0,
+    };
+    let compliance = inverse_load::<f64>(Precision::DOUBLE);
+    let error = |options: Options<f64>| relative(dissipation(&cycle, &compliance, &options).unwrap().total, exact);
+    let raw = error(Options {
+        remove_constant_slope: false,
+        ..Options::default()
+    });
+    let constant = error(Options::default());
+    let linear = error(Options {
+        remove_linear_slope: true,
+        ..Options::default()
+    });
+    assert!(raw > 1e-10, "raw path error {raw:e}");
+    assert!(constant < 1e-14, "constant removed: {constant:e}");
+    assert!(linear < 1e-14, "linear removed: {linear:e}");
+}

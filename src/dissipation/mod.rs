@@ -102,6 +102,11 @@ pub struct Options<R> {
     pub max_points: usize,
     /// Integrate with v'(x) − v'(P0) in place of v'(x) (exact, and free of cancellation).
     pub remove_constant_slope: bool,
+    /// With `remove_constant_slope`, also take the linear part v''(P0)·(P − P0) out of
+    /// v' and add its contribution v''(P0)·W[P − P0] from a separate integral
+    /// (four-segment path only). Exact by linearity; see proofs/stability.md for what
+    /// it changes (measured: nothing beyond rounding — off by default).
+    pub remove_linear_slope: bool,
     /// Refuse cycles whose loads alone, rounded at the working precision, would move W
     /// by more than this relative amount (ε × `LoadCycle::rounding_amplification`):
     /// in f64 that is a cycle within about P0/4500 of separation or of gross slip.
@@ -122,6 +127,7 @@ impl<R> Default for Options<R> {
             min_points: 8,
             max_points: 512,
             remove_constant_slope: true,
+            remove_linear_slope: false,
             rounding_limit: 1e-12,
             deadline: None,
             check_compliance: true,
@@ -256,9 +262,26 @@ fn integrate_segments<R: Real>(
         compliance,
         remove_constant_slope: options.remove_constant_slope,
     };
-    let pieces = integrands.pieces();
     let zero = geometry.phase.int(0);
-    let converged = converge(&pieces, &options.tolerance_for(&zero), options)?;
+    let (pieces, curvature) = if options.remove_linear_slope {
+        // W[v'] = W[v' − v'(P0) − v''(P0)·x] + v''(P0)·W[x]: the remainder and the
+        // linear part as two sets of pieces, the second weighted by v''(P0) below.
+        let curvature = compliance.curvature(&geometry.mean_normal_load);
+        let reduced = integrands.prepared_slope();
+        let linear = curvature.clone();
+        let mut pieces = integrands.pieces_with_slope(Box::new(move |x: &R| reduced(x) - &(linear.clone() * x)));
+        let remainder_count = pieces.len();
+        pieces.extend(integrands.pieces_with_slope(Box::new(|x: &R| x.clone())));
+        (pieces, Some((curvature, remainder_count)))
+    } else {
+        (integrands.pieces(), None)
+    };
+    let mut converged = converge(&pieces, &options.tolerance_for(&zero), options)?;
+    if let Some((curvature, remainder_count)) = &curvature {
+        for value in converged.values.iter_mut().skip(*remainder_count) {
+            *value *= curvature;
+        }
+    }
     let mut values = vec![zero.clone(); 4];
     for (value, piece) in converged.values.iter().zip(&pieces) {
         values[piece.segment] += value;

@@ -42,7 +42,7 @@ impl<R> Copy for SegmentIntegrands<'_, R> {}
 
 impl<'a, R: Real> SegmentIntegrands<'a, R> {
     /// The slope function the integrands use, prepared about P0.
-    fn prepared_slope(&self) -> SlopeChange<'a, R> {
+    pub(crate) fn prepared_slope(&self) -> SlopeChange<'a, R> {
         slope_at(
             self.compliance,
             &self.geometry.mean_normal_load,
@@ -134,7 +134,13 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
 
     /// The integrals whose sum times λ is W: each segment split at its lowest-load points.
     pub fn pieces(&self) -> Vec<Integral<'a, R>> {
-        let slope = Rc::new(self.prepared_slope());
+        self.pieces_with_slope(self.prepared_slope())
+    }
+
+    /// The same pieces with the compliance's slope replaced by `slope` (a function of
+    /// the offset x = P − P0): W is linear in v', so parts of v' can be integrated apart.
+    pub fn pieces_with_slope(&self, slope: SlopeChange<'a, R>) -> Vec<Integral<'a, R>> {
+        let slope = Rc::new(slope);
         let mut pieces = Vec::new();
         for (index, name) in SEGMENT_NAMES.iter().enumerate() {
             let breaks = self.lowest_load_points(index);
