@@ -79,8 +79,26 @@ pub(crate) fn converge<R: Real>(
     options: &Options<R>,
 ) -> Result<Converged<R>, DissipationError> {
     let zero = relative_tolerance.int(0);
-    let first_points = options.min_points.max(2);
+    let first_points = match options.min_points {
+        // Automatic: 16 points, where an ordinary case already has several digits in
+        // f64; at higher precision a larger start would skip the small rules whose
+        // changes let `predicted_error` stop a doubling early.
+        0 => 16,
+        points => points.max(2),
+    };
     let max_points = options.max_points.max(first_points);
+    if let Some(points) = options.fixed_points {
+        let values = pieces
+            .iter()
+            .map(|piece| gauss(piece, points))
+            .collect::<Result<Vec<_>, _>>()?;
+        return Ok(Converged {
+            values,
+            error: zero,
+            evaluations: points * pieces.len(),
+            points,
+        });
+    }
     let mut evaluations = 0;
     let mut largest_rule = first_points;
     // A first look at every piece sets the scale.

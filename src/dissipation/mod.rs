@@ -96,8 +96,12 @@ pub struct Dissipation<R> {
 pub struct Options<R> {
     /// Target relative accuracy; `None` is 256 ulps of the working precision.
     pub relative_tolerance: Option<R>,
-    /// The smallest Gauss–Legendre rule per segment (the first of the doubling sequence).
+    /// The smallest Gauss–Legendre rule per segment (the first of the doubling sequence);
+    /// 0 chooses (16 points).
     pub min_points: usize,
+    /// Integrate every piece once with this Gauss–Legendre rule: no refinement and no
+    /// quadrature error estimate. For checking a converged result with another rule.
+    pub fixed_points: Option<usize>,
     /// The largest Gauss–Legendre rule per segment before giving up.
     pub max_points: usize,
     /// Integrate with v'(x) − v'(P0) in place of v'(x) (exact, and free of cancellation).
@@ -124,7 +128,8 @@ impl<R> Default for Options<R> {
     fn default() -> Self {
         Options {
             relative_tolerance: None,
-            min_points: 8,
+            min_points: 0,
+            fixed_points: None,
             max_points: 512,
             remove_constant_slope: true,
             remove_linear_slope: false,
