@@ -178,6 +178,32 @@ fn command_line_reports_each_invalid_cycle_in_one_line_with_exit_code_2() {
     );
     assert_rejected(dissipation_with("--q0", "-0.7", &[]), "Q = −fP");
     assert_rejected(dissipation_with("--p0", "abc", &[]), "'abc' is not a decimal number");
+    // Within 1e-6·P0 of separation f64 cannot promise 1e-12 and says so; --digits can.
+    let near_separation = |extra: &[&str]| {
+        let mut args = vec![
+            "dissipation",
+            "--p0",
+            "1",
+            "--p1",
+            "0.999999",
+            "--q1",
+            "0.001",
+            "--phi",
+            "0.5pi",
+            "--friction",
+            "1",
+            "--lambda",
+            "1",
+            "--compliance",
+            "persson:gamma=1,sigma=1",
+        ];
+        args.extend_from_slice(extra);
+        microslip(&args)
+    };
+    assert_rejected(near_separation(&[]), "ill-conditioned at 53 bits");
+    let (code, stdout, stderr) = near_separation(&["--digits", "20"]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stdout.starts_with("W = 5.6015094587448267940e-5"), "{stdout}");
     assert_rejected(dissipation_with("--phi", "xpi", &[]), "--phi");
 }
 

@@ -13,6 +13,18 @@ pub struct PowerLaw<R> {
     pub exponent: R,
 }
 
+impl<R: Real> PowerLaw<R> {
+    /// x ↦ C·P0^β·[(1 + x/P0)^β − 1], formed without cancellation, with C·P0^β and
+    /// 1/P0 computed once.
+    fn into_slope_change<'a>(self, reference: &R) -> SlopeChange<'a, R> {
+        let (slope, inverse) = (self.slope(reference), reference.int(1) / reference);
+        Box::new(move |offset: &R| {
+            let relative = (offset.clone() * &inverse).ln_1p() * &self.exponent;
+            slope.clone() * &relative.exp_m1()
+        })
+    }
+}
+
 impl<R: Real> Compliance<R> for PowerLaw<R> {
     fn approach(&self, load: &R) -> R {
         let exponent_plus_one = self.exponent.clone() + load.int(1);
@@ -32,12 +44,7 @@ impl<R: Real> Compliance<R> for PowerLaw<R> {
         self.slope_change_about(reference)(offset)
     }
     fn slope_change_about<'a>(&'a self, reference: &R) -> SlopeChange<'a, R> {
-        // C·x^β·[(1 + t)^β − 1] with t = offset/x, formed without cancellation.
-        let (slope, inverse) = (self.slope(reference), reference.int(1) / reference);
-        Box::new(move |offset: &R| {
-            let relative = (offset.clone() * &inverse).ln_1p() * &self.exponent;
-            slope.clone() * &relative.exp_m1()
-        })
+        self.clone().into_slope_change(reference)
     }
     fn describe(&self) -> String {
         format!(
@@ -132,12 +139,7 @@ impl<R: Real> Compliance<R> for Hertz<R> {
         self.as_power_law().slope_change(reference, offset)
     }
     fn slope_change_about<'a>(&'a self, reference: &R) -> SlopeChange<'a, R> {
-        let power_law = self.as_power_law();
-        let (slope, inverse) = (power_law.slope(reference), reference.int(1) / reference);
-        Box::new(move |offset: &R| {
-            let relative = (offset.clone() * &inverse).ln_1p() * &power_law.exponent;
-            slope.clone() * &relative.exp_m1()
-        })
+        self.as_power_law().into_slope_change(reference)
     }
     fn describe(&self) -> String {
         format!(
