@@ -291,6 +291,10 @@ pub struct EllipseGeometry<R> {
     pub phase_sin_cos: (R, R),
     /// (sin θ_C, cos θ_C), for P at θ_C ± s.
     pub theta_c_sin_cos: (R, R),
+    /// (sin θ_B, cos θ_B), for the angles of EB measured from B.
+    pub theta_b_sin_cos: (R, R),
+    /// (sin θ_E, cos θ_E), for the angles of HE measured from E.
+    pub theta_e_sin_cos: (R, R),
 }
 
 impl<R: Real> EllipseGeometry<R> {
@@ -320,9 +324,13 @@ impl<R: Real> EllipseGeometry<R> {
             -((sum_amplitude.clone() + &difference_amplitude) / &(cycle.friction.clone() * &phi.int(2)));
         let phase_sin_cos = phi.sin_cos();
         let theta_c_sin_cos = theta_c.sin_cos();
+        let theta_b_sin_cos = theta_b.sin_cos();
+        let theta_e_sin_cos = theta_e.sin_cos();
         EllipseGeometry {
             phase_sin_cos,
             theta_c_sin_cos,
+            theta_b_sin_cos,
+            theta_e_sin_cos,
             mean_normal_load: cycle.mean_normal_load.clone(),
             normal_amplitude: cycle.normal_amplitude.clone(),
             tangential_amplitude: q1,

@@ -83,25 +83,31 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
         let two = s.int(2);
         match index {
             0 | 3 => {
-                // EB: θ = θ_E + s; HE: θ = θ_H + s. Both read a slip load at the angle
-                // past B (EB) or past E (HE), s − (π − δ), through its half angle.
-                let theta = if index == 0 {
-                    g.theta_e.clone()
-                } else {
-                    g.theta_h.clone()
-                } + s;
-                let (loads, normal) = self.loads_and_normal_term(&theta.sin_cos(), slope);
+                // EB ends at B and HE at E (+2π): with h half the angle to that end,
+                // h = (s − (π − δ))/2, the slip load reads sin²h and sin 2h, and θ is that
+                // end plus 2h — one sin_cos serves both.
                 let (half_sin, half_cos) = ((s.clone() - &g.slip_angle) / &two).sin_cos();
-                let full_sin = half_sin.clone() * &half_cos * &two;
+                let double_sin = half_sin.clone() * &half_cos * &two;
+                let double_cos = s.int(1) - &(half_sin.square() * &two);
+                let (end_sin, end_cos) = if index == 0 {
+                    &g.theta_b_sin_cos
+                } else {
+                    &g.theta_e_sin_cos
+                };
+                let theta_sin_cos = (
+                    end_sin.clone() * &double_cos + &(end_cos.clone() * &double_sin),
+                    end_cos.clone() * &double_cos - &(end_sin.clone() * &double_sin),
+                );
+                let (loads, normal) = self.loads_and_normal_term(&theta_sin_cos, slope);
                 if index == 0 {
                     let offset = g.permanent_stick_offset.clone()
                         + &(g.sum_amplitude.clone() * &half_sin.square() / &g.friction);
-                    let reverse = slope(&offset) * &g.sum_amplitude * &full_sin;
+                    let reverse = slope(&offset) * &g.sum_amplitude * &double_sin;
                     loads.tangential_offset * &(reverse - &normal)
                 } else {
                     let offset = g.permanent_stick_offset.clone()
                         + &(g.difference_amplitude.clone() * &half_sin.square() / &g.friction);
-                    let forward = slope(&offset) * &g.difference_amplitude * &full_sin;
+                    let forward = slope(&offset) * &g.difference_amplitude * &double_sin;
                     loads.tangential_offset * &(normal - &forward)
                 }
             }
