@@ -373,18 +373,17 @@ impl<R: Real> EllipseGeometry<R> {
         -(self.tangential_amplitude.clone() * &(theta.clone() - &self.phase).sin())
     }
 
-    /// P_S − P0 in segment EB, as a function of the angle past B (θ − θ_B):
-    /// P_S = ½(Q/f + P − Q_E/f + P_E) = P_T + σ₊ sin²((θ − θ_B)/2)/f (errata item 2: no u₀).
-    pub fn reverse_slip_offset(&self, angle_from_b: &R) -> R {
-        let half = (angle_from_b.clone() / angle_from_b.int(2)).sin();
-        self.permanent_stick_offset.clone() + &(self.sum_amplitude.clone() * &half.square() / &self.friction)
+    /// P_S − P0 in segment EB, given sin(h) with h half the angle from B, (θ − θ_B)/2:
+    /// P_S = ½(Q/f + P − Q_E/f + P_E) = P_T + σ₊ sin²h/f (errata item 2: no u₀).
+    pub fn reverse_slip_offset(&self, half_angle_sin: &R) -> R {
+        self.permanent_stick_offset.clone() + &(self.sum_amplitude.clone() * &half_angle_sin.square() / &self.friction)
     }
 
-    /// P_K − P0 in segment HE, as a function of the angle past E (θ − θ_E):
-    /// P_K = P_T + ½(P − Q/f − P_E + Q_E/f) = P_T + σ₋ sin²((θ − θ_E)/2)/f.
-    pub fn forward_slip_offset(&self, angle_from_e: &R) -> R {
-        let half = (angle_from_e.clone() / angle_from_e.int(2)).sin();
-        self.permanent_stick_offset.clone() + &(self.difference_amplitude.clone() * &half.square() / &self.friction)
+    /// P_K − P0 in segment HE, given sin(h) with h half the angle from E, (θ − θ_E)/2:
+    /// P_K = P_T + ½(P − Q/f − P_E + Q_E/f) = P_T + σ₋ sin²h/f.
+    pub fn forward_slip_offset(&self, half_angle_sin: &R) -> R {
+        self.permanent_stick_offset.clone()
+            + &(self.difference_amplitude.clone() * &half_angle_sin.square() / &self.friction)
     }
 
     /// The loads at an angle θ given by (sin θ, cos θ): (P − P0, dP/dθ, Q − Q0, dQ/dθ).
@@ -465,6 +464,29 @@ mod tests {
         let pt = 0.5 * (plus(g.theta_b) - minus(g.theta_e)) / c.friction;
         assert!((pt - g.permanent_stick_load()).abs() < 1e-14);
         assert!((c.permanent_stick_load() - pt).abs() < 1e-14);
+    }
+
+    #[test]
+    fn mirror_point_and_slip_loads_satisfy_their_defining_equations() {
+        let c = cycle(0.3 * std::f64::consts::PI);
+        let g = c.geometry().unwrap();
+        let minus = |t: f64| c.tangential_load(&t) - c.friction * c.normal_load(&t);
+        let plus = |t: f64| c.tangential_load(&t) + c.friction * c.normal_load(&t);
+        let (p_e, q_e) = (c.normal_load(&g.theta_e), c.tangential_load(&g.theta_e));
+        for t in [0.1, 0.5, 0.9] {
+            // Y (Eq. 15) for a point of CH.
+            let theta = g.theta_c + t * g.stick_angle;
+            assert!((minus(g.mirror(&theta)) - minus(theta)).abs() < 1e-14);
+            // P_S (Eq. 11 without u0) for a point of EB; P_K (Eq. 18) for a point of HE.
+            let theta = g.theta_e + t * g.slip_angle;
+            let p_s = 0.5 * (plus(theta) - (q_e - c.friction * p_e)) / c.friction;
+            let half = ((theta - g.theta_b) / 2.0).sin();
+            assert!((g.mean_normal_load + g.reverse_slip_offset(&half) - p_s).abs() < 1e-14);
+            let theta = g.theta_h + t * g.slip_angle;
+            let p_k = g.permanent_stick_load() + 0.5 * ((q_e - c.friction * p_e) - minus(theta)) / c.friction;
+            let half = ((theta - g.theta_e) / 2.0).sin();
+            assert!((g.mean_normal_load + g.forward_slip_offset(&half) - p_k).abs() < 1e-14);
+        }
     }
 
     #[test]

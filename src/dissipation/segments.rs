@@ -100,14 +100,10 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
                 );
                 let (loads, normal) = self.loads_and_normal_term(&theta_sin_cos, slope);
                 if index == 0 {
-                    let offset = g.permanent_stick_offset.clone()
-                        + &(g.sum_amplitude.clone() * &half_sin.square() / &g.friction);
-                    let reverse = slope(&offset) * &g.sum_amplitude * &double_sin;
+                    let reverse = slope(&g.reverse_slip_offset(&half_sin)) * &g.sum_amplitude * &double_sin;
                     loads.tangential_offset * &(reverse - &normal)
                 } else {
-                    let offset = g.permanent_stick_offset.clone()
-                        + &(g.difference_amplitude.clone() * &half_sin.square() / &g.friction);
-                    let forward = slope(&offset) * &g.difference_amplitude * &double_sin;
+                    let forward = slope(&g.forward_slip_offset(&half_sin)) * &g.difference_amplitude * &double_sin;
                     loads.tangential_offset * &(normal - &forward)
                 }
             }
