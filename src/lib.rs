@@ -14,3 +14,4 @@ pub mod inputs;
 pub mod quad;
 pub mod real;
 pub mod reference;
+pub mod verify;

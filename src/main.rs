@@ -10,9 +10,12 @@ use serde_json::json;
 
 use microslip::catalogue;
 use microslip::dissipation::{dissipation, Method, Options};
+use microslip::inputs::parse_phase;
 use microslip::inputs::{Case, CaseText};
 use microslip::real::{Precision, Real};
-use microslip::reference::verified_dissipation;
+use microslip::reference::{self, verified_dissipation};
+use microslip::verify::{self, small_amplitude::coefficient, GateOptions};
+use rug::Float;
 
 #[derive(Parser)]
 #[command(
@@ -29,6 +32,10 @@ struct Cli {
 enum Command {
     /// The dissipation per cycle W and its four segment contributions.
     Dissipation(Box<DissipationArgs>),
+    /// Run the theorem gate: every claim over seeded random draws, in f64 and at 256 bits.
+    Verify(VerifyArgs),
+    /// The small-amplitude coefficient I(ρ, φ) of W ≈ λ f² P1³ v''(P0) I.
+    SmallAmplitude(SmallAmplitudeArgs),
     /// Recompute the reference values of a catalogue of cases, in place.
     Reference(ReferenceArgs),
     /// A table of Ŵ = W/(γσλf²) against the phase φ for Persson's compliance
@@ -100,6 +107,35 @@ struct DissipationArgs {
     /// Time budget for --digits, in seconds.
     #[arg(long, default_value_t = 60.0)]
     max_seconds: f64,
+    /// Print one JSON object.
+    #[arg(long)]
+    json: bool,
+}
+
+#[derive(Args)]
+struct VerifyArgs {
+    /// A smaller sample (under 10 s).
+    #[arg(long)]
+    quick: bool,
+    /// The seed of the random draws.
+    #[arg(long, default_value_t = 2026)]
+    seed: u64,
+    /// Print one JSON object.
+    #[arg(long)]
+    json: bool,
+}
+
+#[derive(Args)]
+struct SmallAmplitudeArgs {
+    /// ρ = Q1/(f P1) (> 0).
+    #[arg(long, allow_hyphen_values = true)]
+    rho: String,
+    /// The phase φ, in radians or as a multiple of π (`0.4pi`).
+    #[arg(long, allow_hyphen_values = true)]
+    phi: String,
+    /// Significant digits (verified by a second run at higher precision); without it, f64.
+    #[arg(long)]
+    digits: Option<u32>,
     /// Print one JSON object.
     #[arg(long)]
     json: bool,
@@ -242,6 +278,94 @@ fn run_reference(args: &ReferenceArgs) -> Result<String, Failure> {
     ))
 }
 
+fn run_verify(args: &VerifyArgs) -> Result<(String, bool), Failure> {
+    let options = GateOptions {
+        seed: args.seed,
+        quick: args.quick,
+    };
+    let show_progress = std::io::stderr().is_terminal();
+    let started = std::time::Instant::now();
+    let reports = verify::run(options, |index, total, name| {
+        if show_progress {
+            eprint!("\r\x1b[K[{}/{total}] {name}", index + 1);
+        }
+    });
+    if show_progress {
+        eprintln!();
+    }
+    let passed = reports.iter().all(|r| r.passed);
+    let seconds = started.elapsed().as_secs_f64();
+    if args.json {
+        let object =
+            json!({"passed": passed, "seed": args.seed, "quick": args.quick, "seconds": seconds, "claims": reports});
+        return Ok((object.to_string(), passed));
+    }
+    let mut out = format!(
+        "{:<62} {:<9} {:>6} {:>11} {:>9}  result\n",
+        "claim", "precision", "cases", "worst", "tolerance"
+    );
+    for r in &reports {
+        out.push_str(&format!(
+            "{:<62} {:<9} {:>6} {:>11.3e} {:>9.0e}  {}\n",
+            r.claim,
+            r.precision,
+            r.cases,
+            r.worst_error,
+            r.tolerance,
+            if r.passed { "pass" } else { "FAIL" }
+        ));
+        if !r.note.is_empty() {
+            out.push_str(&format!("    {}\n", r.note));
+        }
+    }
+    out.push_str(&format!(
+        "{} in {seconds:.1} s (seed {})",
+        if passed { "all claims hold" } else { "SOME CLAIMS FAIL" },
+        args.seed
+    ));
+    Ok((out, passed))
+}
+
+fn run_small_amplitude(args: &SmallAmplitudeArgs) -> Result<String, Failure> {
+    let read = |precision: Precision| -> Result<(Float, Float), Failure> {
+        let rho = Float::parse_decimal(&args.rho, precision).map_err(|e| Failure(format!("--rho: {e}")))?;
+        let phi: Float = parse_phase(&args.phi, precision).map_err(|e| Failure(format!("--phi: {e}")))?;
+        if !(rho.is_finite() && rho > 0) {
+            return Err(Failure(format!("--rho must be a positive number, got {}", args.rho)));
+        }
+        Ok((rho, phi))
+    };
+    let (text, digits) = match args.digits {
+        None => {
+            let (rho, phi) = read(Precision::DOUBLE)?;
+            let value = coefficient(&rho.to_f64(), &phi.to_f64())?;
+            (value.to_scientific(15), 15)
+        }
+        Some(digits) => {
+            if digits == 0 || digits > 1000 {
+                return Err(Failure(format!("--digits must be between 1 and 1000, got {digits}")));
+            }
+            let first_precision = Precision::decimal_digits(digits + 16);
+            let (rho, phi) = read(first_precision)?;
+            let first = coefficient(&rho, &phi)?;
+            let second_precision = Precision::bits(first_precision.in_bits() * 5 / 4 + 32);
+            let (rho, phi) = read(second_precision)?;
+            let second = coefficient(&rho, &phi)?;
+            let agreed = reference::agreeing_digits(&Float::with_val(second_precision.in_bits(), &first), &second);
+            if agreed < digits + reference::GUARD_DIGITS {
+                return Err(Failure(format!(
+                    "only {agreed} of {digits} digits of I could be verified"
+                )));
+            }
+            (second.to_scientific(digits as usize), digits)
+        }
+    };
+    if args.json {
+        return Ok(json!({"rho": args.rho, "phi": args.phi, "I": text, "digits": digits}).to_string());
+    }
+    Ok(format!("I(ρ = {}, φ = {}) = {text}", args.rho, args.phi))
+}
+
 fn run_table() -> Result<String, Failure> {
     let amplitudes = ["0.2", "0.4", "0.5", "0.6"];
     let mut out = String::from("Ŵ = W/(γσλf²) for v' = γσ/P, P0 = 1, P1 = 0.4, f = 1 (f64)\n   φ/π");
@@ -290,6 +414,14 @@ fn main() -> ExitCode {
     };
     let outcome = match &cli.command {
         Command::Dissipation(args) => run_dissipation(args),
+        Command::Verify(args) => match run_verify(args) {
+            Ok((text, passed)) => {
+                println!("{text}");
+                return if passed { ExitCode::SUCCESS } else { ExitCode::from(1) };
+            }
+            Err(failure) => Err(failure),
+        },
+        Command::SmallAmplitude(args) => run_small_amplitude(args),
         Command::Reference(args) => run_reference(args),
         Command::Table => run_table(),
     };

@@ -53,13 +53,21 @@ impl<R: Real> Converged<R> {
 /// Tanh–sinh levels allowed after Gauss–Legendre gives up (each doubles the nodes).
 const MAX_TANH_SINH_LEVEL: u32 = 16;
 
-fn gauss<R: Real>(piece: &Integral<'_, R>, points: usize) -> Result<R, DissipationError> {
+/// The piece by the `points`-point rule, with the rule applied to |f| (see
+/// `NodeTable::integrate_with_magnitude`).
+fn gauss<R: Real>(piece: &Integral<'_, R>, points: usize) -> Result<(R, R), DissipationError> {
     if piece.start == piece.end {
-        return Ok(piece.start.int(0));
+        return Ok((piece.start.int(0), piece.start.int(0)));
     }
     let precision = piece.start.precision();
-    let value = node_table::<R>(points, precision).integrate(&piece.integrand, &piece.start, &piece.end);
-    finite(value, piece)
+    let table = node_table::<R>(points, precision);
+    let (value, magnitude) = table.integrate_with_magnitude(&piece.integrand, &piece.start, &piece.end);
+    Ok((finite(value, piece)?, magnitude))
+}
+
+/// The rounding floor of a rule's value: 64ε·∫|f|. Changes below it are noise, not error.
+fn rounding_floor<R: Real>(magnitude: &R) -> R {
+    magnitude.clone() * &magnitude.epsilon_like() * &magnitude.int(64)
 }
 
 fn finite<R: Real>(value: R, piece: &Integral<'_, R>) -> Result<R, DissipationError> {
@@ -88,13 +96,16 @@ pub(crate) fn converge<R: Real>(
     };
     let max_points = options.max_points.max(first_points);
     if let Some(points) = options.fixed_points {
-        let values = pieces
-            .iter()
-            .map(|piece| gauss(piece, points))
-            .collect::<Result<Vec<_>, _>>()?;
+        let mut values = Vec::with_capacity(pieces.len());
+        let mut error = zero.clone();
+        for piece in pieces {
+            let (value, magnitude) = gauss(piece, points)?;
+            values.push(value);
+            error += rounding_floor(&magnitude);
+        }
         return Ok(Converged {
             values,
-            error: zero,
+            error,
             evaluations: points * pieces.len(),
             points,
         });
@@ -104,7 +115,7 @@ pub(crate) fn converge<R: Real>(
     // A first look at every piece sets the scale.
     let mut values = Vec::with_capacity(pieces.len());
     for piece in pieces {
-        values.push(gauss(piece, first_points)?);
+        values.push(gauss(piece, first_points)?.0);
         evaluations += first_points;
     }
     let scale = |values: &[R]| values.iter().fold(zero.clone(), |acc, v| acc + &v.abs());
@@ -140,12 +151,14 @@ pub(crate) fn converge<R: Real>(
             }
             points *= 2;
             largest_rule = largest_rule.max(points);
-            let refined = gauss(piece, points)?;
+            let (refined, magnitude) = gauss(piece, points)?;
             evaluations += points;
             let change = (refined.clone() - &values[i]).abs();
             values[i] = refined;
-            if change <= allowed {
-                errors[i] = change;
+            // Converged to the tolerance, or to the rounding floor of a cancelling integrand.
+            let floor = rounding_floor(&magnitude);
+            if change <= allowed || change <= floor {
+                errors[i] = change.max_of(&floor);
                 break;
             }
             if let Some(predicted) = predicted_error(&change, previous_change.as_ref(), &allowed) {

@@ -135,15 +135,23 @@ pub fn compute_node_table<R: Real>(points: usize, precision: Precision) -> NodeT
 
 impl<R: Real> NodeTable<R> {
     /// ∫ₐᵇ f with this rule (one pass, no error estimate).
-    pub fn integrate<F: FnMut(&R) -> R>(&self, mut integrand: F, a: &R, b: &R) -> R {
+    pub fn integrate<F: FnMut(&R) -> R>(&self, integrand: F, a: &R, b: &R) -> R {
+        self.integrate_with_magnitude(integrand, a, b).0
+    }
+
+    /// ∫ₐᵇ f and the same rule applied to |f|: the second sizes the rounding error
+    /// of the first (a sum whose terms cancel can be no better than ε·∫|f|).
+    pub fn integrate_with_magnitude<F: FnMut(&R) -> R>(&self, mut integrand: F, a: &R, b: &R) -> (R, R) {
         let half_width = (b.clone() - a) / a.int(2);
         let middle = (b.clone() + a) / a.int(2);
-        let mut sum = a.int(0);
+        let (mut sum, mut magnitude) = (a.int(0), a.int(0));
         for (x, w) in self.nodes.iter().zip(&self.weights) {
             let point = middle.clone() + &(half_width.clone() * x);
-            sum += integrand(&point) * w;
+            let term = integrand(&point) * w;
+            magnitude += term.abs();
+            sum += term;
         }
-        sum * &half_width
+        (sum * &half_width, magnitude * &half_width.abs())
     }
 
     /// The number of points.

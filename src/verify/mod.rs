@@ -1,0 +1,107 @@
+//! The theorem gate: the claims of the paper (Sections 5.1–5.2) and the
+//! invariants of the construction, checked over seeded random draws of compliance
+//! functions and cycles, in f64 and at 256 bits. `microslip verify` runs it and
+//! fails when any claim fails; the property tests in `tests/theorems.rs` run the
+//! same checks with fixed seeds.
+
+pub mod claims;
+pub mod generators;
+pub mod small_amplitude;
+
+use rug::Float;
+use serde::Serialize;
+
+use crate::real::Precision;
+
+/// The outcome of one claim at one precision.
+#[derive(Clone, Debug, Serialize)]
+pub struct ClaimReport {
+    /// The claim, numbered as in proofs/README.md.
+    pub claim: String,
+    /// `f64` or `N bits`.
+    pub precision: String,
+    /// Cases checked.
+    pub cases: usize,
+    /// The worst error against the claim (relative, or |order − 1| for the cubic law).
+    pub worst_error: f64,
+    /// The largest error allowed.
+    pub tolerance: f64,
+    /// Whether every case passed.
+    pub passed: bool,
+    /// What was found: the first failure, or a measured figure.
+    pub note: String,
+}
+
+/// How much of the gate to run.
+#[derive(Clone, Copy, Debug)]
+pub struct GateOptions {
+    /// The seed every draw derives from.
+    pub seed: u64,
+    /// A smaller sample (under 10 s on 2 cores).
+    pub quick: bool,
+}
+
+/// One step of the gate: a name for progress, and the check that produces its reports.
+pub type GateStep = (&'static str, Box<dyn Fn() -> Vec<ClaimReport>>);
+
+/// The claims in order, each a closure so that progress can be shown between them.
+pub fn gate(options: GateOptions) -> Vec<GateStep> {
+    let GateOptions { seed, quick } = options;
+    let n = move |quick_cases: usize, full_cases: usize| if quick { quick_cases } else { full_cases };
+    let wide = Precision::bits(256);
+    vec![
+        ("cubic law", Box::new(move || vec![claims::cubic_law(seed, n(3, 60))])),
+        (
+            "small-amplitude coefficient",
+            Box::new(move || vec![claims::small_amplitude_coefficient(seed + 1, n(6, 100))]),
+        ),
+        (
+            "constant term",
+            Box::new(move || {
+                vec![
+                    claims::constant_term::<f64>(seed + 2, n(40, 1000), Precision::DOUBLE),
+                    claims::constant_term::<Float>(seed + 3, n(3, 40), wide),
+                ]
+            }),
+        ),
+        (
+            "linearity",
+            Box::new(move || {
+                vec![
+                    claims::linearity::<f64>(seed + 4, n(40, 1000), Precision::DOUBLE),
+                    claims::linearity::<Float>(seed + 5, n(3, 40), wide),
+                ]
+            }),
+        ),
+        (
+            "roughness",
+            Box::new(move || {
+                vec![
+                    claims::roughness::<f64>(seed + 6, n(40, 1000), Precision::DOUBLE),
+                    claims::roughness::<Float>(seed + 7, n(2, 30), wide),
+                ]
+            }),
+        ),
+        (
+            "invariants",
+            Box::new(move || {
+                let (identities, limit) = claims::invariants(seed + 8, n(40, 1000));
+                vec![identities, limit]
+            }),
+        ),
+    ]
+}
+
+/// Runs the whole gate; `progress` is told each claim's name as it starts.
+pub fn run(options: GateOptions, mut progress: impl FnMut(usize, usize, &str)) -> Vec<ClaimReport> {
+    let claims = gate(options);
+    let total = claims.len();
+    claims
+        .iter()
+        .enumerate()
+        .flat_map(|(index, (name, check))| {
+            progress(index, total, name);
+            check()
+        })
+        .collect()
+}
