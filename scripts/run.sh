@@ -25,10 +25,11 @@ fi
 
 case "${1:-}" in
     main)
-        cargo run --release --quiet -- table
+        cargo run --release --quiet -- verify
         ;;
     test)
         cargo test --release
+        cargo run --release --quiet -- verify --quick
         ;;
     *)
         echo "usage: sh scripts/run.sh main|test" >&2

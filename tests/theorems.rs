@@ -1,0 +1,203 @@
+//! The theorem gate as property tests: every claim over random admissible
+//! compliances and cycles from the shared generators (`microslip::verify::generators`),
+//! with fixed seeds and case counts sized for CI, in f64 and at 256 bits.
+
+use std::process::Command;
+
+use microslip::compliance::{LoadScaled, PowerLaw};
+use microslip::cycle::LoadCycle;
+use microslip::dissipation::{dissipation, Options};
+use microslip::real::{Precision, Real};
+use microslip::verify::claims::{self, least_squares_slope};
+use microslip::verify::small_amplitude::{coefficient, coefficient_at};
+use microslip::verify::ClaimReport;
+use proptest::prelude::*;
+use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
+use rug::Float;
+
+/// Runs `check` on generator seeds drawn by proptest from a fixed seed.
+fn for_seeds(cases: u32, seed: u8, check: impl Fn(u64) -> ClaimReport) {
+    let config = Config {
+        cases,
+        failure_persistence: None,
+        ..Config::default()
+    };
+    let mut runner = TestRunner::new_with_rng(config, TestRng::from_seed(RngAlgorithm::ChaCha, &[seed; 32]));
+    runner
+        .run(&any::<u64>(), |generator_seed| {
+            let report = check(generator_seed);
+            prop_assert!(report.passed, "{report:?}");
+            prop_assert!(report.cases > 0);
+            Ok(())
+        })
+        .unwrap();
+}
+
+#[test]
+fn cubic_law_converges_at_first_order_for_random_compliances_at_160_bits() {
+    for_seeds(6, 1, |seed| claims::cubic_law(seed, 1));
+}
+
+#[test]
+fn small_amplitude_coefficient_is_amplitude_free_negative_and_zero_in_phase() {
+    for_seeds(8, 2, |seed| claims::small_amplitude_coefficient(seed, 2));
+}
+
+#[test]
+fn constant_term_contributes_nothing_in_f64() {
+    for_seeds(40, 3, |seed| claims::constant_term::<f64>(seed, 5, Precision::DOUBLE));
+}
+
+#[test]
+fn constant_term_contributes_nothing_at_256_bits() {
+    for_seeds(6, 4, |seed| {
+        claims::constant_term::<Float>(seed, 1, Precision::bits(256))
+    });
+}
+
+#[test]
+fn dissipation_is_linear_in_the_compliance_in_f64_and_at_256_bits() {
+    for_seeds(40, 5, |seed| claims::linearity::<f64>(seed, 5, Precision::DOUBLE));
+    for_seeds(4, 6, |seed| claims::linearity::<Float>(seed, 1, Precision::bits(256)));
+}
+
+#[test]
+fn roughness_scaling_identities_hold_in_f64_and_at_256_bits() {
+    for_seeds(40, 7, |seed| claims::roughness::<f64>(seed, 5, Precision::DOUBLE));
+    for_seeds(3, 8, |seed| claims::roughness::<Float>(seed, 1, Precision::bits(256)));
+}
+
+#[test]
+fn invariants_hold_for_random_cycles() {
+    for_seeds(40, 9, |seed| {
+        let (identities, limit) = claims::invariants(seed, 5);
+        if identities.passed {
+            limit
+        } else {
+            identities
+        }
+    });
+}
+
+#[test]
+fn linearity_in_roughness_holds_for_persson_but_not_for_other_exponents() {
+    // Errata item 7: heights scaled by k give v'(P/k); for v' = C P^β that is k^(−β) v'.
+    let cycle = LoadCycle {
+        mean_normal_load: 1.0,
+        normal_amplitude: 0.4,
+        mean_tangential_load: 0.0,
+        tangential_amplitude: 0.5,
+        phase: 0.4 * std::f64::consts::PI,
+        friction: 1.0,
+        compliance_ratio: 1.0,
+    };
+    let w = |beta: f64, k: f64| {
+        let power = PowerLaw {
+            coefficient: 1.0,
+            exponent: beta,
+        };
+        let rough = LoadScaled {
+            factor: k,
+            inner: Box::new(power),
+        };
+        dissipation(&cycle, &rough, &Options::default()).unwrap().total
+    };
+    for beta in [-1.0, -0.5, -1.0 / 3.0, -2.0] {
+        let ratio = w(beta, 2.0) / w(beta, 1.0);
+        assert!(
+            (ratio - 2f64.powf(-beta)).abs() < 1e-12,
+            "β = {beta}: W(2σ)/W(σ) = {ratio}"
+        );
+    }
+    // Linear only at β = −1: for Hertz-like β = −1/3 doubling σ multiplies W by 2^(1/3) = 1.26.
+    assert!((w(-1.0, 2.0) / w(-1.0, 1.0) - 2.0).abs() < 1e-12);
+    assert!((w(-1.0 / 3.0, 2.0) / w(-1.0 / 3.0, 1.0) - 2.0).abs() > 0.7);
+}
+
+#[test]
+fn small_amplitude_coefficient_known_values_and_homogeneity_at_200_bits() {
+    let p = Precision::bits(200);
+    let number = |t: &str| Float::parse_decimal(t, p).unwrap();
+    let (rho, phase) = (number("1.25"), Float::pi(p) * number("0.4"));
+    // The acceptance case P1 = 0.4, Q1 = 0.5, f = 1 has ρ = 1.25; at P1 = 1e-12 its W/P1³
+    // (catalogue small-amplitude-1e-12, v' = 1/P so v''(1) = −1) is −I up to the O(P1) term.
+    let i = coefficient(&rho, &phase).unwrap();
+    let from_catalogue = -3.4792348574435964361269194146847695922415705155674;
+    assert!(
+        ((i.to_f64() - from_catalogue) / from_catalogue).abs() < 1e-11,
+        "{}",
+        i.to_f64()
+    );
+    let at_small = coefficient_at(&rho, &phase, &number("1e-9")).unwrap();
+    let difference = ((i.clone() - &at_small) / &i).abs();
+    assert!(difference < Float::with_val(64, 1e-55), "{}", difference.to_f64());
+}
+
+#[test]
+fn least_squares_slope_recovers_a_line() {
+    let points: Vec<(f64, f64)> = (0..8).map(|k| (k as f64, 3.0 - 1.5 * k as f64)).collect();
+    assert!((least_squares_slope(&points) + 1.5).abs() < 1e-14);
+}
+
+fn microslip(args: &[&str]) -> (i32, String, String) {
+    let output = Command::new(env!("CARGO_BIN_EXE_microslip"))
+        .args(args)
+        .output()
+        .unwrap();
+    (
+        output.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&output.stdout).into_owned(),
+        String::from_utf8_lossy(&output.stderr).into_owned(),
+    )
+}
+
+#[test]
+fn verify_command_runs_the_gate_and_reports_every_claim() {
+    let (code, stdout, stderr) = microslip(&["verify", "--quick", "--json", "--seed", "11"]);
+    assert_eq!(code, 0, "{stdout}{stderr}");
+    let report: serde_json::Value = serde_json::from_str(stdout.trim()).unwrap();
+    assert_eq!(report["passed"], true);
+    let claims = report["claims"].as_array().unwrap();
+    assert_eq!(claims.len(), 10);
+    for claim in claims {
+        assert!(claim["cases"].as_u64().unwrap() > 0, "{claim}");
+        assert!(claim["worst_error"].as_f64().unwrap() <= claim["tolerance"].as_f64().unwrap());
+    }
+    let (code, stdout, _) = microslip(&["verify", "--quick"]);
+    assert_eq!(code, 0);
+    assert!(stdout.contains("all claims hold"), "{stdout}");
+}
+
+#[test]
+fn small_amplitude_command_prints_i_and_verifies_digits() {
+    let (code, stdout, stderr) = microslip(&["small-amplitude", "--rho", "1.25", "--phi", "0.4pi", "--json"]);
+    assert_eq!(code, 0, "{stderr}");
+    let value: serde_json::Value = serde_json::from_str(stdout.trim()).unwrap();
+    let i: f64 = value["I"].as_str().unwrap().parse().unwrap();
+    // The catalogue's small-amplitude-1e-12 case gives W/P1³ = 3.4792348574435964 = −I(1 + O(P1)).
+    assert!((i + 3.47923485744058).abs() < 1e-13, "{i}");
+    assert!(((i + 3.4792348574435964) / i).abs() < 1e-11);
+    assert_eq!(value["digits"], 15);
+    let (code, stdout, _) = microslip(&[
+        "small-amplitude",
+        "--rho",
+        "1.25",
+        "--phi",
+        "0.4pi",
+        "--digits",
+        "45",
+        "--json",
+    ]);
+    assert_eq!(code, 0);
+    let value: serde_json::Value = serde_json::from_str(stdout.trim()).unwrap();
+    let text = value["I"].as_str().unwrap();
+    assert!(text.starts_with("-3.47923485744058034301010635611462634498"), "{text}");
+    assert_eq!(text.split('e').next().unwrap().replace(['-', '.'], "").len(), 45);
+    // In phase and ρ ≤ 1 there is no slip: I = 0.
+    let (code, stdout, _) = microslip(&["small-amplitude", "--rho", "0.7", "--phi", "0"]);
+    assert_eq!(code, 0);
+    assert!(stdout.trim().ends_with("= 0.00000000000000e0"), "{stdout}");
+    let (code, _, stderr) = microslip(&["small-amplitude", "--rho", "-1", "--phi", "1"]);
+    assert_eq!(code, 2);
+    assert!(stderr.contains("--rho must be a positive number"), "{stderr}");
+}
