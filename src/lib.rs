@@ -14,4 +14,5 @@ pub mod inputs;
 pub mod quad;
 pub mod real;
 pub mod reference;
+pub mod simulate;
 pub mod verify;

@@ -14,6 +14,7 @@ use microslip::inputs::parse_phase;
 use microslip::inputs::{Case, CaseText};
 use microslip::real::{Precision, Real};
 use microslip::reference::{self, verified_dissipation};
+use microslip::simulate::{simulate, write_loop_csv, SimulationOptions};
 use microslip::verify::{self, small_amplitude::coefficient, GateOptions};
 use rug::Float;
 
@@ -32,6 +33,8 @@ struct Cli {
 enum Command {
     /// The dissipation per cycle W and its four segment contributions.
     Dissipation(Box<DissipationArgs>),
+    /// W by brute-force simulation of the contact's loading history (an independent check).
+    Simulate(Box<SimulateArgs>),
     /// Run the theorem gate: every claim over seeded random draws, in f64 and at 256 bits.
     Verify(VerifyArgs),
     /// The small-amplitude coefficient I(ρ, φ) of W ≈ λ f² P1³ v''(P0) I.
@@ -107,6 +110,24 @@ struct DissipationArgs {
     /// Time budget for --digits, in seconds.
     #[arg(long, default_value_t = 60.0)]
     max_seconds: f64,
+    /// Print one JSON object.
+    #[arg(long)]
+    json: bool,
+}
+
+#[derive(Args)]
+struct SimulateArgs {
+    #[command(flatten)]
+    case: CaseArgs,
+    /// Elements of the coarsest spring bed (doubled twice for the extrapolation).
+    #[arg(long)]
+    elements: Option<usize>,
+    /// Load steps per cycle of the coarsest run (doubled twice).
+    #[arg(long)]
+    steps: Option<usize>,
+    /// Write the steady loop (theta,P,Q,u) to this CSV file.
+    #[arg(long = "loop")]
+    loop_csv: Option<PathBuf>,
     /// Print one JSON object.
     #[arg(long)]
     json: bool,
@@ -278,6 +299,33 @@ fn run_reference(args: &ReferenceArgs) -> Result<String, Failure> {
     ))
 }
 
+fn run_simulate(args: &SimulateArgs) -> Result<String, Failure> {
+    let Case { cycle, compliance } = args.case.text().read::<f64>(Precision::DOUBLE)?;
+    let options = SimulationOptions {
+        elements: args.elements,
+        steps: args.steps,
+        ..SimulationOptions::default()
+    };
+    let result = simulate(&cycle, compliance.as_ref(), &options)?;
+    if let Some(path) = &args.loop_csv {
+        write_loop_csv(path, &result).map_err(|e| Failure(format!("{}: {e}", path.display())))?;
+    }
+    if args.json {
+        return Ok(json!({
+            "W_work": result.w_work,
+            "W_friction": result.w_friction,
+            "estimated_rel_error": result.estimated_rel_error,
+            "elements": result.elements,
+            "steps": result.steps,
+        })
+        .to_string());
+    }
+    Ok(format!(
+        "W = {:.10e} (work of the load) = {:.10e} (frictional work); estimated relative error {:.1e}; {} elements, {} steps per cycle (finest run)",
+        result.w_work, result.w_friction, result.estimated_rel_error, result.elements, result.steps
+    ))
+}
+
 fn run_verify(args: &VerifyArgs) -> Result<(String, bool), Failure> {
     let options = GateOptions {
         seed: args.seed,
@@ -422,6 +470,7 @@ fn main() -> ExitCode {
             Err(failure) => Err(failure),
         },
         Command::SmallAmplitude(args) => run_small_amplitude(args),
+        Command::Simulate(args) => run_simulate(args),
         Command::Reference(args) => run_reference(args),
         Command::Table => run_table(),
     };
