@@ -10,6 +10,7 @@ command -v m4 >/dev/null 2>&1 || need_packages="$need_packages m4"
 command -v cc >/dev/null 2>&1 || need_packages="$need_packages gcc libc6-dev"
 command -v make >/dev/null 2>&1 || need_packages="$need_packages make"
 command -v cargo >/dev/null 2>&1 || [ -x "$HOME/.cargo/bin/cargo" ] || need_packages="$need_packages curl ca-certificates"
+[ -f /usr/share/fonts/truetype/dejavu/DejaVuSans.ttf ] || need_packages="$need_packages fonts-dejavu-core"
 if [ -n "$need_packages" ]; then
     echo "installing:$need_packages" >&2
     apt-get update -qq

@@ -11,6 +11,7 @@ pub mod compliance;
 pub mod cycle;
 pub mod dissipation;
 pub mod inputs;
+pub mod plot;
 pub mod quad;
 pub mod real;
 pub mod reference;

@@ -12,6 +12,7 @@ use microslip::catalogue;
 use microslip::dissipation::{dissipation, Method, Options};
 use microslip::inputs::parse_phase;
 use microslip::inputs::{Case, CaseText};
+use microslip::plot::plot_cycle;
 use microslip::real::{Precision, Real};
 use microslip::reference::{self, verified_dissipation};
 use microslip::simulate::{simulate, write_loop_csv, SimulationOptions};
@@ -128,6 +129,9 @@ struct SimulateArgs {
     /// Write the steady loop (theta,P,Q,u) to this CSV file.
     #[arg(long = "loop")]
     loop_csv: Option<PathBuf>,
+    /// Draw the load ellipse and the hysteresis loop (SVG, or PNG for a .png name).
+    #[arg(long)]
+    plot: Option<PathBuf>,
     /// Print one JSON object.
     #[arg(long)]
     json: bool,
@@ -309,6 +313,9 @@ fn run_simulate(args: &SimulateArgs) -> Result<String, Failure> {
     let result = simulate(&cycle, compliance.as_ref(), &options)?;
     if let Some(path) = &args.loop_csv {
         write_loop_csv(path, &result).map_err(|e| Failure(format!("{}: {e}", path.display())))?;
+    }
+    if let Some(path) = &args.plot {
+        plot_cycle(path, &cycle, &result)?;
     }
     if args.json {
         return Ok(json!({

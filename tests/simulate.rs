@@ -169,6 +169,46 @@ fn simulate_command_prints_json_and_writes_the_loop() {
     assert!((w - 0.406_247_579_245_824).abs() < 1e-5 * w, "{w}");
     assert!(value["W_friction"].as_f64().is_some() && value["estimated_rel_error"].as_f64().is_some());
     assert_eq!(value["elements"], 1600);
+    for name in ["cycle.svg", "cycle.png"] {
+        let picture = dir.join(name);
+        let drawn = Command::new(env!("CARGO_BIN_EXE_microslip"))
+            .args([
+                "simulate",
+                "--p0",
+                "1",
+                "--p1",
+                "0.4",
+                "--q1",
+                "0.5",
+                "--phi",
+                "1.4pi",
+                "--friction",
+                "1",
+                "--lambda",
+                "1",
+                "--compliance",
+                "persson:gamma=1,sigma=1",
+                "--elements",
+                "100",
+                "--steps",
+                "200",
+                "--plot",
+            ])
+            .arg(&picture)
+            .output()
+            .unwrap();
+        assert!(drawn.status.success(), "{}", String::from_utf8_lossy(&drawn.stderr));
+        let bytes = std::fs::read(&picture).unwrap();
+        assert!(bytes.len() > 10_000, "{name}: {} bytes", bytes.len());
+        if name.ends_with(".svg") {
+            let svg = String::from_utf8(bytes).unwrap();
+            for label in ["EB", "BC", "CH", "HE", "|Q| = fP", "hysteresis loop"] {
+                assert!(svg.contains(label), "{name} lacks {label}");
+            }
+        } else {
+            assert_eq!(&bytes[1..4], b"PNG");
+        }
+    }
     let text = std::fs::read_to_string(&csv).unwrap();
     assert!(text.starts_with("theta,P,Q,u\n"));
     assert_eq!(text.lines().count(), 2 + 4800);

@@ -1,0 +1,196 @@
+//! Pictures of a simulated cycle: the load ellipse in the (P, Q) plane with the
+//! friction wedge |Q| = fP and the points B, C, H, E, beside the Q–u hysteresis
+//! loop with its four segments coloured. SVG, or PNG when the file name ends in
+//! `.png`; text needs the DejaVu Sans font (Debian package fonts-dejavu-core).
+
+use std::path::Path;
+
+use plotters::coord::Shift;
+use plotters::prelude::*;
+
+use crate::cycle::LoadCycle;
+use crate::simulate::SimulationResult;
+
+/// The font text is drawn and measured with (plotters lays out text only with a registered font).
+const FONT: &str = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+
+/// Why a picture could not be drawn.
+#[derive(Debug, thiserror::Error)]
+pub enum PlotError {
+    /// The cycle is outside the theory.
+    #[error(transparent)]
+    Cycle(#[from] crate::cycle::CycleError),
+    /// Text needs a font file.
+    #[error("plots need the font {FONT} (apt-get install fonts-dejavu-core)")]
+    FontMissing,
+    /// The drawing library failed.
+    #[error("drawing {path}: {message}")]
+    Drawing { path: String, message: String },
+}
+
+const SEGMENT_COLOURS: [RGBColor; 4] = [
+    RGBColor(31, 119, 180),
+    RGBColor(44, 160, 44),
+    RGBColor(214, 39, 40),
+    RGBColor(255, 127, 14),
+];
+const SEGMENT_NAMES: [&str; 4] = ["EB", "BC", "CH", "HE"];
+
+/// What is drawn, computed once for either backend.
+struct Scene {
+    ellipse: Vec<(f64, f64)>,
+    points: Vec<(&'static str, f64, f64)>,
+    top_load: f64,
+    tangential_extent: f64,
+    segments: [Vec<(f64, f64)>; 4],
+    dissipation: f64,
+}
+
+/// Draws the ellipse and the loop side by side into `path` (.svg, or .png).
+pub fn plot_cycle(path: &Path, cycle: &LoadCycle<f64>, result: &SimulationResult) -> Result<(), PlotError> {
+    let geometry = cycle.geometry()?;
+    // The geometry is that of φ reduced to [0, π): an odd number of π removed mirrors Q − Q0.
+    let turns = (cycle.phase / std::f64::consts::PI).floor() as i64;
+    let mirror = if turns.rem_euclid(2) == 1 { -1.0 } else { 1.0 };
+    let two_pi = 2.0 * std::f64::consts::PI;
+    let starts = [geometry.theta_e, geometry.theta_b, geometry.theta_c, geometry.theta_h];
+    // The segment an angle lies in: the one whose start it passed most recently.
+    let segment_of = |theta: f64| {
+        (0..4)
+            .min_by(|&a, &b| {
+                (theta - starts[a])
+                    .rem_euclid(two_pi)
+                    .total_cmp(&(theta - starts[b]).rem_euclid(two_pi))
+            })
+            .unwrap_or(0)
+    };
+    let mut segments: [Vec<(f64, f64)>; 4] = Default::default();
+    for pair in result.steady_loop.windows(2) {
+        let index = segment_of(0.5 * (pair[0].theta + pair[1].theta));
+        segments[index].push((pair[0].displacement, pair[0].tangential_load));
+        segments[index].push((pair[1].displacement, pair[1].tangential_load));
+    }
+    let top_load = cycle.mean_normal_load + cycle.normal_amplitude;
+    let scene = Scene {
+        ellipse: result
+            .steady_loop
+            .iter()
+            .map(|s| (s.normal_load, s.tangential_load))
+            .collect(),
+        points: ["E", "B", "C", "H"]
+            .iter()
+            .zip(starts)
+            .map(|(name, theta)| {
+                (
+                    *name,
+                    cycle.mean_normal_load + geometry.normal_offset(&theta),
+                    cycle.mean_tangential_load + mirror * geometry.tangential_offset(&theta),
+                )
+            })
+            .collect(),
+        top_load,
+        tangential_extent: cycle.friction * top_load * 1.05,
+        segments,
+        dissipation: result.w_work,
+    };
+    let drawing = |error: Box<dyn std::error::Error>| PlotError::Drawing {
+        path: path.display().to_string(),
+        message: error.to_string(),
+    };
+    register_font()?;
+    let size = (1200, 520);
+    if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("png")) {
+        draw(BitMapBackend::new(path, size).into_drawing_area(), &scene).map_err(drawing)
+    } else {
+        draw(SVGBackend::new(path, size).into_drawing_area(), &scene).map_err(drawing)
+    }
+}
+
+/// Registers the font once per process: text layout needs its metrics in SVG too.
+fn register_font() -> Result<(), PlotError> {
+    static REGISTERED: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+    let registered = REGISTERED.get_or_init(|| {
+        let Ok(font) = std::fs::read(FONT) else {
+            return false;
+        };
+        let font: &'static [u8] = Box::leak(font.into_boxed_slice());
+        plotters::style::register_font("sans-serif", FontStyle::Normal, font).is_ok()
+    });
+    if *registered {
+        Ok(())
+    } else {
+        Err(PlotError::FontMissing)
+    }
+}
+
+fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, scene: &Scene) -> Result<(), Box<dyn std::error::Error>>
+where
+    DB::ErrorType: 'static,
+{
+    root.fill(&WHITE)?;
+    let (left, right) = root.split_horizontally(root.dim_in_pixel().0 / 2);
+    let (top, extent) = (scene.top_load * 1.05, scene.tangential_extent);
+    let mut ellipse = ChartBuilder::on(&left)
+        .caption("load cycle in the (P, Q) plane", ("sans-serif", 18))
+        .margin(12)
+        .x_label_area_size(36)
+        .y_label_area_size(56)
+        .build_cartesian_2d(0.0..top, -extent..extent)?;
+    ellipse.configure_mesh().x_desc("P").y_desc("Q").draw()?;
+    ellipse
+        .draw_series(LineSeries::new([(0.0, 0.0), (top, extent)], BLACK.mix(0.5)))?
+        .label("|Q| = fP")
+        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], BLACK.mix(0.5)));
+    ellipse.draw_series(LineSeries::new([(0.0, 0.0), (top, -extent)], BLACK.mix(0.5)))?;
+    ellipse.draw_series(LineSeries::new(scene.ellipse.iter().copied(), &BLACK))?;
+    for (name, p, q) in &scene.points {
+        ellipse.draw_series(std::iter::once(Circle::new((*p, *q), 4, RED.filled())))?;
+        ellipse.draw_series(std::iter::once(Text::new(
+            name.to_string(),
+            (*p, *q),
+            ("sans-serif", 16),
+        )))?;
+    }
+    ellipse
+        .configure_series_labels()
+        .border_style(BLACK)
+        .background_style(WHITE)
+        .draw()?;
+    let all = scene.segments.iter().flatten();
+    let (u_min, u_max, q_min, q_max) = all.fold(
+        (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY),
+        |(a, b, c, d), (u, q)| (a.min(*u), b.max(*u), c.min(*q), d.max(*q)),
+    );
+    let pad = |a: f64, b: f64| 0.05 * (b - a).abs().max(1e-300);
+    let mut hysteresis = ChartBuilder::on(&right)
+        .caption(
+            format!("hysteresis loop, W = {:.6e}", scene.dissipation),
+            ("sans-serif", 18),
+        )
+        .margin(12)
+        .x_label_area_size(36)
+        .y_label_area_size(56)
+        .build_cartesian_2d(
+            (u_min - pad(u_min, u_max))..(u_max + pad(u_min, u_max)),
+            (q_min - pad(q_min, q_max))..(q_max + pad(q_min, q_max)),
+        )?;
+    hysteresis.configure_mesh().x_desc("u").y_desc("Q").draw()?;
+    for (index, colour) in SEGMENT_COLOURS.iter().enumerate() {
+        let colour = *colour;
+        hysteresis
+            .draw_series(
+                scene.segments[index]
+                    .chunks(2)
+                    .map(move |c| PathElement::new(c.to_vec(), colour.stroke_width(2))),
+            )?
+            .label(SEGMENT_NAMES[index])
+            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2)));
+    }
+    hysteresis
+        .configure_series_labels()
+        .border_style(BLACK)
+        .background_style(WHITE)
+        .draw()?;
+    root.present()?;
+    Ok(())
+}
