@@ -6,6 +6,7 @@
 //! cycle and its ellipse), [`dissipation`] (W over the four segments, and the
 //! closed forms).
 
+pub mod accuracy;
 pub mod catalogue;
 pub mod compliance;
 pub mod cycle;

@@ -8,11 +8,12 @@ use std::time::Duration;
 use clap::{Args, Parser, Subcommand};
 use serde_json::json;
 
+use microslip::accuracy;
 use microslip::catalogue;
 use microslip::dissipation::{dissipation, Method, Options};
 use microslip::inputs::parse_phase;
 use microslip::inputs::{Case, CaseText};
-use microslip::plot::plot_cycle;
+use microslip::plot::{plot_accuracy, plot_cycle};
 use microslip::real::{Precision, Real};
 use microslip::reference::{self, verified_dissipation};
 use microslip::simulate::{simulate, write_loop_csv, SimulationOptions};
@@ -36,6 +37,8 @@ enum Command {
     Dissipation(Box<DissipationArgs>),
     /// W by brute-force simulation of the contact's loading history (an independent check).
     Simulate(Box<SimulateArgs>),
+    /// Accuracy against cost of every quadrature rule and precision, against 100-digit references.
+    Accuracy(AccuracyArgs),
     /// Run the theorem gate: every claim over seeded random draws, in f64 and at 256 bits.
     Verify(VerifyArgs),
     /// The small-amplitude coefficient I(ρ, φ) of W ≈ λ f² P1³ v''(P0) I.
@@ -135,6 +138,16 @@ struct SimulateArgs {
     /// Print one JSON object.
     #[arg(long)]
     json: bool,
+}
+
+#[derive(Args)]
+struct AccuracyArgs {
+    /// Directory for accuracy.csv, accuracy.svg and accuracy.png.
+    #[arg(long)]
+    out: PathBuf,
+    /// Fewer cases, precisions and repeats (well under a minute).
+    #[arg(long)]
+    quick: bool,
 }
 
 #[derive(Args)]
@@ -333,6 +346,61 @@ fn run_simulate(args: &SimulateArgs) -> Result<String, Failure> {
     ))
 }
 
+fn run_accuracy(args: &AccuracyArgs) -> Result<String, Failure> {
+    std::fs::create_dir_all(&args.out).map_err(|e| Failure(format!("{}: {e}", args.out.display())))?;
+    let show = std::io::stderr().is_terminal();
+    let cases = accuracy::standard_cases(args.quick);
+    let mut measurements = Vec::new();
+    for (index, case) in cases.iter().enumerate() {
+        if show {
+            eprint!(
+                "\r\x1b[K[{}/{}] {}: 100-digit reference",
+                index + 1,
+                cases.len(),
+                case.name
+            );
+        }
+        let reference = accuracy::reference_value(&case.text)?;
+        measurements.extend(accuracy::measure_case(case, &reference, args.quick, |stage| {
+            if show {
+                eprint!("\r\x1b[K[{}/{}] {}: {stage}", index + 1, cases.len(), case.name);
+            }
+        }));
+    }
+    if show {
+        eprintln!();
+    }
+    let csv = args.out.join("accuracy.csv");
+    std::fs::write(&csv, accuracy::to_csv(&measurements)).map_err(|e| Failure(format!("{}: {e}", csv.display())))?;
+    plot_accuracy(&args.out.join("accuracy.svg"), &measurements)?;
+    plot_accuracy(&args.out.join("accuracy.png"), &measurements)?;
+    let mut out = format!(
+        "{:>8}  {:<28} {:>9} {:>9}  {:>12}  {}\n",
+        "target", "cheapest rule", "bits", "parameter", "seconds", "case"
+    );
+    for case in &cases {
+        let of_case: Vec<_> = measurements.iter().filter(|m| m.case == case.name).cloned().collect();
+        for target in [1e-8, 1e-13, 1e-30, 1e-50, 1e-100] {
+            match accuracy::cheapest_for(&of_case, target) {
+                Some(m) => out.push_str(&format!(
+                    "{target:>8.0e}  {:<28} {:>9} {:>9} {:>12.3e}  {}\n",
+                    m.rule, m.precision_bits, m.parameter, m.seconds, m.case
+                )),
+                None => out.push_str(&format!(
+                    "{target:>8.0e}  {:<28} {:>9} {:>9} {:>12}  {}\n",
+                    "(none reached it)", "", "", "", case.name
+                )),
+            }
+        }
+    }
+    out.push_str(&format!(
+        "{} measurements written to {}",
+        measurements.len(),
+        args.out.display()
+    ));
+    Ok(out)
+}
+
 fn run_verify(args: &VerifyArgs) -> Result<(String, bool), Failure> {
     let options = GateOptions {
         seed: args.seed,
@@ -478,6 +546,7 @@ fn main() -> ExitCode {
         },
         Command::SmallAmplitude(args) => run_small_amplitude(args),
         Command::Simulate(args) => run_simulate(args),
+        Command::Accuracy(args) => run_accuracy(args),
         Command::Reference(args) => run_reference(args),
         Command::Table => run_table(),
     };

@@ -194,3 +194,93 @@ where
     root.present()?;
     Ok(())
 }
+
+/// One curve per (rule, precision): log10 relative error against log10 seconds,
+/// with the Pareto front circled, into `path` (.svg or .png).
+pub fn plot_accuracy(path: &Path, measurements: &[crate::accuracy::Measurement]) -> Result<(), PlotError> {
+    register_font()?;
+    let drawing = |error: Box<dyn std::error::Error>| PlotError::Drawing {
+        path: path.display().to_string(),
+        message: error.to_string(),
+    };
+    let size = (1100, 700);
+    if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("png")) {
+        draw_accuracy(BitMapBackend::new(path, size).into_drawing_area(), measurements).map_err(drawing)
+    } else {
+        draw_accuracy(SVGBackend::new(path, size).into_drawing_area(), measurements).map_err(drawing)
+    }
+}
+
+fn draw_accuracy<DB: DrawingBackend>(
+    root: DrawingArea<DB, Shift>,
+    measurements: &[crate::accuracy::Measurement],
+) -> Result<(), Box<dyn std::error::Error>>
+where
+    DB::ErrorType: 'static,
+{
+    root.fill(&WHITE)?;
+    let point = |m: &crate::accuracy::Measurement| (m.seconds.max(1e-9).log10(), m.rel_error.max(1e-300).log10());
+    let (x_min, x_max, y_min) = measurements.iter().map(point).fold(
+        (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY),
+        |(a, b, c), (x, y)| (a.min(x), b.max(x), c.min(y)),
+    );
+    let mut chart = ChartBuilder::on(&root)
+        .caption("accuracy against cost (all cases)", ("sans-serif", 20))
+        .margin(14)
+        .x_label_area_size(40)
+        .y_label_area_size(56)
+        .build_cartesian_2d((x_min - 0.2)..(x_max + 0.2), (y_min - 5.0)..1.0)?;
+    chart
+        .configure_mesh()
+        .x_desc("log10 seconds per W")
+        .y_desc("log10 relative error")
+        .draw()?;
+    let mut curves: Vec<(String, Vec<&crate::accuracy::Measurement>)> = Vec::new();
+    for m in measurements {
+        let key = if m.precision_bits == 53 {
+            format!("{} f64", m.rule)
+        } else {
+            format!("{} {} bits", m.rule, m.precision_bits)
+        };
+        match curves.iter_mut().find(|(k, _)| *k == key) {
+            Some((_, list)) => list.push(m),
+            None => curves.push((key, vec![m])),
+        }
+    }
+    for (index, (key, mut list)) in curves.into_iter().enumerate() {
+        list.sort_by(|a, b| a.case.cmp(&b.case).then(a.parameter.total_cmp(&b.parameter)));
+        let colour = Palette99::pick(index).to_rgba();
+        let mut by_case: Vec<Vec<(f64, f64)>> = Vec::new();
+        let mut last_case = String::new();
+        for m in list {
+            if m.case != last_case {
+                by_case.push(Vec::new());
+                last_case = m.case.clone();
+            }
+            if let Some(curve) = by_case.last_mut() {
+                curve.push(point(m));
+            }
+        }
+        for (i, curve) in by_case.into_iter().enumerate() {
+            let series = chart.draw_series(LineSeries::new(curve, colour.stroke_width(2)))?;
+            if i == 0 {
+                series
+                    .label(key.clone())
+                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2)));
+            }
+        }
+    }
+    let front = crate::accuracy::pareto_front(measurements);
+    chart
+        .draw_series(front.iter().map(|m| Circle::new(point(m), 6, BLACK.stroke_width(2))))?
+        .label("Pareto front")
+        .legend(|(x, y)| Circle::new((x + 9, y), 5, BLACK.stroke_width(2)));
+    chart
+        .configure_series_labels()
+        .border_style(BLACK)
+        .background_style(WHITE.mix(0.9))
+        .position(SeriesLabelPosition::UpperRight)
+        .draw()?;
+    root.present()?;
+    Ok(())
+}
