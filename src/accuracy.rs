@@ -109,11 +109,14 @@ fn median_seconds<T>(budget: Duration, mut run: impl FnMut() -> T) -> (f64, T) {
     (times[times.len() / 2], last)
 }
 
+/// A rule applied once to a piece: the value and the integrand evaluations it took.
+type FixedRule<'r, R> = dyn Fn(&Integral<'_, R>, Precision) -> (R, usize) + 'r;
+
 /// W of `case` at `precision`, each piece integrated by `rule`, with the evaluations it took.
 fn fixed_rule_w<R: Real>(
     case: &CaseText,
     precision: Precision,
-    rule: &dyn Fn(&Integral<'_, R>, Precision) -> (R, usize),
+    rule: &FixedRule<'_, R>,
 ) -> Option<(R, usize)> {
     let Case { cycle, compliance } = case.read::<R>(precision).ok()?;
     let geometry = cycle.geometry().ok()?;
@@ -321,7 +324,7 @@ pub fn pareto_front(measurements: &[Measurement]) -> Vec<&Measurement> {
 }
 
 /// For each target error, the fastest configuration that reaches it (None if none does).
-pub fn cheapest_for<'a>(measurements: &'a [Measurement], target: f64) -> Option<&'a Measurement> {
+pub fn cheapest_for(measurements: &[Measurement], target: f64) -> Option<&Measurement> {
     measurements
         .iter()
         .filter(|m| m.rel_error <= target)
