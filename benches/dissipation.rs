@@ -1,44 +1,55 @@
-//! W for an ordinary case (v' = 1/P, P0 = 1, P1 = 0.4, Q1 = 0.5, φ = 0.4π) in f64 and at
-//! increasing precision, and the Gauss–Legendre node tables cold and cached.
+//! W for an ordinary catalogue case and two stiff ones in f64 and at increasing
+//! precision, verified digits (50 and 100) with node tables warm, and the
+//! Gauss–Legendre node tables cold and cached.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
+use microslip::accuracy::standard_cases;
 use microslip::dissipation::{dissipation, Options};
-use microslip::inputs::{Case, CaseText};
+use microslip::inputs::Case;
 use microslip::quad::gauss_legendre::{clear_node_cache, compute_node_table, node_table};
 use microslip::real::{Precision, Real};
+use microslip::reference::verified_dissipation;
 use rug::Float;
+use std::time::Duration;
 
-fn ordinary_case() -> CaseText {
-    CaseText {
-        p0: "1".into(),
-        p1: "0.4".into(),
-        q0: "0".into(),
-        q1: "0.5".into(),
-        phi: "0.4pi".into(),
-        friction: "1".into(),
-        lambda: Some("1".into()),
-        nu: None,
-        compliance: "power:c=1,beta=-1".into(),
+fn bench_dissipation(c: &mut Criterion) {
+    for case in standard_cases(false) {
+        let mut group = c.benchmark_group(format!("dissipation/{}", case.name));
+        group.sample_size(10);
+        // The stiff cases are refused in f64 by default (rounding alone exceeds 1e-12); time them anyway.
+        let options = Options::<f64> {
+            rounding_limit: 1.0,
+            ..Options::default()
+        };
+        let Case { cycle, compliance } = case.text.read::<f64>(Precision::DOUBLE).unwrap();
+        group.bench_function("f64", |b| {
+            b.iter(|| dissipation(&cycle, compliance.as_ref(), &options).unwrap().total)
+        });
+        for bits in [128u32, 256, 512, 1024] {
+            let Case { cycle, compliance } = case.text.read::<Float>(Precision::bits(bits)).unwrap();
+            group.bench_with_input(BenchmarkId::new("bits", bits), &bits, |b, _| {
+                b.iter(|| {
+                    dissipation(&cycle, compliance.as_ref(), &Options::default())
+                        .unwrap()
+                        .total
+                })
+            });
+        }
+        group.finish();
     }
 }
 
-fn bench_dissipation(c: &mut Criterion) {
-    let mut group = c.benchmark_group("dissipation/ordinary");
-    let Case { cycle, compliance } = ordinary_case().read::<f64>(Precision::DOUBLE).unwrap();
-    group.bench_function("f64", |b| {
-        b.iter(|| {
-            dissipation(&cycle, compliance.as_ref(), &Options::default())
-                .unwrap()
-                .total
-        })
-    });
-    for bits in [128u32, 256, 512, 1024] {
-        let Case { cycle, compliance } = ordinary_case().read::<Float>(Precision::bits(bits)).unwrap();
-        group.bench_with_input(BenchmarkId::new("bits", bits), &bits, |b, _| {
+fn bench_verified_digits(c: &mut Criterion) {
+    let mut group = c.benchmark_group("verified_digits/persson-ordinary");
+    group.sample_size(10);
+    let case = &standard_cases(true)[0];
+    for digits in [50u32, 100] {
+        verified_dissipation(&case.text, digits, Duration::from_secs(60)).unwrap();
+        group.bench_with_input(BenchmarkId::new("digits", digits), &digits, |b, &digits| {
             b.iter(|| {
-                dissipation(&cycle, compliance.as_ref(), &Options::default())
+                verified_dissipation(&case.text, digits, Duration::from_secs(60))
                     .unwrap()
-                    .total
+                    .digits_verified
             })
         });
     }
@@ -64,5 +75,5 @@ fn bench_node_tables(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, bench_dissipation, bench_node_tables);
+criterion_group!(benches, bench_dissipation, bench_verified_digits, bench_node_tables);
 criterion_main!(benches);
