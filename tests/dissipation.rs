@@ -8,19 +8,8 @@ use microslip::dissipation::{
 use microslip::real::{Precision, Real};
 use rug::Float;
 
-/// The first acceptance case: v' = 1/P, P0 = f = λ = 1, P1 = 0.4, Q1 = 0.5, Q0 = 0.
-fn acceptance_cycle<R: Real>(phase: R) -> LoadCycle<R> {
-    let one = phase.int(1);
-    LoadCycle {
-        mean_normal_load: one.clone(),
-        normal_amplitude: one.ratio(2, 5),
-        mean_tangential_load: one.int(0),
-        tangential_amplitude: one.ratio(1, 2),
-        phase,
-        friction: one.clone(),
-        compliance_ratio: one,
-    }
-}
+mod common;
+use common::acceptance_cycle;
 
 fn inverse_load<R: Real>(p: Precision) -> PowerLaw<R> {
     PowerLaw {

@@ -195,15 +195,12 @@ fn command_line_never_panics_on_arbitrary_specs_and_numbers() {
         .unwrap();
 }
 
+mod common;
+
 fn acceptance(phase: f64, tangential_amplitude: f64) -> LoadCycle<f64> {
     LoadCycle {
-        mean_normal_load: 1.0,
-        normal_amplitude: 0.4,
-        mean_tangential_load: 0.0,
         tangential_amplitude,
-        phase,
-        friction: 1.0,
-        compliance_ratio: 1.0,
+        ..common::acceptance_cycle(phase)
     }
 }
 

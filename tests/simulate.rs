@@ -54,16 +54,10 @@ fn simulation_agrees_with_the_four_segment_integrals_on_random_compliances_and_c
         .unwrap();
 }
 
+mod common;
+
 fn acceptance() -> LoadCycle<f64> {
-    LoadCycle {
-        mean_normal_load: 1.0,
-        normal_amplitude: 0.4,
-        mean_tangential_load: 0.0,
-        tangential_amplitude: 0.5,
-        phase: 0.4 * std::f64::consts::PI,
-        friction: 1.0,
-        compliance_ratio: 1.0,
-    }
+    common::acceptance_cycle(0.4 * std::f64::consts::PI)
 }
 
 #[test]

@@ -5,13 +5,14 @@
 use std::process::Command;
 
 use microslip::compliance::{LoadScaled, PowerLaw};
-use microslip::cycle::LoadCycle;
 use microslip::dissipation::{dissipation, Options};
 use microslip::real::{Precision, Real};
 use microslip::verify::claims::{self, least_squares_slope};
 use microslip::verify::small_amplitude::{coefficient, coefficient_at};
 use microslip::verify::ClaimReport;
 use proptest::prelude::*;
+
+mod common;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
 use rug::Float;
 
@@ -82,15 +83,7 @@ fn invariants_hold_for_random_cycles() {
 #[test]
 fn linearity_in_roughness_holds_for_persson_but_not_for_other_exponents() {
     // Errata item 7: heights scaled by k give v'(P/k); for v' = C P^β that is k^(−β) v'.
-    let cycle = LoadCycle {
-        mean_normal_load: 1.0,
-        normal_amplitude: 0.4,
-        mean_tangential_load: 0.0,
-        tangential_amplitude: 0.5,
-        phase: 0.4 * std::f64::consts::PI,
-        friction: 1.0,
-        compliance_ratio: 1.0,
-    };
+    let cycle = common::acceptance_cycle(0.4 * std::f64::consts::PI);
     let w = |beta: f64, k: f64| {
         let power = PowerLaw {
             coefficient: 1.0,

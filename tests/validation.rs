@@ -8,16 +8,10 @@ use microslip::cycle::{compliance_ratio_from_poisson, CycleError, LoadCycle};
 use microslip::dissipation::{dissipation, DissipationError, Options};
 use microslip::real::Precision;
 
+mod common;
+
 fn base() -> LoadCycle<f64> {
-    LoadCycle {
-        mean_normal_load: 1.0,
-        normal_amplitude: 0.4,
-        mean_tangential_load: 0.0,
-        tangential_amplitude: 0.5,
-        phase: 1.0,
-        friction: 1.0,
-        compliance_ratio: 1.0,
-    }
+    common::acceptance_cycle(1.0)
 }
 
 fn validate(change: impl Fn(&mut LoadCycle<f64>)) -> CycleError {
