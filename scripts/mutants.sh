@@ -1,55 +1,108 @@
 #!/usr/bin/env bash
-# Shows that the theorem gate catches broken segment formulas: for each of the four
-# segments a flipped sign, a factor of 2 and a wrong evaluation point are applied, one
-# at a time, to a copy of the tree; `microslip verify --quick` must then fail.
-# Prints a table and exits 1 if any mutation is missed. Takes ~30 s per mutation.
-# Needs python3 (for exact text replacement). Run from anywhere: sh scripts/mutants.sh
+# Shows that the theorem gate catches wrong formulas. Each mutation below is applied,
+# one at a time, as an exact text replacement to a copy of the working tree:
+#   - for each of the four segment integrands (src/dissipation/segments.rs): a flipped
+#     sign, a factor of 2, and a wrong evaluation point (P instead of P_S, P_Y, P_K;
+#     P_T instead of P in the stick segment);
+#   - in the ellipse geometry (src/cycle.rs): the slip loads P_S, P_K and P_T built
+#     wrongly, and the stick and slip angles swapped;
+#   - in the in-phase closed form (src/dissipation/closed_forms.rs): a sign and a factor.
+# The mutated release binary then runs `microslip verify --quick`, which must fail
+# (exit 1). Prints one line per mutation with the claims that failed, and exits 1 if
+# any mutation is missed (or 2 if the tree does not build or the unmutated gate fails).
+# Not run in CI: about 20 s per mutation (incremental build of a copy).
+# Usage: sh scripts/mutants.sh (re-runs itself under bash; needs python3 for exact replacements)
+if [ -z "${BASH_VERSION:-}" ]; then exec bash "$0" "$@"; fi
 set -euo pipefail
 root="$(cd "$(dirname "$0")/.." && pwd)"
 work="$(mktemp -d)"
 trap 'rm -rf "$work"' EXIT
 export CARGO_TARGET_DIR="${MUTANTS_TARGET_DIR:-/tmp/microslip-mutants-target}"
-(cd "$root" && git ls-files -z | xargs -0 -I{} cp --parents {} "$work")
+# The working tree as it is (committed or not), without build output or history.
+tar -C "$root" --exclude=./target --exclude=./.git -cf - . | tar -C "$work" -xf -
+binary="$CARGO_TARGET_DIR/release/microslip"
 
-file=src/dissipation/segments.rs
-# name | exact original text | replacement
+# file | name | exact original text (must occur once) | replacement
 mutations=$(cat <<'LIST'
-EB sign flip|loads.tangential_offset * &(reverse - &normal)|loads.tangential_offset * &(reverse + &normal)
-EB factor 2|g.sum_amplitude * &double_sin;|g.sum_amplitude * &double_sin * &two;
-EB P instead of P_S|slope(&g.reverse_slip_offset(&half_sin))|slope(&loads.normal_offset)
-BC sign flip|loads.tangential_offset * &slope(&loads.normal_offset) * &loads.tangential_rate|-(loads.tangential_offset * &slope(&loads.normal_offset) * &loads.tangential_rate)
-BC factor 2|* &slope(&loads.normal_offset) * &loads.tangential_rate|* &slope(&loads.normal_offset) * &loads.tangential_rate * &two
-BC P_T instead of P|* &slope(&loads.normal_offset) * &loads.tangential_rate|* &slope(&g.permanent_stick_offset) * &loads.tangential_rate
-CH sign flip|loads.tangential_offset * &(normal + &forward)|loads.tangential_offset * &(normal - &forward)
-CH factor 2|g.difference_amplitude * &s_sin_cos.0;|g.difference_amplitude * &s_sin_cos.0 * &two;
-CH P instead of P_Y|slope(&mirror_offset)|slope(&loads.normal_offset)
-HE sign flip|loads.tangential_offset * &(normal - &forward)|loads.tangential_offset * &(normal + &forward)
-HE factor 2|g.difference_amplitude * &double_sin;|g.difference_amplitude * &double_sin * &two;
-HE P instead of P_K|slope(&g.forward_slip_offset(&half_sin))|slope(&loads.normal_offset)
+src/dissipation/segments.rs|EB sign flip|loads.tangential_offset * &(reverse - &normal)|loads.tangential_offset * &(reverse + &normal)
+src/dissipation/segments.rs|EB factor 2|g.sum_amplitude * &double_sin;|g.sum_amplitude * &double_sin * &two;
+src/dissipation/segments.rs|EB P instead of P_S|slope(&g.reverse_slip_offset(&half_sin))|slope(&loads.normal_offset)
+src/dissipation/segments.rs|BC sign flip|loads.tangential_offset * &slope(&loads.normal_offset) * &loads.tangential_rate|-(loads.tangential_offset * &slope(&loads.normal_offset) * &loads.tangential_rate)
+src/dissipation/segments.rs|BC factor 2|* &slope(&loads.normal_offset) * &loads.tangential_rate|* &slope(&loads.normal_offset) * &loads.tangential_rate * &two
+src/dissipation/segments.rs|BC P_T instead of P|* &slope(&loads.normal_offset) * &loads.tangential_rate|* &slope(&g.permanent_stick_offset) * &loads.tangential_rate
+src/dissipation/segments.rs|CH sign flip|loads.tangential_offset * &(normal + &forward)|loads.tangential_offset * &(normal - &forward)
+src/dissipation/segments.rs|CH factor 2|g.difference_amplitude * &s_sin_cos.0;|g.difference_amplitude * &s_sin_cos.0 * &two;
+src/dissipation/segments.rs|CH P instead of P_Y|slope(&mirror_offset)|slope(&loads.normal_offset)
+src/dissipation/segments.rs|HE sign flip|loads.tangential_offset * &(normal - &forward)|loads.tangential_offset * &(normal + &forward)
+src/dissipation/segments.rs|HE factor 2|g.difference_amplitude * &double_sin;|g.difference_amplitude * &double_sin * &two;
+src/dissipation/segments.rs|HE P instead of P_K|slope(&g.forward_slip_offset(&half_sin))|slope(&loads.normal_offset)
+src/cycle.rs|P_S with sigma- for sigma+|self.sum_amplitude.clone() * &half_angle_sin.square() / &self.friction|self.difference_amplitude.clone() * &half_angle_sin.square() / &self.friction
+src/cycle.rs|P_K without 1/f|self.difference_amplitude.clone() * &half_angle_sin.square() / &self.friction|self.difference_amplitude.clone() * &half_angle_sin.square()
+src/cycle.rs|P_T offset doubled|(cycle.friction.clone() * &phi.int(2))|cycle.friction.clone()
+src/cycle.rs|stick and slip angles swapped|let stick_angle = cross.atan2(&dot);|let stick_angle = cross.atan2(&(-dot.clone()));
+src/dissipation/closed_forms.rs|in-phase W2 sign flip|let w2 = f.clone() * q1|let w2 = -f.clone() * q1
+src/dissipation/closed_forms.rs|in-phase W4 factor 2|let w4 = f.clone() * q1 * &zero.int(2)|let w4 = f.clone() * q1 * &zero.int(4)
 LIST
 )
 
+# Runs the gate in the copy; prints the failing claims (numbers) and returns verify's exit code.
+run_gate() {
+    local code=0
+    (cd "$work" && "$binary" verify --quick --json >"$work/report.json" 2>/dev/null) || code=$?
+    python3 - "$work/report.json" <<'PY' || true
+import json, sys
+try:
+    report = json.load(open(sys.argv[1]))
+    failed = [c["claim"].split(" ")[0] + ("" if c["precision"] == "f64" else "(" + c["precision"].split()[0] + ")")
+              for c in report["claims"] if not c["passed"]]
+    print(",".join(failed) if failed else "-")
+except Exception:
+    print("(no report)")
+PY
+    return "$code"
+}
+
+build() {
+    (cd "$work" && cargo build --release --quiet 2>"$work/build.log")
+}
+
+if ! build; then
+    cat "$work/build.log" >&2
+    echo "the unmutated tree does not build" >&2
+    exit 2
+fi
+if ! baseline=$(run_gate); then
+    echo "the unmutated gate fails (claims $baseline): nothing to compare against" >&2
+    exit 2
+fi
+
 missed=0
-printf '%-24s %s\n' "mutation" "verify --quick"
-while IFS='|' read -r name original replacement; do
+printf '%-32s %-8s %s\n' "mutation" "result" "claims that failed"
+while IFS='|' read -r file name original replacement; do
     cp "$root/$file" "$work/$file"
     python3 - "$work/$file" "$original" "$replacement" <<'PY'
 import sys
 path, original, replacement = sys.argv[1:]
 text = open(path).read()
 if text.count(original) != 1:
-    sys.exit(f"mutation text found {text.count(original)} times: {original}")
+    sys.exit(f"{path}: mutation text found {text.count(original)} times: {original}")
 open(path, "w").write(text.replace(original, replacement))
 PY
-    (cd "$work" && cargo build --release --quiet 2>/dev/null)
-    if (cd "$work" && "$CARGO_TARGET_DIR/release/microslip" verify --quick >/dev/null 2>&1); then
-        printf '%-24s %s\n' "$name" "MISSED (gate passed)"
+    if ! build; then
+        cat "$work/build.log" >&2
+        echo "mutation '$name' does not build" >&2
+        exit 2
+    fi
+    code=0
+    failed=$(run_gate) || code=$?
+    if [ "$code" -eq 0 ]; then
+        printf '%-32s %-8s %s\n' "$name" "MISSED" "(the gate passed)"
         missed=$((missed + 1))
     else
-        printf '%-24s %s\n' "$name" "caught"
+        printf '%-32s %-8s %s\n' "$name" "caught" "$failed"
     fi
-done <<< "$mutations"
-cp "$root/$file" "$work/$file"
+    cp "$root/$file" "$work/$file"
+done <<<"$mutations"
 if [ "$missed" -gt 0 ]; then
     echo "$missed mutation(s) missed"
     exit 1

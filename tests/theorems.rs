@@ -4,7 +4,7 @@
 
 use std::process::Command;
 
-use microslip::compliance::{LoadScaled, PowerLaw};
+use microslip::compliance::{LoadScaled, Persson, PowerLaw};
 use microslip::dissipation::{dissipation, Options};
 use microslip::real::{Precision, Real};
 use microslip::verify::claims::{self, least_squares_slope};
@@ -16,19 +16,24 @@ mod common;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
 use rug::Float;
 
-/// Runs `check` on generator seeds drawn by proptest from a fixed seed.
-fn for_seeds(cases: u32, seed: u8, check: impl Fn(u64) -> ClaimReport) {
+/// Runs `check` on generator seeds drawn by proptest from a fixed seed (ChaCha, no
+/// persistence: every run draws the same cases). Each check returns its reports; all
+/// must pass and have checked something.
+fn for_seeds(cases: u32, seed: u8, check: impl Fn(u64) -> Vec<ClaimReport>) {
     let config = Config {
         cases,
         failure_persistence: None,
+        rng_algorithm: RngAlgorithm::ChaCha,
         ..Config::default()
     };
     let mut runner = TestRunner::new_with_rng(config, TestRng::from_seed(RngAlgorithm::ChaCha, &[seed; 32]));
     runner
         .run(&any::<u64>(), |generator_seed| {
-            let report = check(generator_seed);
-            prop_assert!(report.passed, "{report:?}");
-            prop_assert!(report.cases > 0);
+            for report in check(generator_seed) {
+                prop_assert!(report.passed, "{report:?}");
+                prop_assert!(report.cases > 0, "{report:?}");
+                prop_assert!(report.worst_error <= report.tolerance, "{report:?}");
+            }
             Ok(())
         })
         .unwrap();
@@ -36,48 +41,74 @@ fn for_seeds(cases: u32, seed: u8, check: impl Fn(u64) -> ClaimReport) {
 
 #[test]
 fn cubic_law_converges_at_first_order_for_random_compliances_at_160_bits() {
-    for_seeds(6, 1, |seed| claims::cubic_law(seed, 1));
+    for_seeds(24, 1, |seed| vec![claims::cubic_law(seed, 1)]);
 }
 
 #[test]
 fn small_amplitude_coefficient_is_amplitude_free_negative_and_zero_in_phase() {
-    for_seeds(8, 2, |seed| claims::small_amplitude_coefficient(seed, 2));
+    for_seeds(24, 2, |seed| {
+        let (homogeneous, in_phase) = claims::small_amplitude_coefficient(seed, 2);
+        vec![homogeneous, in_phase]
+    });
+}
+
+#[test]
+fn small_amplitude_coefficient_agrees_with_the_simulated_history() {
+    for_seeds(24, 12, |seed| vec![claims::coefficient_against_simulation(seed, 1)]);
 }
 
 #[test]
 fn constant_term_contributes_nothing_in_f64() {
-    for_seeds(40, 3, |seed| claims::constant_term::<f64>(seed, 5, Precision::DOUBLE));
+    for_seeds(100, 3, |seed| {
+        vec![claims::constant_term::<f64>(seed, 5, Precision::DOUBLE)]
+    });
 }
 
 #[test]
 fn constant_term_contributes_nothing_at_256_bits() {
-    for_seeds(6, 4, |seed| {
-        claims::constant_term::<Float>(seed, 1, Precision::bits(256))
+    for_seeds(20, 4, |seed| {
+        vec![claims::constant_term::<Float>(seed, 1, Precision::bits(256))]
     });
 }
 
 #[test]
 fn dissipation_is_linear_in_the_compliance_in_f64_and_at_256_bits() {
-    for_seeds(40, 5, |seed| claims::linearity::<f64>(seed, 5, Precision::DOUBLE));
-    for_seeds(4, 6, |seed| claims::linearity::<Float>(seed, 1, Precision::bits(256)));
+    for_seeds(100, 5, |seed| {
+        vec![claims::linearity::<f64>(seed, 5, Precision::DOUBLE)]
+    });
+    for_seeds(16, 6, |seed| {
+        vec![claims::linearity::<Float>(seed, 1, Precision::bits(256))]
+    });
 }
 
 #[test]
 fn roughness_scaling_identities_hold_in_f64_and_at_256_bits() {
-    for_seeds(40, 7, |seed| claims::roughness::<f64>(seed, 5, Precision::DOUBLE));
-    for_seeds(3, 8, |seed| claims::roughness::<Float>(seed, 1, Precision::bits(256)));
+    for_seeds(100, 7, |seed| {
+        vec![claims::roughness::<f64>(seed, 5, Precision::DOUBLE)]
+    });
+    for_seeds(12, 8, |seed| {
+        vec![claims::roughness::<Float>(seed, 1, Precision::bits(256))]
+    });
 }
 
 #[test]
-fn invariants_hold_for_random_cycles() {
-    for_seeds(40, 9, |seed| {
-        let (identities, limit) = claims::invariants(seed, 5);
-        if identities.passed {
-            limit
-        } else {
-            identities
-        }
+fn invariants_hold_for_random_cycles_in_f64_and_at_256_bits() {
+    for_seeds(100, 9, |seed| {
+        vec![claims::invariants::<f64>(seed, 5, Precision::DOUBLE)]
     });
+    for_seeds(12, 10, |seed| {
+        vec![claims::invariants::<Float>(seed, 1, Precision::bits(256))]
+    });
+}
+
+#[test]
+fn general_integrator_tends_to_the_in_phase_closed_form_for_random_cycles() {
+    for_seeds(100, 11, |seed| vec![claims::in_phase_limit(seed, 5)]);
+}
+
+#[test]
+fn simulated_history_agrees_with_the_four_segment_dissipation_for_any_q0_and_phase() {
+    for_seeds(32, 13, |seed| vec![claims::simulation_agrees(seed, 1)]);
 }
 
 #[test]
@@ -105,6 +136,40 @@ fn linearity_in_roughness_holds_for_persson_but_not_for_other_exponents() {
     // Linear only at β = −1: for Hertz-like β = −1/3 doubling σ multiplies W by 2^(1/3) = 1.26.
     assert!((w(-1.0, 2.0) / w(-1.0, 1.0) - 2.0).abs() < 1e-12);
     assert!((w(-1.0 / 3.0, 2.0) / w(-1.0 / 3.0, 1.0) - 2.0).abs() > 0.7);
+}
+
+#[test]
+fn persson_dissipation_is_proportional_to_the_roughness_for_several_sigma() {
+    // v' = γσ/P: W/σ is the same for every σ, in f64 and at 256 bits.
+    let f64_ratio = |sigma: f64| {
+        let persson = Persson { gamma: 1.3, sigma };
+        let cycle = common::acceptance_cycle(0.4 * std::f64::consts::PI);
+        dissipation(&cycle, &persson, &Options::default()).unwrap().total / sigma
+    };
+    let reference = f64_ratio(1.0);
+    for sigma in [1e-3, 0.01, 0.1, 0.5, 3.0, 40.0] {
+        let ratio = f64_ratio(sigma);
+        assert!(
+            ((ratio - reference) / reference).abs() < 1e-13,
+            "σ = {sigma}: {ratio} vs {reference}"
+        );
+    }
+    let p = Precision::bits(256);
+    let wide_ratio = |sigma: &str| {
+        let sigma = Float::parse_decimal(sigma, p).unwrap();
+        let persson = Persson {
+            gamma: Float::parse_decimal("1.3", p).unwrap(),
+            sigma: sigma.clone(),
+        };
+        let cycle = common::acceptance_cycle(Float::pi(p) * Float::parse_decimal("0.4", p).unwrap());
+        dissipation(&cycle, &persson, &Options::default()).unwrap().total / sigma
+    };
+    let reference = wide_ratio("1");
+    for sigma in ["0.001", "0.1", "3", "40"] {
+        let difference = ((wide_ratio(sigma) - &reference) / &reference).abs().to_f64();
+        assert!(difference < 1e-70, "σ = {sigma}: {difference:e}");
+    }
+    assert!((reference.to_f64() - f64_ratio(1.0)).abs() < 1e-13 * reference.to_f64().abs());
 }
 
 #[test]
@@ -151,7 +216,8 @@ fn verify_command_runs_the_gate_and_reports_every_claim() {
     let report: serde_json::Value = serde_json::from_str(stdout.trim()).unwrap();
     assert_eq!(report["passed"], true);
     let claims = report["claims"].as_array().unwrap();
-    assert_eq!(claims.len(), 10);
+    // 1, 2a–2c, 3 and 4 and 5 in f64 and at 256 bits, 6a in f64 and at 256 bits, 6b, 6c.
+    assert_eq!(claims.len(), 14);
     for claim in claims {
         assert!(claim["cases"].as_u64().unwrap() > 0, "{claim}");
         assert!(claim["worst_error"].as_f64().unwrap() <= claim["tolerance"].as_f64().unwrap());
@@ -186,6 +252,27 @@ fn small_amplitude_command_prints_i_and_verifies_digits() {
     let text = value["I"].as_str().unwrap();
     assert!(text.starts_with("-3.47923485744058034301010635611462634498"), "{text}");
     assert_eq!(text.split('e').next().unwrap().replace(['-', '.'], "").len(), 45);
+    // Near in phase with ρ < 1, I ≈ −(8/3)ρ²φ²/(1 − ρ) is 1e−18 of the segments it is summed
+    // from: f64 cannot hold it, and the command computes it in MPFR instead.
+    for args in [
+        &["small-amplitude", "--rho", "0.5", "--phi", "1e-9", "--json"][..],
+        &[
+            "small-amplitude",
+            "--rho",
+            "0.5",
+            "--phi",
+            "1e-9",
+            "--digits",
+            "30",
+            "--json",
+        ][..],
+    ] {
+        let (code, stdout, stderr) = microslip(args);
+        assert_eq!(code, 0, "{stderr}");
+        let value: serde_json::Value = serde_json::from_str(stdout.trim()).unwrap();
+        let i: f64 = value["I"].as_str().unwrap().parse().unwrap();
+        assert!((i / (-4.0 / 3.0 * 1e-18) - 1.0).abs() < 1e-8, "{stdout}");
+    }
     // In phase and ρ ≤ 1 there is no slip: I = 0.
     let (code, stdout, _) = microslip(&["small-amplitude", "--rho", "0.7", "--phi", "0"]);
     assert_eq!(code, 0);
@@ -193,4 +280,24 @@ fn small_amplitude_command_prints_i_and_verifies_digits() {
     let (code, _, stderr) = microslip(&["small-amplitude", "--rho", "-1", "--phi", "1"]);
     assert_eq!(code, 2);
     assert!(stderr.contains("--rho must be a positive number"), "{stderr}");
+    let (code, _, stderr) = microslip(&["small-amplitude", "--rho", "1", "--phi", "1", "--max-seconds", "0"]);
+    assert_eq!(code, 2);
+    assert!(stderr.contains("--max-seconds must be a positive number"), "{stderr}");
+    // A budget too short for the digits asked: a one-line failure saying how far it got.
+    let (code, _, stderr) = microslip(&[
+        "small-amplitude",
+        "--rho",
+        "1.25",
+        "--phi",
+        "0.4pi",
+        "--digits",
+        "1000",
+        "--max-seconds",
+        "0.001",
+    ]);
+    assert_eq!(code, 2);
+    assert!(
+        stderr.contains("digits of I needed") && stderr.lines().count() == 1,
+        "{stderr}"
+    );
 }

@@ -8,6 +8,9 @@ pub mod claims;
 pub mod generators;
 pub mod small_amplitude;
 
+use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::mpsc;
+
 use rug::Float;
 use serde::Serialize;
 
@@ -42,9 +45,9 @@ pub struct GateOptions {
 }
 
 /// One step of the gate: a name for progress, and the check that produces its reports.
-pub type GateStep = (&'static str, Box<dyn Fn() -> Vec<ClaimReport>>);
+pub type GateStep = (&'static str, Box<dyn Fn() -> Vec<ClaimReport> + Send + Sync>);
 
-/// The claims in order, each a closure so that progress can be shown between them.
+/// The steps in claim order (independent of each other, so they may run in parallel).
 pub fn gate(options: GateOptions) -> Vec<GateStep> {
     let GateOptions { seed, quick } = options;
     let n = move |quick_cases: usize, full_cases: usize| if quick { quick_cases } else { full_cases };
@@ -53,7 +56,14 @@ pub fn gate(options: GateOptions) -> Vec<GateStep> {
         ("cubic law", Box::new(move || vec![claims::cubic_law(seed, n(3, 60))])),
         (
             "small-amplitude coefficient",
-            Box::new(move || vec![claims::small_amplitude_coefficient(seed + 1, n(6, 100))]),
+            Box::new(move || {
+                let (homogeneous, in_phase) = claims::small_amplitude_coefficient(seed + 1, n(4, 100));
+                vec![homogeneous, in_phase]
+            }),
+        ),
+        (
+            "coefficient against the simulation",
+            Box::new(move || vec![claims::coefficient_against_simulation(seed + 9, n(4, 30))]),
         ),
         (
             "constant term",
@@ -85,23 +95,50 @@ pub fn gate(options: GateOptions) -> Vec<GateStep> {
         (
             "invariants",
             Box::new(move || {
-                let (identities, limit) = claims::invariants(seed + 8, n(40, 1000));
-                vec![identities, limit]
+                vec![
+                    claims::invariants::<f64>(seed + 8, n(40, 1000), Precision::DOUBLE),
+                    claims::invariants::<Float>(seed + 10, n(2, 30), wide),
+                ]
             }),
+        ),
+        (
+            "in-phase limit",
+            Box::new(move || vec![claims::in_phase_limit(seed + 11, n(40, 1000))]),
+        ),
+        (
+            "simulation",
+            Box::new(move || vec![claims::simulation_agrees(seed + 12, n(6, 60))]),
         ),
     ]
 }
 
-/// Runs the whole gate; `progress` is told each claim's name as it starts.
+/// Runs the whole gate on every core, and returns the reports in claim order;
+/// `progress(done, total, name)` is told each step's name as it finishes.
 pub fn run(options: GateOptions, mut progress: impl FnMut(usize, usize, &str)) -> Vec<ClaimReport> {
-    let claims = gate(options);
-    let total = claims.len();
-    claims
-        .iter()
-        .enumerate()
-        .flat_map(|(index, (name, check))| {
-            progress(index, total, name);
-            check()
-        })
-        .collect()
+    let steps = gate(options);
+    let total = steps.len();
+    let workers = std::thread::available_parallelism().map_or(1, usize::from).min(total);
+    let next = AtomicUsize::new(0);
+    let (sender, receiver) = mpsc::channel();
+    let mut results: Vec<Option<Vec<ClaimReport>>> = vec![None; total];
+    std::thread::scope(|scope| {
+        for _ in 0..workers {
+            let (sender, steps, next) = (sender.clone(), &steps, &next);
+            scope.spawn(move || loop {
+                let index = next.fetch_add(1, Ordering::Relaxed);
+                let Some((_, check)) = steps.get(index) else {
+                    break;
+                };
+                if sender.send((index, check())).is_err() {
+                    break;
+                }
+            });
+        }
+        drop(sender);
+        for (done, (index, reports)) in receiver.iter().enumerate() {
+            progress(done + 1, total, steps[index].0);
+            results[index] = Some(reports);
+        }
+    });
+    results.into_iter().flatten().flatten().collect()
 }

@@ -1,0 +1,186 @@
+//! The claims of the theorem gate, each checked over random draws.
+//!
+//! Every check draws its cases from a seed, computes, and returns a
+//! [`ClaimReport`]: how many cases, the worst error against the claim, the
+//! tolerance, and whether all passed. A computation that fails counts as a failure.
+//! One file per claim; what they share (the tally, the random cycle) is here.
+
+mod coefficient;
+mod constant_term;
+mod cubic_law;
+mod invariants;
+mod linearity;
+mod roughness;
+mod simulation;
+
+pub use coefficient::small_amplitude_coefficient;
+pub use constant_term::constant_term;
+pub use cubic_law::{cubic_law, least_squares_slope};
+pub use invariants::{in_phase_limit, invariants};
+pub use linearity::linearity;
+pub use roughness::roughness;
+pub use simulation::{coefficient_against_simulation, simulation_agrees};
+
+use super::generators::{compliance_spec, Draw};
+use super::ClaimReport;
+use crate::compliance::Compliance;
+use crate::cycle::LoadCycle;
+use crate::inputs::CaseText;
+use crate::real::{Precision, Real};
+
+/// The tolerance on a relative identity at a precision: 1e−12 in f64, 1e−70 at 256 bits.
+fn identity_tolerance(precision: Precision) -> f64 {
+    if precision <= Precision::DOUBLE {
+        1e-12
+    } else {
+        1e-70
+    }
+}
+
+fn precision_name(precision: Precision) -> String {
+    if precision == Precision::DOUBLE {
+        "f64".to_string()
+    } else {
+        format!("{} bits", precision.in_bits())
+    }
+}
+
+/// Accumulates the worst error over cases and remembers the first failure.
+struct Tally {
+    report: ClaimReport,
+}
+
+impl Tally {
+    fn new(claim: &str, precision: Precision, tolerance: f64) -> Self {
+        Tally {
+            report: ClaimReport {
+                claim: claim.to_string(),
+                precision: precision_name(precision),
+                cases: 0,
+                worst_error: 0.0,
+                tolerance,
+                passed: true,
+                note: String::new(),
+            },
+        }
+    }
+
+    /// One case with its error against the claim (NaN counts as a failure).
+    fn record(&mut self, error: f64, case: &str) {
+        let report = &mut self.report;
+        report.cases += 1;
+        let error = if error.is_nan() { f64::INFINITY } else { error };
+        if error > report.worst_error {
+            report.worst_error = error;
+        }
+        if error > report.tolerance && report.passed {
+            report.passed = false;
+            report.note = format!("first failure: {case} (error {error:.3e})");
+        }
+    }
+
+    /// One case whose computation failed.
+    fn fail(&mut self, case: &str, why: impl std::fmt::Display) {
+        self.report.cases += 1;
+        self.report.worst_error = f64::INFINITY;
+        if self.report.passed {
+            self.report.passed = false;
+            self.report.note = format!("{case}: {why}");
+        }
+    }
+
+    /// The report, with `note` as its measured figure unless a failure is noted.
+    fn note(mut self, note: impl Into<String>) -> ClaimReport {
+        if self.report.passed {
+            self.report.note = note.into();
+        }
+        self.report
+    }
+}
+
+/// |a − b| / |b| in f64 terms (|a − b| when b is 0).
+fn relative<R: Real>(a: &R, b: &R) -> f64 {
+    let difference = (a.clone() - b).abs();
+    if b.abs() > b.int(0) {
+        (difference / b.abs()).to_f64_lossy()
+    } else {
+        difference.to_f64_lossy()
+    }
+}
+
+/// A drawn number at a precision (drawn numbers print exactly as decimals).
+fn number<R: Real>(value: f64, precision: Precision) -> R {
+    R::parse_decimal(&value.to_string(), precision).unwrap_or_else(|_| R::from_f64(value, precision))
+}
+
+/// The largest Q1 that keeps the ellipse of (P0, P1, φ) inside the friction cone with
+/// Q0 = 0: σ± < fP0 ⇔ Q1 < f(√(P0² − P1² sin²φ) − P1|cos φ|).
+pub fn gross_slip_amplitude(p0: f64, p1: f64, phi: f64, friction: f64) -> f64 {
+    friction * ((p0 * p0 - (p1 * phi.sin()).powi(2)).sqrt() - p1 * phi.cos().abs())
+}
+
+/// A random cycle inside the theory: P0 = 1, P1/P0 ∈ (0.05, 0.9), φ ∈ (0, π), Q1 a
+/// random fraction of the largest amplitude the friction cone allows, and a
+/// compliance admissible over the loads the cycle reaches.
+pub fn random_case(draw: &mut Draw) -> CaseText {
+    let p1 = draw.uniform(0.05, 0.9);
+    let f = draw.uniform(0.2, 2.0);
+    let lambda = draw.uniform(1.0, 1.5);
+    let phase_fraction = draw.uniform(0.02, 0.98);
+    let phi = phase_fraction * std::f64::consts::PI;
+    let largest = gross_slip_amplitude(1.0, p1, phi, f);
+    let q1 = draw.uniform(0.1, 0.9) * largest;
+    let q1: f64 = format!("{q1:.6e}").parse().unwrap_or(q1);
+    // P_T ≥ P0 − (Q1 + fP1)/f: the compliance must be admissible from there.
+    let low = (1.0 - p1).min(1.0 - (q1 + f * p1) / f).max(1e-3);
+    CaseText {
+        p0: "1".into(),
+        p1: p1.to_string(),
+        q0: "0".into(),
+        q1: q1.to_string(),
+        phi: format!("{phase_fraction}pi"),
+        friction: f.to_string(),
+        lambda: Some(lambda.to_string()),
+        nu: None,
+        compliance: compliance_spec(draw, low * 0.9, 1.0 + p1, 1.0),
+    }
+}
+
+fn read<R: Real>(case: &CaseText, precision: Precision) -> Option<(LoadCycle<R>, Box<dyn Compliance<R>>)> {
+    case.read::<R>(precision).ok().map(|c| (c.cycle, c.compliance))
+}
+
+fn describe(case: &CaseText) -> String {
+    format!(
+        "P1={} Q0={} Q1={} φ={} f={} λ={} v'={}",
+        case.p1,
+        case.q0,
+        case.q1,
+        case.phi,
+        case.friction,
+        case.lambda.as_deref().unwrap_or("?"),
+        case.compliance
+    )
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_claim_fails_on_an_error_beyond_its_tolerance_a_nan_or_a_failed_computation() {
+        let mut tally = Tally::new("x", Precision::DOUBLE, 1e-12);
+        tally.record(1e-13, "fine");
+        assert!(tally.report.passed);
+        tally.record(2e-12, "too far");
+        let report = tally.note("measured");
+        assert!(!report.passed && report.note.contains("too far"), "{report:?}");
+        let mut tally = Tally::new("x", Precision::bits(256), 1e-70);
+        tally.record(f64::NAN, "nan");
+        assert!(!tally.report.passed && tally.report.worst_error == f64::INFINITY);
+        let mut tally = Tally::new("x", Precision::DOUBLE, 1.0);
+        tally.fail("case", "did not converge");
+        assert!(!tally.report.passed && tally.report.cases == 1);
+        assert_eq!(tally.note("ignored").note, "case: did not converge");
+    }
+}
