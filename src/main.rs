@@ -219,6 +219,8 @@ struct Printed {
     digits: u32,
     method: Method,
     precision_bits: u32,
+    /// The absolute error estimate of an f64 result (verified digits need none).
+    error_estimate: Option<f64>,
 }
 
 fn run_dissipation(args: &DissipationArgs) -> Result<String, Failure> {
@@ -227,17 +229,30 @@ fn run_dissipation(args: &DissipationArgs) -> Result<String, Failure> {
         None => {
             let Case { cycle, compliance } = case.read::<f64>(Precision::DOUBLE)?;
             let result = dissipation(&cycle, compliance.as_ref(), &Options::default())?;
+            let digits = result.resolved_digits(&result.total, 15);
+            if digits == 0 {
+                return Err(Failure(format!(
+                    "f64 cannot resolve W here: W = {:.3e} with an error estimate of {:.1e} (its segments, \
+                     up to {:.1e}, cancel); use --digits N",
+                    result.total,
+                    result.error_estimate,
+                    result.segments.named().iter().map(|(_, v)| v.abs()).fold(0.0, f64::max)
+                )));
+            }
+            // A segment gets the digits the same absolute error leaves it (at least one).
+            let segment_digits = |value: &f64| result.resolved_digits(value, 15).max(1) as usize;
             Printed {
-                total: result.total.to_scientific(15),
+                total: result.total.to_scientific(digits as usize),
                 segments: result
                     .segments
                     .named()
                     .iter()
-                    .map(|(name, value)| (*name, value.to_scientific(15)))
+                    .map(|(name, value)| (*name, value.to_scientific(segment_digits(value))))
                     .collect(),
-                digits: 15,
+                digits,
                 method: result.method,
                 precision_bits: 53,
+                error_estimate: Some(result.error_estimate),
             }
         }
         Some(digits) => {
@@ -254,6 +269,7 @@ fn run_dissipation(args: &DissipationArgs) -> Result<String, Failure> {
                 digits: verified.digits_verified,
                 method: verified.method,
                 precision_bits: verified.precision_bits,
+                error_estimate: None,
             }
         }
     };
@@ -268,6 +284,7 @@ fn run_dissipation(args: &DissipationArgs) -> Result<String, Failure> {
             "digits": printed.digits,
             "digits_verified": args.digits.map(|_| printed.digits),
             "precision_bits": printed.precision_bits,
+            "error_estimate": printed.error_estimate,
             "method": method_name(printed.method),
             "segments": segments,
             "inputs": case,
@@ -279,7 +296,13 @@ fn run_dissipation(args: &DissipationArgs) -> Result<String, Failure> {
         printed.total,
         method_name(printed.method),
         printed.digits,
-        if args.digits.is_some() { ", verified" } else { ", f64" }
+        match (args.digits, printed.error_estimate) {
+            (Some(_), _) => ", verified".to_string(),
+            (None, Some(error)) if printed.digits < 15 => {
+                format!(", f64, error estimate {error:.1e}; --digits N gives more")
+            }
+            (None, _) => ", f64".to_string(),
+        }
     );
     for (name, value) in &printed.segments {
         out.push_str(&format!("  {name}  {value}\n"));
