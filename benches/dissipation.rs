@@ -1,14 +1,16 @@
 //! W for an ordinary catalogue case and two stiff ones in f64 and at increasing
-//! precision, verified digits (50 and 100) with node tables warm, and the
-//! Gauss–Legendre node tables cold and cached.
+//! precision, verified digits (50 and 100) with node tables warm, the
+//! Gauss–Legendre node tables cold and cached, and the history simulation at its
+//! default resolution (goal: ≤ 1 s a case on one core).
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use microslip::accuracy::standard_cases;
 use microslip::dissipation::{dissipation, Options};
-use microslip::inputs::Case;
+use microslip::inputs::{Case, CaseText};
 use microslip::quad::gauss_legendre::{clear_node_cache, compute_node_table, node_table};
 use microslip::real::{Precision, Real};
 use microslip::reference::verified_dissipation;
+use microslip::simulate::{simulate, SimulationOptions};
 use rug::Float;
 use std::time::Duration;
 
@@ -75,5 +77,60 @@ fn bench_node_tables(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, bench_dissipation, bench_verified_digits, bench_node_tables);
+fn bench_simulation(c: &mut Criterion) {
+    let mut group = c.benchmark_group("simulate");
+    group.sample_size(10);
+    // The acceptance case, and the steep power law near separation that was the worst of
+    // 40 random cases before the grids followed the slip fronts.
+    let cases = [
+        (
+            "acceptance-persson",
+            "0.4",
+            "0.5",
+            "0.4pi",
+            "1",
+            "1",
+            "persson:gamma=1,sigma=1",
+        ),
+        (
+            "steep-power-law",
+            "0.8257076",
+            "0.117891",
+            "0.6973478pi",
+            "0.5950675",
+            "1.213117",
+            "power:c=2.589146,beta=-0.4994542 + power:c=0.2205953,beta=-1.971846",
+        ),
+    ];
+    for (name, p1, q1, phi, friction, lambda, compliance) in cases {
+        let text = CaseText {
+            p0: "1".into(),
+            p1: p1.into(),
+            q0: "0".into(),
+            q1: q1.into(),
+            phi: phi.into(),
+            friction: friction.into(),
+            lambda: Some(lambda.into()),
+            nu: None,
+            compliance: compliance.into(),
+        };
+        let Case { cycle, compliance } = text.read::<f64>(Precision::DOUBLE).unwrap();
+        group.bench_function(name, |b| {
+            b.iter(|| {
+                simulate(&cycle, compliance.as_ref(), &SimulationOptions::default())
+                    .unwrap()
+                    .w_work
+            })
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(
+    benches,
+    bench_dissipation,
+    bench_verified_digits,
+    bench_node_tables,
+    bench_simulation
+);
 criterion_main!(benches);

@@ -5,7 +5,7 @@ use std::process::Command;
 
 use microslip::compliance::{parse_spec, Polynomial};
 use microslip::cycle::LoadCycle;
-use microslip::dissipation::{dissipation, Options};
+use microslip::dissipation::{dissipation, Method, Options};
 use microslip::inputs::Case;
 use microslip::real::Precision;
 use microslip::simulate::{simulate, InitialPath, SimulationOptions};
@@ -27,7 +27,9 @@ fn runner(cases: u32, seed: u8) -> TestRunner {
 fn simulation_agrees_with_the_four_segment_integrals_on_random_compliances_and_cycles() {
     // Random families (power laws and their sums, Persson, rational, exponential,
     // admissible polynomials), P1/P0 in (0.05, 0.9), Q1 inside the gross-slip limit, φ in (0, π).
-    runner(8, 41)
+    // The issue asks 1e-5; the default resolution reaches 1e-6 (worst of 140 random cases
+    // 8e-8, proofs/independent-simulation.md), and its own estimate bounds its error.
+    runner(10, 41)
         .run(&any::<u64>(), |seed| {
             let case = random_case(&mut Draw::new(seed));
             let Case { cycle, compliance } = case.read::<f64>(Precision::DOUBLE).unwrap();
@@ -37,21 +39,121 @@ fn simulation_agrees_with_the_four_segment_integrals_on_random_compliances_and_c
             let simulated = simulate(&cycle, compliance.as_ref(), &SimulationOptions::default()).unwrap();
             let error = ((simulated.w_work - exact) / exact).abs();
             prop_assert!(
-                error < 1e-5,
+                error < 1e-6,
                 "{case:?}: simulated {} vs {exact} ({error:e})",
                 simulated.w_work
             );
-            let friction_error = ((simulated.w_friction - exact) / exact).abs();
-            // The frictional work converges more slowly (first order in the step where slip
-            // starts and stops); it is held to 1e-4.
             prop_assert!(
-                friction_error < 1e-4,
+                error <= simulated.estimated_rel_error,
+                "{case:?}: error {error:e} beyond the estimate {:e}",
+                simulated.estimated_rel_error
+            );
+            let friction_error = ((simulated.w_friction - exact) / exact).abs();
+            prop_assert!(
+                friction_error < 1e-5,
                 "{case:?}: friction {} vs {exact} ({friction_error:e})",
                 simulated.w_friction
             );
             Ok(())
         })
         .unwrap();
+}
+
+/// W by one run (no extrapolation) at the given resolution, relative to the exact W.
+fn single_run_error(
+    cycle: &LoadCycle<f64>,
+    compliance: &dyn microslip::compliance::Compliance<f64>,
+    elements: usize,
+    steps: usize,
+) -> f64 {
+    let exact = dissipation(cycle, compliance, &Options::default()).unwrap().total;
+    let options = SimulationOptions {
+        elements: Some(elements),
+        steps: Some(steps),
+        extrapolate: false,
+        ..SimulationOptions::default()
+    };
+    (simulate(cycle, compliance, &options).unwrap().w_work - exact) / exact
+}
+
+#[test]
+fn element_and_step_errors_are_second_order_which_the_extrapolation_assumes() {
+    // A steep power law near separation (the hardest family): halving the element spacing
+    // at a fine step, and the step at a fine bed, each divides the error by about 4.
+    let compliance = parse_spec::<f64>("power:c=1.266701,beta=-1.720441", Precision::DOUBLE).unwrap();
+    let cycle = LoadCycle {
+        normal_amplitude: 0.6687011,
+        tangential_amplitude: 0.8871182,
+        phase: 0.4709744 * std::f64::consts::PI,
+        friction: 1.668352,
+        compliance_ratio: 1.060435,
+        ..acceptance()
+    };
+    let orders = |errors: [f64; 3]| [(errors[0] / errors[1]).log2(), (errors[1] / errors[2]).log2()];
+    let in_elements = orders([100, 200, 400].map(|n| single_run_error(&cycle, compliance.as_ref(), n, 9600)));
+    let in_steps = orders([300, 600, 1200].map(|m| single_run_error(&cycle, compliance.as_ref(), 3200, m)));
+    for order in in_elements.iter().chain(&in_steps) {
+        assert!(
+            (1.7..2.3).contains(order),
+            "orders in elements {in_elements:?}, in steps {in_steps:?}"
+        );
+    }
+}
+
+#[test]
+fn simulation_reproduces_the_closed_forms() {
+    // Constant normal load (Cattaneo–Mindlin with Masing), in phase (the paper's appendix)
+    // and Mindlin–Deresiewicz for a Hertz contact: `dissipation` takes the closed form there.
+    let persson = parse_spec::<f64>("persson:gamma=1,sigma=1", Precision::DOUBLE).unwrap();
+    let hertz = parse_spec::<f64>("hertz:r=1,estar=1", Precision::DOUBLE).unwrap();
+    let cases: [(LoadCycle<f64>, &dyn microslip::compliance::Compliance<f64>, Method); 4] = [
+        (
+            LoadCycle {
+                normal_amplitude: 0.0,
+                ..acceptance()
+            },
+            persson.as_ref(),
+            Method::ConstantNormalLoad,
+        ),
+        (
+            LoadCycle {
+                phase: 0.0,
+                ..acceptance()
+            },
+            persson.as_ref(),
+            Method::InPhase,
+        ),
+        (
+            LoadCycle {
+                phase: std::f64::consts::PI,
+                tangential_amplitude: 0.55,
+                ..acceptance()
+            },
+            persson.as_ref(),
+            Method::InPhase,
+        ),
+        (
+            LoadCycle {
+                normal_amplitude: 0.0,
+                ..acceptance()
+            },
+            hertz.as_ref(),
+            Method::ConstantNormalLoad,
+        ),
+    ];
+    for (cycle, compliance, method) in cases {
+        let exact = dissipation(&cycle, compliance, &Options::default()).unwrap();
+        assert_eq!(exact.method, method);
+        assert!(exact.total > 0.0);
+        let simulated = simulate(&cycle, compliance, &SimulationOptions::default()).unwrap();
+        let error = ((simulated.w_work - exact.total) / exact.total).abs();
+        assert!(
+            error < 1e-6,
+            "{cycle:?}: {} vs {} ({error:e})",
+            simulated.w_work,
+            exact.total
+        );
+    }
 }
 
 mod common;
@@ -160,7 +262,11 @@ fn simulate_command_prints_json_and_writes_the_loop() {
     assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
     let value: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
     let w = value["W_work"].as_f64().unwrap();
-    assert!((w - 0.406_247_579_245_824).abs() < 1e-5 * w, "{w}");
+    let compliance = parse_spec::<f64>("persson:gamma=1,sigma=1", Precision::DOUBLE).unwrap();
+    let exact = dissipation(&acceptance(), compliance.as_ref(), &Options::default())
+        .unwrap()
+        .total;
+    assert!((w - exact).abs() < 1e-6 * exact, "{w} vs {exact}");
     assert!(value["W_friction"].as_f64().is_some() && value["estimated_rel_error"].as_f64().is_some());
     assert_eq!(value["elements"], 1600);
     for name in ["cycle.svg", "cycle.png"] {

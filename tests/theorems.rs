@@ -112,6 +112,18 @@ fn simulated_history_agrees_with_the_four_segment_dissipation_for_any_q0_and_pha
 }
 
 #[test]
+fn the_simulated_history_obeys_the_constant_term_linearity_and_roughness_claims() {
+    // Claims 3, 4 and 5 with every W from the spring-bed simulation (none from the segments).
+    for_seeds(6, 17, |seed| {
+        vec![
+            claims::constant_term_simulated(seed, 1),
+            claims::linearity_simulated(seed, 1),
+            claims::roughness_simulated(seed, 1),
+        ]
+    });
+}
+
+#[test]
 fn linearity_in_roughness_holds_for_persson_but_not_for_other_exponents() {
     // Errata item 7: heights scaled by k give v'(P/k); for v' = C P^β that is k^(−β) v'.
     let cycle = common::acceptance_cycle(0.4 * std::f64::consts::PI);
@@ -216,8 +228,13 @@ fn verify_command_runs_the_gate_and_reports_every_claim() {
     let report: serde_json::Value = serde_json::from_str(stdout.trim()).unwrap();
     assert_eq!(report["passed"], true);
     let claims = report["claims"].as_array().unwrap();
-    // 1, 2a–2c, 3 and 4 and 5 in f64 and at 256 bits, 6a in f64 and at 256 bits, 6b, 6c.
-    assert_eq!(claims.len(), 14);
+    // 1, 2a–2c, 3 and 4 and 5 in f64, at 256 bits and simulated, 6a in f64 and at 256 bits, 6b, 6c.
+    assert_eq!(claims.len(), 17);
+    let simulated = claims
+        .iter()
+        .filter(|claim| claim["claim"].as_str().unwrap().contains("simulated"))
+        .count();
+    assert_eq!(simulated, 4, "rows checked by the history simulation: 3, 4, 5 and 6c");
     for claim in claims {
         assert!(claim["cases"].as_u64().unwrap() > 0, "{claim}");
         assert!(claim["worst_error"].as_f64().unwrap() <= claim["tolerance"].as_f64().unwrap());

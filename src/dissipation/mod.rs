@@ -101,7 +101,7 @@ impl<R: Real> Dissipation<R> {
         if error <= 0.0 {
             return most;
         }
-        if !(magnitude > error) {
+        if !magnitude.is_finite() || magnitude <= error {
             return 0;
         }
         ((magnitude / error).log10().floor() as u32).min(most)

@@ -71,6 +71,7 @@ pub fn gate(options: GateOptions) -> Vec<GateStep> {
                 vec![
                     claims::constant_term::<f64>(seed + 2, n(40, 1000), Precision::DOUBLE),
                     claims::constant_term::<Float>(seed + 3, n(3, 40), wide),
+                    claims::constant_term_simulated(seed + 13, n(2, 10)),
                 ]
             }),
         ),
@@ -80,6 +81,7 @@ pub fn gate(options: GateOptions) -> Vec<GateStep> {
                 vec![
                     claims::linearity::<f64>(seed + 4, n(40, 1000), Precision::DOUBLE),
                     claims::linearity::<Float>(seed + 5, n(3, 40), wide),
+                    claims::linearity_simulated(seed + 14, n(2, 10)),
                 ]
             }),
         ),
@@ -89,6 +91,7 @@ pub fn gate(options: GateOptions) -> Vec<GateStep> {
                 vec![
                     claims::roughness::<f64>(seed + 6, n(40, 1000), Precision::DOUBLE),
                     claims::roughness::<Float>(seed + 7, n(2, 30), wide),
+                    claims::roughness_simulated(seed + 15, n(2, 10)),
                 ]
             }),
         ),

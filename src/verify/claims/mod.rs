@@ -14,11 +14,11 @@ mod roughness;
 mod simulation;
 
 pub use coefficient::small_amplitude_coefficient;
-pub use constant_term::constant_term;
+pub use constant_term::{constant_term, constant_term_simulated};
 pub use cubic_law::{cubic_law, least_squares_slope};
 pub use invariants::{in_phase_limit, invariants};
-pub use linearity::linearity;
-pub use roughness::roughness;
+pub use linearity::{linearity, linearity_simulated};
+pub use roughness::{roughness, roughness_simulated};
 pub use simulation::{coefficient_against_simulation, simulation_agrees};
 
 use super::generators::{compliance_spec, Draw};
