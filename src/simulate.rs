@@ -78,8 +78,8 @@ pub struct SimulationResult {
     /// Σ f n_s |Δw_s| over the last cycle: the frictional work of the elements.
     pub w_friction: f64,
     /// 2(|W − W'| + |W_work − W_friction|) / |W|, W' the extrapolation from the two coarser
-    /// runs; without extrapolation, the two measures' difference only. Over 140 random
-    /// cases it exceeded the true error every time.
+    /// runs; without extrapolation, the two measures' difference only. Over 640 random
+    /// cases it exceeded the true error in all but one (1.8e−8 against 8.0e−9).
     pub estimated_rel_error: f64,
     /// The steady loop of the finest run.
     pub steady_loop: Vec<LoopSample>,
