@@ -10,7 +10,7 @@ use serde_json::json;
 
 use microslip::accuracy;
 use microslip::catalogue;
-use microslip::dissipation::{dissipation, Method, Options};
+use microslip::dissipation::{dissipation, DissipationError, Method, Options};
 use microslip::inputs::{Case, CaseText};
 use microslip::plot::{plot_accuracy, plot_cycle};
 use microslip::real::{Precision, Real};
@@ -221,57 +221,77 @@ struct Printed {
     precision_bits: u32,
     /// The absolute error estimate of an f64 result (verified digits need none).
     error_estimate: Option<f64>,
+    /// Why a run without --digits computed verified digits in MPFR instead of f64.
+    fallback: Option<String>,
 }
+
+/// The fewest significant digits an f64 result may print; where f64 resolves fewer (a W
+/// that is a small difference of large segments) or refuses a cycle as ill-conditioned,
+/// the default run computes 15 verified digits in MPFR instead.
+const F64_DIGITS_FLOOR: u32 = 12;
 
 fn run_dissipation(args: &DissipationArgs) -> Result<String, Failure> {
     let case = args.case.text();
+    if !(args.max_seconds.is_finite() && args.max_seconds > 0.0) {
+        return Err(Failure(format!(
+            "--max-seconds must be a positive number, got {}",
+            args.max_seconds
+        )));
+    }
+    let budget = Duration::from_secs_f64(args.max_seconds);
+    let verified_printed = |digits: u32, fallback: Option<String>| -> Result<Printed, Failure> {
+        let verified = verified_dissipation(&case, digits, budget)?;
+        Ok(Printed {
+            total: verified.total,
+            segments: verified.segments.to_vec(),
+            digits: verified.digits_verified,
+            method: verified.method,
+            precision_bits: verified.precision_bits,
+            error_estimate: None,
+            fallback,
+        })
+    };
     let printed = match args.digits {
         None => {
             let Case { cycle, compliance } = case.read::<f64>(Precision::DOUBLE)?;
-            let result = dissipation(&cycle, compliance.as_ref(), &Options::default())?;
-            let digits = result.resolved_digits(&result.total, 15);
-            if digits == 0 {
-                return Err(Failure(format!(
-                    "f64 cannot resolve W here: W = {:.3e} with an error estimate of {:.1e} (its segments, \
-                     up to {:.1e}, cancel); use --digits N",
-                    result.total,
-                    result.error_estimate,
-                    result.segments.named().iter().map(|(_, v)| v.abs()).fold(0.0, f64::max)
-                )));
-            }
-            // A segment gets the digits the same absolute error leaves it (at least one).
-            let segment_digits = |value: &f64| result.resolved_digits(value, 15).max(1) as usize;
-            Printed {
-                total: result.total.to_scientific(digits as usize),
-                segments: result
-                    .segments
-                    .named()
-                    .iter()
-                    .map(|(name, value)| (*name, value.to_scientific(segment_digits(value))))
-                    .collect(),
-                digits,
-                method: result.method,
-                precision_bits: 53,
-                error_estimate: Some(result.error_estimate),
-            }
-        }
-        Some(digits) => {
-            if !(args.max_seconds.is_finite() && args.max_seconds > 0.0) {
-                return Err(Failure(format!(
-                    "--max-seconds must be a positive number, got {}",
-                    args.max_seconds
-                )));
-            }
-            let verified = verified_dissipation(&case, digits, Duration::from_secs_f64(args.max_seconds))?;
-            Printed {
-                total: verified.total,
-                segments: verified.segments.to_vec(),
-                digits: verified.digits_verified,
-                method: verified.method,
-                precision_bits: verified.precision_bits,
-                error_estimate: None,
+            match dissipation(&cycle, compliance.as_ref(), &Options::default()) {
+                Ok(result) if result.resolved_digits(&result.total, 15) >= F64_DIGITS_FLOOR => {
+                    let digits = result.resolved_digits(&result.total, 15);
+                    // A segment gets the digits the same absolute error leaves it (at least one).
+                    let segment_digits = |value: &f64| result.resolved_digits(value, 15).max(1) as usize;
+                    Printed {
+                        total: result.total.to_scientific(digits as usize),
+                        segments: result
+                            .segments
+                            .named()
+                            .iter()
+                            .map(|(name, value)| (*name, value.to_scientific(segment_digits(value))))
+                            .collect(),
+                        digits,
+                        method: result.method,
+                        precision_bits: 53,
+                        error_estimate: Some(result.error_estimate),
+                        fallback: None,
+                    }
+                }
+                Ok(result) => verified_printed(
+                    15,
+                    Some(format!(
+                        "f64 resolves {} digits here: its segments, up to {:.1e}, cancel to W",
+                        result.resolved_digits(&result.total, 15),
+                        result.segments.named().iter().map(|(_, v)| v.abs()).fold(0.0, f64::max)
+                    )),
+                )?,
+                Err(DissipationError::IllConditioned { expected, .. }) => verified_printed(
+                    15,
+                    Some(format!(
+                        "rounding the loads to f64 alone would move W by ~{expected:.0e} here"
+                    )),
+                )?,
+                Err(other) => return Err(other.into()),
             }
         }
+        Some(digits) => verified_printed(digits, None)?,
     };
     if args.json {
         let segments: serde_json::Map<String, serde_json::Value> = printed
@@ -282,9 +302,10 @@ fn run_dissipation(args: &DissipationArgs) -> Result<String, Failure> {
         let object = json!({
             "W": printed.total,
             "digits": printed.digits,
-            "digits_verified": args.digits.map(|_| printed.digits),
+            "digits_verified": printed.error_estimate.is_none().then_some(printed.digits),
             "precision_bits": printed.precision_bits,
             "error_estimate": printed.error_estimate,
+            "f64_fallback": printed.fallback,
             "method": method_name(printed.method),
             "segments": segments,
             "inputs": case,
@@ -296,12 +317,13 @@ fn run_dissipation(args: &DissipationArgs) -> Result<String, Failure> {
         printed.total,
         method_name(printed.method),
         printed.digits,
-        match (args.digits, printed.error_estimate) {
-            (Some(_), _) => ", verified".to_string(),
+        match (&printed.fallback, printed.error_estimate) {
+            (Some(reason), _) => format!(", verified in MPFR: {reason}"),
             (None, Some(error)) if printed.digits < 15 => {
                 format!(", f64, error estimate {error:.1e}; --digits N gives more")
             }
-            (None, _) => ", f64".to_string(),
+            (None, Some(_)) => ", f64".to_string(),
+            (None, None) => ", verified".to_string(),
         }
     );
     for (name, value) in &printed.segments {
