@@ -288,6 +288,9 @@ fn run_dissipation(args: &DissipationArgs) -> Result<String, Failure> {
                         "rounding the loads to f64 alone would move W by ~{expected:.0e} here"
                     )),
                 )?,
+                Err(DissipationError::NotConverged { .. }) => {
+                    verified_printed(15, Some("the f64 integrals did not converge here".to_string()))?
+                }
                 Err(other) => return Err(other.into()),
             }
         }

@@ -333,6 +333,8 @@ fn where_f64_cannot_resolve_w_the_default_run_computes_verified_digits_instead()
         ("0.4", "0.2", "1e-17", "cancel"),
         // 1e-6 P0 from separation: rounding the loads alone moves W beyond 1e-12.
         ("0.999999", "0.001", "0.5pi", "rounding"),
+        // Q1 = 1e-9 fP1: the f64 integrals stall above their tolerance.
+        ("0.4", "1e-9", "0.4pi", "did not converge"),
     ] {
         let default = run(p1, q1, phi, &[]);
         assert_eq!(default["digits"], 15, "{default}");
