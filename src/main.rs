@@ -282,10 +282,10 @@ fn run_dissipation(args: &DissipationArgs) -> Result<String, Failure> {
                         result.segments.named().iter().map(|(_, v)| v.abs()).fold(0.0, f64::max)
                     )),
                 )?,
-                Err(DissipationError::IllConditioned { expected, .. }) => verified_printed(
+                Err(DissipationError::IllConditioned { cause, expected, .. }) => verified_printed(
                     15,
                     Some(format!(
-                        "rounding the loads to f64 alone would move W by ~{expected:.0e} here"
+                        "f64 is ill-conditioned here ({cause}): rounding alone would move W by ~{expected:.0e}"
                     )),
                 )?,
                 Err(DissipationError::NotConverged { .. }) => {

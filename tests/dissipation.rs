@@ -298,3 +298,46 @@ fn small_amplitude_f64_keeps_its_digits_once_the_constant_slope_is_removed() {
     assert!(constant < 1e-14, "constant removed: {constant:e}");
     assert!(linear < 1e-14, "linear removed: {linear:e}");
 }
+
+#[test]
+fn the_error_estimate_bounds_the_error_where_convergence_slows_at_256_bits() {
+    // Found by `microslip verify --seed 12`: the Gauss–Legendre gains on this case slow
+    // from squaring (10, 22, then 32 digits), and an early stop that assumed squaring
+    // returned W 3e-70 off with an estimate of 5e-75. Each W here must be within its
+    // estimate of the 512-bit value.
+    use microslip::compliance::{parse_spec, Scaled, Sum};
+    let at = |bits: u32| {
+        let precision = Precision::bits(bits);
+        let number = |x: &str| Float::parse_decimal(x, precision).unwrap();
+        let cycle = LoadCycle::<Float> {
+            mean_normal_load: number("1"),
+            normal_amplitude: number("0.2921014"),
+            mean_tangential_load: number("0"),
+            tangential_amplitude: number("0.1510382"),
+            phase: number("0.831717") * &number("1").pi_like(),
+            friction: number("1.667894"),
+            compliance_ratio: number("1.408409"),
+        };
+        let term = |spec: &str, factor: &str| -> Box<dyn Compliance<Float>> {
+            Box::new(Scaled {
+                factor: number(factor),
+                inner: parse_spec::<Float>(spec, precision).unwrap(),
+            })
+        };
+        let sum = Sum {
+            terms: vec![
+                term("rational:a=0.7434767,b=2.993703,c=0.3862416", "1.788352"),
+                term("persson:gamma=1.585531,sigma=0.5819344", "0.9704693"),
+            ],
+        };
+        dissipation(&cycle, &sum, &Options::default()).unwrap()
+    };
+    let (coarse, fine) = (at(256), at(512));
+    let error = (coarse.total.clone() - &Float::with_val(256, &fine.total)).abs();
+    assert!(
+        error <= coarse.error_estimate,
+        "error {} beyond the estimate {}",
+        error.to_f64(),
+        coarse.error_estimate.to_f64()
+    );
+}

@@ -182,10 +182,11 @@ pub enum DissipationError {
         requested: f64,
     },
     /// The working precision cannot resolve the cycle: rounding alone moves W too much.
-    #[error("the case is ill-conditioned at {bits} bits: min(P0 − P1, P_T) = P0/{amplification:.3e}, so rounding alone can change W by ~{expected:.1e} relative (limit {limit:.0e}); compute it with more precision (--digits N)")]
+    #[error("the case is ill-conditioned at {bits} bits: {cause}, so rounding alone can change W by ~{expected:.1e} relative (limit {limit:.0e}); compute it with more precision (--digits N)")]
     IllConditioned {
         bits: u32,
-        amplification: f64,
+        /// What amplifies the rounding, with its size.
+        cause: String,
         expected: f64,
         limit: f64,
     },
@@ -241,19 +242,29 @@ fn prepare<R: Real>(
 ) -> Result<(), DissipationError> {
     cycle.validate()?;
     let amplification = cycle.rounding_amplification();
-    let expected = (amplification.clone() * &amplification.epsilon_like()).to_f64_lossy();
-    if expected > options.rounding_limit {
-        return Err(DissipationError::IllConditioned {
-            bits: amplification.precision().in_bits(),
-            amplification: amplification.to_f64_lossy(),
-            expected,
-            limit: options.rounding_limit,
-        });
-    }
+    check_conditioning(
+        &amplification,
+        options,
+        format!("min(P0 − P1, P_T) = P0/{:.3e}", amplification.to_f64_lossy()),
+    )?;
     if options.check_compliance {
         let low = (cycle.mean_normal_load.clone() - &cycle.normal_amplitude).min_of(&cycle.permanent_stick_load());
         let high = cycle.mean_normal_load.clone() + &cycle.normal_amplitude;
         check_admissible(compliance, &low, &high)?;
+    }
+    Ok(())
+}
+
+/// Refuses a cycle whose rounding amplification times ε exceeds `rounding_limit`.
+fn check_conditioning<R: Real>(amplification: &R, options: &Options<R>, cause: String) -> Result<(), DissipationError> {
+    let expected = (amplification.clone() * &amplification.epsilon_like()).to_f64_lossy();
+    if expected > options.rounding_limit {
+        return Err(DissipationError::IllConditioned {
+            bits: amplification.precision().in_bits(),
+            cause,
+            expected,
+            limit: options.rounding_limit,
+        });
     }
     Ok(())
 }
@@ -279,6 +290,15 @@ fn integrate_segments<R: Real>(
     options: &Options<R>,
 ) -> Result<Dissipation<R>, DissipationError> {
     let geometry = cycle.geometry()?;
+    let cancellation = cycle.cancellation_amplification();
+    check_conditioning(
+        &cancellation,
+        options,
+        format!(
+            "Q1 = fP1/{:.3e}, and the slip terms of the segment integrands cancel to a difference that much smaller",
+            (cancellation.clone() / &cancellation.int(16)).to_f64_lossy()
+        ),
+    )?;
     let integrands = SegmentIntegrands {
         geometry: &geometry,
         compliance,
@@ -315,7 +335,8 @@ fn integrate_segments<R: Real>(
 /// Multiplies the per-unit-λ segment integrals by λ and assembles the result.
 ///
 /// The error estimate adds to the quadrature's what rounding can do: of the loads
-/// (ε × `rounding_amplification` × |W|) and of the segment sum (64ε × Σ|segment|).
+/// (ε × `rounding_amplification` × |W|), inside the four-segment integrands
+/// (ε × `cancellation_amplification` × |W|) and of the segment sum (64ε × Σ|segment|).
 /// A W that overflowed, or whose segments fell below the full-precision range, is
 /// refused; for a physical compliance (`check_compliance`) a W below zero within ten
 /// times its error estimate is reported as 0 (with the estimate raised to cover it),
@@ -338,7 +359,12 @@ pub(crate) fn scaled_result<R: Real>(
     let mut total = segments.total();
     let eps = total.epsilon_like();
     let scale = segments.named().iter().fold(total.int(0), |acc, (_, v)| acc + &v.abs());
-    let rounding = total.abs() * &(cycle.rounding_amplification() * &eps) + &(scale.clone() * &eps * &eps.int(64));
+    // The four-segment integrands also cancel internally when Q1 ≪ fP1.
+    let mut amplification = cycle.rounding_amplification();
+    if method == Method::FourSegment {
+        amplification += &cycle.cancellation_amplification();
+    }
+    let rounding = total.abs() * &(amplification * &eps) + &(scale.clone() * &eps * &eps.int(64));
     let mut error_estimate = converged.error * lambda + &rounding;
     if !total.is_finite() || !error_estimate.is_finite() {
         return Err(DissipationError::NotFinite { segment: "total" });

@@ -1,7 +1,7 @@
 //! Claim 4: W is linear in v'.
 
 use super::simulation::{simulate_within_tolerance, SIMULATED_IDENTITY_TOLERANCE};
-use super::{describe, identity_tolerance, random_case, read, relative, Tally};
+use super::{describe, identity_tolerance, random_case, read, relative, relative_estimate, unresolvable, Tally};
 use crate::compliance::{Compliance, Scaled, Sum};
 use crate::dissipation::{dissipation, Options};
 use crate::real::{Precision, Real};
@@ -51,9 +51,11 @@ pub fn linearity<R: Real>(seed: u64, cases: usize, precision: Precision) -> Clai
         };
         match (w1, w2, dissipation(&cycle, &combined, &options)) {
             (Ok(w1), Ok(w2), Ok(sum)) => {
+                let estimates = [&w1, &w2, &sum].map(relative_estimate);
                 let expected = w1.total * &weight(a) + &(w2.total * &weight(b));
-                tally.record(relative(&sum.total, &expected), &label);
+                tally.record_resolved(relative(&sum.total, &expected), &estimates, &label);
             }
+            (Err(e), _, _) | (_, Err(e), _) | (_, _, Err(e)) if unresolvable(&e) => tally.unresolved(),
             (Err(e), _, _) | (_, Err(e), _) | (_, _, Err(e)) => tally.fail(&label, e),
         }
     }
