@@ -28,7 +28,7 @@ pub fn invariants<R: Real>(seed: u64, cases: usize, precision: Precision) -> Cla
         let base = match w(&cycle) {
             Ok(base) => base,
             Err(e) => {
-                tally.fail(&label, e);
+                tally.fail_unless_unresolvable(&label, e);
                 continue;
             }
         };
@@ -55,7 +55,7 @@ pub fn invariants<R: Real>(seed: u64, cases: usize, precision: Precision) -> Cla
         for value in variants {
             match value {
                 Ok(value) => worst = worst.max(relative(&value, &base)),
-                Err(e) => tally.fail(&label, e),
+                Err(e) => tally.fail_unless_unresolvable(&label, e),
             }
         }
         tally.record(worst, &label);
@@ -103,7 +103,7 @@ pub fn in_phase_limit(seed: u64, cases: usize) -> ClaimReport {
         }) {
             Ok(value) => value,
             Err(e) => {
-                tally.fail(&label, e);
+                tally.fail_unless_unresolvable(&label, e);
                 continue;
             }
         };
@@ -118,7 +118,7 @@ pub fn in_phase_limit(seed: u64, cases: usize) -> ClaimReport {
                 let scale = b.total.abs().max(base.abs());
                 tally.record(((a.total - b.total).abs() / scale).max(zero_error), &label);
             }
-            (Err(e), _) | (_, Err(e)) => tally.fail(&label, e),
+            (Err(e), _) | (_, Err(e)) => tally.fail_unless_unresolvable(&label, e),
         }
     }
     tally.note(format!(
