@@ -433,9 +433,10 @@ impl<'a> Contact<'a> {
                 // |t| = f n = k·limit/λ, times the slip |Δw|, with the limit averaged over
                 // the step (trapezoid) so that the work is second-order in the step.
                 let mean_limit = 0.5 * (limit + self.slip_limit(j, previous_approach, previous_base));
-                work += self.bed.stiffness[j] * mean_limit / self.ratio * moved.abs();
+                let slip_work = self.bed.stiffness[j] * mean_limit / self.ratio * moved.abs();
+                work += slip_work;
                 if (1..self.bed.never_slipping).contains(&j) {
-                    self.work_below_lowest_slip += self.bed.stiffness[j] * mean_limit / self.ratio * moved.abs();
+                    self.work_below_lowest_slip += slip_work;
                 }
             }
         }
