@@ -10,11 +10,11 @@ use serde_json::json;
 
 use microslip::accuracy;
 use microslip::catalogue;
-use microslip::dissipation::{dissipation, DissipationError, Method, Options};
+use microslip::dissipation::{dissipation, Method, Options};
 use microslip::inputs::{Case, CaseText};
 use microslip::plot::{plot_accuracy, plot_cycle};
 use microslip::real::{Precision, Real};
-use microslip::reference::verified_dissipation;
+use microslip::reference::printable_dissipation;
 use microslip::simulate::{simulate, write_loop_csv, SimulationOptions};
 use microslip::verify::{self, small_amplitude, GateOptions};
 
@@ -212,24 +212,6 @@ fn method_name(method: Method) -> &'static str {
     }
 }
 
-/// The result as printed: W and segments as decimal strings.
-struct Printed {
-    total: String,
-    segments: Vec<(&'static str, String)>,
-    digits: u32,
-    method: Method,
-    precision_bits: u32,
-    /// The absolute error estimate of an f64 result (verified digits need none).
-    error_estimate: Option<f64>,
-    /// Why a run without --digits computed verified digits in MPFR instead of f64.
-    fallback: Option<String>,
-}
-
-/// The fewest significant digits an f64 result may print; where f64 resolves fewer (a W
-/// that is a small difference of large segments) or refuses a cycle as ill-conditioned,
-/// the default run computes 15 verified digits in MPFR instead.
-const F64_DIGITS_FLOOR: u32 = 12;
-
 fn run_dissipation(args: &DissipationArgs) -> Result<String, Failure> {
     let case = args.case.text();
     if !(args.max_seconds.is_finite() && args.max_seconds > 0.0) {
@@ -238,64 +220,7 @@ fn run_dissipation(args: &DissipationArgs) -> Result<String, Failure> {
             args.max_seconds
         )));
     }
-    let budget = Duration::from_secs_f64(args.max_seconds);
-    let verified_printed = |digits: u32, fallback: Option<String>| -> Result<Printed, Failure> {
-        let verified = verified_dissipation(&case, digits, budget)?;
-        Ok(Printed {
-            total: verified.total,
-            segments: verified.segments.to_vec(),
-            digits: verified.digits_verified,
-            method: verified.method,
-            precision_bits: verified.precision_bits,
-            error_estimate: None,
-            fallback,
-        })
-    };
-    let printed = match args.digits {
-        None => {
-            let Case { cycle, compliance } = case.read::<f64>(Precision::DOUBLE)?;
-            match dissipation(&cycle, compliance.as_ref(), &Options::default()) {
-                Ok(result) if result.resolved_digits(&result.total, 15) >= F64_DIGITS_FLOOR => {
-                    let digits = result.resolved_digits(&result.total, 15);
-                    // A segment gets the digits the same absolute error leaves it (at least one).
-                    let segment_digits = |value: &f64| result.resolved_digits(value, 15).max(1) as usize;
-                    Printed {
-                        total: result.total.to_scientific(digits as usize),
-                        segments: result
-                            .segments
-                            .named()
-                            .iter()
-                            .map(|(name, value)| (*name, value.to_scientific(segment_digits(value))))
-                            .collect(),
-                        digits,
-                        method: result.method,
-                        precision_bits: 53,
-                        error_estimate: Some(result.error_estimate),
-                        fallback: None,
-                    }
-                }
-                Ok(result) => verified_printed(
-                    15,
-                    Some(format!(
-                        "f64 resolves {} digits here: its segments, up to {:.1e}, cancel to W",
-                        result.resolved_digits(&result.total, 15),
-                        result.segments.named().iter().map(|(_, v)| v.abs()).fold(0.0, f64::max)
-                    )),
-                )?,
-                Err(DissipationError::IllConditioned { cause, expected, .. }) => verified_printed(
-                    15,
-                    Some(format!(
-                        "f64 is ill-conditioned here ({cause}): rounding alone would move W by ~{expected:.0e}"
-                    )),
-                )?,
-                Err(DissipationError::NotConverged { .. }) => {
-                    verified_printed(15, Some("the f64 integrals did not converge here".to_string()))?
-                }
-                Err(other) => return Err(other.into()),
-            }
-        }
-        Some(digits) => verified_printed(digits, None)?,
-    };
+    let printed = printable_dissipation(&case, args.digits, Duration::from_secs_f64(args.max_seconds))?;
     if args.json {
         let segments: serde_json::Map<String, serde_json::Value> = printed
             .segments

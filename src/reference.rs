@@ -40,6 +40,97 @@ pub struct VerifiedDissipation {
     pub value: Dissipation<Float>,
 }
 
+/// W and its segments as decimal strings, with how far they can be trusted.
+#[derive(Clone, Debug)]
+pub struct PrintedDissipation {
+    /// W in scientific notation.
+    pub total: String,
+    /// EB, BC, CH, HE.
+    pub segments: Vec<(&'static str, String)>,
+    /// The significant digits of `total`.
+    pub digits: u32,
+    /// How W was computed.
+    pub method: Method,
+    /// The working precision of the value printed (53 for f64).
+    pub precision_bits: u32,
+    /// The absolute error estimate of an f64 result (verified digits need none).
+    pub error_estimate: Option<f64>,
+    /// Why a run without a digit count computed verified digits in MPFR instead of f64.
+    pub fallback: Option<String>,
+}
+
+/// The fewest significant digits an f64 result may print; where f64 resolves fewer (a W
+/// that is a small difference of large segments), refuses a cycle as ill-conditioned or
+/// does not converge, [`printable_dissipation`] computes 15 verified digits in MPFR instead.
+pub const F64_DIGITS_FLOOR: u32 = 12;
+
+/// W for printing: with `digits` = Some(N), N verified digits; without, f64 with the
+/// digits its error estimate vouches for (segments to the same absolute accuracy), or 15
+/// verified digits where f64 cannot give [`F64_DIGITS_FLOOR`] — and why.
+pub fn printable_dissipation(
+    case: &CaseText,
+    digits: Option<u32>,
+    budget: Duration,
+) -> Result<PrintedDissipation, ReferenceError> {
+    let verified = |digits: u32, fallback: Option<String>| -> Result<PrintedDissipation, ReferenceError> {
+        let verified = verified_dissipation(case, digits, budget)?;
+        Ok(PrintedDissipation {
+            total: verified.total,
+            segments: verified.segments.to_vec(),
+            digits: verified.digits_verified,
+            method: verified.method,
+            precision_bits: verified.precision_bits,
+            error_estimate: None,
+            fallback,
+        })
+    };
+    if let Some(digits) = digits {
+        return verified(digits, None);
+    }
+    let Case { cycle, compliance } = case.read::<f64>(Precision::DOUBLE)?;
+    let result = match dissipation(&cycle, compliance.as_ref(), &Options::default()) {
+        Ok(result) => result,
+        Err(DissipationError::IllConditioned { cause, expected, .. }) => {
+            return verified(
+                15,
+                Some(format!(
+                    "f64 is ill-conditioned here ({cause}): rounding alone would move W by ~{expected:.0e}"
+                )),
+            )
+        }
+        Err(DissipationError::NotConverged { .. }) => {
+            return verified(15, Some("the f64 integrals did not converge here".to_string()))
+        }
+        Err(other) => return Err(other.into()),
+    };
+    let resolved = result.resolved_digits(&result.total, 15);
+    if resolved < F64_DIGITS_FLOOR {
+        let largest = result.segments.named().iter().map(|(_, v)| v.abs()).fold(0.0, f64::max);
+        return verified(
+            15,
+            Some(format!(
+                "f64 resolves {resolved} digits here: its segments, up to {largest:.1e}, cancel to W"
+            )),
+        );
+    }
+    // A segment gets the digits the same absolute error leaves it (at least one).
+    let segment_digits = |value: &f64| result.resolved_digits(value, 15).max(1) as usize;
+    Ok(PrintedDissipation {
+        total: result.total.to_scientific(resolved as usize),
+        segments: result
+            .segments
+            .named()
+            .iter()
+            .map(|(name, value)| (*name, value.to_scientific(segment_digits(value))))
+            .collect(),
+        digits: resolved,
+        method: result.method,
+        precision_bits: 53,
+        error_estimate: Some(result.error_estimate),
+        fallback: None,
+    })
+}
+
 /// Why a verified value could not be produced.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ReferenceError {

@@ -119,6 +119,11 @@ fn microslip(args: &[&str]) -> (i32, String, String) {
 
 /// `microslip dissipation` on the base case with one flag replaced (or added).
 fn dissipation_with(flag: &str, value: &str, extra: &[&str]) -> (i32, String, String) {
+    dissipation_overriding(&[(flag, value)], extra)
+}
+
+/// `microslip dissipation` on the base case with flags replaced (or added).
+fn dissipation_overriding(overrides: &[(&str, &str)], extra: &[&str]) -> (i32, String, String) {
     let mut args = vec!["dissipation".to_string()];
     let defaults = [
         ("--compliance", "persson:gamma=1,sigma=1"),
@@ -129,13 +134,21 @@ fn dissipation_with(flag: &str, value: &str, extra: &[&str]) -> (i32, String, St
         ("--friction", "1"),
         ("--lambda", "1"),
     ];
+    let replaced = |name: &str| {
+        overrides
+            .iter()
+            .find(|(flag, _)| *flag == name)
+            .map(|(_, value)| *value)
+    };
     for (name, default) in defaults {
         args.push(name.to_string());
-        args.push(if name == flag { value } else { default }.to_string());
+        args.push(replaced(name).unwrap_or(default).to_string());
     }
-    if !defaults.iter().any(|(name, _)| *name == flag) && !flag.is_empty() {
-        args.push(flag.to_string());
-        args.push(value.to_string());
+    for (flag, value) in overrides {
+        if !flag.is_empty() && !defaults.iter().any(|(name, _)| name == flag) {
+            args.push(flag.to_string());
+            args.push(value.to_string());
+        }
     }
     args.extend(extra.iter().map(|s| s.to_string()));
     let refs: Vec<&str> = args.iter().map(String::as_str).collect();
@@ -172,38 +185,6 @@ fn command_line_reports_each_invalid_cycle_in_one_line_with_exit_code_2() {
     );
     assert_rejected(dissipation_with("--q0", "-0.7", &[]), "Q = −fP");
     assert_rejected(dissipation_with("--p0", "abc", &[]), "'abc' is not a decimal number");
-    // Within 1e-6·P0 of separation f64 cannot promise 1e-12: the default run says so and
-    // computes verified digits instead; --digits gives more.
-    let near_separation = |extra: &[&str]| {
-        let mut args = vec![
-            "dissipation",
-            "--p0",
-            "1",
-            "--p1",
-            "0.999999",
-            "--q1",
-            "0.001",
-            "--phi",
-            "0.5pi",
-            "--friction",
-            "1",
-            "--lambda",
-            "1",
-            "--compliance",
-            "persson:gamma=1,sigma=1",
-        ];
-        args.extend_from_slice(extra);
-        microslip(&args)
-    };
-    let (code, stdout, stderr) = near_separation(&[]);
-    assert_eq!(code, 0, "{stderr}");
-    assert!(
-        stdout.starts_with("W = 5.60150945874483e-5") && stdout.contains("min(P0 − P1, P_T) = P0/2.000e6"),
-        "{stdout}"
-    );
-    let (code, stdout, stderr) = near_separation(&["--digits", "20"]);
-    assert_eq!(code, 0, "{stderr}");
-    assert!(stdout.starts_with("W = 5.6015094587448267940e-5"), "{stdout}");
     assert_rejected(dissipation_with("--phi", "xpi", &[]), "--phi");
 }
 
@@ -300,26 +281,10 @@ fn where_f64_cannot_resolve_w_the_default_run_computes_verified_digits_instead()
     // f64 resolves 2 digits. The default run then gives 15 verified digits from MPFR,
     // says why, and they are the leading digits of a 20-digit verified run.
     let run = |p1: &str, q1: &str, phi: &str, extra: &[&str]| {
-        let mut args = vec![
-            "dissipation",
-            "--p0",
-            "1",
-            "--p1",
-            p1,
-            "--q1",
-            q1,
-            "--phi",
-            phi,
-            "--friction",
-            "1",
-            "--lambda",
-            "1",
-            "--compliance",
-            "persson:gamma=1,sigma=1",
-            "--json",
-        ];
-        args.extend_from_slice(extra);
-        let (code, stdout, stderr) = microslip(&args);
+        let (code, stdout, stderr) = dissipation_overriding(
+            &[("--p1", p1), ("--q1", q1), ("--phi", phi)],
+            &[extra, &["--json"]].concat(),
+        );
         assert_eq!(code, 0, "{stderr}");
         serde_json::from_str::<serde_json::Value>(stdout.trim()).unwrap()
     };
@@ -332,7 +297,7 @@ fn where_f64_cannot_resolve_w_the_default_run_computes_verified_digits_instead()
         ("0.4", "0.2", "1e-6", "cancel"),
         ("0.4", "0.2", "1e-17", "cancel"),
         // 1e-6 P0 from separation: rounding the loads alone moves W beyond 1e-12.
-        ("0.999999", "0.001", "0.5pi", "rounding"),
+        ("0.999999", "0.001", "0.5pi", "min(P0 − P1, P_T) = P0/2.000e6"),
         // Q1 = 2.5e-9 fP1: the slip terms of the integrands cancel to a difference 4e8 times smaller.
         ("0.4", "1e-9", "0.4pi", "cancel"),
     ] {
@@ -347,6 +312,13 @@ fn where_f64_cannot_resolve_w_the_default_run_computes_verified_digits_instead()
         let (a, b): (i64, i64) = (fifteen.parse().unwrap(), twenty[..15].parse().unwrap());
         assert!(e15 == e20 && (a - b).abs() <= 1, "{default} vs {reference}");
     }
+    // The near-separation case against its catalogue reference.
+    let near_separation = run("0.999999", "0.001", "0.5pi", &["--digits", "20"]);
+    assert_eq!(near_separation["W"], "5.6015094587448267940e-5");
+    let (code, stdout, stderr) =
+        dissipation_overriding(&[("--p1", "0.999999"), ("--q1", "0.001"), ("--phi", "0.5pi")], &[]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stdout.starts_with("W = 5.60150945874483e-5"), "{stdout}");
     // An ordinary cycle stays in f64, with its estimate.
     let ordinary = run("0.4", "0.5", "0.4pi", &[]);
     assert!(ordinary["f64_fallback"].is_null() && ordinary["error_estimate"].as_f64().unwrap() > 0.0);

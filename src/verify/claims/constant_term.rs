@@ -1,6 +1,6 @@
 //! Claim 3: the constant term of v' contributes nothing.
 
-use super::simulation::{simulate_within_tolerance, SIMULATED_IDENTITY_TOLERANCE};
+use super::simulation::{refinement_note, simulate_within_tolerance, SIMULATED_IDENTITY_TOLERANCE};
 use super::{describe, random_case, read, relative, Tally};
 use crate::compliance::{Compliance, Polynomial, Shifted};
 use crate::dissipation::{dissipation, four_segment, Options};
@@ -110,5 +110,5 @@ pub fn constant_term_simulated(seed: u64, cases: usize) -> ClaimReport {
             (Err(e), _) | (_, Err(e)) => tally.fail(&label, e),
         }
     }
-    tally.note("each side refined until the simulation's own estimate is within 1e-4")
+    tally.note(refinement_note())
 }

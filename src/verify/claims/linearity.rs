@@ -1,6 +1,6 @@
 //! Claim 4: W is linear in v'.
 
-use super::simulation::{simulate_within_tolerance, SIMULATED_IDENTITY_TOLERANCE};
+use super::simulation::{refinement_note, simulate_within_tolerance, SIMULATED_IDENTITY_TOLERANCE};
 use super::{describe, identity_tolerance, random_case, read, relative, relative_estimate, unresolvable, Tally};
 use crate::compliance::{Compliance, Scaled, Sum};
 use crate::dissipation::{dissipation, Options};
@@ -109,5 +109,5 @@ pub fn linearity_simulated(seed: u64, cases: usize) -> ClaimReport {
             (Err(e), _, _) | (_, Err(e), _) | (_, _, Err(e)) => tally.fail(&label, e),
         }
     }
-    tally.note("each simulation refined until its own estimate is within 1e-4")
+    tally.note(refinement_note())
 }

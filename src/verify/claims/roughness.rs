@@ -1,6 +1,6 @@
 //! Claim 5: how W scales with the roughness (errata item 7).
 
-use super::simulation::{simulate_within_tolerance, SIMULATED_IDENTITY_TOLERANCE};
+use super::simulation::{refinement_note, simulate_within_tolerance, SIMULATED_IDENTITY_TOLERANCE};
 use super::{describe, identity_tolerance, random_case, read, relative, relative_estimate, unresolvable, Tally};
 use crate::compliance::{LoadScaled, Persson, PowerLaw};
 use crate::cycle::LoadCycle;
@@ -157,5 +157,5 @@ pub fn roughness_simulated(seed: u64, cases: usize) -> ClaimReport {
     }
     // The bed is dimensionless: scaling loads or stiffnesses maps it onto itself, element
     // for element, so these hold to rounding even at the coarse resolution.
-    tally.note("each simulation refined until its own estimate is within 1e-4; the bed scales exactly")
+    tally.note(refinement_note() + "; the bed scales exactly")
 }

@@ -29,6 +29,11 @@ pub const SIMULATED_IDENTITY_TOLERANCE: f64 = 3.0 * SIMULATION_TOLERANCE;
 /// of [`random_case`], which claim 6c draws).
 pub const LARGEST_SIMULATED_AMPLITUDE: f64 = 0.9;
 
+/// The note of a row whose every W comes from [`simulate_within_tolerance`].
+pub(super) fn refinement_note() -> String {
+    format!("each simulation refined until its own estimate is within {SIMULATION_TOLERANCE:e}")
+}
+
 /// The simulation at 100 elements and 300 steps, refined (twice the elements and steps,
 /// at most twice) while its own error estimate exceeds the tolerance: near in phase or
 /// anti-phase with a small Q1/(fP1), W is small against the energies stored in the bed
