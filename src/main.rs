@@ -46,6 +46,8 @@ enum Command {
     /// A table of Ŵ = W/(γσλf²) against the phase φ for Persson's compliance
     /// v' = γσ/P, P0 = 1, P1 = 0.4 (the paper's Fig. 5).
     Table,
+    /// Regenerate the paper's Figures 4–8 (CSV, SVG, PNG) and the facts it states (facts.json).
+    Figures(FiguresArgs),
 }
 
 /// A load cycle P = P0 + P1 cos θ, Q = Q0 + Q1 cos(θ − φ) on a contact.
@@ -192,6 +194,13 @@ struct ReferenceArgs {
     /// Time budget per case, in seconds.
     #[arg(long, default_value_t = 120.0)]
     max_seconds: f64,
+}
+
+#[derive(Args)]
+struct FiguresArgs {
+    /// Directory for fig4…fig8 (.csv, .svg, .png), limit_slopes.csv and facts.json.
+    #[arg(long)]
+    out: PathBuf,
 }
 
 /// A failure to report: one line on stderr, exit code 2.
@@ -470,6 +479,26 @@ fn run_table() -> Result<String, Failure> {
     Ok(out)
 }
 
+fn run_figures(args: &FiguresArgs) -> Result<String, Failure> {
+    let bar = indicatif::ProgressBar::new(0).with_style(
+        indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} points  {elapsed}")
+            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
+    );
+    let summary = microslip::figures::regenerate(&args.out, &|done, total| {
+        bar.set_length(total as u64);
+        bar.set_position(done as u64);
+    });
+    bar.finish_and_clear();
+    let summary = summary?;
+    let facts = microslip::figures::output::facts_json(&summary.figures.facts);
+    Ok(format!(
+        "{} files written to {}\n{}",
+        summary.files.len(),
+        args.out.display(),
+        serde_json::to_string_pretty(&facts)?
+    ))
+}
+
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
@@ -499,6 +528,7 @@ fn main() -> ExitCode {
         Command::Accuracy(args) => run_accuracy(args),
         Command::Reference(args) => run_reference(args),
         Command::Table => run_table(),
+        Command::Figures(args) => run_figures(args),
     };
     match outcome {
         Ok(text) => {

@@ -107,7 +107,7 @@ pub fn plot_cycle(path: &Path, cycle: &LoadCycle<f64>, result: &SimulationResult
 }
 
 /// Registers the font once per process: text layout needs its metrics in SVG too.
-fn register_font() -> Result<(), PlotError> {
+pub(crate) fn register_font() -> Result<(), PlotError> {
     static REGISTERED: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
     let registered = REGISTERED.get_or_init(|| {
         let Ok(font) = std::fs::read(FONT) else {

@@ -1,0 +1,233 @@
+//! Writing the figures: per figure a CSV, an SVG and a PNG, plus `limit_slopes.csv`
+//! (every local slope of every limit sequence) and `facts.json`. Each file is written
+//! to a temporary name in the output directory and renamed into place, so a reader
+//! never sees a half-written file; the directory is checked before anything is computed.
+
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+use serde_json::{json, Map, Value};
+
+use super::draw::draw_figure;
+use super::evaluate::LimitSlope;
+use super::sweeps::{compute, step_count, Facts, Figures, SweepError, FIG8_PHASES};
+use super::{Figure, Progress};
+use crate::plot::PlotError;
+
+/// Why the figures could not be written.
+#[derive(Debug, thiserror::Error)]
+pub enum FiguresError {
+    /// The output directory cannot be created or written to.
+    #[error("cannot write to the output directory {path}: {message}")]
+    Directory { path: String, message: String },
+    /// A computation failed.
+    #[error(transparent)]
+    Sweep(#[from] SweepError),
+    /// A file could not be written.
+    #[error("writing {path}: {message}")]
+    Write { path: String, message: String },
+    /// A picture could not be drawn.
+    #[error(transparent)]
+    Plot(#[from] PlotError),
+}
+
+/// What was written.
+#[derive(Debug)]
+pub struct Summary {
+    /// The files, in the order written.
+    pub files: Vec<PathBuf>,
+    /// The computed figures and facts.
+    pub figures: Figures,
+}
+
+/// Checks `directory`, computes every figure (reporting (done, total) steps) and writes
+/// the files into it.
+pub fn regenerate(directory: &Path, report: &(dyn Fn(usize, usize) + Sync)) -> Result<Summary, FiguresError> {
+    check_directory(directory)?;
+    let progress = Progress::new(step_count(), report);
+    let figures = compute(&progress)?;
+    let mut files = Vec::new();
+    for figure in &figures.figures {
+        let stem = format!("fig{}", figure.number);
+        let csv = directory.join(format!("{stem}.csv"));
+        write_atomically(&csv, &figure_csv(figure)?)?;
+        files.push(csv);
+        for extension in ["svg", "png"] {
+            let path = directory.join(format!("{stem}.{extension}"));
+            let temporary = temporary_name(&path);
+            draw_figure(&temporary, figure)?;
+            rename(&temporary, &path)?;
+            files.push(path);
+        }
+    }
+    let slopes = directory.join("limit_slopes.csv");
+    write_atomically(&slopes, &limit_slopes_csv(&figures.facts)?)?;
+    files.push(slopes);
+    let facts = directory.join("facts.json");
+    let text = serde_json::to_string_pretty(&facts_json(&figures.facts)).map_err(|e| write_error(&facts, e))?;
+    write_atomically(&facts, format!("{text}\n").as_bytes())?;
+    files.push(facts);
+    Ok(Summary { files, figures })
+}
+
+/// Creates `directory` if needed and proves a file can be written and renamed in it.
+fn check_directory(directory: &Path) -> Result<(), FiguresError> {
+    let unusable = |message: String| FiguresError::Directory {
+        path: directory.display().to_string(),
+        message,
+    };
+    std::fs::create_dir_all(directory).map_err(|e| unusable(e.to_string()))?;
+    let probe = directory.join(".microslip-figures-probe");
+    let temporary = temporary_name(&probe);
+    std::fs::write(&temporary, b"probe").map_err(|e| unusable(e.to_string()))?;
+    let renamed = std::fs::rename(&temporary, &probe);
+    let _ = std::fs::remove_file(&temporary);
+    let _ = std::fs::remove_file(&probe);
+    renamed.map_err(|e| unusable(e.to_string()))
+}
+
+/// A hidden sibling of `path` with the same extension (the PNG encoder reads the format from it).
+fn temporary_name(path: &Path) -> PathBuf {
+    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    let extension = path.extension().map(|e| e.to_string_lossy().into_owned()).unwrap_or_default();
+    path.with_file_name(format!(".{name}.{}.tmp.{extension}", std::process::id()))
+}
+
+fn write_error(path: &Path, error: impl std::fmt::Display) -> FiguresError {
+    FiguresError::Write {
+        path: path.display().to_string(),
+        message: error.to_string(),
+    }
+}
+
+fn rename(from: &Path, to: &Path) -> Result<(), FiguresError> {
+    std::fs::rename(from, to).map_err(|e| {
+        let _ = std::fs::remove_file(from);
+        write_error(to, e)
+    })
+}
+
+fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), FiguresError> {
+    let temporary = temporary_name(path);
+    std::fs::write(&temporary, bytes).map_err(|e| write_error(path, e))?;
+    rename(&temporary, path)
+}
+
+/// One row per sample: panel, curve, abscissa, Ŵ, the precision used, and on the end
+/// sample of a curve that stops at gross slip the abscissa of the limit.
+pub fn figure_csv(figure: &Figure) -> Result<Vec<u8>, FiguresError> {
+    let path = format!("fig{}.csv", figure.number);
+    let mut writer = csv::Writer::from_writer(Vec::new());
+    let header = [
+        "panel",
+        figure.curve_column,
+        figure.x_column,
+        "W_hat",
+        "precision_bits",
+        "gross_slip_limit",
+    ];
+    writer.write_record(header).map_err(|e| write_error(Path::new(&path), e))?;
+    for panel in &figure.panels {
+        for curve in &panel.curves {
+            let last = curve.samples.len().saturating_sub(1);
+            for (index, (x, w, bits)) in curve.samples.iter().enumerate() {
+                // The limit nearest this end sample, if the curve stops there.
+                let limit = if index == 0 || index == last {
+                    curve
+                        .gross_slip_at
+                        .iter()
+                        .filter(|l| (index == last && **l >= *x) || (index == 0 && **l <= *x))
+                        .map(|l| format!("{l:.10}"))
+                        .next()
+                        .unwrap_or_default()
+                } else {
+                    String::new()
+                };
+                let record = [
+                    panel.name.clone(),
+                    curve.key.clone(),
+                    format!("{x:.10e}"),
+                    format!("{w:.12e}"),
+                    bits.to_string(),
+                    limit,
+                ];
+                writer.write_record(&record).map_err(|e| write_error(Path::new(&path), e))?;
+            }
+        }
+    }
+    writer.into_inner().map_err(|e| write_error(Path::new(&path), e))
+}
+
+/// Every local slope of every limit sequence, with where each settled.
+fn limit_slopes_csv(facts: &Facts) -> Result<Vec<u8>, FiguresError> {
+    let path = Path::new("limit_slopes.csv");
+    let mut writer = csv::Writer::from_writer(Vec::new());
+    writer
+        .write_record(["figure", "phi_over_pi", "curve", "Q1_hat", "local_slope", "precision_bits", "settled"])
+        .map_err(|e| write_error(path, e))?;
+    let mut sequences: Vec<(&str, f64, &BTreeMap<String, LimitSlope>)> = vec![
+        ("6 (P1_hat/Q1_hat)", 0.0, &facts.fig6_small_amplitude_slope),
+        ("7 (P1_hat/Q1_hat)", 0.5, &facts.fig7_small_amplitude_slope),
+    ];
+    for (phase, map) in FIG8_PHASES.iter().zip(&facts.fig8_limit_slope) {
+        sequences.push(("8 (P1_hat)", *phase, map));
+    }
+    for (figure, phase, map) in sequences {
+        for (curve, limit) in map {
+            for sample in &limit.samples {
+                let settled = if sample.amplitude == limit.settled_at {
+                    format!("{:.3}", limit.slope)
+                } else {
+                    String::new()
+                };
+                writer
+                    .write_record([
+                        figure.to_string(),
+                        phase.to_string(),
+                        curve.clone(),
+                        format!("{:.6e}", sample.amplitude),
+                        format!("{:.9}", sample.slope),
+                        sample.precision_bits.to_string(),
+                        settled,
+                    ])
+                    .map_err(|e| write_error(path, e))?;
+            }
+        }
+    }
+    writer.into_inner().map_err(|e| write_error(path, e))
+}
+
+/// facts.json: the keys and meanings of issue 15, every value a number (or null where
+/// a ratio is unbounded).
+pub fn facts_json(facts: &Facts) -> Value {
+    let numbers = |map: &BTreeMap<String, f64>| -> Value {
+        Value::Object(map.iter().map(|(k, v)| (k.clone(), json!(v))).collect::<Map<_, _>>())
+    };
+    let slopes = |map: &BTreeMap<String, LimitSlope>| -> Value {
+        Value::Object(map.iter().map(|(k, v)| (k.clone(), json!(v.slope))).collect::<Map<_, _>>())
+    };
+    let gains = Value::Object(
+        facts
+            .fig5_out_of_phase_gain
+            .iter()
+            .map(|(k, v)| (k.clone(), json!(v)))
+            .collect::<Map<_, _>>(),
+    );
+    let mut object = json!({
+        "fig4_max_rel_diff": facts.fig4_max_rel_diff,
+        "fig5_phi_max_over_pi": numbers(&facts.fig5_phi_max_over_pi),
+        "fig5_out_of_phase_gain": gains,
+        "fig6_small_amplitude_slope": slopes(&facts.fig6_small_amplitude_slope),
+        "fig7_small_amplitude_slope": slopes(&facts.fig7_small_amplitude_slope),
+    });
+    for ((phase, limit), range) in FIG8_PHASES.iter().zip(&facts.fig8_limit_slope).zip(&facts.fig8_range_slope) {
+        let suffix = if *phase == 0.5 {
+            String::new()
+        } else {
+            format!("_phi_{phase}pi")
+        };
+        object[format!("fig8_limit_slope{suffix}")] = slopes(limit);
+        object[format!("fig8_range_slope{suffix}")] = numbers(range);
+    }
+    object
+}
