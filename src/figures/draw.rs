@@ -50,7 +50,7 @@ fn plotted(curve: &Curve, log_log: bool) -> Vec<(f64, f64)> {
 /// A tick label: the value, or the power of ten it is the log10 of.
 fn tick(value: f64, log: bool) -> String {
     if !log {
-        return format!("{value}");
+        return format!("{}", (value * 1e6).round() / 1e6);
     }
     if (value - value.round()).abs() < 1e-9 {
         format!("1e{}", value.round() as i64)
@@ -66,7 +66,11 @@ where
     root.fill(&WHITE)?;
     let (charts, notes) = root.split_vertically(root.dim_in_pixel().1 - 34);
     for (index, line) in figure.notes.iter().enumerate() {
-        notes.draw(&Text::new(line.clone(), (70, 4 + 15 * index as i32), ("sans-serif", 14)))?;
+        notes.draw(&Text::new(
+            line.clone(),
+            (70, 4 + 15 * index as i32),
+            ("sans-serif", 14),
+        ))?;
     }
     let areas = charts.split_evenly((1, figure.panels.len()));
     let log = figure.log_log;
@@ -77,7 +81,10 @@ where
             |(a, b, c, d), (x, y)| (a.min(*x), b.max(*x), c.min(*y), d.max(*y)),
         );
         let (x_range, y_range) = if log {
-            (x_min.floor()..x_max.ceil().max(0.0), y_min.floor()..(y_max + 0.3).ceil())
+            (
+                x_min.floor()..x_max.ceil().max(0.0),
+                (y_min.floor() - 1.0)..(y_max + 0.3).ceil(),
+            )
         } else {
             (0.0..x_max * 1.04, 0.0..y_max * 1.06)
         };
@@ -87,8 +94,16 @@ where
             .x_label_area_size(44)
             .y_label_area_size(64)
             .build_cartesian_2d(x_range.clone(), y_range.clone())?;
-        let x_ticks = if log { (x_range.end - x_range.start) as usize + 1 } else { 11 };
-        let y_ticks = if log { (y_range.end - y_range.start) as usize + 1 } else { 11 };
+        let x_ticks = if log {
+            (x_range.end - x_range.start) as usize + 1
+        } else {
+            11
+        };
+        let y_ticks = if log {
+            (y_range.end - y_range.start) as usize + 1
+        } else {
+            11
+        };
         chart
             .configure_mesh()
             .x_labels(x_ticks)
@@ -96,7 +111,7 @@ where
             .x_label_formatter(&|v| tick(*v, log))
             .y_label_formatter(&|v| tick(*v, log))
             .x_desc(figure.x_label)
-            .y_desc("Ŵ = W/(C λ f² P0^(β+2))")
+            .y_desc("Ŵ = W/(C λ f² P0^(β+2)),  β = −1")
             .axis_desc_style(("sans-serif", 16))
             .draw()?;
         for (index, curve) in panel.curves.iter().enumerate() {
@@ -152,7 +167,11 @@ where
 /// A dashed reference line of the small-amplitude slope (3 for fixed ratios, 2 for
 /// fixed P̂1), a decade below the lowest curve's first sample.
 fn draw_slope_guide<DB: DrawingBackend>(
-    chart: &mut ChartContext<'_, DB, Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>>,
+    chart: &mut ChartContext<
+        '_,
+        DB,
+        Cartesian2d<plotters::coord::types::RangedCoordf64, plotters::coord::types::RangedCoordf64>,
+    >,
     panel: &super::Panel,
     number: u32,
 ) -> Result<(), Box<dyn std::error::Error>>

@@ -236,9 +236,7 @@ pub fn limit_slope(start: f64, at: &dyn Fn(f64) -> Point) -> Result<LimitSlope, 
 pub fn fitted_log_slope(points: &[(f64, f64)]) -> f64 {
     let logs: Vec<(f64, f64)> = points.iter().map(|(x, y)| (x.ln(), y.ln())).collect();
     let n = logs.len() as f64;
-    let (mean_x, mean_y) = logs
-        .iter()
-        .fold((0.0, 0.0), |(a, b), (x, y)| (a + x / n, b + y / n));
+    let (mean_x, mean_y) = logs.iter().fold((0.0, 0.0), |(a, b), (x, y)| (a + x / n, b + y / n));
     let (covariance, variance) = logs.iter().fold((0.0, 0.0), |(c, v), (x, y)| {
         (c + (x - mean_x) * (y - mean_y), v + (x - mean_x) * (x - mean_x))
     });

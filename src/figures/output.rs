@@ -88,8 +88,14 @@ fn check_directory(directory: &Path) -> Result<(), FiguresError> {
 
 /// A hidden sibling of `path` with the same extension (the PNG encoder reads the format from it).
 fn temporary_name(path: &Path) -> PathBuf {
-    let name = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
-    let extension = path.extension().map(|e| e.to_string_lossy().into_owned()).unwrap_or_default();
+    let name = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let extension = path
+        .extension()
+        .map(|e| e.to_string_lossy().into_owned())
+        .unwrap_or_default();
     path.with_file_name(format!(".{name}.{}.tmp.{extension}", std::process::id()))
 }
 
@@ -126,7 +132,9 @@ pub fn figure_csv(figure: &Figure) -> Result<Vec<u8>, FiguresError> {
         "precision_bits",
         "gross_slip_limit",
     ];
-    writer.write_record(header).map_err(|e| write_error(Path::new(&path), e))?;
+    writer
+        .write_record(header)
+        .map_err(|e| write_error(Path::new(&path), e))?;
     for panel in &figure.panels {
         for curve in &panel.curves {
             let last = curve.samples.len().saturating_sub(1);
@@ -151,7 +159,9 @@ pub fn figure_csv(figure: &Figure) -> Result<Vec<u8>, FiguresError> {
                     bits.to_string(),
                     limit,
                 ];
-                writer.write_record(&record).map_err(|e| write_error(Path::new(&path), e))?;
+                writer
+                    .write_record(&record)
+                    .map_err(|e| write_error(Path::new(&path), e))?;
             }
         }
     }
@@ -163,7 +173,15 @@ fn limit_slopes_csv(facts: &Facts) -> Result<Vec<u8>, FiguresError> {
     let path = Path::new("limit_slopes.csv");
     let mut writer = csv::Writer::from_writer(Vec::new());
     writer
-        .write_record(["figure", "phi_over_pi", "curve", "Q1_hat", "local_slope", "precision_bits", "settled"])
+        .write_record([
+            "figure",
+            "phi_over_pi",
+            "curve",
+            "Q1_hat",
+            "local_slope",
+            "precision_bits",
+            "settled",
+        ])
         .map_err(|e| write_error(path, e))?;
     let mut sequences: Vec<(&str, f64, &BTreeMap<String, LimitSlope>)> = vec![
         ("6 (P1_hat/Q1_hat)", 0.0, &facts.fig6_small_amplitude_slope),
@@ -204,7 +222,11 @@ pub fn facts_json(facts: &Facts) -> Value {
         Value::Object(map.iter().map(|(k, v)| (k.clone(), json!(v))).collect::<Map<_, _>>())
     };
     let slopes = |map: &BTreeMap<String, LimitSlope>| -> Value {
-        Value::Object(map.iter().map(|(k, v)| (k.clone(), json!(v.slope))).collect::<Map<_, _>>())
+        Value::Object(
+            map.iter()
+                .map(|(k, v)| (k.clone(), json!(v.slope)))
+                .collect::<Map<_, _>>(),
+        )
     };
     let gains = Value::Object(
         facts
@@ -220,7 +242,11 @@ pub fn facts_json(facts: &Facts) -> Value {
         "fig6_small_amplitude_slope": slopes(&facts.fig6_small_amplitude_slope),
         "fig7_small_amplitude_slope": slopes(&facts.fig7_small_amplitude_slope),
     });
-    for ((phase, limit), range) in FIG8_PHASES.iter().zip(&facts.fig8_limit_slope).zip(&facts.fig8_range_slope) {
+    for ((phase, limit), range) in FIG8_PHASES
+        .iter()
+        .zip(&facts.fig8_limit_slope)
+        .zip(&facts.fig8_range_slope)
+    {
         let suffix = if *phase == 0.5 {
             String::new()
         } else {

@@ -5,8 +5,8 @@ use std::collections::BTreeMap;
 use rayon::prelude::*;
 
 use super::evaluate::{
-    fitted_log_slope, gross_slip_amplitude, gross_slip_amplitude_at_ratio, limit_slope, log_spaced, resolved,
-    Formula, LimitSlope, Point, SlopeError,
+    fitted_log_slope, gross_slip_amplitude, gross_slip_amplitude_at_ratio, limit_slope, log_spaced, resolved, Formula,
+    LimitSlope, Point, SlopeError,
 };
 use super::{Curve, Figure, Panel, Progress, Style};
 use crate::dissipation::DissipationError;
@@ -168,7 +168,16 @@ pub fn compute(progress: &Progress) -> Result<Figures, SweepError> {
 /// closed form (line), up to gross slip at Q̂1 = 1.
 fn figure4(progress: &Progress) -> Result<(Figure, f64), SweepError> {
     // The phase is immaterial at P1 = 0; π/2 keeps the integrator away from the in-phase degeneracy.
-    let at = |q: f64| (q, Point { normal: 0.0, tangential: q, phase_over_pi: 0.5 });
+    let at = |q: f64| {
+        (
+            q,
+            Point {
+                normal: 0.0,
+                tangential: q,
+                phase_over_pi: 0.5,
+            },
+        )
+    };
     let points: Vec<_> = FIG4_POINTS.iter().map(|&q| at(q)).collect();
     let integrated = sweep(4, &points, Formula::FourSegment, progress)?;
     let closed = sweep(4, &points, Formula::ConstantNormalLoad, progress)?;
@@ -184,13 +193,13 @@ fn figure4(progress: &Progress) -> Result<(Figure, f64), SweepError> {
     let line = sweep(4, &line_points, Formula::ConstantNormalLoad, progress)?;
     let figure = Figure {
         number: 4,
-        x_label: "Q̂1 = Q1/(f P0)",
+        x_label: "Q1/(f P0)",
         x_column: "Q1_hat",
         curve_column: "method",
         log_log: false,
         panels: vec![Panel {
             name: "P1_hat=0".into(),
-            caption: "Fig. 4: constant normal load, P̂1 = 0".into(),
+            caption: "Fig. 4: constant normal load, P1 = 0".into(),
             curves: vec![
                 Curve {
                     key: "closed form".into(),
@@ -209,7 +218,7 @@ fn figure4(progress: &Progress) -> Result<(Figure, f64), SweepError> {
             ],
         }],
         notes: vec![format!(
-            "gross slip at Q̂1 = 1; worst relative difference points/line {max_rel_diff:.1e}"
+            "gross slip at Q1 = f P0; worst relative difference of the points from the line {max_rel_diff:.1e}"
         )],
     };
     Ok((figure, max_rel_diff))
@@ -251,7 +260,11 @@ fn figure5(progress: &Progress) -> Result<Fig5Facts, SweepError> {
     let mut gains = BTreeMap::new();
     for key in FIG5_AMPLITUDES {
         let q = parse(key);
-        let at = |phase: f64| Point { normal: FIG5_NORMAL, tangential: q, phase_over_pi: phase };
+        let at = |phase: f64| Point {
+            normal: FIG5_NORMAL,
+            tangential: q,
+            phase_over_pi: phase,
+        };
         // Gross slip where √(Q̂1² + P̂1² + 2P̂1Q̂1|cos φ|) ≥ 1, i.e. |cos φ| ≥ (1 − Q̂1² − P̂1²)/(2P̂1Q̂1).
         let bound = (1.0 - q * q - FIG5_NORMAL * FIG5_NORMAL) / (2.0 * FIG5_NORMAL * q);
         // (Rounding of the bound must not hide a limit that lies exactly at φ = 0, as Q̂1 = 0.6's does.)
@@ -281,7 +294,7 @@ fn figure5(progress: &Progress) -> Result<Fig5Facts, SweepError> {
         gains.insert(key.to_string(), gain);
         curves.push(Curve {
             key: key.to_string(),
-            label: format!("Q̂1 = {key}"),
+            label: format!("Q1/(f P0) = {key}"),
             style: Style::Line,
             samples,
             gross_slip_at,
@@ -295,10 +308,10 @@ fn figure5(progress: &Progress) -> Result<Fig5Facts, SweepError> {
         log_log: false,
         panels: vec![Panel {
             name: "P1_hat=0.4".into(),
-            caption: "Fig. 5: effect of the phase, P̂1 = 0.4".into(),
+            caption: "Fig. 5: effect of the phase, P1/P0 = 0.4".into(),
             curves,
         }],
-        notes: vec!["Ŵ(0) = 0 for Q̂1 ≤ P̂1; Q̂1 = 0.6 reaches gross slip at φ = 0 and π".into()],
+        notes: vec!["Ŵ = 0 at φ = 0 and π for Q1 ≤ f P1; Q1/(f P0) = 0.6 reaches gross slip at φ = 0 and π (Ŵ grows like ln(1/φ) there)".into()],
     };
     Ok((figure, located, gains))
 }
@@ -337,14 +350,18 @@ fn ratio_figure(
     let mut slopes = BTreeMap::new();
     for key in ratios {
         let ratio = parse(key);
-        let at = move |q: f64| Point { normal: ratio * q, tangential: q, phase_over_pi };
+        let at = move |q: f64| Point {
+            normal: ratio * q,
+            tangential: q,
+            phase_over_pi,
+        };
         let limit = gross_slip_amplitude_at_ratio(ratio, phase_over_pi);
         let samples = amplitude_curve(number, RATIO_FIGURES_LOW, limit, &at, progress)?;
         slopes.insert(key.to_string(), slope_of(number, key, &at)?);
         progress.step();
         curves.push(Curve {
             key: key.to_string(),
-            label: format!("P̂1/Q̂1 = {key}"),
+            label: format!("f P1/Q1 = {key}"),
             style: Style::Line,
             samples,
             gross_slip_at: vec![limit],
@@ -353,14 +370,14 @@ fn ratio_figure(
     let (caption, notes) = if phase_over_pi == 0.0 {
         (
             "Fig. 6: in-phase loading, φ = 0 (closed form)",
-            vec!["Ŵ = 0 for P̂1/Q̂1 ≥ 1 (not drawn)".to_string()],
+            vec!["Ŵ = 0 for f P1/Q1 ≥ 1 (not drawn): the load line stays inside the friction cone".to_string()],
         )
     } else {
         ("Fig. 7: out-of-phase loading, φ = π/2", vec![])
     };
     let figure = Figure {
         number,
-        x_label: "Q̂1 = Q1/(f P0)",
+        x_label: "Q1/(f P0)",
         x_column: "Q1_hat",
         curve_column: "P1_hat_over_Q1_hat",
         log_log: true,
@@ -385,7 +402,11 @@ fn figure8(progress: &Progress) -> Result<Fig8Facts, SweepError> {
         let (mut limit_slopes, mut range_slopes) = (BTreeMap::new(), BTreeMap::new());
         for key in FIG8_NORMALS {
             let normal = parse(key);
-            let at = move |q: f64| Point { normal, tangential: q, phase_over_pi };
+            let at = move |q: f64| Point {
+                normal,
+                tangential: q,
+                phase_over_pi,
+            };
             let limit = gross_slip_amplitude(normal, phase_over_pi);
             let samples = amplitude_curve(8, FIG8_LOW, limit, &at, progress)?;
             limit_slopes.insert(key.to_string(), slope_of(8, key, &at)?);
@@ -400,7 +421,7 @@ fn figure8(progress: &Progress) -> Result<Fig8Facts, SweepError> {
             progress.step();
             curves.push(Curve {
                 key: key.to_string(),
-                label: format!("P̂1 = {key}"),
+                label: format!("P1/P0 = {key}"),
                 style: Style::Line,
                 samples,
                 gross_slip_at: vec![limit],
@@ -408,7 +429,7 @@ fn figure8(progress: &Progress) -> Result<Fig8Facts, SweepError> {
         }
         panels.push(Panel {
             name: format!("phi={phase_over_pi}pi"),
-            caption: format!("Fig. 8: fixed P̂1, φ = {phase_over_pi}π"),
+            caption: format!("Fig. 8: fixed P1/P0, φ = {phase_over_pi}π"),
             curves,
         });
         limits.push(limit_slopes);
@@ -416,13 +437,13 @@ fn figure8(progress: &Progress) -> Result<Fig8Facts, SweepError> {
     }
     let figure = Figure {
         number: 8,
-        x_label: "Q̂1 = Q1/(f P0)",
+        x_label: "Q1/(f P0)",
         x_column: "Q1_hat",
         curve_column: "P1_hat",
         log_log: true,
         panels,
         notes: vec![format!(
-            "dotted: slope 2 (the limit Q̂1 → 0); fitted slopes over Q̂1 ∈ [{}, {}]",
+            "dashed: slope 2, the limit as Q1 → 0 at fixed P1; facts.json fits the slope over Q1/(f P0) ∈ [{}, {}]",
             FIG8_RANGE.0, FIG8_RANGE.1
         )],
     };

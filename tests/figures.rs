@@ -1,0 +1,342 @@
+//! The paper's Figures 4–8 (issue 15): the facts each figure is read for, checked on the
+//! computed values, and the `microslip figures` command (proofs/figures.md).
+
+use std::process::Command;
+use std::sync::OnceLock;
+
+use microslip::cycle::{CycleError, LoadCycle};
+use microslip::figures::evaluate::{
+    fitted_log_slope, gross_slip_amplitude, gross_slip_amplitude_at_ratio, limit_slope, local_slope, resolved, Formula,
+    Point,
+};
+use microslip::figures::{compute, Figures, Progress};
+use microslip::real::{Precision, Real};
+use microslip::verify::small_amplitude::coefficient;
+use rug::Float;
+
+/// The figures, computed once for all the tests of this file.
+fn figures() -> &'static Figures {
+    static FIGURES: OnceLock<Figures> = OnceLock::new();
+    FIGURES.get_or_init(|| compute(&Progress::new(0, &|_, _| {})).expect("the figures compute"))
+}
+
+fn w_hat(normal: f64, tangential: f64, phase_over_pi: f64) -> f64 {
+    resolved(
+        Point {
+            normal,
+            tangential,
+            phase_over_pi,
+        },
+        Formula::Chosen,
+    )
+    .expect("a point inside the theory")
+    .w_hat
+}
+
+#[test]
+fn fig4_four_segment_points_agree_with_the_constant_normal_load_closed_form() {
+    let facts = &figures().facts;
+    assert!(facts.fig4_max_rel_diff < 1e-12, "{}", facts.fig4_max_rel_diff);
+    // Recomputed here, also where the loop is about to slip (Q̂1 = 0.999).
+    for q in [0.05, 0.5, 0.9, 0.999] {
+        let at = Point {
+            normal: 0.0,
+            tangential: q,
+            phase_over_pi: 0.5,
+        };
+        let integrated = resolved(at, Formula::FourSegment).unwrap().w_hat;
+        let closed = resolved(at, Formula::ConstantNormalLoad).unwrap().w_hat;
+        assert!(
+            ((integrated - closed) / closed).abs() < 1e-12,
+            "Q̂1 = {q}: {integrated} vs {closed}"
+        );
+    }
+    // The closed form for v' = 1/P: 4[(2 − q) ln(1/(1 − q)) − 2q], which grows without bound at gross slip.
+    for q in [0.2_f64, 0.9, 0.999] {
+        let exact = 4.0 * ((2.0 - q) * (-(-q).ln_1p()) - 2.0 * q);
+        let closed = resolved(
+            Point {
+                normal: 0.0,
+                tangential: q,
+                phase_over_pi: 0.5,
+            },
+            Formula::ConstantNormalLoad,
+        )
+        .unwrap()
+        .w_hat;
+        assert!(
+            ((closed - exact) / exact).abs() < 1e-11,
+            "Q̂1 = {q}: {closed} vs {exact}"
+        );
+    }
+}
+
+#[test]
+fn fig5_every_maximum_lies_near_0_4_pi_and_out_of_phase_loading_dissipates_more() {
+    let facts = &figures().facts;
+    for (key, expected) in [
+        ("0.2", 0.423),
+        ("0.3", 0.399),
+        ("0.4", 0.390),
+        ("0.5", 0.392),
+        ("0.6", 0.400),
+    ] {
+        let located = facts.fig5_phi_max_over_pi[key];
+        assert!((located - expected).abs() <= 0.002, "Q̂1 = {key}: maximum at {located}π");
+        // A maximum: larger than its neighbours 0.002 away on either side.
+        let q: f64 = key.parse().unwrap();
+        let peak = w_hat(0.4, q, located);
+        assert!(
+            peak > w_hat(0.4, q, located - 0.002) && peak > w_hat(0.4, q, located + 0.002),
+            "{key}"
+        );
+        // The paper: the dissipation increases with φ to a maximum near π/2.
+        assert!(
+            w_hat(0.4, q, 0.1) < w_hat(0.4, q, 0.3) && w_hat(0.4, q, 0.3) < peak,
+            "{key}"
+        );
+    }
+    // In phase Ŵ = 0 for Q̂1 ≤ P̂1, and Q̂1 = 0.6 reaches gross slip there: the gain is unbounded.
+    for key in ["0.2", "0.3", "0.4", "0.6"] {
+        assert_eq!(facts.fig5_out_of_phase_gain[key], None, "{key}");
+    }
+    let gain = facts.fig5_out_of_phase_gain["0.5"].unwrap();
+    assert!(
+        (gain - w_hat(0.4, 0.5, 0.392) / w_hat(0.4, 0.5, 0.0)).abs() < 1e-3 * gain,
+        "{gain}"
+    );
+    assert!(gain > 6.0 && gain < 7.0, "{gain}");
+}
+
+#[test]
+fn fig6_and_fig7_small_amplitude_slopes_are_cubic_for_every_ratio() {
+    let facts = &figures().facts;
+    assert_eq!(facts.fig6_small_amplitude_slope.len(), 5);
+    assert_eq!(facts.fig7_small_amplitude_slope.len(), 8);
+    for (ratio, limit) in facts
+        .fig6_small_amplitude_slope
+        .iter()
+        .chain(&facts.fig7_small_amplitude_slope)
+    {
+        assert_eq!(limit.slope, 3.0, "ratio {ratio}: {limit:?}");
+        let last = limit.samples.last().unwrap();
+        assert!((last.slope - 3.0).abs() < 5e-4, "ratio {ratio}: {last:?}");
+    }
+    // Out of phase dissipates more than in phase at the same amplitudes (Fig. 7 against Fig. 6).
+    for ratio in [0.25, 0.5, 0.75, 0.9] {
+        for q in [1e-3, 0.1, 0.5] {
+            assert!(
+                w_hat(ratio * q, q, 0.5) > w_hat(ratio * q, q, 0.0),
+                "ratio {ratio}, Q̂1 = {q}"
+            );
+        }
+    }
+    // In phase nothing slips once fP1 ≥ Q1.
+    assert_eq!(w_hat(0.1, 0.1, 0.0), 0.0);
+    assert_eq!(w_hat(0.15, 0.1, 0.0), 0.0);
+}
+
+#[test]
+fn fig8_limit_slope_is_two_at_every_phase_not_2_2() {
+    let facts = &figures().facts;
+    assert_eq!(facts.fig8_limit_slope.len(), 2);
+    for map in &facts.fig8_limit_slope {
+        assert_eq!(map.len(), 3);
+        for (normal, limit) in map {
+            assert_eq!(limit.slope, 2.0, "P̂1 = {normal}: {limit:?}");
+            assert!(
+                limit.settled_at <= 1e-4,
+                "P̂1 = {normal}: settled at {}",
+                limit.settled_at
+            );
+        }
+    }
+    // The slope fitted over Q̂1 ∈ [0.01, 0.1] is near 2 too, not 2.2.
+    for map in &facts.fig8_range_slope {
+        for (normal, slope) in map {
+            assert!(*slope > 1.85 && *slope < 2.1, "P̂1 = {normal}: {slope}");
+        }
+    }
+    // Other phases: the same limit (the paper found no slope below 2.2 for any phase).
+    for phase in [0.1, 0.25, 0.75, 0.9] {
+        let at = move |q: f64| Point {
+            normal: 0.1,
+            tangential: q,
+            phase_over_pi: phase,
+        };
+        assert_eq!(limit_slope(0.1, &at).unwrap().slope, 2.0, "φ = {phase}π");
+    }
+    // And in the crossover the local slope dips below 2 (P̂1 = 0.05, φ = π/2).
+    let at = |q: f64| Point {
+        normal: 0.05,
+        tangential: q,
+        phase_over_pi: 0.5,
+    };
+    let (dip, _) = local_slope(0.0366, &at).unwrap();
+    assert!(dip < 1.83 && dip > 1.81, "{dip}");
+}
+
+#[test]
+fn fig8_limit_is_the_rho_squared_term_of_the_small_amplitude_coefficient() {
+    // I(ρ, φ)/ρ² → −(8/3) sin²φ as ρ → 0, with relative correction ρ cos φ: W ∝ P1 Q1².
+    let bits = Precision::bits(200);
+    for phase in [0.1, 0.25, 0.4, 0.5, 0.75] {
+        let pi_phase = Float::with_val(200, phase) * Float::pi(bits);
+        let sin2 = Real::sin(&pi_phase).square().to_f64();
+        for rho in [1e-3, 1e-5] {
+            let r = Float::with_val(200, rho);
+            let i = coefficient(&r, &pi_phase).unwrap().to_f64() / (rho * rho);
+            let leading = -8.0 / 3.0 * sin2;
+            let correction = 1.0 + rho * (std::f64::consts::PI * phase).cos();
+            assert!(
+                (i / (leading * correction) - 1.0).abs() < 2.0 * rho * rho,
+                "φ = {phase}π, ρ = {rho}: I/ρ² = {i}"
+            );
+        }
+    }
+    // For Persson's compliance (v''(P0) = −1/P0²): Ŵ ≈ (8/3) P̂1 Q̂1² sin²φ when Q̂1 ≪ P̂1 ≪ 1.
+    let (p1, q1) = (1e-3, 1e-7);
+    let ratio = w_hat(p1, q1, 0.5) / (8.0 / 3.0 * p1 * q1 * q1);
+    assert!((ratio - 1.0).abs() < 5e-3, "{ratio}");
+}
+
+#[test]
+fn gross_slip_limits_are_where_the_cycle_validation_starts_refusing() {
+    let cycle = |normal: f64, tangential: f64, phase_over_pi: f64| LoadCycle {
+        mean_normal_load: 1.0,
+        normal_amplitude: normal,
+        mean_tangential_load: 0.0,
+        tangential_amplitude: tangential,
+        phase: phase_over_pi * std::f64::consts::PI,
+        friction: 1.0,
+        compliance_ratio: 1.0,
+    };
+    for (normal, phase) in [(0.0, 0.5), (0.05, 0.5), (0.2, 0.4), (0.4, 0.1), (0.3, 0.0), (0.5, 0.8)] {
+        let limit = gross_slip_amplitude(normal, phase);
+        assert!(
+            cycle(normal, limit * (1.0 - 1e-9), phase).validate().is_ok(),
+            "{normal} {phase}"
+        );
+        assert!(matches!(
+            cycle(normal, limit * (1.0 + 1e-9), phase).validate(),
+            Err(CycleError::GrossSlip { .. })
+        ));
+    }
+    for (ratio, phase) in [(0.0, 0.0), (0.9, 0.0), (2.0, 0.5), (0.75, 0.4)] {
+        let limit = gross_slip_amplitude_at_ratio(ratio, phase);
+        let below = limit * (1.0 - 1e-9);
+        let above = limit * (1.0 + 1e-9);
+        assert!(cycle(ratio * below, below, phase).validate().is_ok(), "{ratio} {phase}");
+        assert!(matches!(
+            cycle(ratio * above, above, phase).validate(),
+            Err(CycleError::GrossSlip { .. })
+        ));
+    }
+    // Every curve stops just inside its limit.
+    for figure in &figures().figures {
+        for panel in &figure.panels {
+            for curve in &panel.curves {
+                for limit in &curve.gross_slip_at {
+                    let nearest = curve
+                        .samples
+                        .iter()
+                        .map(|(x, _, _)| (x - limit).abs())
+                        .fold(f64::INFINITY, f64::min);
+                    assert!(
+                        nearest <= 1.01e-3 * limit.max(1.0),
+                        "Fig. {}: {}",
+                        figure.number,
+                        curve.key
+                    );
+                }
+            }
+        }
+    }
+}
+
+#[test]
+fn slope_helpers_recover_known_powers() {
+    let points: Vec<(f64, f64)> = [0.01, 0.03, 0.1, 0.3]
+        .iter()
+        .map(|x: &f64| (*x, 5.0 * x.powf(2.5)))
+        .collect();
+    assert!((fitted_log_slope(&points) - 2.5).abs() < 1e-12);
+    // Constant normal load: Ŵ = (2/3) Q̂1³ (1 + Q̂1 + …), so the local slope is 3 + Q̂1 + O(Q̂1²).
+    let at = |q: f64| Point {
+        normal: 0.0,
+        tangential: q,
+        phase_over_pi: 0.5,
+    };
+    let (slope, bits) = local_slope(1e-3, &at).unwrap();
+    assert!((slope - 3.001).abs() < 1e-5, "{slope}");
+    assert_eq!(bits, 53);
+}
+
+#[test]
+fn figures_command_writes_every_file_atomically_with_numeric_facts() {
+    let dir = std::env::temp_dir().join(format!("microslip-figures-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    let output = Command::new(env!("CARGO_BIN_EXE_microslip"))
+        .args(["figures", "--out"])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let mut names: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    let mut expected = vec!["facts.json".to_string(), "limit_slopes.csv".to_string()];
+    for n in 4..=8 {
+        for ext in ["csv", "png", "svg"] {
+            expected.push(format!("fig{n}.{ext}"));
+        }
+    }
+    expected.sort();
+    assert_eq!(names, expected, "no temporary file is left behind");
+    let facts: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("facts.json")).unwrap()).unwrap();
+    assert!(facts["fig4_max_rel_diff"].as_f64().unwrap() < 1e-12);
+    for key in ["0.2", "0.3", "0.4", "0.5", "0.6"] {
+        assert!(facts["fig5_phi_max_over_pi"][key].is_f64(), "{key}");
+    }
+    assert!(facts["fig5_out_of_phase_gain"]["0.5"].is_f64());
+    assert!(facts["fig5_out_of_phase_gain"]["0.2"].is_null());
+    for key in ["0", "0.25", "0.5", "0.75", "0.9"] {
+        assert_eq!(facts["fig6_small_amplitude_slope"][key].as_f64(), Some(3.0), "{key}");
+    }
+    for key in ["1", "1.5", "2"] {
+        assert_eq!(facts["fig7_small_amplitude_slope"][key].as_f64(), Some(3.0), "{key}");
+    }
+    for suffix in ["", "_phi_0.4pi"] {
+        for key in ["0.05", "0.1", "0.2"] {
+            assert_eq!(facts[format!("fig8_limit_slope{suffix}")][key].as_f64(), Some(2.0));
+            assert!(facts[format!("fig8_range_slope{suffix}")][key].is_f64());
+        }
+    }
+    // A CSV row per sample, with the gross-slip end marked.
+    let fig7 = std::fs::read_to_string(dir.join("fig7.csv")).unwrap();
+    assert!(fig7.starts_with("panel,P1_hat_over_Q1_hat,Q1_hat,W_hat,precision_bits,gross_slip_limit\n"));
+    assert_eq!(fig7.lines().filter(|l| !l.ends_with(',')).count(), 1 + 8, "{fig7}");
+    let png = std::fs::read(dir.join("fig8.png")).unwrap();
+    assert_eq!(&png[1..4], b"PNG");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+#[test]
+fn figures_command_refuses_an_unusable_directory_before_computing() {
+    let file = std::env::temp_dir().join(format!("microslip-figures-file-{}", std::process::id()));
+    std::fs::write(&file, b"not a directory").unwrap();
+    let output = Command::new(env!("CARGO_BIN_EXE_microslip"))
+        .args(["figures", "--out"])
+        .arg(&file)
+        .output()
+        .unwrap();
+    std::fs::remove_file(&file).unwrap();
+    assert_eq!(output.status.code(), Some(2));
+    assert!(output.stdout.is_empty());
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(stderr.contains("cannot write to the output directory"), "{stderr}");
+}
