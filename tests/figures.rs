@@ -194,10 +194,11 @@ fn fig8_limit_is_the_rho_squared_term_of_the_small_amplitude_coefficient() {
             );
         }
     }
-    // For Persson's compliance (v''(P0) = −1/P0²): Ŵ ≈ (8/3) P̂1 Q̂1² sin²φ when Q̂1 ≪ P̂1 ≪ 1.
+    // For Persson's compliance (v''(P0) = −1/P0²): Ŵ ≈ (8/3) P̂1 Q̂1² sin²φ when Q̂1 ≪ P̂1 ≪ 1
+    // (measured 1.000001 times it here; the correction grows like P̂1²).
     let (p1, q1) = (1e-3, 1e-7);
     let ratio = w_hat(p1, q1, 0.5) / (8.0 / 3.0 * p1 * q1 * q1);
-    assert!((ratio - 1.0).abs() < 5e-3, "{ratio}");
+    assert!((ratio - 1.0).abs() < 1e-5, "{ratio}");
 }
 
 #[test]

@@ -30,8 +30,8 @@ pub const FIG8_LOW: f64 = 1e-4;
 /// The range of Q̂1 over which `fig8_range_slope` fits a line: the initial straight
 /// portion of a figure drawn from Q̂1 = 0.01, as the paper's log–log figures are.
 pub const FIG8_RANGE: (f64, f64) = (0.01, 0.1);
-/// Where a curve's last sample lies, relative to the gross-slip limit: W grows like
-/// ln(1/P_T) towards it, so the last sample is 10⁻³ inside.
+/// Where a curve's last sample lies, relative to the gross-slip limit (10⁻³ inside): where
+/// the permanent-stick load P_T tends to 0 there (P1 = 0, or φ = π/2), W grows like ln(1/P_T).
 const GROSS_SLIP_MARGIN: f64 = 1e-3;
 /// The Q̂1 from which every limit-slope sequence starts.
 const LIMIT_START: f64 = 0.1;
@@ -311,7 +311,7 @@ fn figure5(progress: &Progress) -> Result<Fig5Facts, SweepError> {
             caption: "Fig. 5: effect of the phase, P1/P0 = 0.4".into(),
             curves,
         }],
-        notes: vec!["Ŵ = 0 at φ = 0 and π for Q1 ≤ f P1; Q1/(f P0) = 0.6 reaches gross slip at φ = 0 and π (Ŵ grows like ln(1/φ) there)".into()],
+        notes: vec!["Ŵ = 0 at φ = 0 and π for Q1 ≤ f P1; Q1/(f P0) = 0.6 touches gross slip at φ = 0 and π (the curve ends there)".into()],
     };
     Ok((figure, located, gains))
 }
