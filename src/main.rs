@@ -481,7 +481,7 @@ fn run_table() -> Result<String, Failure> {
 
 fn run_figures(args: &FiguresArgs) -> Result<String, Failure> {
     let bar = indicatif::ProgressBar::new(0).with_style(
-        indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} points  {elapsed}")
+        indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} steps  {elapsed}")
             .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
     );
     let summary = microslip::figures::regenerate(&args.out, &|done, total| {
