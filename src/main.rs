@@ -492,10 +492,11 @@ fn run_figures(args: &FiguresArgs) -> Result<String, Failure> {
     let summary = summary?;
     let facts = microslip::figures::output::facts_json(&summary.figures.facts);
     Ok(format!(
-        "{} files written to {}\n{}",
+        "{} files written to {}\n{}\n{}",
         summary.files.len(),
         args.out.display(),
-        serde_json::to_string_pretty(&facts)?
+        serde_json::to_string_pretty(&facts)?,
+        summary.figures.facts.settling_report()
     ))
 }
 

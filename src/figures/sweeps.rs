@@ -69,6 +69,35 @@ pub struct Facts {
     pub fig8_range_slope: Vec<BTreeMap<String, f64>>,
 }
 
+impl Facts {
+    /// One line per limit slope: its value and the Q̂1 at which it settled.
+    pub fn settling_report(&self) -> String {
+        let mut sequences: Vec<(String, &BTreeMap<String, LimitSlope>)> = vec![
+            (
+                "fig6_small_amplitude_slope, P̂1/Q̂1 =".into(),
+                &self.fig6_small_amplitude_slope,
+            ),
+            (
+                "fig7_small_amplitude_slope, P̂1/Q̂1 =".into(),
+                &self.fig7_small_amplitude_slope,
+            ),
+        ];
+        for (phase, map) in FIG8_PHASES.iter().zip(&self.fig8_limit_slope) {
+            sequences.push((format!("fig8_limit_slope at φ = {phase}π, P̂1 ="), map));
+        }
+        let mut out = String::new();
+        for (name, map) in sequences {
+            for (key, limit) in map {
+                out.push_str(&format!(
+                    "{name} {key}: {:.3}, settled at Q̂1 = {:.2e}\n",
+                    limit.slope, limit.settled_at
+                ));
+            }
+        }
+        out.trim_end().to_string()
+    }
+}
+
 /// Why the figures could not be computed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SweepError {
