@@ -4,7 +4,9 @@
 use std::process::Command;
 use std::sync::OnceLock;
 
+use microslip::compliance::Polynomial;
 use microslip::cycle::{CycleError, LoadCycle};
+use microslip::dissipation::{dissipation, Options};
 use microslip::figures::evaluate::{
     fitted_log_slope, gross_slip_amplitude, gross_slip_amplitude_at_ratio, limit_slope, local_slope, resolved, Formula,
     Point,
@@ -193,6 +195,38 @@ fn fig8_limit_is_the_rho_squared_term_of_the_small_amplitude_coefficient() {
                 "φ = {phase}π, ρ = {rho}: I/ρ² = {i}"
             );
         }
+    }
+    // The ρ² term comes from the long segments BC and CH: the short slip segments EB and HE,
+    // 2ρ sin φ long in θ, carry a fraction O(ρ) of it.
+    for phase in [0.25, 0.5] {
+        let p = 200;
+        let one = Float::with_val(p, 1);
+        let amplitude = Float::with_val(p, 0.25);
+        let rho = 1e-3;
+        let cycle = LoadCycle {
+            mean_normal_load: one.clone(),
+            normal_amplitude: amplitude.clone(),
+            mean_tangential_load: Float::with_val(p, 0),
+            tangential_amplitude: Float::with_val(p, rho) * &amplitude,
+            phase: Float::with_val(p, phase) * Float::pi(bits),
+            friction: one.clone(),
+            compliance_ratio: one.clone(),
+        };
+        let linear = Polynomial {
+            reference: one.clone(),
+            coefficients: vec![Float::with_val(p, 0), one],
+        };
+        let options = Options {
+            check_compliance: false,
+            ..Options::default()
+        };
+        let segments = dissipation(&cycle, &linear, &options).unwrap().segments;
+        let short = (segments.eb.clone() + &segments.he).to_f64().abs();
+        let total = segments.total().to_f64().abs();
+        assert!(
+            short < 2.0 * rho * total,
+            "φ = {phase}π: EB + HE = {short:e} of {total:e}"
+        );
     }
     // For Persson's compliance (v''(P0) = −1/P0²): Ŵ ≈ (8/3) P̂1 Q̂1² sin²φ when Q̂1 ≪ P̂1 ≪ 1
     // (measured 1.000001 times it here; the correction grows like P̂1²).
