@@ -279,9 +279,14 @@ impl<R: Real> Compliance<R> for Exponential<R> {
         -(self.amplitude.clone() / &self.decay_load * &(-(load.clone() / &self.decay_load)).exp())
     }
     fn slope_change(&self, reference: &R, offset: &R) -> R {
-        self.amplitude.clone()
-            * &(-(reference.clone() / &self.decay_load)).exp()
-            * &(-(offset.clone() / &self.decay_load)).exp_m1()
+        let decay = -(offset.clone() / &self.decay_load);
+        if decay > decay.int(1) {
+            // The two exponentials differ by more than a factor e: no cancellation, and
+            // no e^(−P0/c)·(e^(−x/c) − 1) = 0·∞ where c is tiny against the loads.
+            let at = |load: &R| (-(load.clone() / &self.decay_load)).exp();
+            return self.amplitude.clone() * &(at(&(reference.clone() + offset)) - &at(reference));
+        }
+        self.amplitude.clone() * &(-(reference.clone() / &self.decay_load)).exp() * &decay.exp_m1()
     }
     fn describe(&self) -> String {
         format!(
