@@ -19,8 +19,9 @@ use crate::compliance::Compliance;
 use crate::cycle::LoadCycle;
 use crate::real::Real;
 
-/// Offsets of P0 at which v' is sampled over the loads the cycle reaches (ends included).
-const SAMPLES: i64 = 16;
+/// Intervals into which the loads the cycle reaches are cut to sample v' (ends included):
+/// for an admissible v' (monotone) the largest change is at an end; the rest is for any v'.
+const SAMPLES: i64 = 4;
 
 /// Refuses a case with a magnitude outside the band, or whose change of v' about P0
 /// comes out differently by its own formula and by subtraction.
