@@ -229,4 +229,23 @@ mod tests {
         assert_eq!(w, expected);
         assert!(parse_phase::<f64>("0.3", Precision::DOUBLE).is_ok());
     }
+
+    #[test]
+    fn large_phases_are_reduced_modulo_two_pi_before_rounding() {
+        let exact = |text: &str, bits: u32| {
+            let phase = Float::with_val(2000, Float::parse(text).unwrap());
+            let turn = Float::with_val(2000, Constant::Pi) * 2u32;
+            let turns = (phase.clone() / &turn).round();
+            Float::with_val(bits, phase - turns * turn)
+        };
+        for text in ["12345.678", "999999", "-1e5", "1e50", "123456789.123456789"] {
+            let reduced: f64 = parse_phase(text, Precision::DOUBLE).unwrap();
+            assert_eq!(reduced, exact(text, 53).to_f64(), "{text}");
+            let reduced: Float = parse_phase(text, Precision::bits(300)).unwrap();
+            assert_eq!(reduced, exact(text, 300), "{text}");
+        }
+        // A multiple of π: 1e6·π + 0.3 ≡ 0.3.
+        let reduced: f64 = parse_phase("1e6pi+0.3", Precision::DOUBLE).unwrap();
+        assert_eq!(reduced, 0.3);
+    }
 }
