@@ -59,8 +59,8 @@ pub enum CycleError {
     /// Poisson's ratio that gives λ outside [1, 2].
     #[error("Poisson's ratio ν = {nu} gives λ outside [1, 2]; ν must lie in [0, 2/3]")]
     PoissonRatioOutOfRange { nu: f64 },
-    /// |φ| too large to reduce modulo π without losing the phase.
-    #[error("the phase φ = {phi:e} rad is too large: |φ| must be below 1e6 rad to be reduced modulo π accurately")]
+    /// |φ| beyond [`MAX_PHASE`]: reducing it exactly costs working bits in proportion to its exponent.
+    #[error("the phase φ = {phi:e} rad is too large: |φ| must be at most 1e100 rad (reducing it modulo 2π exactly needs as many extra bits as its binary exponent)")]
     PhaseTooLarge { phi: f64 },
     /// The ellipse reaches |Q| = fP: periods of gross slip (sliding).
     #[error("gross slip: the load ellipse reaches the line Q = {sign}fP (max({sign_word}Q − fP) = {excess:e} ≥ 0, i.e. {relative:.3e} of fP0 beyond it); the theory needs |Q| < fP throughout the cycle: reduce Q1 or |Q0|, or raise P0")]
@@ -71,6 +71,11 @@ pub enum CycleError {
         relative: f64,
     },
 }
+
+/// The largest |φ| in radians a cycle accepts. Any phase up to it is reduced exactly
+/// (see [`LoadCycle::reduced_phase`]); the bound only keeps the cost of an exact
+/// reduction at high precision, which grows with the exponent of φ, small.
+pub const MAX_PHASE: f64 = 1e100;
 
 /// λ = (2 − ν)/(2(1 − ν)) from Poisson's ratio ν, checked to lie in [1, 2].
 pub fn compliance_ratio_from_poisson<R: Real>(nu: &R) -> Result<R, CycleError> {
@@ -153,7 +158,7 @@ impl<R: Real> LoadCycle<R> {
                 lambda: self.compliance_ratio.to_f64_lossy(),
             });
         }
-        if self.phase.abs() > zero.int(1_000_000) {
+        if self.phase.abs() > R::from_f64(MAX_PHASE, self.phase.precision()) {
             return Err(CycleError::PhaseTooLarge {
                 phi: self.phase.to_f64_lossy(),
             });
@@ -193,10 +198,26 @@ impl<R: Real> LoadCycle<R> {
 
     /// φ reduced to [0, π). The dissipation has period π in φ: φ + π is the same
     /// cycle with Q − Q0 reversed, which is its mirror image in the P axis.
+    ///
+    /// Within two turns of π the phase is reduced modulo π as rounded at the working
+    /// precision, so that a phase read as `pi` is exactly in phase. Beyond, φ − kπ at
+    /// the working precision would lose the bits of kπ below the last of φ (about
+    /// log2|φ| of them), so the angle is recovered from sin φ and cos φ instead, which
+    /// both types evaluate with an exact reduction of the argument.
     pub fn reduced_phase(&self) -> R {
         let pi = self.phase.pi_like();
-        let turns = (self.phase.clone() / &pi).floor();
-        let reduced = self.phase.clone() - &(turns * &pi);
+        let reduced = if self.phase.abs() <= pi.clone() * &pi.int(2) {
+            let turns = (self.phase.clone() / &pi).floor();
+            self.phase.clone() - &(turns * &pi)
+        } else {
+            let (sin, cos) = self.phase.sin_cos();
+            let angle = sin.atan2(&cos);
+            if angle < self.phase.int(0) {
+                angle + &pi
+            } else {
+                angle
+            }
+        };
         // Guard the rounding of the last step: keep the result inside [0, π).
         if reduced < self.phase.int(0) || reduced >= pi {
             self.phase.int(0)
@@ -249,7 +270,7 @@ impl<R: Real> LoadCycle<R> {
         if self.tangential_amplitude == zero {
             return zero;
         }
-        self.friction.clone() * &self.normal_amplitude * &zero.int(16) / &self.tangential_amplitude
+        self.friction.clone() * &(self.normal_amplitude.clone() / &self.tangential_amplitude) * &zero.int(16)
     }
 
     /// The ellipse geometry (for φ reduced to [0, π)); validates the cycle first.
@@ -263,9 +284,12 @@ impl<R: Real> LoadCycle<R> {
         self.mean_normal_load.clone() + &(self.normal_amplitude.clone() * &theta.cos())
     }
 
-    /// Q(θ) for the phase as given (not reduced).
+    /// Q(θ) for the phase as given (not reduced); cos(θ − φ) by the subtraction formula,
+    /// since θ − φ at the working precision loses the low bits of θ when |φ| is large.
     pub fn tangential_load(&self, theta: &R) -> R {
-        self.mean_tangential_load.clone() + &(self.tangential_amplitude.clone() * &(theta.clone() - &self.phase).cos())
+        let ((sin_theta, cos_theta), (sin_phi, cos_phi)) = (theta.sin_cos(), self.phase.sin_cos());
+        let lag_cos = cos_theta * &cos_phi + &(sin_theta * &sin_phi);
+        self.mean_tangential_load.clone() + &(self.tangential_amplitude.clone() * &lag_cos)
     }
 }
 

@@ -2,10 +2,12 @@
 //! precision. The command line and the reference catalogue both describe cases
 //! this way, so that `0.4` means 4/10 at every precision and `0.4pi` means 0.4·π.
 
+use rug::float::Constant;
+use rug::Float;
 use serde::{Deserialize, Serialize};
 
 use crate::compliance::{parse_spec, Compliance, SpecError};
-use crate::cycle::{compliance_ratio_from_poisson, CycleError, LoadCycle};
+use crate::cycle::{compliance_ratio_from_poisson, CycleError, LoadCycle, MAX_PHASE};
 use crate::real::{ParseRealError, Precision, Real};
 
 /// The text of one case. Numbers are decimal strings; `phase` may end in `pi`.
@@ -54,15 +56,68 @@ pub enum InputError {
     /// The compliance SPEC is wrong.
     #[error(transparent)]
     Spec(#[from] SpecError),
-    /// ν is out of range or not finite.
+    /// ν is out of range or not finite, or φ is too large.
     #[error(transparent)]
     Cycle(#[from] CycleError),
+    /// A decimal that f64 cannot hold: it overflows, or underflows to zero or to a
+    /// subnormal (which keeps fewer than 53 bits). Higher precision reads it exactly.
+    #[error("{quantity} = {text} lies outside the range of f64 (normal magnitudes 2.2e-308 to 1.8e308)")]
+    OutsideF64Range { quantity: &'static str, text: String },
 }
+
+/// Whether `value`, read in f64 from the decimal `text`, lost it to the range of f64:
+/// infinite, zero for a non-zero decimal, or subnormal. Always false above 53 bits,
+/// whose exponent range reaches far beyond any decimal given by hand.
+pub(crate) fn outside_f64_range<R: Real>(value: &R, text: &str) -> bool {
+    let precision = value.precision();
+    let text = text.trim();
+    let plain = text
+        .chars()
+        .all(|c| c.is_ascii_digit() || matches!(c, '.' | 'e' | 'E' | '+' | '-'));
+    if precision != Precision::DOUBLE || !plain || !text.chars().any(|c| c.is_ascii_digit()) {
+        return false;
+    }
+    if !value.is_finite() {
+        return true;
+    }
+    let zero = value.int(0);
+    let significand = text.split(['e', 'E']).next().unwrap_or("");
+    let nonzero_text = significand.chars().any(|c| ('1'..='9').contains(&c));
+    let smallest_normal = R::smallest_full_precision(precision) * &R::epsilon(precision);
+    (*value == zero && nonzero_text) || (*value != zero && value.abs() < smallest_normal)
+}
+
+/// Bits carried through a phase reduction beyond the working precision and φ's exponent.
+const PHASE_GUARD_BITS: u32 = 64;
 
 /// Reads a phase: a decimal (radians), a multiple of π (`0.4pi`, `pi`, `-2pi`), or a
 /// multiple of π plus a decimal offset (`pi-1e-6`, `0.5pi+0.01`), each part read
 /// exactly at the precision.
+///
+/// A phase beyond 2π in size is reduced modulo 2π (which changes no cycle) before it
+/// is rounded to the precision: the text is exact, so it is read and reduced in MPFR
+/// with the working bits plus the bits of its exponent plus a guard, and the reduced
+/// angle, in [−π, π], is then rounded once. Reducing after rounding would lose about
+/// log2|φ| bits (3 of 15 digits at φ = 1e4). Phases beyond [`MAX_PHASE`] are returned
+/// unreduced, for the cycle's validation to refuse.
 pub fn parse_phase<R: Real>(text: &str, precision: Precision) -> Result<R, ParseRealError> {
+    let estimate: Float = phase_at(text, Precision::bits(64))?;
+    let full_turn = Float::with_val(64, Constant::Pi) * 2u32;
+    if !estimate.is_finite() || estimate.clone().abs() <= full_turn || estimate.clone().abs() > MAX_PHASE {
+        return phase_at(text, precision);
+    }
+    let exponent = estimate.get_exp().unwrap_or(0).max(0).unsigned_abs();
+    let bits = precision.in_bits() + exponent + PHASE_GUARD_BITS;
+    let phase: Float = phase_at(text, Precision::bits(bits))?;
+    let full_turn = Float::with_val(bits, Constant::Pi) * 2u32;
+    let turns = (phase.clone() / &full_turn).round();
+    let reduced = Float::with_val(precision.in_bits(), phase - turns * full_turn);
+    // Enough digits to read back as the same number at this precision (f64 reads decimals correctly rounded).
+    R::parse_decimal(&reduced.to_string_radix(10, None), precision)
+}
+
+/// The phase as written, at the precision (no reduction).
+fn phase_at<R: Real>(text: &str, precision: Precision) -> Result<R, ParseRealError> {
     let error = || ParseRealError { text: text.to_string() };
     let trimmed = text.trim().replace('π', "pi");
     let Some((multiple, offset)) = trimmed.split_once("pi") else {
@@ -100,7 +155,14 @@ impl CaseText {
     /// the computations validate it and say what is wrong.
     pub fn read<R: Real>(&self, precision: Precision) -> Result<Case<R>, InputError> {
         let number = |flag: &'static str, text: &str| {
-            R::parse_decimal(text, precision).map_err(|source| InputError::Number { flag, source })
+            let value = R::parse_decimal(text, precision).map_err(|source| InputError::Number { flag, source })?;
+            if outside_f64_range(&value, text) {
+                return Err(InputError::OutsideF64Range {
+                    quantity: quantity_of(flag),
+                    text: text.trim().to_string(),
+                });
+            }
+            Ok(value)
         };
         let compliance_ratio = match (&self.lambda, &self.nu) {
             (Some(lambda), None) => number("lambda", lambda)?,
@@ -112,12 +174,36 @@ impl CaseText {
             normal_amplitude: number("p1", &self.p1)?,
             mean_tangential_load: number("q0", &self.q0)?,
             tangential_amplitude: number("q1", &self.q1)?,
-            phase: parse_phase(&self.phi, precision).map_err(|source| InputError::Number { flag: "phi", source })?,
+            phase: self.phase(precision)?,
             friction: number("friction", &self.friction)?,
             compliance_ratio,
         };
         let compliance = parse_spec::<R>(&self.compliance, precision)?;
         Ok(Case { cycle, compliance })
+    }
+
+    /// φ at the precision, reduced modulo 2π where that matters; refused beyond [`MAX_PHASE`].
+    fn phase<R: Real>(&self, precision: Precision) -> Result<R, InputError> {
+        let number = |source| InputError::Number { flag: "phi", source };
+        let estimate: Float = phase_at(&self.phi, Precision::bits(64)).map_err(number)?;
+        if estimate.is_finite() && estimate.clone().abs() > MAX_PHASE {
+            return Err(CycleError::PhaseTooLarge { phi: estimate.to_f64() }.into());
+        }
+        parse_phase(&self.phi, precision).map_err(number)
+    }
+}
+
+/// The name of the quantity a case field gives, as the theory writes it.
+fn quantity_of(flag: &'static str) -> &'static str {
+    match flag {
+        "p0" => "P0",
+        "p1" => "P1",
+        "q0" => "Q0",
+        "q1" => "Q1",
+        "friction" => "the friction coefficient f",
+        "lambda" => "the compliance ratio λ",
+        "nu" => "Poisson's ratio ν",
+        other => other,
     }
 }
 
@@ -142,5 +228,24 @@ mod tests {
         let expected = Float::pi(p) - Float::parse_decimal("1e-6", p).unwrap();
         assert_eq!(w, expected);
         assert!(parse_phase::<f64>("0.3", Precision::DOUBLE).is_ok());
+    }
+
+    #[test]
+    fn large_phases_are_reduced_modulo_two_pi_before_rounding() {
+        let exact = |text: &str, bits: u32| {
+            let phase = Float::with_val(2000, Float::parse(text).unwrap());
+            let turn = Float::with_val(2000, Constant::Pi) * 2u32;
+            let turns = (phase.clone() / &turn).round();
+            Float::with_val(bits, phase - turns * turn)
+        };
+        for text in ["12345.678", "999999", "-1e5", "1e50", "123456789.123456789"] {
+            let reduced: f64 = parse_phase(text, Precision::DOUBLE).unwrap();
+            assert_eq!(reduced, exact(text, 53).to_f64(), "{text}");
+            let reduced: Float = parse_phase(text, Precision::bits(300)).unwrap();
+            assert_eq!(reduced, exact(text, 300), "{text}");
+        }
+        // A multiple of π: 1e6·π + 0.3 ≡ 0.3.
+        let reduced: f64 = parse_phase("1e6pi+0.3", Precision::DOUBLE).unwrap();
+        assert_eq!(reduced, 0.3);
     }
 }

@@ -10,6 +10,8 @@ use std::time::{Duration, Instant};
 
 use rug::Float;
 
+use crate::compliance::Compliance;
+use crate::cycle::LoadCycle;
 use crate::dissipation::{dissipation, Dissipation, DissipationError, Method, Options};
 use crate::inputs::{Case, CaseText, InputError};
 use crate::real::{Precision, Real};
@@ -87,9 +89,40 @@ pub fn printable_dissipation(
     if let Some(digits) = digits {
         return verified(digits, None);
     }
-    let Case { cycle, compliance } = case.read::<f64>(Precision::DOUBLE)?;
+    let Case { cycle, compliance } = match case.read::<f64>(Precision::DOUBLE) {
+        Ok(case) => case,
+        // A number f64 cannot hold (1e-400, c=1e400): MPFR reads the text exactly.
+        Err(error) if case.read::<Float>(Precision::bits(64)).is_ok() => {
+            return verified(15, Some(format!("f64 cannot read the case: {error}")))
+        }
+        Err(error) => return Err(error.into()),
+    };
+    if let Some(reason) = slope_change_differs_from_mpfr(case, &cycle, compliance.as_ref()) {
+        return verified(15, Some(reason));
+    }
     let result = match dissipation(&cycle, compliance.as_ref(), &Options::default()) {
         Ok(result) => result,
+        Err(DissipationError::OutsideRange {
+            quantity,
+            value,
+            low,
+            high,
+            ..
+        }) => {
+            return verified(
+                15,
+                Some(format!(
+                    "{quantity} = {value:.1e} is outside the magnitudes f64 carries through the integrals without overflow or underflow ({low:.0e} to {high:.0e})"
+                )),
+            )
+        }
+        // Out of f64's range in the result, not finite, or a compliance f64 sees as
+        // non-physical (v' underflowing to 0, say): MPFR either computes it or says why not.
+        Err(
+            error @ (DissipationError::OutOfRange { .. }
+            | DissipationError::NotFinite { .. }
+            | DissipationError::Compliance(_)),
+        ) => return verified(15, Some(format!("f64 fails here: {error}"))),
         Err(DissipationError::IllConditioned { cause, expected, .. }) => {
             return verified(
                 15,
@@ -129,6 +162,52 @@ pub fn printable_dissipation(
         error_estimate: Some(result.error_estimate),
         fallback: None,
     })
+}
+
+/// Interior loads of the cycle at which [`slope_change_differs_from_mpfr`] compares.
+const COMPARED_LOADS: i64 = 16;
+
+/// Why the f64 compliance is not to be trusted, if it is not: its change of v' about P0,
+/// the only function of it the integrals see, differs from the same change in MPFR at
+/// loads across the cycle by more than 1e-6 of the largest. That is what an overflow or
+/// underflow inside a compliance formula does (v' = a + b/(P + c) with c = 1e300 makes
+/// every change 0 in f64), and within f64 it may look like a legitimate linear v.
+fn slope_change_differs_from_mpfr(
+    case: &CaseText,
+    cycle: &LoadCycle<f64>,
+    compliance: &dyn Compliance<f64>,
+) -> Option<String> {
+    let precise = case.read::<Float>(Precision::bits(64)).ok()?;
+    let p0 = cycle.mean_normal_load;
+    let low = (p0 - cycle.normal_amplitude).min(cycle.permanent_stick_load());
+    let high = p0 + cycle.normal_amplitude;
+    if !(low.is_finite() && high.is_finite() && low < high) {
+        return None;
+    }
+    let change = compliance.slope_change_about(&p0);
+    let precise_change = precise.compliance.slope_change_about(&precise.cycle.mean_normal_load);
+    // Compared in MPFR: an exact change below f64's range must not round to the f64 zero.
+    let pairs: Vec<(f64, f64, Float)> = (1..COMPARED_LOADS)
+        .map(|k| {
+            let offset = (low - p0) + (high - low) * (k as f64 / COMPARED_LOADS as f64);
+            let exact = precise_change(&Float::with_val(64, offset));
+            (p0 + offset, change(&offset), exact)
+        })
+        .collect();
+    let zero = Float::with_val(64, 0);
+    let largest = pairs
+        .iter()
+        .fold(zero, |acc, (_, _, exact)| acc.max(&exact.clone().abs()));
+    let tolerance = largest / 1_000_000u32;
+    let (load, value, exact) = pairs.into_iter().find(|(_, value, exact)| {
+        // NaN on either side counts as a difference.
+        let difference = (Float::with_val(64, *value) - exact).abs();
+        difference.is_nan() || difference > tolerance
+    })?;
+    Some(format!(
+        "in f64 the compliance gives v'(P) − v'(P0) = {value:.3e} at P = {load:.3e}, in MPFR {}: an intermediate of its formula leaves the range of f64",
+        exact.to_scientific(4)
+    ))
 }
 
 /// Why a verified value could not be produced.

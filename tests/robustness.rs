@@ -215,7 +215,7 @@ fn results_below_the_full_precision_range_are_refused_not_rounded() {
     let compliance = parse_spec::<f64>("power:c=1,beta=-0.01", Precision::DOUBLE).unwrap();
     let error = dissipation(&cycle, compliance.as_ref(), &Options::default()).unwrap_err();
     assert!(
-        matches!(error, microslip::dissipation::DissipationError::OutOfRange { .. }),
+        matches!(error, microslip::dissipation::DissipationError::OutsideRange { .. }),
         "{error}"
     );
     // The same case at 128 bits has no such limit and scales exactly.

@@ -85,8 +85,10 @@ impl<R: Real> Compliance<R> for Persson<R> {
         -(self.gamma.clone() * &self.sigma / &load.square())
     }
     fn slope_change(&self, reference: &R, offset: &R) -> R {
-        // γσ/(x + d) − γσ/x = −γσ·d/(x(x + d)), exact in form.
-        -(self.gamma.clone() * &self.sigma * offset / &(reference.clone() * &(reference.clone() + offset)))
+        // γσ/(x + d) − γσ/x = −γσ·(d/x)/(x + d), exact in form; no product of two loads,
+        // which would overflow f64 for loads above 1e154 (and underflow below 1e-154).
+        let ratio = offset.clone() / reference;
+        -(self.gamma.clone() * &self.sigma * &ratio / &(reference.clone() + offset))
     }
     fn describe(&self) -> String {
         format!(
@@ -110,13 +112,15 @@ pub struct Hertz<R> {
 impl<R: Real> Hertz<R> {
     /// The contact radius a(P) = (3PR/(4E*))^(1/3).
     pub fn contact_radius(&self, load: &R) -> R {
-        (load.int(3) * load * &self.radius / (load.int(4) * &self.contact_modulus)).cbrt()
+        // A product of cube roots: the product P·R of the plain formula leaves f64's range first.
+        load.ratio(3, 4).cbrt() * &load.cbrt() * &self.radius.cbrt() / &self.contact_modulus.cbrt()
     }
 
     /// v'(P) = (2/3)·K·P^(−1/3) with K = (9/(16 R E*²))^(1/3): a power law with β = −1/3.
     pub fn as_power_law(&self) -> PowerLaw<R> {
         let r = &self.radius;
-        let k = (r.int(9) / (r.int(16) * r * &self.contact_modulus.square())).cbrt();
+        // (9/16)^(1/3) / (R^(1/3)·E*^(2/3)): cube roots first, so that R·E*² cannot overflow.
+        let k = r.ratio(9, 16).cbrt() / (r.cbrt() * &self.contact_modulus.cbrt().square());
         PowerLaw {
             coefficient: k * &r.ratio(2, 3),
             exponent: r.ratio(-1, 3),
@@ -126,8 +130,7 @@ impl<R: Real> Hertz<R> {
 
 impl<R: Real> Compliance<R> for Hertz<R> {
     fn approach(&self, load: &R) -> R {
-        let r = &self.radius;
-        (load.int(9) * &load.square() / (r.int(16) * r * &self.contact_modulus.square())).cbrt()
+        self.as_power_law().approach(load)
     }
     fn slope(&self, load: &R) -> R {
         self.as_power_law().slope(load)
@@ -238,8 +241,10 @@ impl<R: Real> Compliance<R> for Rational<R> {
         -(self.numerator.clone() / &(load.clone() + &self.offset).square())
     }
     fn slope_change(&self, reference: &R, offset: &R) -> R {
+        // −b·d/(s(s + d)) with s = P0 + c, formed as −b·(d/s)/(s + d): no product of two loads.
         let shifted = reference.clone() + &self.offset;
-        -(self.numerator.clone() * offset / &(shifted.clone() * &(shifted + offset)))
+        let ratio = offset.clone() / &shifted;
+        -(self.numerator.clone() * &ratio / &(shifted + offset))
     }
     fn describe(&self) -> String {
         format!(
@@ -274,9 +279,14 @@ impl<R: Real> Compliance<R> for Exponential<R> {
         -(self.amplitude.clone() / &self.decay_load * &(-(load.clone() / &self.decay_load)).exp())
     }
     fn slope_change(&self, reference: &R, offset: &R) -> R {
-        self.amplitude.clone()
-            * &(-(reference.clone() / &self.decay_load)).exp()
-            * &(-(offset.clone() / &self.decay_load)).exp_m1()
+        let decay = -(offset.clone() / &self.decay_load);
+        if decay > decay.int(1) {
+            // The two exponentials differ by more than a factor e: no cancellation, and
+            // no e^(−P0/c)·(e^(−x/c) − 1) = 0·∞ where c is tiny against the loads.
+            let at = |load: &R| (-(load.clone() / &self.decay_load)).exp();
+            return self.amplitude.clone() * &(at(&(reference.clone() + offset)) - &at(reference));
+        }
+        self.amplitude.clone() * &(-(reference.clone() / &self.decay_load)).exp() * &decay.exp_m1()
     }
     fn describe(&self) -> String {
         format!(

@@ -65,6 +65,11 @@ fn split_terms(spec: &str) -> Vec<&str> {
 
 fn number<R: Real>(key: &str, text: &str, precision: Precision) -> Result<R, String> {
     let value = R::parse_decimal(text, precision).map_err(|_| format!("{key}='{text}' is not a decimal number"))?;
+    if crate::inputs::outside_f64_range(&value, text) {
+        return Err(format!(
+            "{key}={text} lies outside the range of f64 (normal magnitudes 2.2e-308 to 1.8e308)"
+        ));
+    }
     if !value.is_finite() {
         return Err(format!("{key}={text} is not finite"));
     }

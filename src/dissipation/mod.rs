@@ -25,6 +25,7 @@
 
 mod closed_forms;
 mod driver;
+mod range;
 mod segments;
 
 pub use closed_forms::{constant_normal_load, in_phase, HertzConfiguration, MindlinDeresiewicz};
@@ -202,6 +203,15 @@ pub enum DissipationError {
     /// An integrand produced NaN or infinity (compliance undefined at some load).
     #[error("the {segment} integral is not finite: the compliance is undefined at some load the cycle reaches")]
     NotFinite { segment: &'static str },
+    /// A magnitude of the case lies where products of it would overflow or underflow.
+    #[error("{quantity} = {value:e} is outside what {bits}-bit arithmetic carries through the integrals without overflow or underflow (magnitudes {low:.0e} to {high:.0e}); compute with more precision, whose exponent range is far wider")]
+    OutsideRange {
+        quantity: String,
+        value: f64,
+        bits: u32,
+        low: f64,
+        high: f64,
+    },
 }
 
 /// W for a valid cycle, by the closed form where the cycle is degenerate
@@ -247,9 +257,10 @@ fn prepare<R: Real>(
         options,
         format!("min(P0 − P1, P_T) = P0/{:.3e}", amplification.to_f64_lossy()),
     )?;
+    let low = (cycle.mean_normal_load.clone() - &cycle.normal_amplitude).min_of(&cycle.permanent_stick_load());
+    let high = cycle.mean_normal_load.clone() + &cycle.normal_amplitude;
+    range::check_magnitudes(cycle, compliance, options, &low, &high)?;
     if options.check_compliance {
-        let low = (cycle.mean_normal_load.clone() - &cycle.normal_amplitude).min_of(&cycle.permanent_stick_load());
-        let high = cycle.mean_normal_load.clone() + &cycle.normal_amplitude;
         check_admissible(compliance, &low, &high)?;
     }
     Ok(())
