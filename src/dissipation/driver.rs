@@ -2,11 +2,13 @@
 //! to a common relative tolerance.
 //!
 //! Each piece starts with Gauss–Legendre rules of doubling degree, which converge
-//! geometrically when the integrand is analytic well beyond the interval. When a
-//! singularity sits close to an end of the interval (v' singular at P → 0 with the
-//! cycle near separation, or P_T → 0 near gross slip) that stalls; the piece then
-//! falls back to tanh–sinh, whose nodes crowd double-exponentially toward the ends.
-//! Callers split their intervals so that such near-singularities lie at ends.
+//! geometrically when the integrand is analytic well beyond the interval. Callers
+//! split their intervals so that near-singularities (v' singular at P → 0 with the
+//! cycle near separation, or P_T → 0 near gross slip) lie at ends, and map the narrow
+//! ones away (`quad::sinh_map`). Where the doubling still stalls (the largest rule,
+//! or two doublings without a tenfold gain) the piece falls back to tanh–sinh, whose
+//! nodes crowd double-exponentially toward the ends; where that stalls too, the
+//! piece has met the rounding noise of its integrand.
 
 use std::time::Instant;
 
@@ -137,9 +139,12 @@ pub(crate) fn converge<R: Real>(
         }
         let mut points = first_points;
         let mut previous_change: Option<R> = None;
+        // Doublings running that failed to bring the change below a tenth of the smallest yet.
+        let (mut smallest_change, mut stalled): (Option<R>, u32) = (None, 0);
         loop {
-            if points * 2 > max_points {
-                // Gauss–Legendre stalled: a near-singularity at an end. Tanh–sinh resolves it.
+            if points * 2 > max_points || stalled >= 2 {
+                // Gauss–Legendre stalled: a near-singularity at an end, or the rounding noise
+                // of the integrand. Tanh–sinh resolves the first and tells the second.
                 let estimate = tanh_sinh::integrate(
                     &piece.integrand,
                     &piece.start,
@@ -183,6 +188,13 @@ pub(crate) fn converge<R: Real>(
             if let Some(predicted) = predicted_error(&change, previous_change.as_ref(), &allowed) {
                 errors[i] = predicted;
                 break;
+            }
+            let gained = smallest_change
+                .as_ref()
+                .is_none_or(|smallest| change.clone() * &change.int(10) <= *smallest);
+            stalled = if gained { 0 } else { stalled + 1 };
+            if gained {
+                smallest_change = Some(change.clone());
             }
             previous_change = Some(change);
         }

@@ -102,7 +102,8 @@ pub fn resolve_peaks<R: Real>(a: &R, b: &R, peaks: &[Peak<R>]) -> Vec<Resolved<R
         let outside = (a.clone() - &peak.center)
             .max_of(&(peak.center.clone() - b))
             .max_of(&zero);
-        if !(peak.width > zero) || outside + &peak.width >= limit {
+        let narrow = peak.width > zero && outside + &peak.width < limit;
+        if !narrow {
             continue;
         }
         let (side, start_side) = if peak.center < middle {
