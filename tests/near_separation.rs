@@ -205,12 +205,14 @@ fn scan_at_1e_15_of_separation() {
 #[test]
 fn the_issue_cases_are_positive_and_right() {
     // The band 1e−12 … 4e−11 from separation where W came out negative "beyond its
-    // error estimate", and the slow case 8e−11 from separation.
+    // error estimate", the slow case 8e−11 from separation, and its like at 1e−15
+    // (negative before too).
     for (p1, q1, phi, compliance) in [
         ("0.99999999998", "1e-13", "0.4pi", "persson:gamma=1,sigma=1"),
         ("0.999999999999", "1e-13", "0.4pi", "persson:gamma=1,sigma=1"),
         ("0.99999999996", "1e-13", "0.4pi", "rational:a=0,b=1,c=0"),
         ("0.99999999992", "3e-12", "1.1", "power:c=1,beta=-1"),
+        ("0.999999999999999", "3e-17", "1.1", "power:c=1,beta=-1"),
     ] {
         let text = case(p1, "0", q1, phi, compliance);
         check_against_reference(&format!("P1 = {p1}, Q1 = {q1}, φ = {phi}, {compliance}"), &text);
