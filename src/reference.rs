@@ -187,7 +187,7 @@ fn conditioning_digits(case: &CaseText) -> u32 {
     };
     let amplification = cycle.rounding_amplification() * cycle.cancellation_amplification().max(1.0);
     if amplification.is_finite() && amplification > 1.0 {
-        amplification.log10().ceil() as u32
+        amplification.log10().floor() as u32
     } else {
         0
     }

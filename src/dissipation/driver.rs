@@ -103,21 +103,22 @@ pub(crate) fn converge<R: Real>(
     };
     let max_points = options.max_points.max(first_points);
     if let Some(points) = options.fixed_points {
-        // The rule of half the points sizes the error: the rule alone cannot tell a
-        // converged piece from one whose peak its nodes miss.
-        let points = points.max(2);
+        // The rule of a quarter of the points sizes the error (generously, and at a quarter
+        // of the cost): the rule alone cannot tell a converged piece from one whose peak
+        // its nodes miss.
+        let points = points.max(4);
         let mut values = Vec::with_capacity(pieces.len());
         let mut error = zero.clone();
         for piece in pieces {
             let (value, magnitude) = gauss(piece, points)?;
-            let (coarse, _) = gauss(piece, points / 2)?;
+            let (coarse, _) = gauss(piece, points / 4)?;
             error += (value.clone() - &coarse).abs().max_of(&rounding_floor(&magnitude));
             values.push(value);
         }
         return Ok(Converged {
             values,
             error,
-            evaluations: (points + points / 2) * pieces.len(),
+            evaluations: (points + points / 4) * pieces.len(),
             points,
         });
     }

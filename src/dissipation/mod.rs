@@ -117,8 +117,8 @@ pub struct Options<R> {
     /// 0 chooses (16 points).
     pub min_points: usize,
     /// Integrate every piece once with this Gauss–Legendre rule, no refinement; the error
-    /// estimate is the change from the rule of half the points. For checking a converged
-    /// result with another rule.
+    /// estimate is the change from the rule of a quarter of the points. For checking a
+    /// converged result with another rule.
     pub fixed_points: Option<usize>,
     /// The largest Gauss–Legendre rule per segment before giving up.
     pub max_points: usize,
