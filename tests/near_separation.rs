@@ -229,6 +229,19 @@ fn the_issue_cases_are_positive_and_right() {
 }
 
 #[test]
+fn the_gross_slip_analogue_p_t_near_zero_is_right_too() {
+    // P_T = P0 − (σ₊ + σ₋)/(2f) = 1e−6 … 1e−15: the slip loads P_S and P_K of EB and HE
+    // reach P_T at B and E, where the same kind of peak forms.
+    for p0 in ["1.000001", "1.0000000001", "1.000000000000001"] {
+        let text = CaseText {
+            p0: p0.into(),
+            ..case("0.6", "0", "0.8", "0.5pi", "persson:gamma=1,sigma=1")
+        };
+        check_against_reference(&format!("P0 = {p0}, P1 = 0.6, Q1 = 0.8, φ = π/2"), &text);
+    }
+}
+
+#[test]
 fn the_history_simulation_agrees_at_1e_3_of_separation() {
     for (q1, phi) in [("0.02", "0.5pi"), ("0.01", "0.5pi")] {
         let text = case("0.999", "0", q1, phi, "persson:gamma=1,sigma=1");

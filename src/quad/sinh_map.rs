@@ -69,11 +69,16 @@ impl<R: Real> SinhMap<R> {
     }
 }
 
-/// asinh x = sign(x)·ln(1 + |x| + x²/(1 + √(1 + x²))), accurate for small and large |x|.
+/// asinh x = sign(x)·ln(1 + |x| + x²/(1 + √(1 + x²))), accurate for small and large |x|
+/// (ln 2|x| where x² would overflow).
 pub fn asinh<R: Real>(x: &R) -> R {
-    let a = x.abs();
-    let one = x.int(1);
-    let value = (a.clone() + &(a.square() / &((a.square() + &one).sqrt() + &one))).ln_1p();
+    let (a, one) = (x.abs(), x.int(1));
+    let square = a.square();
+    let value = if square.is_finite() {
+        (a.clone() + &(square.clone() / &((square + &one).sqrt() + &one))).ln_1p()
+    } else {
+        a.ln() + &x.int(2).ln()
+    };
     if *x < x.int(0) {
         -value
     } else {
@@ -167,6 +172,7 @@ mod tests {
             assert!(rate >= 1e-6);
         }
         assert!((asinh(&-2.5f64) + 2.5f64.asinh()).abs() < 1e-15);
+        assert!((asinh(&1e200f64) - 1e200f64.asinh()).abs() < 1e-12);
         assert!((acosh_one_plus(&1e-20f64) - 2e-20f64.sqrt()).abs() < 1e-25);
     }
 
