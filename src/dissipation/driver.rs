@@ -106,19 +106,19 @@ pub(crate) fn converge<R: Real>(
         // The rule of a quarter of the points sizes the error (generously, and at a quarter
         // of the cost): the rule alone cannot tell a converged piece from one whose peak
         // its nodes miss.
-        let points = points.max(4);
+        let coarse_points = (points / 4).max(1);
         let mut values = Vec::with_capacity(pieces.len());
         let mut error = zero.clone();
         for piece in pieces {
             let (value, magnitude) = gauss(piece, points)?;
-            let (coarse, _) = gauss(piece, points / 4)?;
+            let (coarse, _) = gauss(piece, coarse_points)?;
             error += (value.clone() - &coarse).abs().max_of(&rounding_floor(&magnitude));
             values.push(value);
         }
         return Ok(Converged {
             values,
             error,
-            evaluations: (points + points / 4) * pieces.len(),
+            evaluations: (points + coarse_points) * pieces.len(),
             points,
         });
     }
