@@ -1,7 +1,7 @@
 //! W for an ordinary catalogue case and two stiff ones in f64 and at increasing
 //! precision, verified digits (50 and 100) with node tables warm, the
 //! Gauss–Legendre node tables cold and cached, and the history simulation at its
-//! default resolution (goal: ≤ 1 s a case on one core).
+//! default resolution (goal: ≤ 1 s a case on one core), and cycles near separation.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use microslip::accuracy::standard_cases;
@@ -9,7 +9,7 @@ use microslip::dissipation::{dissipation, Options};
 use microslip::inputs::{Case, CaseText};
 use microslip::quad::gauss_legendre::{clear_node_cache, compute_node_table, node_table};
 use microslip::real::{Precision, Real};
-use microslip::reference::verified_dissipation;
+use microslip::reference::{printable_dissipation, verified_dissipation};
 use microslip::simulate::{simulate, SimulationOptions};
 use rug::Float;
 use std::time::Duration;
@@ -126,11 +126,48 @@ fn bench_simulation(c: &mut Criterion) {
     group.finish();
 }
 
+/// The slow case (φ = 1.1, v' = 1/P, Q1 = 0.03 (P0 − P1) as there) at 1e−6,
+/// 1e−10 and 1e−15 of separation: the command-line policy without a digit count (f64 refuses these as
+/// ill-conditioned and computes 15 verified digits in MPFR) and 20 verified digits.
+/// Goals: ≤ 50 ms and ≤ 200 ms (proofs/stability.md, "Near separation").
+fn bench_near_separation(c: &mut Criterion) {
+    let mut group = c.benchmark_group("near_separation");
+    group.sample_size(10);
+    group.warm_up_time(Duration::from_secs(1));
+    group.measurement_time(Duration::from_secs(3));
+    for (distance, p1, q1) in [
+        ("1e-6", "0.999999", "3e-8"),
+        ("1e-10", "0.9999999999", "3e-12"),
+        ("1e-15", "0.999999999999999", "3e-17"),
+    ] {
+        let text = CaseText {
+            p0: "1".into(),
+            p1: p1.into(),
+            q0: "0".into(),
+            q1: q1.into(),
+            phi: "1.1".into(),
+            friction: "1".into(),
+            lambda: Some("1".into()),
+            nu: None,
+            compliance: "power:c=1,beta=-1".into(),
+        };
+        let budget = Duration::from_secs(60);
+        group.bench_function(format!("{distance}/command"), |b| {
+            b.iter(|| printable_dissipation(&text, None, budget).unwrap().digits)
+        });
+        group.bench_function(format!("{distance}/digits20"), |b| {
+            b.iter(|| verified_dissipation(&text, 20, budget).unwrap().digits_verified)
+        });
+    }
+    group.finish();
+}
+
 criterion_group!(
     benches,
     bench_dissipation,
     bench_verified_digits,
     bench_node_tables,
-    bench_simulation
+    bench_simulation,
+    bench_near_separation
 );
 criterion_main!(benches);

@@ -257,6 +257,21 @@ pub fn agreeing_digits(a: &Float, b: &Float) -> u32 {
     }
 }
 
+/// The digits that rounding inside the four-segment integrands costs on `case`: log10 of
+/// the product of its load rounding and slip-term cancellation amplifications (0 for a
+/// case that does not read).
+fn conditioning_digits(case: &CaseText) -> u32 {
+    let Ok(Case { cycle, .. }) = case.read::<f64>(Precision::DOUBLE) else {
+        return 0;
+    };
+    let amplification = cycle.rounding_amplification() * cycle.cancellation_amplification().max(1.0);
+    if amplification.is_finite() && amplification > 1.0 {
+        amplification.log10().floor() as u32
+    } else {
+        0
+    }
+}
+
 /// W for `case` to `digits` verified significant digits, within `budget`.
 pub fn verified_dissipation(
     case: &CaseText,
@@ -268,7 +283,7 @@ pub fn verified_dissipation(
     }
     let started = Instant::now();
     let target = digits + GUARD_DIGITS;
-    let mut precision = Precision::decimal_digits(target + 12);
+    let mut precision = Precision::decimal_digits(target + 12 + conditioning_digits(case));
     let mut max_points = 512;
     let mut best_digits = 0;
     loop {

@@ -2,11 +2,13 @@
 //! to a common relative tolerance.
 //!
 //! Each piece starts with Gauss–Legendre rules of doubling degree, which converge
-//! geometrically when the integrand is analytic well beyond the interval. When a
-//! singularity sits close to an end of the interval (v' singular at P → 0 with the
-//! cycle near separation, or P_T → 0 near gross slip) that stalls; the piece then
-//! falls back to tanh–sinh, whose nodes crowd double-exponentially toward the ends.
-//! Callers split their intervals so that such near-singularities lie at ends.
+//! geometrically when the integrand is analytic well beyond the interval. Callers
+//! split their intervals so that near-singularities (v' singular at P → 0 with the
+//! cycle near separation, or P_T → 0 near gross slip) lie at ends, and map the narrow
+//! ones away (`quad::sinh_map`). Where the doubling still stalls (the largest rule,
+//! or two doublings without a tenfold gain) the piece falls back to tanh–sinh, whose
+//! nodes crowd double-exponentially toward the ends; where that stalls too, the
+//! piece has met the rounding noise of its integrand.
 
 use std::time::Instant;
 
@@ -53,6 +55,11 @@ impl<R: Real> Converged<R> {
 /// Tanh–sinh levels allowed after Gauss–Legendre gives up (each doubles the nodes).
 const MAX_TANH_SINH_LEVEL: u32 = 16;
 
+/// How far above its share of the tolerance a piece may end when both rules have
+/// reached its rounding noise, the noise then being its error estimate. Beyond this
+/// the working precision is too low for the tolerance, and the piece is refused.
+const NOISE_MARGIN: i64 = 100;
+
 /// The piece by the `points`-point rule, with the rule applied to |f| (see
 /// `NodeTable::integrate_with_magnitude`).
 fn gauss<R: Real>(piece: &Integral<'_, R>, points: usize) -> Result<(R, R), DissipationError> {
@@ -96,17 +103,22 @@ pub(crate) fn converge<R: Real>(
     };
     let max_points = options.max_points.max(first_points);
     if let Some(points) = options.fixed_points {
+        // The rule of a quarter of the points sizes the error (generously, and at a quarter
+        // of the cost): the rule alone cannot tell a converged piece from one whose peak
+        // its nodes miss.
+        let coarse_points = (points / 4).max(1);
         let mut values = Vec::with_capacity(pieces.len());
         let mut error = zero.clone();
         for piece in pieces {
             let (value, magnitude) = gauss(piece, points)?;
+            let (coarse, _) = gauss(piece, coarse_points)?;
+            error += (value.clone() - &coarse).abs().max_of(&rounding_floor(&magnitude));
             values.push(value);
-            error += rounding_floor(&magnitude);
         }
         return Ok(Converged {
             values,
             error,
-            evaluations: points * pieces.len(),
+            evaluations: (points + coarse_points) * pieces.len(),
             points,
         });
     }
@@ -128,9 +140,12 @@ pub(crate) fn converge<R: Real>(
         }
         let mut points = first_points;
         let mut previous_change: Option<R> = None;
+        // Doublings running that failed to bring the change below a tenth of the smallest yet.
+        let (mut smallest_change, mut stalled): (Option<R>, u32) = (None, 0);
         loop {
-            if points * 2 > max_points {
-                // Gauss–Legendre stalled: a near-singularity at an end. Tanh–sinh resolves it.
+            if points * 2 > max_points || stalled >= 2 {
+                // Gauss–Legendre stalled: a near-singularity at an end, or the rounding noise
+                // of the integrand. Tanh–sinh resolves the first and tells the second.
                 let estimate = tanh_sinh::integrate(
                     &piece.integrand,
                     &piece.start,
@@ -139,11 +154,21 @@ pub(crate) fn converge<R: Real>(
                     MAX_TANH_SINH_LEVEL,
                 );
                 evaluations += estimate.evaluations;
-                values[i] = finite(estimate.value, piece)?;
-                if !estimate.converged {
-                    return Err(not_converged(&values, &estimate.error, relative_tolerance, points));
+                let value = finite(estimate.value, piece)?;
+                if estimate.converged {
+                    values[i] = value;
+                    errors[i] = estimate.error;
+                    break;
                 }
-                errors[i] = estimate.error;
+                // Neither rule got there. Where the two agree with each other and with
+                // themselves to within NOISE_MARGIN × `allowed`, the piece has reached
+                // the rounding noise of its integrand: that spread is its error.
+                let last_change = previous_change.clone().unwrap_or_else(|| estimate.error.clone());
+                let spread = (value - &values[i]).abs().max_of(&estimate.error).max_of(&last_change);
+                if spread > allowed.clone() * &zero.int(NOISE_MARGIN) {
+                    return Err(not_converged(&values, &spread, relative_tolerance, points));
+                }
+                errors[i] = spread;
                 break;
             }
             if options.deadline.is_some_and(|deadline| Instant::now() >= deadline) {
@@ -164,6 +189,13 @@ pub(crate) fn converge<R: Real>(
             if let Some(predicted) = predicted_error(&change, previous_change.as_ref(), &allowed) {
                 errors[i] = predicted;
                 break;
+            }
+            let gained = smallest_change
+                .as_ref()
+                .is_none_or(|smallest| change.clone() * &change.int(10) <= *smallest);
+            stalled = if gained { 0 } else { stalled + 1 };
+            if gained {
+                smallest_change = Some(change.clone());
             }
             previous_change = Some(change);
         }

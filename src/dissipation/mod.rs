@@ -117,8 +117,9 @@ pub struct Options<R> {
     /// The smallest Gauss–Legendre rule per segment (the first of the doubling sequence);
     /// 0 chooses (16 points).
     pub min_points: usize,
-    /// Integrate every piece once with this Gauss–Legendre rule: no refinement and no
-    /// quadrature error estimate. For checking a converged result with another rule.
+    /// Integrate every piece once with this Gauss–Legendre rule, no refinement; the error
+    /// estimate is the change from the rule of a quarter of the points. For checking a
+    /// converged result with another rule.
     pub fixed_points: Option<usize>,
     /// The largest Gauss–Legendre rule per segment before giving up.
     pub max_points: usize,

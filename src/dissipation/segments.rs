@@ -16,6 +16,7 @@ use std::rc::Rc;
 use super::slope_at;
 use crate::compliance::{Compliance, SlopeChange};
 use crate::cycle::{EllipseGeometry, LoadsAt};
+use crate::quad::sinh_map::{acosh_one_plus, asinh, resolve_peaks, Peak};
 use crate::real::Real;
 
 /// The segment names in cycle order; a piece's `segment` indexes this.
@@ -146,18 +147,72 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
         let mut pieces = Vec::new();
         for (index, name) in SEGMENT_NAMES.iter().enumerate() {
             let breaks = self.lowest_load_points(index);
+            let peaks = self.low_load_peaks(index);
             for window in breaks.windows(2) {
-                let (integrands, slope) = (*self, Rc::clone(&slope));
-                pieces.push(Integral {
-                    name,
-                    segment: index,
-                    integrand: Box::new(move |s: &R| integrands.integrand_with(index, s, slope.as_ref())),
-                    start: window[0].clone(),
-                    end: window[1].clone(),
-                });
+                for part in resolve_peaks(&window[0], &window[1], &peaks) {
+                    let (integrands, slope) = (*self, Rc::clone(&slope));
+                    let integrand: Box<dyn Fn(&R) -> R + 'a> = match part.map {
+                        None => Box::new(move |s: &R| integrands.integrand_with(index, s, slope.as_ref())),
+                        Some(map) => Box::new(move |u: &R| {
+                            let (s, rate) = map.point_and_rate(u);
+                            integrands.integrand_with(index, &s, slope.as_ref()) * &rate
+                        }),
+                    };
+                    pieces.push(Integral {
+                        name,
+                        segment: index,
+                        integrand,
+                        start: part.start,
+                        end: part.end,
+                    });
+                }
             }
         }
         pieces
+    }
+
+    /// The narrow peaks of segment `index` (in s), where a load that v' is taken at is
+    /// least: P at θ ≡ π (mod 2π), and for CH P_Y at the mirror angle θ_C − s ≡ π, each
+    /// of half-width acosh(P0/P1) (where P0 + P1 cos θ vanishes, off the real axis);
+    /// for EB P_S = P_T + σ₊ sin²h/f at B, of half-width 2 asinh(√(fP_T/σ₊)), and for HE
+    /// P_K likewise at E with σ₋. A compliance singular at P = 0 makes these peaks as
+    /// narrow as √((P0 − P1)/P0) near separation and √(P_T/P0) near gross slip.
+    fn low_load_peaks(&self, index: usize) -> Vec<Peak<R>> {
+        let g = self.geometry;
+        let (start, length) = self.extent(index);
+        let zero = length.int(0);
+        let pi = length.pi_like();
+        let mut peaks = Vec::new();
+        if g.normal_amplitude > zero {
+            let margin = (g.mean_normal_load.clone() - &g.normal_amplitude) / &g.normal_amplitude;
+            let width = acosh_one_plus(&margin);
+            for k in -2..=3i64 {
+                let lowest = pi.clone() * &pi.int(2 * k + 1);
+                peaks.push(Peak {
+                    center: lowest.clone() - start,
+                    width: width.clone(),
+                });
+                if index == 2 {
+                    peaks.push(Peak {
+                        center: g.theta_c.clone() - &lowest,
+                        width: width.clone(),
+                    });
+                }
+            }
+        }
+        let slip_amplitude = match index {
+            0 => Some(&g.sum_amplitude),
+            3 => Some(&g.difference_amplitude),
+            _ => None,
+        };
+        if let Some(amplitude) = slip_amplitude.filter(|a| **a > zero) {
+            let ratio = g.permanent_stick_load() * &g.friction / amplitude;
+            peaks.push(Peak {
+                center: length.clone(),
+                width: asinh(&ratio.max_of(&zero).sqrt()) * &zero.int(2),
+            });
+        }
+        peaks
     }
 
     /// The break points 0 = s₀ < s₁ < … < L of a segment: the angles where P (and,

@@ -1,9 +1,11 @@
 //! Quadrature rules, generic over [`Real`](crate::real::Real).
 //!
 //! One rule per file. Every rule returns an [`Estimate`]: the value together with
-//! an error estimate and the number of integrand evaluations it cost.
+//! an error estimate and the number of integrand evaluations it cost. `sinh_map` is
+//! the change of variable that lets the rules resolve a narrow peak.
 
 pub mod gauss_legendre;
+pub mod sinh_map;
 pub mod tanh_sinh;
 
 use crate::real::Real;

@@ -1,0 +1,228 @@
+//! The change of variable s = c + w·sinh u, which resolves a narrow peak of an
+//! integrand at c.
+//!
+//! An integrand whose nearest singularities sit at c ± iw, w small against the
+//! interval, makes Gauss–Legendre rules converge only after their nodes crowd within
+//! w of c: the points needed grow like a power of 1/w. In u the same singularities sit
+//! at ±iπ/2 whatever w is, while the interval grows only to about ln(2L/w), so a rule
+//! of a fixed size resolves the peak and the cost grows like ln(1/w). A peak nearer to
+//! an end of the interval than w is resolved the same way, and one far from the
+//! interval stays harmless (the map is then nearly exponential across the interval).
+
+use crate::real::Real;
+
+/// A narrow peak of an integrand: its centre c and half-width w (the distance of its
+/// singularities from the real axis).
+#[derive(Clone, Debug)]
+pub struct Peak<R> {
+    /// c, where the peak is highest (it may lie outside the interval).
+    pub center: R,
+    /// w > 0.
+    pub width: R,
+}
+
+/// s = c + w·sinh u for one peak.
+#[derive(Clone, Debug)]
+pub struct SinhMap<R> {
+    peak: Peak<R>,
+}
+
+/// A sub-interval [start, end] of an integral, in s when `map` is `None` and in u when
+/// it is the map that resolves the peak at its end.
+#[derive(Clone, Debug)]
+pub struct Resolved<R> {
+    /// Lower limit (in u when mapped).
+    pub start: R,
+    /// Upper limit (in u when mapped).
+    pub end: R,
+    /// The change of variable to apply, if any.
+    pub map: Option<SinhMap<R>>,
+}
+
+/// Peaks narrower than this fraction of the interval, and that near it, are mapped.
+const NARROW: i64 = 4;
+
+impl<R: Real> SinhMap<R> {
+    /// The map for one peak.
+    pub fn new(peak: Peak<R>) -> Self {
+        SinhMap { peak }
+    }
+
+    /// u = asinh((s − c)/w), the inverse map.
+    pub fn to_u(&self, s: &R) -> R {
+        asinh(&((s.clone() - &self.peak.center) / &self.peak.width))
+    }
+
+    /// (s, ds/du) = (c + w·sinh u, w·cosh u).
+    pub fn point_and_rate(&self, u: &R) -> (R, R) {
+        // With m = e^|u| − 1: sinh|u| = (m + m/(1 + m))/2 and cosh u = 1 + m²/(2(1 + m)),
+        // both free of cancellation near u = 0.
+        let m = u.abs().exp_m1();
+        let one_plus = m.clone() + &u.int(1);
+        let sinh_abs = (m.clone() + &(m.clone() / &one_plus)) / &u.int(2);
+        let cosh = m.square() / &(one_plus * &u.int(2)) + &u.int(1);
+        let sinh = if *u < u.int(0) { -sinh_abs } else { sinh_abs };
+        (
+            self.peak.center.clone() + &(self.peak.width.clone() * &sinh),
+            self.peak.width.clone() * &cosh,
+        )
+    }
+}
+
+/// asinh x = sign(x)·ln(1 + |x| + x²/(1 + √(1 + x²))), accurate for small and large |x|
+/// (ln 2|x| where x² would overflow).
+pub fn asinh<R: Real>(x: &R) -> R {
+    let (a, one) = (x.abs(), x.int(1));
+    let square = a.square();
+    let value = if square.is_finite() {
+        (a.clone() + &(square.clone() / &((square + &one).sqrt() + &one))).ln_1p()
+    } else {
+        a.ln() + &x.int(2).ln()
+    };
+    if *x < x.int(0) {
+        -value
+    } else {
+        value
+    }
+}
+
+/// acosh(1 + x) = ln(1 + x + √(x(2 + x))) for x ≥ 0, accurate for small x.
+pub fn acosh_one_plus<R: Real>(x: &R) -> R {
+    (x.clone() + &(x.clone() * &(x.clone() + &x.int(2))).sqrt()).ln_1p()
+}
+
+/// [a, b] split so that each part has at most one narrow peak near it, at one of its
+/// ends, and mapped to resolve that peak. A peak counts when its width plus its
+/// distance from [a, b] is under a quarter of b − a; where such peaks lie toward both
+/// ends the interval is split midway between the innermost of them. Of several peaks
+/// toward one end the innermost centres the map and the narrowest sets its width (a
+/// narrower width than a peak's own still resolves it, at a slightly longer interval in u).
+pub fn resolve_peaks<R: Real>(a: &R, b: &R, peaks: &[Peak<R>]) -> Vec<Resolved<R>> {
+    let length = b.clone() - a;
+    let limit = length.clone() / &length.int(NARROW);
+    let middle = (a.clone() + b) / &a.int(2);
+    let zero = a.int(0);
+    let (mut toward_start, mut toward_end): (Option<Peak<R>>, Option<Peak<R>>) = (None, None);
+    for peak in peaks {
+        let outside = (a.clone() - &peak.center)
+            .max_of(&(peak.center.clone() - b))
+            .max_of(&zero);
+        let narrow = peak.width > zero && outside + &peak.width < limit;
+        if !narrow {
+            continue;
+        }
+        let (side, start_side) = if peak.center < middle {
+            (&mut toward_start, true)
+        } else {
+            (&mut toward_end, false)
+        };
+        *side = Some(match side.take() {
+            None => peak.clone(),
+            Some(held) => {
+                let inner = if (peak.center > held.center) == start_side {
+                    &peak.center
+                } else {
+                    &held.center
+                };
+                Peak {
+                    center: inner.clone(),
+                    width: held.width.min_of(&peak.width),
+                }
+            }
+        });
+    }
+    let mapped = |start: &R, end: &R, peak: Peak<R>| {
+        let map = SinhMap::new(peak);
+        Resolved {
+            start: map.to_u(start),
+            end: map.to_u(end),
+            map: Some(map),
+        }
+    };
+    match (toward_start, toward_end) {
+        (None, None) => vec![Resolved {
+            start: a.clone(),
+            end: b.clone(),
+            map: None,
+        }],
+        (Some(peak), None) => vec![mapped(a, b, peak)],
+        (None, Some(peak)) => vec![mapped(a, b, peak)],
+        (Some(first), Some(last)) => {
+            let split = (first.center.clone() + &last.center) / &a.int(2);
+            vec![mapped(a, &split, first), mapped(&split, b, last)]
+        }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::quad::gauss_legendre::node_table;
+    use crate::real::Precision;
+
+    #[test]
+    fn map_and_inverse_agree() {
+        let map = SinhMap::new(Peak {
+            center: 1.0f64,
+            width: 1e-6,
+        });
+        for s in [1.0 - 1e-3, 1.0 - 1e-9, 1.0, 1.0 + 1e-7, 3.0] {
+            let (back, rate) = map.point_and_rate(&map.to_u(&s));
+            assert!((back - s).abs() <= 4.0 * f64::EPSILON * (s.abs() + 1e-6), "{s}: {back}");
+            assert!(rate >= 1e-6);
+        }
+        assert!((asinh(&-2.5f64) + 2.5f64.asinh()).abs() < 1e-15);
+        assert!((asinh(&1e200f64) - 1e200f64.asinh()).abs() < 1e-12);
+        assert!((acosh_one_plus(&1e-20f64) - 2e-20f64.sqrt()).abs() < 1e-25);
+    }
+
+    #[test]
+    fn a_peak_of_width_1e_12_takes_a_small_rule() {
+        // ∫₀¹ w/(s² + w²) ds = atan(1/w): a Lorentzian peak at the start.
+        let w = 1e-12f64;
+        let peaks = [Peak { center: 0.0, width: w }];
+        let parts = resolve_peaks(&0.0, &1.0, &peaks);
+        assert_eq!(parts.len(), 1);
+        let table = node_table::<f64>(128, Precision::DOUBLE);
+        let part = &parts[0];
+        let map = part.map.as_ref().unwrap();
+        let value = table.integrate(
+            |u: &f64| {
+                let (s, rate) = map.point_and_rate(u);
+                w / (s * s + w * w) * rate
+            },
+            &part.start,
+            &part.end,
+        );
+        assert!((value - (1.0 / w).atan()).abs() < 1e-14, "{value}");
+    }
+
+    #[test]
+    fn peaks_toward_both_ends_split_the_interval() {
+        let peaks = [
+            Peak {
+                center: -1e-9,
+                width: 1e-6,
+            },
+            Peak {
+                center: 2.0,
+                width: 1e-3,
+            },
+            Peak {
+                center: 2.0 + 1e-4,
+                width: 1e-5,
+            },
+            Peak {
+                center: 0.5,
+                width: 1.0,
+            },
+        ];
+        let parts = resolve_peaks(&0.0, &2.0, &peaks);
+        assert_eq!(parts.len(), 2);
+        let (first, last) = (parts[0].map.as_ref().unwrap(), parts[1].map.as_ref().unwrap());
+        assert_eq!((first.peak.center, first.peak.width), (-1e-9, 1e-6));
+        assert_eq!((last.peak.center, last.peak.width), (2.0, 1e-5));
+        assert!((first.point_and_rate(&parts[0].end).0 - (2.0 - 1e-9) / 2.0).abs() < 1e-15);
+        assert!(resolve_peaks(&0.0, &2.0, &peaks[3..]).iter().all(|p| p.map.is_none()));
+    }
+}
