@@ -11,6 +11,7 @@ pub mod catalogue;
 pub mod compliance;
 pub mod cycle;
 pub mod dissipation;
+pub mod files;
 pub mod inputs;
 pub mod plot;
 pub mod quad;

@@ -170,6 +170,7 @@ fn steady_dissipation_depends_neither_on_the_initial_path_nor_on_q0() {
         elements: Some(400),
         steps: Some(400),
         extrapolate: false,
+        ..SimulationOptions::default()
     };
     let first = simulate(
         &acceptance(),
