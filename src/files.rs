@@ -13,6 +13,14 @@ pub enum OutputError {
     /// The directory the file would go in does not exist or is not a directory.
     #[error("{path}: the directory {directory} does not exist")]
     NoDirectory { path: String, directory: String },
+    /// No file can be created in the directory.
+    #[error("{path}: cannot create a file in {directory}: {source}")]
+    NotWritable {
+        path: String,
+        directory: String,
+        #[source]
+        source: std::io::Error,
+    },
     /// The target exists and is a directory.
     #[error("{path}: is a directory")]
     IsDirectory { path: String },
@@ -41,7 +49,10 @@ fn directory_of(path: &Path) -> PathBuf {
 fn temporary_beside(path: &Path) -> PathBuf {
     static COUNTER: std::sync::atomic::AtomicUsize = std::sync::atomic::AtomicUsize::new(0);
     let count = COUNTER.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-    let stem = path.file_name().map(|n| n.to_string_lossy().into_owned()).unwrap_or_default();
+    let stem = path
+        .file_name()
+        .map(|n| n.to_string_lossy().into_owned())
+        .unwrap_or_default();
     let mut name = format!(".{stem}.{}-{count}.tmp", std::process::id());
     if let Some(extension) = path.extension() {
         name.push('.');
@@ -78,8 +89,9 @@ pub fn check_writable(path: &Path, extensions: &[&str]) -> Result<(), OutputErro
         });
     }
     let probe = temporary_beside(path);
-    std::fs::File::create(&probe).map_err(|source| OutputError::Io {
+    std::fs::File::create(&probe).map_err(|source| OutputError::NotWritable {
         path: shown.clone(),
+        directory: directory.display().to_string(),
         source,
     })?;
     std::fs::remove_file(&probe).map_err(|source| OutputError::Io { path: shown, source })

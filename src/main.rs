@@ -173,7 +173,7 @@ struct VerifyArgs {
     #[arg(long)]
     quick: bool,
     /// The seed of the random draws.
-    #[arg(long, value_parser = parse::seed, default_value = "2026")]
+    #[arg(long, allow_hyphen_values = true, value_parser = parse::seed, default_value = "2026")]
     seed: u64,
     /// Print one JSON object.
     #[arg(long)]
@@ -336,9 +336,9 @@ fn simulation_failure(error: SimulationError) -> Failure {
             "{error}; more --elements and --steps may reach it, or a larger --tolerance accepts it"
         )),
         SimulationError::TooLarge { .. } => Failure::refused(format!("{error}; use fewer --elements or --steps")),
-        SimulationError::OutOfTime { .. } => {
-            Failure::refused(format!("{error}; raise --max-seconds or use fewer --elements or --steps"))
-        }
+        SimulationError::OutOfTime { .. } => Failure::refused(format!(
+            "{error}; raise --max-seconds or use fewer --elements or --steps"
+        )),
         other => Failure::refused(other.to_string()),
     }
 }
@@ -372,9 +372,8 @@ fn run_simulate(args: &SimulateArgs) -> Result<String, Failure> {
     let digits = result.vouched_digits().max(1);
     let w = result.w_work.to_scientific(digits as usize);
     // A write that fails after the run still reports W.
-    let lost = |error: &dyn std::fmt::Display| {
-        Failure::failed(format!("{error} (the simulation's W = {w} is not lost)"))
-    };
+    let lost =
+        |error: &dyn std::fmt::Display| Failure::failed(format!("{error} (the simulation's W = {w} is not lost)"));
     if let Some(path) = &args.loop_csv {
         write_text_atomically(path, &loop_csv(&result)).map_err(|e| lost(&e))?;
     }
@@ -632,5 +631,33 @@ fn main() -> ExitCode {
     match outcome {
         Ok(text) => emit(&text, ExitCode::SUCCESS),
         Err(failure) => fail(&failure),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_digits_hint_is_given_only_where_digits_were_not() {
+        let out_of_range = || ReferenceError::Dissipation(DissipationError::OutOfRange { scale: 1e-310 });
+        assert!(reference_failure(out_of_range(), false)
+            .message
+            .ends_with("try --digits N (verified digits in MPFR)"));
+        assert!(!reference_failure(out_of_range(), true).message.contains("--digits"));
+        let budget = || ReferenceError::Budget {
+            digits_requested: 30,
+            digits_reached: 3,
+            seconds: 1.0,
+            precision_bits: 256,
+        };
+        assert!(reference_failure(budget(), true).message.contains("fewer --digits"));
+        assert!(!reference_failure(budget(), false).message.contains("--digits"));
+    }
+
+    #[test]
+    fn gate_precisions_read_as_bits() {
+        assert_eq!(precision_bits("f64"), 53);
+        assert_eq!(precision_bits("256 bits"), 256);
     }
 }
