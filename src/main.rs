@@ -21,7 +21,7 @@ use microslip::catalogue;
 use microslip::dissipation::{dissipation, DissipationError, Method, Options};
 use microslip::files::{check_writable, write_text_atomically};
 use microslip::inputs::{Case, CaseText};
-use microslip::plot::{plot_accuracy, plot_cycle, PLOT_EXTENSIONS};
+use microslip::plot::{check_drawing, plot_accuracy, plot_cycle, PLOT_EXTENSIONS};
 use microslip::real::{Precision, Real};
 use microslip::reference::{printable_dissipation, ReferenceError};
 use microslip::simulate::{loop_csv, simulate, SimulationError, SimulationOptions, SimulationResult};
@@ -350,6 +350,7 @@ fn run_simulate(args: &SimulateArgs) -> Result<String, Failure> {
     }
     if let Some(path) = &args.plot {
         check_writable(path, &PLOT_EXTENSIONS)?;
+        check_drawing()?;
     }
     if let (Some(csv), Some(plot)) = (&args.loop_csv, &args.plot) {
         if same_file(csv, plot) {
@@ -434,6 +435,7 @@ fn run_accuracy(args: &AccuracyArgs) -> Result<String, Failure> {
     for path in [&csv, &svg, &png] {
         check_writable(path, &[])?;
     }
+    check_drawing()?;
     let cases = accuracy::standard_cases(args.quick);
     let progress = Progress::new(cases.len());
     let mut measurements = Vec::new();

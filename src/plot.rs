@@ -135,6 +135,11 @@ pub fn plot_cycle(path: &Path, cycle: &LoadCycle<f64>, result: &SimulationResult
     })?)
 }
 
+/// Checks that plots can be drawn (the font is there), before anything is computed.
+pub fn check_drawing() -> Result<(), PlotError> {
+    register_font()
+}
+
 /// Registers the font once per process: text layout needs its metrics in SVG too.
 fn register_font() -> Result<(), PlotError> {
     static REGISTERED: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
