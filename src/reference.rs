@@ -154,7 +154,7 @@ pub enum ReferenceError {
     #[error("the significant digits asked for must be between 1 and {MAX_DIGITS}, got {0}")]
     DigitsOutOfRange(u32),
     /// The budget ran out first.
-    #[error("only {digits_reached} of {digits_requested} digits could be verified within {seconds:.1} s (last attempt at {precision_bits} bits)")]
+    #[error("only {digits_reached} of {digits_requested} digits could be verified within {seconds:.1} s (two precisions must agree to {GUARD_DIGITS} digits more; last attempt at {precision_bits} bits)")]
     Budget {
         digits_requested: u32,
         digits_reached: u32,

@@ -110,7 +110,7 @@ impl SimulationResult {
         if error <= 0.0 {
             return 15;
         }
-        if !(error < 1.0) {
+        if error >= 1.0 || error.is_nan() {
             return 0;
         }
         ((-error.log10()).floor() as u32).min(15)
@@ -646,7 +646,7 @@ pub fn simulate(
         return Err(SimulationError::Resolution { elements, steps });
     }
     let bytes = memory_needed(elements, steps, options.extrapolate);
-    if !(bytes <= options.memory_limit) {
+    if bytes > options.memory_limit || bytes.is_nan() {
         return Err(SimulationError::TooLarge {
             elements,
             steps,
@@ -656,12 +656,14 @@ pub fn simulate(
     }
     let result = simulate_at(cycle, compliance, options, lowest_slip, elements, steps)?;
     match options.tolerance {
-        Some(tolerance) if !(result.estimated_rel_error <= tolerance) => Err(SimulationError::ToleranceNotReached {
-            estimated: result.estimated_rel_error,
-            tolerance,
-            w_work: result.w_work,
-            w_friction: result.w_friction,
-        }),
+        Some(tolerance) if result.estimated_rel_error > tolerance || result.estimated_rel_error.is_nan() => {
+            Err(SimulationError::ToleranceNotReached {
+                estimated: result.estimated_rel_error,
+                tolerance,
+                w_work: result.w_work,
+                w_friction: result.w_friction,
+            })
+        }
         _ => Ok(result),
     }
 }
