@@ -308,12 +308,22 @@ prop_compose! {
 
 prop_compose! {
     /// An ordinary case, sometimes with one value replaced by garbage.
+    /// An ordinary case, sometimes with one value replaced by garbage, sometimes with a
+    /// flag left out or given twice.
     fn case()(
         mut case in ordinary_case(),
-        spoil in prop::option::weighted(0.15, (0usize..7, garbage())),
+        spoil in prop::option::weighted(0.15, (0usize..8, garbage())),
+        drop_flag in prop::option::weighted(0.03, 0usize..8),
+        repeat_flag in prop::option::weighted(0.03, 0usize..8),
     ) -> CaseFlags {
         if let Some((index, text)) = spoil {
             case.flags[index].1 = text;
+        }
+        if let Some(index) = repeat_flag {
+            case.flags.push(case.flags[index].clone());
+        }
+        if let Some(index) = drop_flag {
+            case.flags.remove(index);
         }
         case
     }
@@ -506,10 +516,20 @@ fn simulate_on_any_flags_never_panics_hangs_or_prints_on_failure() {
         prop_oneof![5 => (40usize..150).prop_map(|n| n.to_string()), 1 => garbage()],
         prop_oneof![3 => Just("1e-3".to_string()), 1 => Just("1e-6".to_string()), 1 => garbage()],
         budget(),
+        prop_oneof![
+            6 => Just(Vec::<(&str, &str)>::new()),
+            1 => Just(vec![("--loop", "loop.csv")]),
+            1 => Just(vec![("--plot", "cycle.svg")]),
+            1 => Just(vec![("--loop", "same.csv"), ("--plot", "same.csv")]),
+            1 => Just(vec![("--plot", "cycle.pdf")]),
+            1 => Just(vec![("--loop", "missing/loop.csv")]),
+        ],
     );
+    let directory = std::env::temp_dir().join(format!("microslip-cli-properties-{}", std::process::id()));
+    std::fs::create_dir_all(&directory).unwrap();
     let _serial = SERIAL.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
     runner(3)
-        .run(&strategy, |(case, elements, steps, tolerance, budget)| {
+        .run(&strategy, |(case, elements, steps, tolerance, budget, files)| {
             logged((|| {
                 let mut args = vec!["simulate".to_string()];
                 for (flag, value) in &case.flags {
@@ -523,10 +543,22 @@ fn simulate_on_any_flags_never_panics_hangs_or_prints_on_failure() {
                 ] {
                     args.extend([flag.to_string(), value.clone()]);
                 }
+                for (flag, name) in &files {
+                    args.extend([flag.to_string(), directory.join(name).display().to_string()]);
+                }
                 args.push("--json".to_string());
                 let outcome = run_bounded(&args, limit_for(&budget))?;
-                check_outcome(&args, &outcome)
+                check_outcome(&args, &outcome)?;
+                // Files are written whole or not at all: no temporary is left behind.
+                let leftovers: Vec<_> = std::fs::read_dir(&directory)
+                    .map_err(|e| TestCaseError::fail(e.to_string()))?
+                    .filter_map(Result::ok)
+                    .filter(|entry| entry.file_name().to_string_lossy().starts_with('.'))
+                    .collect();
+                prop_assert!(leftovers.is_empty(), "temporary files left: {leftovers:?}");
+                Ok(())
             })())
         })
         .unwrap();
+    let _ = std::fs::remove_dir_all(&directory);
 }
