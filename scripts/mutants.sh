@@ -53,7 +53,7 @@ run_gate() {
 import json, sys
 try:
     report = json.load(open(sys.argv[1]))
-    failed = [c["claim"].split(" ")[0] + ("" if c["precision"] == "f64" else "(" + c["precision"].split()[0] + ")")
+    failed = [c["claim"].split(" ")[0] + ("" if c["precision_bits"] == 53 else "(" + str(c["precision_bits"]) + ")")
               for c in report["claims"] if not c["passed"]]
     print(",".join(failed) if failed else "-")
 except Exception:

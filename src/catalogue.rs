@@ -2,13 +2,15 @@
 //! (`tests/data/catalogue.json`): ordinary cases of every compliance family and
 //! the corners users ask for first — phases near 0 and π, ellipses at the
 //! gross-slip lines, near separation, tiny amplitudes, steep and flat compliance,
-//! extreme friction, P_T near 0.
+//! extreme friction, P_T near 0. [`check`] recomputes the stored values and reports
+//! every difference; [`regenerate`] and [`save`] replace them.
 
 use std::path::Path;
 use std::time::Duration;
 
 use serde::{Deserialize, Serialize};
 
+use crate::files::{write_text_atomically, OutputError};
 use crate::inputs::CaseText;
 use crate::reference::{verified_dissipation, ReferenceError};
 
@@ -39,13 +41,16 @@ pub struct ReferenceValue {
 /// Reading, writing or computing the catalogue failed.
 #[derive(Debug, thiserror::Error)]
 pub enum CatalogueError {
-    /// The file could not be read or written.
+    /// The file could not be read.
     #[error("{path}: {source}")]
     Io {
         path: String,
         #[source]
         source: std::io::Error,
     },
+    /// The file could not be written.
+    #[error(transparent)]
+    Output(#[from] OutputError),
     /// The file is not a catalogue.
     #[error("{path}: not a catalogue ({source})")]
     Format {
@@ -74,17 +79,68 @@ pub fn load(path: &Path) -> Result<Vec<CatalogueEntry>, CatalogueError> {
     })
 }
 
-/// Writes a catalogue file (pretty JSON, one case per block).
+/// Writes a catalogue file (pretty JSON, one case per block) atomically: a failed
+/// write leaves the old file whole.
 pub fn save(path: &Path, entries: &[CatalogueEntry]) -> Result<(), CatalogueError> {
     let mut text = serde_json::to_string_pretty(entries).map_err(|source| CatalogueError::Format {
         path: path.display().to_string(),
         source,
     })?;
     text.push('\n');
-    std::fs::write(path, text).map_err(|source| CatalogueError::Io {
-        path: path.display().to_string(),
-        source,
-    })
+    Ok(write_text_atomically(path, &text)?)
+}
+
+/// A stored reference value that a fresh computation does not reproduce.
+#[derive(Clone, Debug)]
+pub struct Difference {
+    /// The case's name.
+    pub name: String,
+    /// The stored value, if any.
+    pub stored: Option<ReferenceValue>,
+    /// The value computed now, to the stored digits, or why it could not be.
+    pub computed: Result<ReferenceValue, ReferenceError>,
+}
+
+impl std::fmt::Display for Difference {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        let stored = match &self.stored {
+            Some(value) => format!("stored W = {} ({} digits)", value.w, value.digits),
+            None => "no stored value".to_string(),
+        };
+        match &self.computed {
+            Ok(value) => write!(f, "{}: {stored}, computed W = {}", self.name, value.w),
+            Err(error) => write!(f, "{}: {stored}, cannot be computed: {error}", self.name),
+        }
+    }
+}
+
+/// Recomputes every case to its stored number of digits (`default_digits` where none
+/// is stored), each within `budget`, and returns every case whose stored value is
+/// missing or differs, or which could not be computed; `progress` is told each case's
+/// name as it starts.
+pub fn check(
+    entries: &[CatalogueEntry],
+    default_digits: u32,
+    budget: Duration,
+    mut progress: impl FnMut(usize, &str),
+) -> Vec<Difference> {
+    let mut differences = Vec::new();
+    for (index, entry) in entries.iter().enumerate() {
+        progress(index, &entry.name);
+        let digits = entry.reference.as_ref().map_or(default_digits, |r| r.digits);
+        let computed = verified_dissipation(&entry.case, digits, budget).map(|verified| ReferenceValue {
+            digits: verified.digits_verified,
+            w: verified.total,
+        });
+        if computed.as_ref().ok() != entry.reference.as_ref() {
+            differences.push(Difference {
+                name: entry.name.clone(),
+                stored: entry.reference.clone(),
+                computed,
+            });
+        }
+    }
+    differences
 }
 
 /// Computes every case's reference value to `digits` verified digits, each within `budget`;

@@ -12,6 +12,7 @@ pub mod compliance;
 pub mod cycle;
 pub mod dissipation;
 pub mod figures;
+pub mod files;
 pub mod inputs;
 pub mod plot;
 pub mod quad;

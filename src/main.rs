@@ -1,28 +1,38 @@
 //! `microslip`: the command line. Parsing and printing only; the work is in the library.
+//! Helpers (value parsers, JSON reports, progress, output) are in `cli/`.
 
-use std::io::IsTerminal;
-use std::path::PathBuf;
+mod cli;
+
+use std::path::{Path, PathBuf};
 use std::process::ExitCode;
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 use clap::{Args, Parser, Subcommand};
-use serde_json::json;
 
+use cli::json::{
+    ClaimRow, CoefficientReport, DissipationReport, GateReport, Segments, ShapeInputs, SimulationInputs,
+    SimulationReport,
+};
+use cli::parse;
+use cli::progress::Progress;
+use cli::report::{emit, fail, parse_error, Failure};
 use microslip::accuracy;
 use microslip::catalogue;
-use microslip::dissipation::{dissipation, Method, Options};
+use microslip::dissipation::{dissipation, DissipationError, Method, Options};
+use microslip::files::{check_writable, write_text_atomically};
 use microslip::inputs::{Case, CaseText};
-use microslip::plot::{plot_accuracy, plot_cycle};
+use microslip::plot::{check_drawing, plot_accuracy, plot_cycle, PLOT_EXTENSIONS};
 use microslip::real::{Precision, Real};
-use microslip::reference::printable_dissipation;
-use microslip::simulate::{simulate, write_loop_csv, SimulationOptions};
+use microslip::reference::{printable_dissipation, ReferenceError};
+use microslip::simulate::{loop_csv, simulate, SimulationError, SimulationOptions, SimulationResult};
 use microslip::verify::{self, small_amplitude, GateOptions};
 
 #[derive(Parser)]
 #[command(
     name = "microslip",
     version,
-    about = "Frictional microslip dissipation per cycle in rough elastic contacts"
+    about = "Frictional microslip dissipation per cycle in rough elastic contacts",
+    arg_required_else_help = true
 )]
 struct Cli {
     #[command(subcommand)]
@@ -41,7 +51,8 @@ enum Command {
     Verify(VerifyArgs),
     /// The small-amplitude coefficient I(ρ, φ) of W ≈ λ f² P1³ v''(P0) I.
     SmallAmplitude(SmallAmplitudeArgs),
-    /// Recompute the reference values of a catalogue of cases, in place.
+    /// Check the reference values of a catalogue of cases against a fresh computation
+    /// (or, with --write, replace them).
     Reference(ReferenceArgs),
     /// A table of Ŵ = W/(γσλf²) against the phase φ for Persson's compliance
     /// v' = γσ/P, P0 = 1, P1 = 0.4 (the paper's Fig. 5).
@@ -65,7 +76,7 @@ struct CaseArgs {
     /// Tangential load amplitude Q1 (≥ 0).
     #[arg(long, allow_hyphen_values = true)]
     q1: String,
-    /// Phase lag φ of Q behind P, in radians or as a multiple of π (`0.4pi`).
+    /// Phase lag φ of Q behind P, in radians or as a multiple of π (`0.4pi`, `pi-1e-6`).
     #[arg(long, allow_hyphen_values = true)]
     phi: String,
     /// Coulomb friction coefficient f (> 0).
@@ -79,11 +90,12 @@ struct CaseArgs {
         required_unless_present = "nu"
     )]
     lambda: Option<String>,
-    /// Poisson's ratio ν, giving λ = (2 − ν)/(2(1 − ν)).
+    /// Poisson's ratio ν in [0, 2/3], giving λ = (2 − ν)/(2(1 − ν)) in [1, 2].
     #[arg(long, allow_hyphen_values = true)]
     nu: Option<String>,
     /// Normal compliance SPEC, e.g. `persson:gamma=1,sigma=1`, `power:c=1,beta=-1`,
-    /// `hertz:r=1,estar=1`, `poly:p0=1,coeffs=2;0.5;-0.1`, terms joined by `+`.
+    /// `hertz:r=1,estar=1`, `poly:p0=1,coeffs=2;-0.5;-0.1`, terms joined by `+`
+    /// (`persson:gamma=1,sigma=1+const:c=0.5`); v' > 0 and v'' ≤ 0 are needed.
     #[arg(long, allow_hyphen_values = true)]
     compliance: String,
 }
@@ -108,12 +120,13 @@ impl CaseArgs {
 struct DissipationArgs {
     #[command(flatten)]
     case: CaseArgs,
-    /// Significant digits to compute and verify (1–1000); without it, f64 and 15 digits.
-    #[arg(long)]
+    /// Significant digits to compute and verify (1–1000); without it, f64 and the digits
+    /// its error estimate vouches for.
+    #[arg(long, allow_hyphen_values = true, value_parser = parse::digits)]
     digits: Option<u32>,
-    /// Time budget for --digits, in seconds.
-    #[arg(long, default_value_t = 60.0)]
-    max_seconds: f64,
+    /// Time budget for verified digits, in seconds (up to 1e6).
+    #[arg(long, allow_hyphen_values = true, value_parser = parse::seconds, default_value = "60")]
+    max_seconds: Duration,
     /// Print one JSON object.
     #[arg(long)]
     json: bool,
@@ -123,16 +136,22 @@ struct DissipationArgs {
 struct SimulateArgs {
     #[command(flatten)]
     case: CaseArgs,
-    /// Elements of the coarsest spring bed (doubled twice for the extrapolation).
-    #[arg(long)]
+    /// Elements of the coarsest spring bed, at least 20 (doubled twice for the extrapolation); default 400.
+    #[arg(long, allow_hyphen_values = true, value_parser = parse::elements)]
     elements: Option<usize>,
-    /// Load steps per cycle of the coarsest run (doubled twice).
-    #[arg(long)]
+    /// Load steps per cycle of the coarsest run, at least 40 (doubled twice); default 1200.
+    #[arg(long, allow_hyphen_values = true, value_parser = parse::steps)]
     steps: Option<usize>,
-    /// Write the steady loop (theta,P,Q,u) to this CSV file.
+    /// Fail (exit 1) when the estimated relative error of W exceeds this.
+    #[arg(long, allow_hyphen_values = true, value_parser = parse::tolerance, default_value = "1e-6")]
+    tolerance: f64,
+    /// Time budget, in seconds (up to 1e6).
+    #[arg(long, allow_hyphen_values = true, value_parser = parse::seconds, default_value = "60")]
+    max_seconds: Duration,
+    /// Write the steady loop (theta,P,Q,u) to this .csv file.
     #[arg(long = "loop")]
     loop_csv: Option<PathBuf>,
-    /// Draw the load ellipse and the hysteresis loop (SVG, or PNG for a .png name).
+    /// Draw the load ellipse and the hysteresis loop to this .svg or .png file.
     #[arg(long)]
     plot: Option<PathBuf>,
     /// Print one JSON object.
@@ -142,7 +161,7 @@ struct SimulateArgs {
 
 #[derive(Args)]
 struct AccuracyArgs {
-    /// Directory for accuracy.csv, accuracy.svg and accuracy.png.
+    /// Directory for accuracy.csv, accuracy.svg and accuracy.png (created if missing).
     #[arg(long)]
     out: PathBuf,
     /// Fewer cases, precisions and repeats (well under a minute).
@@ -156,7 +175,7 @@ struct VerifyArgs {
     #[arg(long)]
     quick: bool,
     /// The seed of the random draws.
-    #[arg(long, default_value_t = 2026)]
+    #[arg(long, allow_hyphen_values = true, value_parser = parse::seed, default_value = "2026")]
     seed: u64,
     /// Print one JSON object.
     #[arg(long)]
@@ -173,11 +192,11 @@ struct SmallAmplitudeArgs {
     phi: String,
     /// Significant digits, verified by a second run at higher precision (1–1000); without
     /// it, 15 digits from f64, or from MPFR where f64 cannot resolve I.
-    #[arg(long)]
+    #[arg(long, allow_hyphen_values = true, value_parser = parse::digits)]
     digits: Option<u32>,
-    /// Time budget for verified digits, in seconds.
-    #[arg(long, default_value_t = 60.0)]
-    max_seconds: f64,
+    /// Time budget for verified digits, in seconds (up to 1e6).
+    #[arg(long, allow_hyphen_values = true, value_parser = parse::seconds, default_value = "60")]
+    max_seconds: Duration,
     /// Print one JSON object.
     #[arg(long)]
     json: bool,
@@ -185,15 +204,19 @@ struct SmallAmplitudeArgs {
 
 #[derive(Args)]
 struct ReferenceArgs {
-    /// The catalogue file (JSON), rewritten with the new reference values.
+    /// The catalogue file (JSON).
     #[arg(long)]
     catalogue: PathBuf,
-    /// Verified significant digits per case.
-    #[arg(long, default_value_t = 50)]
-    digits: u32,
-    /// Time budget per case, in seconds.
-    #[arg(long, default_value_t = 120.0)]
-    max_seconds: f64,
+    /// Replace the stored values with freshly computed ones (atomically) instead of checking them.
+    #[arg(long)]
+    write: bool,
+    /// Verified significant digits per case (1–1000): with --write, for every case (default 50);
+    /// when checking, for cases without a stored value (the others are checked to their stored digits).
+    #[arg(long, allow_hyphen_values = true, value_parser = parse::digits)]
+    digits: Option<u32>,
+    /// Time budget per case, in seconds (up to 1e6).
+    #[arg(long, allow_hyphen_values = true, value_parser = parse::seconds, default_value = "120")]
+    max_seconds: Duration,
 }
 
 #[derive(Args)]
@@ -201,15 +224,6 @@ struct FiguresArgs {
     /// Directory for fig4…fig8 (.csv, .svg, .png), limit_slopes.csv and facts.json.
     #[arg(long)]
     out: PathBuf,
-}
-
-/// A failure to report: one line on stderr, exit code 2.
-struct Failure(String);
-
-impl<E: std::fmt::Display> From<E> for Failure {
-    fn from(error: E) -> Self {
-        Failure(error.to_string())
-    }
 }
 
 fn method_name(method: Method) -> &'static str {
@@ -221,33 +235,41 @@ fn method_name(method: Method) -> &'static str {
     }
 }
 
+/// A library error on a verified-digits path, with the flag that may help where it applies.
+fn reference_failure(error: ReferenceError, digits_given: bool) -> Failure {
+    let hint = match &error {
+        ReferenceError::Dissipation(
+            DissipationError::NotConverged { .. }
+            | DissipationError::IllConditioned { .. }
+            | DissipationError::OutOfRange { .. },
+        ) if !digits_given => "; try --digits N (verified digits in MPFR)",
+        ReferenceError::Budget { .. } if digits_given => "; raise --max-seconds or ask for fewer --digits",
+        ReferenceError::Budget { .. } => "; raise --max-seconds",
+        _ => "",
+    };
+    Failure::refused(format!("{error}{hint}"))
+}
+
 fn run_dissipation(args: &DissipationArgs) -> Result<String, Failure> {
     let case = args.case.text();
-    if !(args.max_seconds.is_finite() && args.max_seconds > 0.0) {
-        return Err(Failure(format!(
-            "--max-seconds must be a positive number, got {}",
-            args.max_seconds
-        )));
-    }
-    let printed = printable_dissipation(&case, args.digits, Duration::from_secs_f64(args.max_seconds))?;
+    let printed = printable_dissipation(&case, args.digits, args.max_seconds)
+        .map_err(|error| reference_failure(error, args.digits.is_some()))?;
     if args.json {
-        let segments: serde_json::Map<String, serde_json::Value> = printed
-            .segments
-            .iter()
-            .map(|(name, value)| (name.to_string(), json!(value)))
-            .collect();
-        let object = json!({
-            "W": printed.total,
-            "digits": printed.digits,
-            "digits_verified": printed.error_estimate.is_none().then_some(printed.digits),
-            "precision_bits": printed.precision_bits,
-            "error_estimate": printed.error_estimate,
-            "f64_fallback": printed.fallback,
-            "method": method_name(printed.method),
-            "segments": segments,
-            "inputs": case,
-        });
-        return Ok(object.to_string());
+        let segments: Vec<String> = printed.segments.iter().map(|(_, value)| value.clone()).collect();
+        let report = DissipationReport {
+            w: printed.total.clone(),
+            w_f64: printed.binary64.map(|values| values[0]),
+            digits: printed.digits,
+            digits_verified: printed.error_estimate.is_none().then_some(printed.digits),
+            precision_bits: printed.precision_bits,
+            error_estimate: printed.error_estimate,
+            f64_fallback: printed.fallback.clone(),
+            method: method_name(printed.method),
+            segments: Segments::from_slice(&segments),
+            segments_f64: printed.binary64.and_then(|values| Segments::from_slice(&values[1..])),
+            inputs: &case,
+        };
+        return Ok(serde_json::to_string(&report)?);
     }
     let mut out = format!(
         "W = {}   ({}; {} significant digits{})\n",
@@ -270,94 +292,182 @@ fn run_dissipation(args: &DissipationArgs) -> Result<String, Failure> {
 }
 
 fn run_reference(args: &ReferenceArgs) -> Result<String, Failure> {
-    if !(args.max_seconds.is_finite() && args.max_seconds > 0.0) {
-        return Err(Failure(format!(
-            "--max-seconds must be a positive number, got {}",
-            args.max_seconds
-        )));
-    }
     let entries = catalogue::load(&args.catalogue)?;
     let total = entries.len();
-    let updated = catalogue::regenerate(
-        &entries,
-        args.digits,
-        Duration::from_secs_f64(args.max_seconds),
-        |index, name| {
-            if std::io::stderr().is_terminal() {
-                eprint!("\r\x1b[K[{}/{total}] {name}", index + 1);
-            }
-        },
-    )?;
-    if std::io::stderr().is_terminal() {
-        eprintln!();
+    let progress = Progress::new(total);
+    let show = |index: usize, name: &str| progress.at(index, name);
+    if args.write {
+        check_writable(&args.catalogue, &[])?;
+        let digits = args.digits.unwrap_or(50);
+        let updated = catalogue::regenerate(&entries, digits, args.max_seconds, show);
+        progress.finish();
+        let updated = updated?;
+        catalogue::save(&args.catalogue, &updated).map_err(|e| Failure::failed(e.to_string()))?;
+        return Ok(format!(
+            "{} reference values to {digits} verified digits written to {}",
+            updated.len(),
+            args.catalogue.display()
+        ));
     }
-    catalogue::save(&args.catalogue, &updated)?;
-    Ok(format!(
-        "{} reference values to {} verified digits written to {}",
-        updated.len(),
-        args.digits,
+    let differences = catalogue::check(&entries, args.digits.unwrap_or(50), args.max_seconds, show);
+    progress.finish();
+    if differences.is_empty() {
+        return Ok(format!(
+            "all {total} reference values in {} reproduce to their stored digits",
+            args.catalogue.display()
+        ));
+    }
+    let mut message = format!(
+        "{} of {total} reference values in {} are not reproduced (nothing written; --write replaces them):",
+        differences.len(),
         args.catalogue.display()
-    ))
+    );
+    for difference in &differences {
+        message.push_str(&format!("\n  {difference}"));
+    }
+    Err(Failure::failed(message))
+}
+
+/// Whether two paths name the same file (as far as can be told before either exists).
+fn same_file(a: &Path, b: &Path) -> bool {
+    let resolve = |p: &Path| {
+        std::fs::canonicalize(p)
+            .or_else(|_| std::path::absolute(p))
+            .unwrap_or_else(|_| p.to_path_buf())
+    };
+    resolve(a) == resolve(b)
+}
+
+/// A simulation failure with the flags that may help.
+fn simulation_failure(error: SimulationError) -> Failure {
+    match error {
+        SimulationError::ToleranceNotReached { .. } => Failure::failed(format!(
+            "{error}; more --elements and --steps may reach it, or a larger --tolerance accepts it"
+        )),
+        SimulationError::TooLarge { .. } => Failure::refused(format!("{error}; use fewer --elements or --steps")),
+        SimulationError::OutOfTime { .. } => Failure::refused(format!(
+            "{error}; raise --max-seconds or use fewer --elements or --steps"
+        )),
+        other => Failure::refused(other.to_string()),
+    }
 }
 
 fn run_simulate(args: &SimulateArgs) -> Result<String, Failure> {
-    let Case { cycle, compliance } = args.case.text().read::<f64>(Precision::DOUBLE)?;
+    // Output files are checked before anything is computed.
+    if let Some(path) = &args.loop_csv {
+        check_writable(path, &["csv"])?;
+    }
+    if let Some(path) = &args.plot {
+        check_writable(path, &PLOT_EXTENSIONS)?;
+        check_drawing()?;
+    }
+    if let (Some(csv), Some(plot)) = (&args.loop_csv, &args.plot) {
+        if same_file(csv, plot) {
+            return Err(Failure::refused(format!(
+                "--loop and --plot name the same file {}",
+                csv.display()
+            )));
+        }
+    }
+    let case = args.case.text();
+    let Case { cycle, compliance } = case.read::<f64>(Precision::DOUBLE)?;
     let options = SimulationOptions {
         elements: args.elements,
         steps: args.steps,
+        deadline: Some(Instant::now() + args.max_seconds),
+        tolerance: Some(args.tolerance),
         ..SimulationOptions::default()
     };
-    let result = simulate(&cycle, compliance.as_ref(), &options)?;
+    let result = simulate(&cycle, compliance.as_ref(), &options).map_err(simulation_failure)?;
+    let digits = result.vouched_digits().max(1);
+    let w = result.w_work.to_scientific(digits as usize);
+    // A write that fails after the run still reports W.
+    let lost =
+        |error: &dyn std::fmt::Display| Failure::failed(format!("{error} (the simulation's W = {w} is not lost)"));
     if let Some(path) = &args.loop_csv {
-        write_loop_csv(path, &result).map_err(|e| Failure(format!("{}: {e}", path.display())))?;
+        write_text_atomically(path, &loop_csv(&result)).map_err(|e| lost(&e))?;
     }
     if let Some(path) = &args.plot {
-        plot_cycle(path, &cycle, &result)?;
+        plot_cycle(path, &cycle, &result).map_err(|e| lost(&e))?;
     }
     if args.json {
-        return Ok(json!({
-            "W_work": result.w_work,
-            "W_friction": result.w_friction,
-            "estimated_rel_error": result.estimated_rel_error,
-            "elements": result.elements,
-            "steps": result.steps,
-        })
-        .to_string());
+        return Ok(serde_json::to_string(&simulation_report(&result, digits, &case, args))?);
     }
     Ok(format!(
-        "W = {:.10e} (work of the load) = {:.10e} (frictional work); estimated relative error {:.1e}; {} elements, {} steps per cycle (finest run)",
-        result.w_work, result.w_friction, result.estimated_rel_error, result.elements, result.steps
+        "W = {w} (work of the load) = {} (frictional work); estimated relative error {:.1e}, {digits} significant digits; {} elements, {} steps per cycle (finest run)",
+        result.w_friction.to_scientific(digits as usize),
+        result.estimated_rel_error,
+        result.elements,
+        result.steps
     ))
 }
 
+fn simulation_report<'a>(
+    result: &SimulationResult,
+    digits: u32,
+    case: &'a CaseText,
+    args: &SimulateArgs,
+) -> SimulationReport<'a> {
+    let defaults = SimulationOptions::default();
+    SimulationReport {
+        w: result.w_work.to_scientific(digits as usize),
+        w_f64: result.w_work,
+        w_friction: result.w_friction.to_scientific(digits as usize),
+        w_friction_f64: result.w_friction,
+        digits,
+        digits_verified: None,
+        precision_bits: 53,
+        estimated_rel_error: result.estimated_rel_error,
+        method: "history simulation of a spring bed, Richardson-extrapolated from three resolutions",
+        elements: result.elements,
+        steps: result.steps,
+        inputs: SimulationInputs {
+            case,
+            elements: args.elements.or(defaults.elements).unwrap_or(result.elements / 4),
+            steps: args.steps.or(defaults.steps).unwrap_or(result.steps / 4),
+            tolerance: args.tolerance,
+        },
+    }
+}
+
 fn run_accuracy(args: &AccuracyArgs) -> Result<String, Failure> {
-    std::fs::create_dir_all(&args.out).map_err(|e| Failure(format!("{}: {e}", args.out.display())))?;
-    let show = std::io::stderr().is_terminal();
+    // The directory and its three files are checked before the (long) measurement.
+    if args.out.exists() && !args.out.is_dir() {
+        return Err(Failure::refused(format!(
+            "--out {}: exists and is not a directory",
+            args.out.display()
+        )));
+    }
+    std::fs::create_dir_all(&args.out).map_err(|e| Failure::refused(format!("{}: {e}", args.out.display())))?;
+    let csv = args.out.join("accuracy.csv");
+    let (svg, png) = (args.out.join("accuracy.svg"), args.out.join("accuracy.png"));
+    for path in [&csv, &svg, &png] {
+        check_writable(path, &[])?;
+    }
+    check_drawing()?;
     let cases = accuracy::standard_cases(args.quick);
+    let progress = Progress::new(cases.len());
     let mut measurements = Vec::new();
     for (index, case) in cases.iter().enumerate() {
-        if show {
-            eprint!(
-                "\r\x1b[K[{}/{}] {}: 100-digit reference",
-                index + 1,
-                cases.len(),
-                case.name
-            );
-        }
-        let reference = accuracy::reference_value(&case.text)?;
-        measurements.extend(accuracy::measure_case(case, &reference, args.quick, |stage| {
-            if show {
-                eprint!("\r\x1b[K[{}/{}] {}: {stage}", index + 1, cases.len(), case.name);
+        progress.at(index, &format!("{}: 100-digit reference", case.name));
+        let reference = accuracy::reference_value(&case.text);
+        let reference = match reference {
+            Ok(reference) => reference,
+            Err(error) => {
+                progress.finish();
+                return Err(error.into());
             }
+        };
+        measurements.extend(accuracy::measure_case(case, &reference, args.quick, |stage| {
+            progress.at(index, &format!("{}: {stage}", case.name));
         }));
     }
-    if show {
-        eprintln!();
-    }
-    let csv = args.out.join("accuracy.csv");
-    std::fs::write(&csv, accuracy::to_csv(&measurements)).map_err(|e| Failure(format!("{}: {e}", csv.display())))?;
-    plot_accuracy(&args.out.join("accuracy.svg"), &measurements)?;
-    plot_accuracy(&args.out.join("accuracy.png"), &measurements)?;
+    progress.finish();
+    let written = write_text_atomically(&csv, &accuracy::to_csv(&measurements))
+        .map_err(|e| e.to_string())
+        .and_then(|()| plot_accuracy(&svg, &measurements).map_err(|e| e.to_string()))
+        .and_then(|()| plot_accuracy(&png, &measurements).map_err(|e| e.to_string()));
+    written.map_err(Failure::failed)?;
     let mut out = format!(
         "{:>8}  {:<28} {:>9} {:>9}  {:>12}  {}\n",
         "target", "cheapest rule", "bits", "parameter", "seconds", "case"
@@ -385,27 +495,55 @@ fn run_accuracy(args: &AccuracyArgs) -> Result<String, Failure> {
     Ok(out)
 }
 
+/// The working precision of a gate row (`f64` or `N bits`) in bits.
+fn precision_bits(precision: &str) -> u32 {
+    if precision == "f64" {
+        return 53;
+    }
+    precision
+        .split_whitespace()
+        .next()
+        .and_then(|bits| bits.parse().ok())
+        .unwrap_or(0)
+}
+
 fn run_verify(args: &VerifyArgs) -> Result<(String, bool), Failure> {
     let options = GateOptions {
         seed: args.seed,
         quick: args.quick,
     };
-    let show_progress = std::io::stderr().is_terminal();
-    let started = std::time::Instant::now();
+    let started = Instant::now();
+    let mut progress: Option<Progress> = None;
     let reports = verify::run(options, |done, total, name| {
-        if show_progress {
-            eprint!("\r\x1b[K[{done}/{total}] {name} done");
-        }
+        progress
+            .get_or_insert_with(|| Progress::new(total))
+            .at(done, &format!("{name} done"));
     });
-    if show_progress {
-        eprintln!();
+    if let Some(progress) = &progress {
+        progress.finish();
     }
     let passed = reports.iter().all(|r| r.passed);
     let seconds = started.elapsed().as_secs_f64();
     if args.json {
-        let object =
-            json!({"passed": passed, "seed": args.seed, "quick": args.quick, "seconds": seconds, "claims": reports});
-        return Ok((object.to_string(), passed));
+        let report = GateReport {
+            passed,
+            seed: args.seed,
+            quick: args.quick,
+            seconds,
+            claims: reports
+                .iter()
+                .map(|r| ClaimRow {
+                    claim: &r.claim,
+                    precision_bits: precision_bits(&r.precision),
+                    cases: r.cases,
+                    worst_error: r.worst_error,
+                    tolerance: r.tolerance,
+                    passed: r.passed,
+                    note: &r.note,
+                })
+                .collect(),
+        };
+        return Ok((serde_json::to_string(&report)?, passed));
     }
     let mut out = format!(
         "{:<62} {:<9} {:>6} {:>11} {:>9}  result\n",
@@ -434,16 +572,19 @@ fn run_verify(args: &VerifyArgs) -> Result<(String, bool), Failure> {
 }
 
 fn run_small_amplitude(args: &SmallAmplitudeArgs) -> Result<String, Failure> {
-    if !(args.max_seconds.is_finite() && args.max_seconds > 0.0) {
-        return Err(Failure(format!(
-            "--max-seconds must be a positive number, got {}",
-            args.max_seconds
-        )));
-    }
-    let budget = Duration::from_secs_f64(args.max_seconds);
-    let printed = small_amplitude::evaluate(&args.rho, &args.phi, args.digits, budget)?;
+    let printed = small_amplitude::evaluate(&args.rho, &args.phi, args.digits, args.max_seconds)?;
     if args.json {
-        return Ok(json!({"rho": args.rho, "phi": args.phi, "I": printed.value, "digits": printed.digits}).to_string());
+        let report = CoefficientReport {
+            i: printed.value.clone(),
+            digits: printed.digits,
+            digits_verified: (printed.precision_bits != 53).then_some(printed.digits),
+            precision_bits: printed.precision_bits,
+            inputs: ShapeInputs {
+                rho: &args.rho,
+                phi: &args.phi,
+            },
+        };
+        return Ok(serde_json::to_string(&report)?);
     }
     Ok(format!("I(ρ = {}, φ = {}) = {}", args.rho, args.phi, printed.value))
 }
@@ -503,24 +644,13 @@ fn run_figures(args: &FiguresArgs) -> Result<String, Failure> {
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
-        Err(error) => {
-            use clap::error::ErrorKind;
-            if matches!(error.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion) {
-                print!("{error}");
-                return ExitCode::SUCCESS;
-            }
-            let rendered = error.to_string();
-            let first = rendered.lines().next().unwrap_or("invalid arguments");
-            eprintln!("microslip: {}", first.trim_start_matches("error: "));
-            return ExitCode::from(2);
-        }
+        Err(error) => return parse_error(&error),
     };
     let outcome = match &cli.command {
         Command::Dissipation(args) => run_dissipation(args),
         Command::Verify(args) => match run_verify(args) {
             Ok((text, passed)) => {
-                println!("{text}");
-                return if passed { ExitCode::SUCCESS } else { ExitCode::from(1) };
+                return emit(&text, if passed { ExitCode::SUCCESS } else { ExitCode::from(1) });
             }
             Err(failure) => Err(failure),
         },
@@ -532,13 +662,35 @@ fn main() -> ExitCode {
         Command::Figures(args) => run_figures(args),
     };
     match outcome {
-        Ok(text) => {
-            println!("{text}");
-            ExitCode::SUCCESS
-        }
-        Err(Failure(message)) => {
-            eprintln!("microslip: {message}");
-            ExitCode::from(2)
-        }
+        Ok(text) => emit(&text, ExitCode::SUCCESS),
+        Err(failure) => fail(&failure),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_digits_hint_is_given_only_where_digits_were_not() {
+        let out_of_range = || ReferenceError::Dissipation(DissipationError::OutOfRange { scale: 1e-310 });
+        assert!(reference_failure(out_of_range(), false)
+            .message
+            .ends_with("try --digits N (verified digits in MPFR)"));
+        assert!(!reference_failure(out_of_range(), true).message.contains("--digits"));
+        let budget = || ReferenceError::Budget {
+            digits_requested: 30,
+            digits_reached: 3,
+            seconds: 1.0,
+            precision_bits: 256,
+        };
+        assert!(reference_failure(budget(), true).message.contains("fewer --digits"));
+        assert!(!reference_failure(budget(), false).message.contains("--digits"));
+    }
+
+    #[test]
+    fn gate_precisions_read_as_bits() {
+        assert_eq!(precision_bits("f64"), 53);
+        assert_eq!(precision_bits("256 bits"), 256);
     }
 }

@@ -1,7 +1,8 @@
 //! Pictures of a simulated cycle: the load ellipse in the (P, Q) plane with the
 //! friction wedge |Q| = fP and the points B, C, H, E, beside the Q–u hysteresis
-//! loop with its four segments coloured. SVG, or PNG when the file name ends in
-//! `.png`; text needs the DejaVu Sans font (Debian package fonts-dejavu-core).
+//! loop with its four segments coloured. SVG or PNG by the file name's extension
+//! (others are refused); files are written atomically. Text needs the DejaVu Sans
+//! font (Debian package fonts-dejavu-core).
 
 use std::path::Path;
 
@@ -9,6 +10,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use crate::cycle::LoadCycle;
+use crate::files::{write_atomically, OutputError};
 use crate::simulate::SimulationResult;
 
 /// The font text is drawn and measured with (plotters lays out text only with a registered font).
@@ -23,9 +25,37 @@ pub enum PlotError {
     /// Text needs a font file.
     #[error("plots need the font {FONT} (apt-get install fonts-dejavu-core)")]
     FontMissing,
-    /// The drawing library failed.
-    #[error("drawing {path}: {message}")]
-    Drawing { path: String, message: String },
+    /// The file could not be written, or has an extension other than .svg or .png.
+    #[error(transparent)]
+    Output(#[from] OutputError),
+}
+
+/// The extensions a plot can be written as.
+pub const PLOT_EXTENSIONS: [&str; 2] = ["svg", "png"];
+
+/// Whether `path` names a PNG (otherwise an SVG); any other extension is refused.
+fn is_png(path: &Path) -> Result<bool, PlotError> {
+    match path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()) {
+        Some(e) if e == "png" => Ok(true),
+        Some(e) if e == "svg" => Ok(false),
+        _ => Err(OutputError::Extension {
+            path: path.display().to_string(),
+            expected: ".svg or .png".to_string(),
+        }
+        .into()),
+    }
+}
+
+/// A drawing failure as one line: the underlying I/O error where there is one.
+pub(crate) fn describe(error: Box<dyn std::error::Error>) -> String {
+    let mut cause: Option<&(dyn std::error::Error + 'static)> = Some(error.as_ref());
+    while let Some(current) = cause {
+        if let Some(io) = current.downcast_ref::<std::io::Error>() {
+            return io.to_string();
+        }
+        cause = current.source();
+    }
+    error.to_string()
 }
 
 const SEGMENT_COLOURS: [RGBColor; 4] = [
@@ -46,7 +76,7 @@ struct Scene {
     dissipation: f64,
 }
 
-/// Draws the ellipse and the loop side by side into `path` (.svg, or .png).
+/// Draws the ellipse and the loop side by side into `path` (.svg or .png).
 pub fn plot_cycle(path: &Path, cycle: &LoadCycle<f64>, result: &SimulationResult) -> Result<(), PlotError> {
     let geometry = cycle.geometry()?;
     // The geometry is that of φ reduced to [0, π): an odd number of π removed mirrors Q − Q0.
@@ -93,17 +123,21 @@ pub fn plot_cycle(path: &Path, cycle: &LoadCycle<f64>, result: &SimulationResult
         segments,
         dissipation: result.w_work,
     };
-    let drawing = |error: Box<dyn std::error::Error>| PlotError::Drawing {
-        path: path.display().to_string(),
-        message: error.to_string(),
-    };
+    let png = is_png(path)?;
     register_font()?;
     let size = (1200, 520);
-    if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("png")) {
-        draw(BitMapBackend::new(path, size).into_drawing_area(), &scene).map_err(drawing)
-    } else {
-        draw(SVGBackend::new(path, size).into_drawing_area(), &scene).map_err(drawing)
-    }
+    Ok(write_atomically(path, |file: &Path| {
+        if png {
+            draw(BitMapBackend::new(file, size).into_drawing_area(), &scene).map_err(describe)
+        } else {
+            draw(SVGBackend::new(file, size).into_drawing_area(), &scene).map_err(describe)
+        }
+    })?)
+}
+
+/// Checks that plots can be drawn (the font is there), before anything is computed.
+pub fn check_drawing() -> Result<(), PlotError> {
+    register_font()
 }
 
 /// Registers the font once per process: text layout needs its metrics in SVG too.
@@ -198,17 +232,16 @@ where
 /// One curve per (rule, precision): log10 relative error against log10 seconds,
 /// with the Pareto front circled, into `path` (.svg or .png).
 pub fn plot_accuracy(path: &Path, measurements: &[crate::accuracy::Measurement]) -> Result<(), PlotError> {
+    let png = is_png(path)?;
     register_font()?;
-    let drawing = |error: Box<dyn std::error::Error>| PlotError::Drawing {
-        path: path.display().to_string(),
-        message: error.to_string(),
-    };
     let size = (1100, 700);
-    if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("png")) {
-        draw_accuracy(BitMapBackend::new(path, size).into_drawing_area(), measurements).map_err(drawing)
-    } else {
-        draw_accuracy(SVGBackend::new(path, size).into_drawing_area(), measurements).map_err(drawing)
-    }
+    Ok(write_atomically(path, |file: &Path| {
+        if png {
+            draw_accuracy(BitMapBackend::new(file, size).into_drawing_area(), measurements).map_err(describe)
+        } else {
+            draw_accuracy(SVGBackend::new(file, size).into_drawing_area(), measurements).map_err(describe)
+        }
+    })?)
 }
 
 fn draw_accuracy<DB: DrawingBackend>(

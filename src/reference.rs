@@ -59,6 +59,8 @@ pub struct PrintedDissipation {
     pub error_estimate: Option<f64>,
     /// Why a run without a digit count computed verified digits in MPFR instead of f64.
     pub fallback: Option<String>,
+    /// The f64 values W, EB, BC, CH, HE as computed, where the printed ones come from f64.
+    pub binary64: Option<[f64; 5]>,
 }
 
 /// The fewest significant digits an f64 result may print; where f64 resolves fewer (a W
@@ -84,6 +86,7 @@ pub fn printable_dissipation(
             precision_bits: verified.precision_bits,
             error_estimate: None,
             fallback,
+            binary64: None,
         })
     };
     if let Some(digits) = digits {
@@ -161,6 +164,13 @@ pub fn printable_dissipation(
         precision_bits: 53,
         error_estimate: Some(result.error_estimate),
         fallback: None,
+        binary64: Some([
+            result.total,
+            result.segments.eb,
+            result.segments.bc,
+            result.segments.ch,
+            result.segments.he,
+        ]),
     })
 }
 
@@ -220,10 +230,10 @@ pub enum ReferenceError {
     #[error(transparent)]
     Dissipation(#[from] DissipationError),
     /// The digits asked for are out of range.
-    #[error("--digits must be between 1 and {MAX_DIGITS}, got {0}")]
+    #[error("the significant digits asked for must be between 1 and {MAX_DIGITS}, got {0}")]
     DigitsOutOfRange(u32),
     /// The budget ran out first.
-    #[error("only {digits_reached} of {digits_requested} digits could be verified within {seconds:.1} s (last attempt at {precision_bits} bits); raise --max-seconds or ask for fewer digits")]
+    #[error("only {digits_reached} of {digits_requested} digits could be verified within {seconds:.1} s (two precisions must agree to {GUARD_DIGITS} digits more; last attempt at {precision_bits} bits)")]
     Budget {
         digits_requested: u32,
         digits_reached: u32,

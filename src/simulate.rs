@@ -18,8 +18,7 @@
 //! errors in the element spacing and in the step are smooth O(h²) and three runs at
 //! doubling resolution extrapolate them away (order 2 measured in both).
 
-use std::io::Write;
-use std::path::Path;
+use std::time::Instant;
 
 use crate::compliance::{check_admissible, AdmissibilityError, Compliance};
 use crate::cycle::{CycleError, LoadCycle};
@@ -44,6 +43,14 @@ pub struct SimulationOptions {
     pub initial_path: InitialPath,
     /// Extrapolate from three resolutions (Richardson); otherwise one run at the given resolution.
     pub extrapolate: bool,
+    /// Stop with [`SimulationError::OutOfTime`] once this instant has passed (checked every step).
+    pub deadline: Option<Instant>,
+    /// The most memory, in bytes, the runs may need (estimated before anything is allocated);
+    /// default 1 GiB.
+    pub memory_limit: f64,
+    /// Fail with [`SimulationError::ToleranceNotReached`] when the estimated relative error
+    /// exceeds this; `None` returns every result with its estimate.
+    pub tolerance: Option<f64>,
 }
 
 impl Default for SimulationOptions {
@@ -53,9 +60,15 @@ impl Default for SimulationOptions {
             steps: None,
             initial_path: InitialPath::NormalThenTangential,
             extrapolate: true,
+            deadline: None,
+            memory_limit: DEFAULT_MEMORY_LIMIT,
+            tolerance: None,
         }
     }
 }
+
+/// The default [`SimulationOptions::memory_limit`]: 1 GiB.
+pub const DEFAULT_MEMORY_LIMIT: f64 = 1024.0 * 1024.0 * 1024.0;
 
 /// One sample of the steady loop.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -89,18 +102,56 @@ pub struct SimulationResult {
     pub steps: usize,
 }
 
+impl SimulationResult {
+    /// The significant digits of W that the error estimate vouches for (at most 15, 0 when
+    /// the estimate is 100 % or more).
+    pub fn vouched_digits(&self) -> u32 {
+        let error = self.estimated_rel_error;
+        if error <= 0.0 {
+            return 15;
+        }
+        if error >= 1.0 || error.is_nan() {
+            return 0;
+        }
+        ((-error.log10()).floor() as u32).min(15)
+    }
+}
+
 /// Why a simulation could not run.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SimulationError {
     /// The cycle is outside the theory.
     #[error(transparent)]
     Cycle(#[from] CycleError),
-    /// The compliance is not physical over the cycle's loads.
-    #[error(transparent)]
+    /// The compliance is not physical over the loads the simulated bed covers.
+    #[error("{0} = [0.9 P_T, P0 + P1]: the simulated bed reaches below the permanent-stick load P_T")]
     Compliance(#[from] AdmissibilityError),
     /// Too few elements or steps to mean anything.
     #[error("the simulation needs at least 20 elements and 40 steps per cycle (got {elements} and {steps})")]
     Resolution { elements: usize, steps: usize },
+    /// The runs would need more memory than allowed.
+    #[error(
+        "{elements} elements and {steps} steps per cycle (times 4 in the finest of the three runs) need about {bytes:.1e} bytes of memory, more than the {limit:.1e} allowed"
+    )]
+    TooLarge {
+        elements: usize,
+        steps: usize,
+        bytes: f64,
+        limit: f64,
+    },
+    /// The deadline passed before the simulation finished.
+    #[error("the time budget ran out during the run with {elements} elements and {steps} steps per cycle")]
+    OutOfTime { elements: usize, steps: usize },
+    /// The estimated error exceeds the tolerance asked for.
+    #[error(
+        "the simulation's estimated relative error {estimated:.1e} exceeds the tolerance {tolerance:.0e} (W = {w_work:.3e} as the work of the load, {w_friction:.3e} as frictional work)"
+    )]
+    ToleranceNotReached {
+        estimated: f64,
+        tolerance: f64,
+        w_work: f64,
+        w_friction: f64,
+    },
     /// Elements below the load P_T that the grid takes as the lowest to slip did slip.
     #[error(
         "elements below the predicted lowest slipping load P_T = {load:.6e} slipped ({share:.1e} of the frictional work): the simulation's grid premise failed"
@@ -511,10 +562,15 @@ fn run(
     elements: usize,
     steps: usize,
     path: InitialPath,
+    deadline: Option<Instant>,
 ) -> Result<Run, SimulationError> {
     let bed = Bed::new(compliance, cycle, lowest_slip, elements);
     let mut contact = Contact::new(&bed, cycle.friction, cycle.compliance_ratio);
     let equilibrium = |theta: f64| SimulationError::Equilibrium { theta };
+    let in_time = || match deadline {
+        Some(deadline) if Instant::now() > deadline => Err(SimulationError::OutOfTime { elements, steps }),
+        _ => Ok(()),
+    };
     let (p_start, q_start) = (cycle.normal_load(&0.0), cycle.tangential_load(&0.0));
     let ramp = steps.max(100);
     for i in 1..=ramp {
@@ -523,6 +579,7 @@ fn run(
             InitialPath::NormalThenTangential => (p_start * (2.0 * t).min(1.0), q_start * (2.0 * t - 1.0).max(0.0)),
             InitialPath::Proportional => (p_start * t, q_start * t),
         };
+        in_time()?;
         contact.step(compliance, p, q).ok_or_else(|| equilibrium(0.0))?;
     }
     let angles = cycle_angles(cycle, steps);
@@ -541,6 +598,7 @@ fn run(
         for &theta in &angles {
             let (p, q) = (cycle.normal_load(&theta), cycle.tangential_load(&theta));
             let before = *samples.last().unwrap_or(&samples[0]);
+            in_time()?;
             friction_work += contact.step(compliance, p, q).ok_or_else(|| equilibrium(theta))?;
             work += 0.5 * (before.tangential_load + q) * (contact.displacement - before.displacement);
 
@@ -587,9 +645,60 @@ pub fn simulate(
     if elements < 20 || steps < 40 {
         return Err(SimulationError::Resolution { elements, steps });
     }
+    let bytes = memory_needed(elements, steps, options.extrapolate);
+    if bytes > options.memory_limit || bytes.is_nan() {
+        return Err(SimulationError::TooLarge {
+            elements,
+            steps,
+            bytes,
+            limit: options.memory_limit,
+        });
+    }
+    let result = simulate_at(cycle, compliance, options, lowest_slip, elements, steps)?;
+    match options.tolerance {
+        Some(tolerance) if result.estimated_rel_error > tolerance || result.estimated_rel_error.is_nan() => {
+            Err(SimulationError::ToleranceNotReached {
+                estimated: result.estimated_rel_error,
+                tolerance,
+                w_work: result.w_work,
+                w_friction: result.w_friction,
+            })
+        }
+        _ => Ok(result),
+    }
+}
+
+/// An upper estimate of the bytes the runs need: per element its entry load, stiffness,
+/// v at entry, slip offset, engagement and contact flag, per step a loop sample and an
+/// angle; the extrapolation keeps the loops of all three runs (1 + 2 + 4 times the steps)
+/// and the finest bed has four times the elements.
+fn memory_needed(elements: usize, steps: usize, extrapolate: bool) -> f64 {
+    let (finest, loops) = if extrapolate { (4.0, 7.0) } else { (1.0, 1.0) };
+    let per_element = (5 * std::mem::size_of::<f64>() + 1) as f64;
+    let per_step = (std::mem::size_of::<LoopSample>() + std::mem::size_of::<f64>()) as f64;
+    // A bed has a few more elements than asked (at least one per piece between nodes).
+    per_element * (finest * elements as f64 * 1.05 + 64.0) + per_step * (loops * steps as f64 + 3.0 * loops)
+}
+
+/// The runs at the given resolution, extrapolated when asked.
+fn simulate_at(
+    cycle: &LoadCycle<f64>,
+    compliance: &dyn Compliance<f64>,
+    options: &SimulationOptions,
+    lowest_slip: f64,
+    elements: usize,
+    steps: usize,
+) -> Result<SimulationResult, SimulationError> {
     if !options.extrapolate {
-        let (w_work, w_friction, steady_loop) =
-            run(cycle, compliance, lowest_slip, elements, steps, options.initial_path)?;
+        let (w_work, w_friction, steady_loop) = run(
+            cycle,
+            compliance,
+            lowest_slip,
+            elements,
+            steps,
+            options.initial_path,
+            options.deadline,
+        )?;
         return Ok(SimulationResult {
             estimated_rel_error: (w_work - w_friction).abs() / w_work.abs().max(f64::MIN_POSITIVE),
             w_work,
@@ -613,6 +722,7 @@ pub fn simulate(
                 elements * m,
                 steps * m,
                 options.initial_path,
+                options.deadline,
             )
         })
         .collect::<Result<Vec<_>, _>>()?;
@@ -635,18 +745,16 @@ pub fn simulate(
     })
 }
 
-/// Writes the steady loop as CSV: theta,P,Q,u.
-pub fn write_loop_csv(path: &Path, result: &SimulationResult) -> std::io::Result<()> {
-    let mut file = std::io::BufWriter::new(std::fs::File::create(path)?);
-    writeln!(file, "theta,P,Q,u")?;
+/// The steady loop as CSV: a header `theta,P,Q,u`, then one line per sample.
+pub fn loop_csv(result: &SimulationResult) -> String {
+    let mut text = String::from("theta,P,Q,u\n");
     for s in &result.steady_loop {
-        writeln!(
-            file,
-            "{},{},{},{}",
+        text.push_str(&format!(
+            "{},{},{},{}\n",
             s.theta, s.normal_load, s.tangential_load, s.displacement
-        )?;
+        ));
     }
-    file.flush()
+    text
 }
 
 #[cfg(test)]
@@ -673,10 +781,10 @@ mod tests {
         let cycle = cycle(0.4 * std::f64::consts::PI, 0.0);
         let path = InitialPath::NormalThenTangential;
         let right = lowest_slipping_load(&cycle);
-        assert!(run(&cycle, compliance.as_ref(), right, 200, 600, path).is_ok());
+        assert!(run(&cycle, compliance.as_ref(), right, 200, 600, path, None).is_ok());
         // Halfway between P_T and P0 − P1: the never-slipping elements then slip.
         let wrong = 0.5 * (right + 0.6);
-        match run(&cycle, compliance.as_ref(), wrong, 200, 600, path) {
+        match run(&cycle, compliance.as_ref(), wrong, 200, 600, path, None) {
             Err(SimulationError::SlipBelowLowestSlip { load, share }) => {
                 assert_eq!(load, wrong);
                 assert!(share > 1e-6, "{share}");

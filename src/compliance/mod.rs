@@ -54,10 +54,10 @@ pub trait Compliance<R: Real>: Debug + Send + Sync {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum AdmissibilityError {
     /// v' ≤ 0 somewhere: the contact would not resist the load.
-    #[error("the compliance has v'(P) = {slope:e} ≤ 0 at P = {load:e}; a contact needs v' > 0 over the loads the cycle reaches [{low:e}, {high:e}]")]
+    #[error("the compliance has v'(P) = {slope:.4e} ≤ 0 at P = {load:.4e}: the contact would not resist the load; v' > 0 is needed on [{low:.4e}, {high:.4e}]")]
     NonPositiveSlope { load: f64, slope: f64, low: f64, high: f64 },
     /// v'' > 0 somewhere: the contact would soften as it is pressed.
-    #[error("the compliance has v''(P) = {curvature:e} > 0 at P = {load:e}; a contact needs v'' ≤ 0 over the loads the cycle reaches [{low:e}, {high:e}]")]
+    #[error("the compliance has v''(P) = {curvature:.4e} > 0 at P = {load:.4e}: the contact would soften as it is pressed; v'' ≤ 0 is needed on [{low:.4e}, {high:.4e}]")]
     PositiveCurvature {
         load: f64,
         curvature: f64,
@@ -65,8 +65,14 @@ pub enum AdmissibilityError {
         high: f64,
     },
     /// v' or v'' is not a finite number somewhere.
-    #[error("the compliance is not finite at P = {load:e} (v' = {slope:e}, v'' = {curvature:e})")]
-    NotFinite { load: f64, slope: f64, curvature: f64 },
+    #[error("the compliance is not finite at P = {load:.4e} (v' = {slope:e}, v'' = {curvature:e}); finite v' and v'' are needed on [{low:.4e}, {high:.4e}]")]
+    NotFinite {
+        load: f64,
+        slope: f64,
+        curvature: f64,
+        low: f64,
+        high: f64,
+    },
 }
 
 /// Checks v' > 0 and v'' ≤ 0 at 65 evenly spaced loads in [low, high] (both ends
@@ -85,6 +91,8 @@ pub fn check_admissible<R: Real>(compliance: &dyn Compliance<R>, low: &R, high: 
                 load: load_f,
                 slope: slope_f,
                 curvature: curvature_f,
+                low: low_f,
+                high: high_f,
             });
         }
         if slope <= load.int(0) {

@@ -174,17 +174,17 @@ pub enum DissipationError {
     #[error(transparent)]
     Cycle(#[from] CycleError),
     /// The compliance is not physical over the cycle's loads.
-    #[error(transparent)]
+    #[error("{0} = [P_T, P0 + P1]: the slip loads of the cycle reach down to the permanent-stick load P_T")]
     Compliance(#[from] AdmissibilityError),
     /// The quadrature did not reach the tolerance.
-    #[error("the integrals did not converge: relative change {relative_error:.2e} at {points} points per segment, {requested:.2e} requested; the case is too stiff at this precision (try --digits with more digits)")]
+    #[error("the integrals did not converge: relative change {relative_error:.2e} at {points} points per segment, {requested:.2e} requested; the case is too stiff for this working precision (more precision may converge)")]
     NotConverged {
         points: usize,
         relative_error: f64,
         requested: f64,
     },
     /// The working precision cannot resolve the cycle: rounding alone moves W too much.
-    #[error("the case is ill-conditioned at {bits} bits: {cause}, so rounding alone can change W by ~{expected:.1e} relative (limit {limit:.0e}); compute it with more precision (--digits N)")]
+    #[error("the case is ill-conditioned at {bits} bits: {cause}, so rounding alone can change W by ~{expected:.1e} relative (limit {limit:.0e}); it needs more working precision")]
     IllConditioned {
         bits: u32,
         /// What amplifies the rounding, with its size.
@@ -193,7 +193,7 @@ pub enum DissipationError {
         limit: f64,
     },
     /// The segment values are so small that f64 would hold them with fewer digits.
-    #[error("the segment contributions ({scale:e}) fall below the range the working precision holds in full; rescale the loads (W scales with the load scale) or use --digits")]
+    #[error("the segment contributions ({scale:e}) fall below the range the working precision holds in full; rescale the loads (W scales with the load scale) or compute with a wider exponent range (MPFR)")]
     OutOfRange { scale: f64 },
     /// W came out negative beyond its error estimate (a physical compliance dissipates).
     #[error("W = {total:e} is negative beyond its error estimate {error:e}; the compliance may violate v'' ≤ 0 between the sampled loads")]
@@ -307,8 +307,8 @@ fn integrate_segments<R: Real>(
         &cancellation,
         options,
         format!(
-            "Q1 = fP1/{:.3e}, and the slip terms of the segment integrands cancel to a difference that much smaller",
-            (cancellation.clone() / &cancellation.int(16)).to_f64_lossy()
+            "Q1/(fP1) = {:.3e}, and the slip terms of the segment integrands cancel to a difference that much smaller",
+            (cycle.tangential_amplitude.clone() / &cycle.normal_amplitude / &cycle.friction).to_f64_lossy()
         ),
     )?;
     let integrands = SegmentIntegrands {

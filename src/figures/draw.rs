@@ -9,7 +9,8 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::{Curve, Figure, Style};
-use crate::plot::{register_font, PlotError};
+use crate::files::write_atomically;
+use crate::plot::{describe, register_font, PlotError};
 
 const COLOURS: [RGBColor; 8] = [
     RGBColor(31, 119, 180),
@@ -25,16 +26,15 @@ const COLOURS: [RGBColor; 8] = [
 /// Draws `figure` into `path` (.png for a bitmap, anything else SVG).
 pub fn draw_figure(path: &Path, figure: &Figure) -> Result<(), PlotError> {
     register_font()?;
-    let drawing = |error: Box<dyn std::error::Error>| PlotError::Drawing {
-        path: path.display().to_string(),
-        message: error.to_string(),
-    };
     let size = (820 * figure.panels.len() as u32, 640);
-    if path.extension().is_some_and(|e| e.eq_ignore_ascii_case("png")) {
-        draw(BitMapBackend::new(path, size).into_drawing_area(), figure).map_err(drawing)
-    } else {
-        draw(SVGBackend::new(path, size).into_drawing_area(), figure).map_err(drawing)
-    }
+    let png = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("png"));
+    Ok(write_atomically(path, |file: &Path| {
+        if png {
+            draw(BitMapBackend::new(file, size).into_drawing_area(), figure).map_err(describe)
+        } else {
+            draw(SVGBackend::new(file, size).into_drawing_area(), figure).map_err(describe)
+        }
+    })?)
 }
 
 /// The samples of a curve in plotting coordinates (log10 of both for log–log figures).

@@ -54,9 +54,7 @@ pub fn regenerate(directory: &Path, report: &(dyn Fn(usize, usize) + Sync)) -> R
         files.push(csv);
         for extension in ["svg", "png"] {
             let path = directory.join(format!("{stem}.{extension}"));
-            let temporary = temporary_name(&path);
-            draw_figure(&temporary, figure)?;
-            rename(&temporary, &path)?;
+            draw_figure(&path, figure)?;
             files.push(path);
         }
     }
@@ -77,26 +75,7 @@ fn check_directory(directory: &Path) -> Result<(), FiguresError> {
         message,
     };
     std::fs::create_dir_all(directory).map_err(|e| unusable(e.to_string()))?;
-    let probe = directory.join(".microslip-figures-probe");
-    let temporary = temporary_name(&probe);
-    std::fs::write(&temporary, b"probe").map_err(|e| unusable(e.to_string()))?;
-    let renamed = std::fs::rename(&temporary, &probe);
-    let _ = std::fs::remove_file(&temporary);
-    let _ = std::fs::remove_file(&probe);
-    renamed.map_err(|e| unusable(e.to_string()))
-}
-
-/// A hidden sibling of `path` with the same extension (the PNG encoder reads the format from it).
-fn temporary_name(path: &Path) -> PathBuf {
-    let name = path
-        .file_name()
-        .map(|n| n.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    let extension = path
-        .extension()
-        .map(|e| e.to_string_lossy().into_owned())
-        .unwrap_or_default();
-    path.with_file_name(format!(".{name}.{}.tmp.{extension}", std::process::id()))
+    crate::files::check_writable(&directory.join("facts.json"), &[]).map_err(|e| unusable(e.to_string()))
 }
 
 fn write_error(path: &Path, error: impl std::fmt::Display) -> FiguresError {
@@ -106,17 +85,9 @@ fn write_error(path: &Path, error: impl std::fmt::Display) -> FiguresError {
     }
 }
 
-fn rename(from: &Path, to: &Path) -> Result<(), FiguresError> {
-    std::fs::rename(from, to).map_err(|e| {
-        let _ = std::fs::remove_file(from);
-        write_error(to, e)
-    })
-}
-
 fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), FiguresError> {
-    let temporary = temporary_name(path);
-    std::fs::write(&temporary, bytes).map_err(|e| write_error(path, e))?;
-    rename(&temporary, path)
+    crate::files::write_atomically(path, |temporary| std::fs::write(temporary, bytes))
+        .map_err(|e| write_error(path, e))
 }
 
 /// One row per sample: panel, curve, abscissa, Ŵ, the precision used, and on the end

@@ -1,0 +1,136 @@
+//! The JSON reports of the subcommands (`--json`), one typed struct each, with one
+//! vocabulary: a value is a decimal string with its printed digits (`"W"`), and where
+//! it was computed in f64 also the binary64 number itself in shortest round-trip form
+//! (`"W_f64"`); `digits` is the significant digits printed, `digits_verified` the
+//! digits checked by a second computation at higher precision (null where none were),
+//! `precision_bits` the working precision (53 for f64), `inputs` the inputs as given.
+
+use serde::Serialize;
+
+use microslip::inputs::CaseText;
+
+/// EB, BC, CH, HE.
+#[derive(Serialize)]
+pub struct Segments<T> {
+    #[serde(rename = "EB")]
+    pub eb: T,
+    #[serde(rename = "BC")]
+    pub bc: T,
+    #[serde(rename = "CH")]
+    pub ch: T,
+    #[serde(rename = "HE")]
+    pub he: T,
+}
+
+impl<T: Clone> Segments<T> {
+    /// From the four values in the order EB, BC, CH, HE.
+    pub fn from_slice(values: &[T]) -> Option<Self> {
+        match values {
+            [eb, bc, ch, he] => Some(Segments {
+                eb: eb.clone(),
+                bc: bc.clone(),
+                ch: ch.clone(),
+                he: he.clone(),
+            }),
+            _ => None,
+        }
+    }
+}
+
+/// `microslip dissipation --json`.
+#[derive(Serialize)]
+pub struct DissipationReport<'a> {
+    #[serde(rename = "W")]
+    pub w: String,
+    #[serde(rename = "W_f64")]
+    pub w_f64: Option<f64>,
+    pub digits: u32,
+    pub digits_verified: Option<u32>,
+    pub precision_bits: u32,
+    /// The absolute error estimate of an f64 W (null for verified digits).
+    pub error_estimate: Option<f64>,
+    /// Why a run without --digits computed verified digits in MPFR instead of f64.
+    pub f64_fallback: Option<String>,
+    pub method: &'static str,
+    pub segments: Option<Segments<String>>,
+    pub segments_f64: Option<Segments<f64>>,
+    pub inputs: &'a CaseText,
+}
+
+/// The inputs of `microslip simulate`: the case and the resolution asked for.
+#[derive(Serialize)]
+pub struct SimulationInputs<'a> {
+    #[serde(flatten)]
+    pub case: &'a CaseText,
+    /// Elements of the coarsest bed.
+    pub elements: usize,
+    /// Steps per cycle of the coarsest run.
+    pub steps: usize,
+    pub tolerance: f64,
+}
+
+/// `microslip simulate --json`.
+#[derive(Serialize)]
+pub struct SimulationReport<'a> {
+    /// W as the work of the load, to the digits the estimate vouches for.
+    #[serde(rename = "W")]
+    pub w: String,
+    #[serde(rename = "W_f64")]
+    pub w_f64: f64,
+    /// W as the frictional work of the elements, to the same digits.
+    #[serde(rename = "W_friction")]
+    pub w_friction: String,
+    #[serde(rename = "W_friction_f64")]
+    pub w_friction_f64: f64,
+    pub digits: u32,
+    /// Simulated digits are estimated, not verified: always null.
+    pub digits_verified: Option<u32>,
+    pub precision_bits: u32,
+    pub estimated_rel_error: f64,
+    pub method: &'static str,
+    /// Elements of the finest run.
+    pub elements: usize,
+    /// Steps per cycle of the finest run.
+    pub steps: usize,
+    pub inputs: SimulationInputs<'a>,
+}
+
+/// The inputs of `microslip small-amplitude`.
+#[derive(Serialize)]
+pub struct ShapeInputs<'a> {
+    pub rho: &'a str,
+    pub phi: &'a str,
+}
+
+/// `microslip small-amplitude --json`.
+#[derive(Serialize)]
+pub struct CoefficientReport<'a> {
+    #[serde(rename = "I")]
+    pub i: String,
+    pub digits: u32,
+    pub digits_verified: Option<u32>,
+    pub precision_bits: u32,
+    pub inputs: ShapeInputs<'a>,
+}
+
+/// One row of `microslip verify --json`.
+#[derive(Serialize)]
+pub struct ClaimRow<'a> {
+    pub claim: &'a str,
+    pub precision_bits: u32,
+    pub cases: usize,
+    pub worst_error: f64,
+    pub tolerance: f64,
+    pub passed: bool,
+    pub note: &'a str,
+}
+
+/// `microslip verify --json`.
+#[derive(Serialize)]
+pub struct GateReport<'a> {
+    pub passed: bool,
+    pub seed: u64,
+    pub quick: bool,
+    pub seconds: f64,
+    pub claims: Vec<ClaimRow<'a>>,
+}

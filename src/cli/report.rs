@@ -1,0 +1,153 @@
+//! How results and failures reach the terminal. Nothing here panics: a closed pipe
+//! on standard output ends the program quietly (exit 0), any other write error is one
+//! line on standard error and exit 1, and a failure is one line on standard error
+//! with nothing on standard output.
+
+use std::io::Write;
+use std::process::ExitCode;
+
+use clap::error::{ContextKind, ContextValue, ErrorKind};
+
+/// Exit code of refused input: bad flags, a case outside the theory, a limit.
+pub const REFUSED: u8 = 2;
+/// Exit code of a run whose result cannot be vouched for or written.
+pub const FAILED: u8 = 1;
+
+/// A failure to report: a message (one line, or several for a list of findings) and
+/// the exit code.
+#[derive(Debug)]
+pub struct Failure {
+    pub message: String,
+    pub code: u8,
+}
+
+impl Failure {
+    /// Input refused (exit 2).
+    pub fn refused(message: impl Into<String>) -> Self {
+        Failure {
+            message: message.into(),
+            code: REFUSED,
+        }
+    }
+
+    /// A run that failed (exit 1).
+    pub fn failed(message: impl Into<String>) -> Self {
+        Failure {
+            message: message.into(),
+            code: FAILED,
+        }
+    }
+}
+
+impl<E: std::fmt::Display> From<E> for Failure {
+    fn from(error: E) -> Self {
+        Failure::refused(error.to_string())
+    }
+}
+
+/// Writes `message` to standard error, prefixed with the program's name; a failure to
+/// write there is ignored (there is nowhere left to report it).
+pub fn warn(message: &str) {
+    let mut stderr = std::io::stderr().lock();
+    for line in message.lines() {
+        let _ = writeln!(stderr, "microslip: {line}");
+    }
+}
+
+/// Prints `text` (and a newline) to standard output and gives the exit code: success,
+/// also when the reader has gone (a closed pipe is not an error of ours), or 1 with
+/// one line on standard error when the write fails otherwise (a full disk, say).
+pub fn emit(text: &str, success: ExitCode) -> ExitCode {
+    let mut stdout = std::io::stdout().lock();
+    let written = stdout
+        .write_all(text.as_bytes())
+        .and_then(|()| stdout.write_all(b"\n"))
+        .and_then(|()| stdout.flush());
+    match written {
+        Ok(()) => success,
+        Err(error) if error.kind() == std::io::ErrorKind::BrokenPipe => success,
+        Err(error) => {
+            warn(&format!("writing to standard output: {error}"));
+            ExitCode::from(FAILED)
+        }
+    }
+}
+
+/// Reports a failure on standard error and gives its exit code.
+pub fn fail(failure: &Failure) -> ExitCode {
+    warn(&failure.message);
+    ExitCode::from(failure.code)
+}
+
+/// A command-line parsing error as what to print and where: help and version go to
+/// standard output with exit 0; a bare `microslip` prints usage and the subcommands
+/// to standard error with exit 2; every other error is one line naming what is wrong.
+pub fn parse_error(error: &clap::Error) -> ExitCode {
+    match error.kind() {
+        ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => emit(error.to_string().trim_end(), ExitCode::SUCCESS),
+        ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand => {
+            let _ = write!(std::io::stderr().lock(), "{}", error.render());
+            ExitCode::from(REFUSED)
+        }
+        _ => fail(&Failure::refused(parse_error_line(error))),
+    }
+}
+
+fn context_string(error: &clap::Error, kind: ContextKind) -> Option<String> {
+    match error.get(kind)? {
+        ContextValue::String(text) => Some(text.clone()),
+        ContextValue::Strings(list) => Some(list.join(", ")),
+        _ => None,
+    }
+}
+
+/// The flag of an argument as clap names it (`--digits <DIGITS>` → `--digits`).
+fn flag_of(argument: &str) -> &str {
+    argument.split_whitespace().next().unwrap_or(argument)
+}
+
+/// One line for a parsing error.
+fn parse_error_line(error: &clap::Error) -> String {
+    match error.kind() {
+        ErrorKind::MissingRequiredArgument => {
+            let missing: Vec<String> = match error.get(ContextKind::InvalidArg) {
+                Some(ContextValue::Strings(list)) => list
+                    .iter()
+                    .map(|argument| match flag_of(argument) {
+                        "--lambda" => "--lambda (or --nu)".to_string(),
+                        flag => flag.to_string(),
+                    })
+                    .collect(),
+                _ => Vec::new(),
+            };
+            if missing.is_empty() {
+                first_line(error)
+            } else {
+                format!("missing required arguments: {}", missing.join(", "))
+            }
+        }
+        ErrorKind::ValueValidation | ErrorKind::InvalidValue => {
+            let argument = context_string(error, ContextKind::InvalidArg).unwrap_or_default();
+            let value = context_string(error, ContextKind::InvalidValue).unwrap_or_default();
+            let source = std::error::Error::source(error).map(|s| s.to_string());
+            match source {
+                Some(reason) if reason.starts_with("must") => {
+                    format!("{} {reason} (got '{value}')", flag_of(&argument))
+                }
+                Some(reason) => format!("invalid value '{value}' for {}: {reason}", flag_of(&argument)),
+                None => first_line(error),
+            }
+        }
+        _ => first_line(error),
+    }
+}
+
+fn first_line(error: &clap::Error) -> String {
+    let rendered = error.render().to_string();
+    rendered
+        .lines()
+        .next()
+        .unwrap_or("invalid arguments")
+        .trim_start_matches("error: ")
+        .to_string()
+}

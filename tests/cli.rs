@@ -1,0 +1,589 @@
+//! The command line keeps its promises: nothing panics, every refusal is one line on
+//! stderr naming the problem (and, where one applies, the flag that helps) with nothing
+//! on stdout, output never half-written, JSON with one vocabulary, and every example in
+//! the help and the README runs.
+
+use std::io::Read;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Stdio};
+
+/// Runs `microslip` with `args`: exit code, stdout, stderr.
+fn microslip(args: &[&str]) -> (i32, String, String) {
+    let output = Command::new(env!("CARGO_BIN_EXE_microslip"))
+        .args(args)
+        .output()
+        .expect("the binary runs");
+    (
+        output.status.code().unwrap_or(-1),
+        String::from_utf8_lossy(&output.stdout).into_owned(),
+        String::from_utf8_lossy(&output.stderr).into_owned(),
+    )
+}
+
+/// The acceptance case's flags.
+const CASE: [&str; 14] = [
+    "--p0",
+    "1",
+    "--p1",
+    "0.4",
+    "--q1",
+    "0.5",
+    "--phi",
+    "0.4pi",
+    "--friction",
+    "1",
+    "--lambda",
+    "1",
+    "--compliance",
+    "persson:gamma=1,sigma=1",
+];
+
+/// `microslip <command>` on the acceptance case with `extra` flags (a flag given again
+/// in `extra` replaces the case's).
+fn on_case(command: &str, extra: &[&str]) -> (i32, String, String) {
+    let mut args = vec![command];
+    for pair in CASE.chunks(2) {
+        if !extra.contains(&pair[0]) {
+            args.extend(pair);
+        }
+    }
+    args.extend(extra);
+    microslip(&args)
+}
+
+/// A refusal or failure: the exit code, one line on stderr containing `expected`, nothing on stdout.
+fn assert_one_line_failure(outcome: (i32, String, String), code: i32, expected: &str) {
+    let (actual, stdout, stderr) = outcome;
+    assert_eq!(actual, code, "exit code; stderr: {stderr}");
+    assert!(stdout.is_empty(), "stdout should be empty, got {stdout}");
+    assert_eq!(stderr.trim_end().lines().count(), 1, "one line on stderr, got {stderr}");
+    assert!(
+        stderr.contains(expected),
+        "stderr should mention '{expected}': {stderr}"
+    );
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let directory = std::env::temp_dir().join(format!("microslip-cli-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&directory);
+    std::fs::create_dir_all(&directory).unwrap();
+    directory
+}
+
+fn json(stdout: &str) -> serde_json::Value {
+    serde_json::from_str(stdout.trim()).unwrap_or_else(|e| panic!("{e}: {stdout}"))
+}
+
+#[test]
+fn bare_microslip_prints_usage_and_the_subcommands_on_stderr() {
+    let (code, stdout, stderr) = microslip(&[]);
+    assert_eq!(code, 2);
+    assert!(stdout.is_empty());
+    assert!(stderr.contains("Usage: microslip <COMMAND>"), "{stderr}");
+    for command in [
+        "dissipation",
+        "simulate",
+        "small-amplitude",
+        "verify",
+        "reference",
+        "table",
+    ] {
+        assert!(stderr.contains(command), "{command}: {stderr}");
+    }
+}
+
+#[test]
+fn missing_arguments_are_all_named_on_one_line() {
+    let expected = "missing required arguments: --p0, --p1, --q1, --phi, --friction, --compliance, --lambda (or --nu)";
+    assert_one_line_failure(microslip(&["dissipation"]), 2, expected);
+    assert_one_line_failure(microslip(&["simulate"]), 2, expected);
+    assert_one_line_failure(
+        microslip(&["small-amplitude"]),
+        2,
+        "missing required arguments: --rho, --phi",
+    );
+    assert_one_line_failure(
+        microslip(&["dissipation", "--p0", "1", "--p1", "0.4", "--nu", "0.3"]),
+        2,
+        "missing required arguments: --q1, --phi, --friction, --compliance",
+    );
+    let (_, _, stderr) = on_case("dissipation", &["--lambda", "1"]);
+    assert!(stderr.is_empty());
+    // Neither --lambda nor --nu.
+    let args: Vec<&str> = std::iter::once("dissipation")
+        .chain(CASE.chunks(2).filter(|p| p[0] != "--lambda").flatten().copied())
+        .collect();
+    assert_one_line_failure(microslip(&args), 2, "missing required arguments: --lambda (or --nu)");
+}
+
+#[test]
+fn out_of_range_values_say_the_admitted_range() {
+    for digits in ["-1", "0", "1001", "4294967296", "x"] {
+        assert_one_line_failure(
+            on_case("dissipation", &["--digits", digits]),
+            2,
+            &format!("--digits must be between 1 and 1000 (got '{digits}')"),
+        );
+    }
+    for command in ["dissipation", "simulate"] {
+        for seconds in ["1e19", "1e300", "0", "-1", "nan", "inf"] {
+            assert_one_line_failure(
+                on_case(command, &["--max-seconds", seconds]),
+                2,
+                "--max-seconds must be a positive number of seconds, at most 1e6",
+            );
+        }
+    }
+    for seconds in ["1e19", "1e300"] {
+        assert_one_line_failure(
+            microslip(&["small-amplitude", "--rho", "1", "--phi", "1", "--max-seconds", seconds]),
+            2,
+            "--max-seconds must be a positive number",
+        );
+        assert_one_line_failure(
+            microslip(&["reference", "--catalogue", "x.json", "--max-seconds", seconds]),
+            2,
+            "--max-seconds must be a positive number",
+        );
+    }
+    assert_one_line_failure(
+        on_case("simulate", &["--elements", "-5"]),
+        2,
+        "--elements must be a whole number of at least 20",
+    );
+    assert_one_line_failure(
+        on_case("simulate", &["--steps", "10"]),
+        2,
+        "--steps must be a whole number of at least 40",
+    );
+    assert_one_line_failure(
+        on_case("simulate", &["--tolerance", "2"]),
+        2,
+        "--tolerance must be a number between 0 and 1",
+    );
+    assert_one_line_failure(
+        microslip(&["verify", "--seed", "-3"]),
+        2,
+        "--seed must be a whole number",
+    );
+}
+
+#[test]
+fn a_closed_pipe_ends_the_program_quietly() {
+    for args in [&["table"][..], &["verify", "--quick"][..]] {
+        let mut child = Command::new(env!("CARGO_BIN_EXE_microslip"))
+            .args(args)
+            .stdout(Stdio::piped())
+            .stderr(Stdio::piped())
+            .spawn()
+            .unwrap();
+        // Close the reading end at once: the program's write meets a closed pipe.
+        drop(child.stdout.take());
+        let mut stderr = String::new();
+        child.stderr.take().unwrap().read_to_string(&mut stderr).unwrap();
+        let status = child.wait().unwrap();
+        assert_eq!(status.code(), Some(0), "{args:?}: {stderr}");
+        assert!(stderr.is_empty(), "{args:?}: {stderr}");
+    }
+}
+
+#[test]
+fn a_write_error_on_stdout_is_one_line_and_exit_1() {
+    if !Path::new("/dev/full").exists() {
+        return;
+    }
+    let output = Command::new(env!("CARGO_BIN_EXE_microslip"))
+        .arg("table")
+        .stdout(std::fs::OpenOptions::new().write(true).open("/dev/full").unwrap())
+        .output()
+        .unwrap();
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(output.status.code(), Some(1), "{stderr}");
+    assert_eq!(stderr.trim_end().lines().count(), 1, "{stderr}");
+    assert!(
+        stderr.contains("writing to standard output: No space left on device"),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn simulate_prints_only_vouched_digits_and_fails_short_of_its_tolerance() {
+    let (code, stdout, stderr) = on_case("simulate", &["--json"]);
+    assert_eq!(code, 0, "{stderr}");
+    let value = json(&stdout);
+    let digits = value["digits"].as_u64().unwrap() as usize;
+    let estimate = value["estimated_rel_error"].as_f64().unwrap();
+    assert!(estimate <= 1e-6 && estimate <= 10f64.powi(-(digits as i32)), "{value}");
+    assert!(estimate > 10f64.powi(-(digits as i32) - 1) || digits == 15, "{value}");
+    let w = value["W"].as_str().unwrap();
+    assert_eq!(w.split('e').next().unwrap().replace('.', "").len(), digits, "{value}");
+    assert_eq!(
+        w.parse::<f64>().unwrap(),
+        format!("{:.*e}", digits - 1, value["W_f64"].as_f64().unwrap())
+            .parse::<f64>()
+            .unwrap()
+    );
+    // The friction far too high for the grid: W_work and W_friction disagree by orders of magnitude.
+    assert_one_line_failure(
+        on_case("simulate", &["--friction", "1e8"]),
+        1,
+        "exceeds the tolerance 1e-6",
+    );
+    // A coarse grid passes a looser tolerance and fails the default.
+    let coarse = ["--elements", "100", "--steps", "200"];
+    assert_one_line_failure(on_case("simulate", &coarse), 1, "estimated relative error");
+    let (code, stdout, stderr) = on_case("simulate", &[&coarse[..], &["--tolerance", "1e-3"]].concat());
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stdout.contains("significant digits"), "{stdout}");
+}
+
+#[test]
+fn simulate_refuses_what_cannot_fit_and_stops_at_its_time_budget() {
+    for elements in ["10000000", "4294967296", "18446744073709551615"] {
+        assert_one_line_failure(
+            on_case("simulate", &["--elements", elements]),
+            2,
+            "bytes of memory, more than",
+        );
+    }
+    assert_one_line_failure(
+        on_case("simulate", &["--steps", "1000000", "--max-seconds", "0.5"]),
+        2,
+        "the time budget ran out",
+    );
+}
+
+#[test]
+fn every_compliance_example_in_the_help_runs() {
+    let (code, help, _) = microslip(&["dissipation", "--help"]);
+    assert_eq!(code, 0);
+    let compliance_help = help
+        .split("--compliance <COMPLIANCE>")
+        .nth(2)
+        .and_then(|rest| rest.split("--digits").next())
+        .expect("--compliance in the options");
+    let examples: Vec<&str> = compliance_help
+        .split('`')
+        .skip(1)
+        .step_by(2)
+        .filter(|s| s.contains(':'))
+        .collect();
+    assert!(examples.len() >= 5, "{examples:?}");
+    for spec in examples {
+        let (code, stdout, stderr) = on_case("dissipation", &["--compliance", spec]);
+        assert_eq!(code, 0, "{spec}: {stderr}");
+        assert!(stdout.starts_with("W = "), "{spec}: {stdout}");
+    }
+    assert!(help.contains("Poisson's ratio ν in [0, 2/3]"), "{help}");
+}
+
+/// The README's console examples (`$ microslip …`, continued lines joined) and the
+/// example column of its SPEC table.
+fn readme_examples() -> (Vec<Vec<String>>, Vec<String>) {
+    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+    let mut commands = Vec::new();
+    let mut pending: Option<String> = None;
+    for line in readme.lines() {
+        let line = line.trim();
+        if let Some(mut command) = pending.take() {
+            command.push(' ');
+            command.push_str(line.trim_end_matches('\\'));
+            if line.ends_with('\\') {
+                pending = Some(command);
+            } else {
+                commands.push(command);
+            }
+        } else if let Some(command) = line.strip_prefix("$ microslip ") {
+            if line.ends_with('\\') {
+                pending = Some(command.trim_end_matches('\\').to_string());
+            } else {
+                commands.push(command.to_string());
+            }
+        }
+    }
+    let split = |command: String| {
+        command
+            .split_whitespace()
+            .map(|w| w.trim_matches('\'').to_string())
+            .collect()
+    };
+    let specs = readme
+        .lines()
+        .filter(|line| line.starts_with("| `") && line.matches('|').count() == 4)
+        .filter_map(|line| {
+            line.split('|')
+                .nth(3)
+                .map(|cell| cell.trim().trim_matches('`').to_string())
+        })
+        .collect();
+    (commands.into_iter().map(split).collect(), specs)
+}
+
+#[test]
+fn every_example_in_the_readme_runs() {
+    let (commands, specs) = readme_examples();
+    assert!(commands.len() >= 4, "{commands:?}");
+    assert!(specs.len() >= 7, "{specs:?}");
+    let root = env!("CARGO_MANIFEST_DIR");
+    for command in &commands {
+        // Commands that write files get a scratch directory for them.
+        let mut args: Vec<String> = command.clone();
+        let directory = scratch("readme");
+        for arg in args.iter_mut() {
+            if arg.ends_with(".csv") || arg.ends_with(".svg") || arg.ends_with(".png") {
+                *arg = directory.join(&*arg).display().to_string();
+            } else if arg.starts_with("tests/") {
+                *arg = format!("{root}/{arg}");
+            }
+        }
+        let refs: Vec<&str> = args.iter().map(String::as_str).collect();
+        let (code, stdout, stderr) = microslip(&refs);
+        assert_eq!(code, 0, "{command:?}: {stderr}");
+        assert!(!stdout.is_empty(), "{command:?}");
+    }
+    for spec in &specs {
+        let (code, _, stderr) = on_case("dissipation", &["--compliance", spec]);
+        assert_eq!(code, 0, "{spec}: {stderr}");
+    }
+}
+
+#[test]
+fn the_compliance_range_is_named_and_reaches_down_to_the_permanent_stick_load() {
+    // v'' = 0.5 − 0.2(P − 1) > 0: refused over [P_T, P0 + P1], P_T = 0.36718 < P0 − P1 = 0.6.
+    let (code, stdout, stderr) = on_case("dissipation", &["--compliance", "poly:p0=1,coeffs=2;0.5;-0.1"]);
+    assert_one_line_failure(
+        (code, stdout, stderr.clone()),
+        2,
+        "v'' ≤ 0 is needed on [3.6718e-1, 1.4000e0] = [P_T, P0 + P1]",
+    );
+    assert!(stderr.contains("the slip loads of the cycle reach down to the permanent-stick load P_T"));
+    assert!(!stderr.contains("the cycle reaches"), "{stderr}");
+}
+
+#[test]
+fn hints_name_only_flags_that_can_help() {
+    // The verified fallback of a default run runs out of time: no advice to use --digits.
+    let near_separation = [
+        "--p1",
+        "0.999999",
+        "--q1",
+        "0.001",
+        "--phi",
+        "0.5pi",
+        "--max-seconds",
+        "0.001",
+    ];
+    let (_, _, stderr) = on_case("dissipation", &near_separation);
+    assert!(
+        stderr.contains("raise --max-seconds") && !stderr.contains("--digits"),
+        "{stderr}"
+    );
+    let (_, _, stderr) = on_case("dissipation", &["--digits", "500", "--max-seconds", "0.001"]);
+    assert!(
+        stderr.contains("raise --max-seconds or ask for fewer --digits"),
+        "{stderr}"
+    );
+    // No ratio printed as a division by infinity.
+    let (_, stdout, stderr) = on_case("dissipation", &["--q1", "1e-320", "--json"]);
+    assert!(!stdout.contains("/inf") && !stderr.contains("/inf"), "{stdout}{stderr}");
+}
+
+#[test]
+fn output_paths_are_checked_before_computing_and_failures_are_one_human_line() {
+    let directory = scratch("paths");
+    let in_dir = |name: &str| directory.join(name).display().to_string();
+    assert_one_line_failure(
+        on_case("simulate", &["--plot", &in_dir("x.pdf")]),
+        2,
+        "x.pdf: the file name must end in .svg or .png",
+    );
+    assert_one_line_failure(
+        on_case("simulate", &["--loop", &in_dir("x.txt")]),
+        2,
+        "x.txt: the file name must end in .csv",
+    );
+    assert_one_line_failure(
+        on_case("simulate", &["--plot", &in_dir("missing/x.svg")]),
+        2,
+        "does not exist",
+    );
+    let (code, stdout, stderr) = on_case("simulate", &["--plot", "/proc/x.png"]);
+    assert_one_line_failure(
+        (code, stdout, stderr.clone()),
+        2,
+        "/proc/x.png: cannot create a file in /proc",
+    );
+    assert!(!stderr.contains("Os {") && !stderr.contains("Error("), "{stderr}");
+    let file = in_dir("existing-file");
+    std::fs::write(&file, "keep").unwrap();
+    assert_one_line_failure(
+        microslip(&["accuracy", "--out", &file]),
+        2,
+        "exists and is not a directory",
+    );
+    assert_eq!(std::fs::read_to_string(&file).unwrap(), "keep");
+    // Nothing but the files asked for is left in the directory (no temporaries).
+    let (code, _, stderr) = on_case(
+        "simulate",
+        &[
+            "--tolerance",
+            "1e-3",
+            "--elements",
+            "100",
+            "--steps",
+            "200",
+            "--loop",
+            &in_dir("l.csv"),
+            "--plot",
+            &in_dir("p.svg"),
+        ],
+    );
+    assert_eq!(code, 0, "{stderr}");
+    let mut names: Vec<String> = std::fs::read_dir(&directory)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .collect();
+    names.sort();
+    assert_eq!(names, ["existing-file", "l.csv", "p.svg"]);
+    assert!(std::fs::read_to_string(in_dir("l.csv"))
+        .unwrap()
+        .starts_with("theta,P,Q,u\n"));
+}
+
+/// A catalogue of the first three committed cases, one stored value altered and one removed.
+fn altered_catalogue(directory: &Path) -> (PathBuf, String) {
+    let committed = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/catalogue.json")).unwrap();
+    let mut entries: Vec<serde_json::Value> = serde_json::from_str(&committed).unwrap();
+    entries.truncate(3);
+    let original = entries[0]["reference"]["W"].as_str().unwrap().to_string();
+    let altered = format!("9{}", &original[1..]);
+    entries[0]["reference"]["W"] = serde_json::Value::String(altered);
+    entries[1].as_object_mut().unwrap().remove("reference");
+    let path = directory.join("catalogue.json");
+    std::fs::write(&path, serde_json::to_string_pretty(&entries).unwrap()).unwrap();
+    (path, original)
+}
+
+#[test]
+fn reference_checks_by_default_reports_every_difference_and_writes_only_when_asked() {
+    let directory = scratch("catalogue");
+    let (path, original) = altered_catalogue(&directory);
+    let before = std::fs::read_to_string(&path).unwrap();
+    let path_text = path.display().to_string();
+    let (code, stdout, stderr) = microslip(&["reference", "--catalogue", &path_text]);
+    assert_eq!(code, 1, "{stderr}");
+    assert!(stdout.is_empty());
+    assert!(stderr.contains("2 of 3 reference values"), "{stderr}");
+    assert!(
+        stderr.contains("power-ordinary: stored W = 9") && stderr.contains(&format!("computed W = {original}")),
+        "{stderr}"
+    );
+    assert!(stderr.contains("no stored value"), "{stderr}");
+    assert_eq!(
+        std::fs::read_to_string(&path).unwrap(),
+        before,
+        "check mode must not write"
+    );
+    let (code, stdout, stderr) = microslip(&["reference", "--catalogue", &path_text, "--write"]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(
+        stdout.contains("3 reference values to 50 verified digits written"),
+        "{stdout}"
+    );
+    let (code, stdout, stderr) = microslip(&["reference", "--catalogue", &path_text]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stdout.contains("all 3 reference values"), "{stdout}");
+    let rewritten: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    assert_eq!(rewritten[0]["reference"]["W"], original.as_str());
+    assert_eq!(std::fs::read_dir(&directory).unwrap().count(), 1, "no temporary left");
+}
+
+#[test]
+fn json_reports_share_one_vocabulary() {
+    let (code, stdout, stderr) = on_case("dissipation", &["--json"]);
+    assert_eq!(code, 0, "{stderr}");
+    let f64_run = json(&stdout);
+    let w_f64 = f64_run["W_f64"].as_f64().unwrap();
+    let w: f64 = f64_run["W"].as_str().unwrap().parse().unwrap();
+    assert!((w - w_f64).abs() <= 1e-12 * w, "{f64_run}");
+    assert!(f64_run["digits_verified"].is_null() && f64_run["precision_bits"] == 53);
+    let eb = f64_run["segments_f64"]["EB"].as_f64().unwrap();
+    assert!((f64_run["segments"]["EB"].as_str().unwrap().parse::<f64>().unwrap() - eb).abs() < 1e-12);
+    // W_f64 is the library's f64 value in shortest round-trip form: it parses back to itself.
+    let text = stdout.split("\"W_f64\":").nth(1).unwrap().split(',').next().unwrap();
+    assert_eq!(text.parse::<f64>().unwrap().to_string(), text);
+    let (_, stdout, _) = on_case("dissipation", &["--json", "--digits", "20"]);
+    let verified = json(&stdout);
+    assert!(verified["W_f64"].is_null() && verified["segments_f64"].is_null());
+    assert_eq!(verified["digits_verified"], 20);
+    assert_eq!(verified["inputs"]["p0"], "1");
+
+    let (code, stdout, stderr) = on_case(
+        "simulate",
+        &["--json", "--elements", "100", "--steps", "200", "--tolerance", "1e-3"],
+    );
+    assert_eq!(code, 0, "{stderr}");
+    let simulated = json(&stdout);
+    assert_eq!(simulated["inputs"]["p1"], "0.4");
+    assert_eq!(simulated["inputs"]["elements"], 100);
+    assert_eq!(simulated["inputs"]["tolerance"], 1e-3);
+    assert!(simulated["method"].as_str().unwrap().contains("simulation"));
+    assert!(simulated["digits_verified"].is_null() && simulated["precision_bits"] == 53);
+    assert!(simulated["W_f64"].as_f64().is_some() && simulated["W"].is_string());
+
+    let (code, stdout, stderr) = microslip(&[
+        "small-amplitude",
+        "--rho",
+        "1.25",
+        "--phi",
+        "0.4pi",
+        "--json",
+        "--digits",
+        "20",
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    let coefficient = json(&stdout);
+    assert_eq!(coefficient["digits_verified"], 20);
+    assert_eq!(coefficient["inputs"]["rho"], "1.25");
+
+    let (code, stdout, stderr) = microslip(&["verify", "--quick", "--json"]);
+    assert_eq!(code, 0, "{stderr}");
+    let gate = json(&stdout);
+    for claim in gate["claims"].as_array().unwrap() {
+        let bits = claim["precision_bits"].as_u64().unwrap();
+        assert!(bits >= 53, "{claim}");
+    }
+}
+
+#[test]
+fn library_error_texts_name_no_command_line_flags() {
+    use microslip::dissipation::DissipationError;
+    use microslip::reference::ReferenceError;
+    let errors: Vec<String> = vec![
+        DissipationError::NotConverged {
+            points: 512,
+            relative_error: 1e-3,
+            requested: 1e-15,
+        }
+        .to_string(),
+        DissipationError::IllConditioned {
+            bits: 53,
+            cause: "x".into(),
+            expected: 1e-3,
+            limit: 1e-12,
+        }
+        .to_string(),
+        DissipationError::OutOfRange { scale: 1e-300 }.to_string(),
+        ReferenceError::DigitsOutOfRange(0).to_string(),
+        ReferenceError::Budget {
+            digits_requested: 50,
+            digits_reached: 3,
+            seconds: 1.0,
+            precision_bits: 256,
+        }
+        .to_string(),
+    ];
+    for text in errors {
+        assert!(!text.contains("--"), "{text}");
+    }
+}

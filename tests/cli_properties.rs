@@ -1,0 +1,566 @@
+//! A property test over the command line: random flags of `dissipation`,
+//! `small-amplitude` and `simulate` (small sizes), from ordinary values to extreme
+//! magnitudes, huge phases, cycles a hair from separation or gross slip, and garbage.
+//! Whatever the input, the program never panics (exit 101), never outlives its
+//! `--max-seconds` by more than a second, prints nothing on stdout when it fails, and
+//! where an f64 run and a 30-digit run both succeed, the f64 digits are the 30 digits
+//! rounded (to within one unit of the last digit printed).
+//!
+//! By default some ranges are narrower than the harness can draw, where other parts of
+//! the program are known to fail it (see [`Ranges`]); `MICROSLIP_FUZZ_WIDE=1` draws
+//! from the full ranges. 64 cases per command by default; `PROPTEST_CASES=N` runs more, `MICROSLIP_FUZZ_SEED=S`
+//! other draws, and `MICROSLIP_FUZZ_LOG=FILE` appends every failure to FILE and goes on
+//! (to survey a long run instead of stopping at the first failure).
+
+use std::io::Read;
+use std::process::{Command, Stdio};
+use std::time::{Duration, Instant};
+
+use proptest::prelude::*;
+use proptest::test_runner::{Config, TestCaseError, TestRunner};
+
+fn runner(seed: u8) -> TestRunner {
+    let cases = std::env::var("PROPTEST_CASES")
+        .ok()
+        .and_then(|n| n.parse().ok())
+        .unwrap_or(64);
+    let shift = std::env::var("MICROSLIP_FUZZ_SEED")
+        .ok()
+        .and_then(|n| n.parse::<u8>().ok());
+    let seed = seed.wrapping_add(shift.unwrap_or(0));
+    TestRunner::new_with_rng(
+        Config {
+            cases,
+            failure_persistence: None,
+            ..Config::default()
+        },
+        proptest::test_runner::TestRng::from_seed(proptest::test_runner::RngAlgorithm::ChaCha, &[seed; 32]),
+    )
+}
+
+/// `check`'s verdict, or, when MICROSLIP_FUZZ_LOG names a file, success after logging a failure there.
+fn logged(check: Result<(), TestCaseError>) -> Result<(), TestCaseError> {
+    match (check, std::env::var_os("MICROSLIP_FUZZ_LOG")) {
+        (Err(failure), Some(path)) => {
+            use std::io::Write;
+            if let Ok(mut file) = std::fs::OpenOptions::new().create(true).append(true).open(path) {
+                let _ = writeln!(file, "{failure}");
+            }
+            Ok(())
+        }
+        (check, _) => check,
+    }
+}
+
+/// Held by each property test for its whole run: the three run one after another, so
+/// that their time limits are not spent waiting for each other's processes.
+static SERIAL: std::sync::Mutex<()> = std::sync::Mutex::new(());
+
+/// What one run of the binary did.
+struct Outcome {
+    code: i32,
+    stdout: String,
+    stderr: String,
+}
+
+/// Runs `microslip args`, killing it if it runs past `limit`.
+fn run_bounded(args: &[String], limit: Duration) -> Result<Outcome, TestCaseError> {
+    let started = Instant::now();
+    let mut child = Command::new(env!("CARGO_BIN_EXE_microslip"))
+        .args(args)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .map_err(|e| TestCaseError::fail(format!("spawn: {e}")))?;
+    let mut stdout_pipe = child.stdout.take().expect("piped stdout");
+    let mut stderr_pipe = child.stderr.take().expect("piped stderr");
+    let stdout_reader = std::thread::spawn(move || {
+        let mut text = String::new();
+        let _ = stdout_pipe.read_to_string(&mut text);
+        text
+    });
+    let stderr_reader = std::thread::spawn(move || {
+        let mut text = String::new();
+        let _ = stderr_pipe.read_to_string(&mut text);
+        text
+    });
+    let status = loop {
+        if let Some(status) = child.try_wait().map_err(|e| TestCaseError::fail(e.to_string()))? {
+            break status;
+        }
+        if started.elapsed() > limit {
+            let _ = child.kill();
+            let _ = child.wait();
+            return Err(TestCaseError::fail(format!(
+                "still running after {:.1} s (limit {:.1} s): {args:?}",
+                started.elapsed().as_secs_f64(),
+                limit.as_secs_f64()
+            )));
+        }
+        std::thread::sleep(Duration::from_millis(5));
+    };
+    Ok(Outcome {
+        code: status.code().unwrap_or(-1),
+        stdout: stdout_reader.join().unwrap_or_default(),
+        stderr: stderr_reader.join().unwrap_or_default(),
+    })
+}
+
+/// The promises every run keeps: no panic, a known exit code, nothing on stdout on
+/// failure and a reason on stderr.
+fn check_outcome(args: &[String], outcome: &Outcome) -> Result<(), TestCaseError> {
+    prop_assert!(
+        matches!(outcome.code, 0..=2),
+        "exit {} for {args:?}: {}",
+        outcome.code,
+        outcome.stderr
+    );
+    if outcome.code != 0 {
+        prop_assert!(
+            outcome.stdout.is_empty(),
+            "stdout on failure for {args:?}: {}",
+            outcome.stdout
+        );
+        prop_assert!(!outcome.stderr.trim().is_empty(), "no reason given for {args:?}");
+    }
+    if outcome.code == 2 {
+        prop_assert_eq!(
+            outcome.stderr.trim_end().lines().count(),
+            1,
+            "{:?}: {}",
+            args,
+            outcome.stderr
+        );
+    }
+    Ok(())
+}
+
+/// How far the draws reach. The full ranges are the harness's goal; the default ones
+/// leave out what other parts of the program do not meet yet (issue 11):
+/// - φ beyond 1e2 rad: f64 digits differ from the verified ones (inexact reduction of φ;
+///   `small-amplitude` with ρ near 1 at φ = 740 rad is off by 2e−12 relative);
+/// - loads beyond 1e±100: f64 prints W = 0 (15 digits) where W is 1e181 or 1e−334;
+/// - an exponential compliance e^(−P/c) with P0/c beyond ~700: its slope change underflows
+///   and f64 prints W = 0 where W = 3.3e−189 (the default draws take c = P0);
+/// - within 1e−4 P0 of separation or Q1 within 1e−4 of gross slip (where the f64 path
+///   falls back to verified digits, or they are asked for): the verified digits overrun
+///   `--max-seconds` (1.75 s for 0.5 s at 1e−5 from gross slip with P1 = 0, then succeed;
+///   3.8 s for 2 s at 1e−8 with `--digits 30`): the deadline is not checked within an attempt;
+/// - ρ beyond 1e100: `small-amplitude` prints I = −inf (I ~ ρ³ overflows f64); ρ below
+///   1e−15 with `--digits`: it overruns `--max-seconds` (3 s for 1 s);
+/// - `small-amplitude` in f64 prints 15 digits of which it trusts 13: its last two digits are
+///   not checked (`coefficient_units`).
+#[derive(Clone, Copy, Debug)]
+struct Ranges {
+    largest_load_exponent: i32,
+    exponential_scaled_to_load: bool,
+    closest_separation_exponent: i32,
+    largest_phase_exponent: f64,
+    closest_gross_slip_exponent: i32,
+    smallest_ratio_exponent: i32,
+    largest_ratio_exponent: i32,
+    coefficient_units: f64,
+}
+
+fn ranges() -> Ranges {
+    if std::env::var("MICROSLIP_FUZZ_WIDE").is_ok_and(|v| v == "1") {
+        Ranges {
+            largest_load_exponent: 300,
+            exponential_scaled_to_load: false,
+            closest_separation_exponent: 15,
+            largest_phase_exponent: 6.0,
+            closest_gross_slip_exponent: 15,
+            smallest_ratio_exponent: -300,
+            largest_ratio_exponent: 300,
+            coefficient_units: 1.0,
+        }
+    } else {
+        Ranges {
+            largest_load_exponent: 100,
+            exponential_scaled_to_load: true,
+            closest_separation_exponent: 3,
+            largest_phase_exponent: 2.0,
+            closest_gross_slip_exponent: 3,
+            smallest_ratio_exponent: -15,
+            largest_ratio_exponent: 100,
+            coefficient_units: 100.0,
+        }
+    }
+}
+
+/// A decimal of the form m·10^k.
+fn decimal(mantissa: f64, exponent: i32) -> String {
+    format!("{mantissa}e{exponent}")
+}
+
+/// A number that does not parse, or an edge value.
+fn garbage() -> impl Strategy<Value = String> {
+    prop_oneof![
+        "[-0-9.eEpix+]{0,8}",
+        Just("nan".to_string()),
+        Just("inf".to_string()),
+        Just("-0".to_string()),
+        Just("1e999".to_string()),
+        Just("".to_string()),
+    ]
+}
+
+/// A decimal exponent: mostly ordinary, sometimes anywhere in 1e−300 … 1e300.
+fn exponent() -> impl Strategy<Value = i32> {
+    let largest = ranges().largest_load_exponent;
+    prop_oneof![4 => -3i32..=3, 1 => -largest..=largest]
+}
+
+/// A phase: a multiple of π, radians, up to 1e6 radians, near 0 or π.
+fn phase() -> impl Strategy<Value = String> {
+    prop_oneof![
+        (-2.0f64..2.0).prop_map(|x| format!("{x}pi")),
+        (-10.0f64..10.0).prop_map(|x| format!("{x}")),
+        (1.0f64..ranges().largest_phase_exponent).prop_map(|k| format!("{}", 10f64.powf(k))),
+        (1i32..=15).prop_map(|j| format!("1e-{j}")),
+        (1i32..=15).prop_map(|j| format!("pi-1e-{j}")),
+        Just("0.5pi".to_string()),
+    ]
+}
+
+/// A compliance SPEC: every family, scaled ones, and garbage.
+fn compliance() -> impl Strategy<Value = String> {
+    prop_oneof![
+        8 => prop::sample::select(vec![
+            "persson:gamma=1,sigma=1",
+            "power:c=1,beta=-1",
+            "power:c=0.5,beta=-0.5",
+            "power:c=1,beta=-3",
+            "hertz:r=1,estar=1",
+            "poly:p0=1,coeffs=2;-0.5;-0.1",
+            "rational:a=0.5,b=1,c=0.1",
+            "exp:a=1,c=1,d=0.2",
+            "const:c=1",
+            "persson:gamma=1e-200,sigma=1",
+            "power:c=1e200,beta=-1",
+            "2*persson:gamma=1,sigma=1+const:c=0.5",
+        ])
+        .prop_map(str::to_string),
+        1 => "[a-z:=,;+*0-9.eE-]{0,24}",
+    ]
+}
+
+/// A load case as flags: P0 at any scale, P1 up to 1e−15 P0 from separation, Q1 up to
+/// 1e−15 from gross slip (at φ = π/2, where the boundary is Q1 = f√(P0² − P1²)), f, λ or ν.
+#[derive(Clone, Debug)]
+struct CaseFlags {
+    flags: Vec<(String, String)>,
+}
+
+prop_compose! {
+    fn ordinary_case()(
+        p0_mantissa in 1.0f64..10.0,
+        p0_exponent in exponent(),
+        p1_share in prop_oneof![
+            3 => 0.0f64..0.99,
+            1 => (1i32..=ranges().closest_separation_exponent).prop_map(|j| 1.0 - 10f64.powi(-j)),
+            1 => Just(0.0),
+        ],
+        f_mantissa in 0.1f64..2.0,
+        f_exponent in prop_oneof![6 => Just(0i32), 1 => -10i32..=10],
+        slip_share in prop_oneof![
+            3 => 0.0f64..1.0,
+            1 => (1i32..=ranges().closest_gross_slip_exponent).prop_map(|j| 1.0 - 10f64.powi(-j)),
+            1 => 1.0f64..2.0,
+        ],
+        gross_slip_probe in prop::bool::weighted(0.3),
+        phi in phase(),
+        q0_share in prop_oneof![4 => Just(0.0f64), 1 => -0.5f64..0.5],
+        ratio in prop_oneof![
+            (1.0f64..=2.0).prop_map(|l| ("--lambda".to_string(), format!("{l}"))),
+            (0.0f64..0.6666).prop_map(|n| ("--nu".to_string(), format!("{n}"))),
+        ],
+        spec in compliance(),
+    ) -> CaseFlags {
+        let p0 = p0_mantissa * 10f64.powi(p0_exponent);
+        let p1 = p0 * p1_share;
+        let f = f_mantissa * 10f64.powi(f_exponent);
+        // Near gross slip: φ = π/2 and Q1 a share of f√(P0² − P1²); otherwise a share of f P1-ish.
+        let (q1, phi) = if gross_slip_probe {
+            (slip_share * f * (p0 * p0 - p1 * p1).max(0.0).sqrt(), "0.5pi".to_string())
+        } else {
+            (slip_share * f * (p0 - p1).max(p1), phi)
+        };
+        let q0 = q0_share * f * (p0 - p1);
+        let p0_text = decimal(p0_mantissa, p0_exponent);
+        let spec = if ranges().exponential_scaled_to_load {
+            spec.replace("exp:a=1,c=1,", &format!("exp:a=1,c={p0_text},"))
+        } else {
+            spec
+        };
+        CaseFlags {
+            flags: vec![
+                ("--p0".into(), p0_text),
+                ("--p1".into(), format!("{p1:e}")),
+                ("--q0".into(), format!("{q0:e}")),
+                ("--q1".into(), format!("{q1:e}")),
+                ("--phi".into(), phi),
+                ("--friction".into(), format!("{f:e}")),
+                ratio,
+                ("--compliance".into(), spec),
+            ],
+        }
+    }
+}
+
+prop_compose! {
+    /// An ordinary case, sometimes with one value replaced by garbage.
+    /// An ordinary case, sometimes with one value replaced by garbage, sometimes with a
+    /// flag left out or given twice.
+    fn case()(
+        mut case in ordinary_case(),
+        spoil in prop::option::weighted(0.15, (0usize..8, garbage())),
+        drop_flag in prop::option::weighted(0.03, 0usize..8),
+        repeat_flag in prop::option::weighted(0.03, 0usize..8),
+    ) -> CaseFlags {
+        if let Some((index, text)) = spoil {
+            case.flags[index].1 = text;
+        }
+        if let Some(index) = repeat_flag {
+            case.flags.push(case.flags[index].clone());
+        }
+        if let Some(index) = drop_flag {
+            case.flags.remove(index);
+        }
+        case
+    }
+}
+
+/// `--max-seconds`: mostly a small valid budget, sometimes invalid or extreme.
+fn budget() -> impl Strategy<Value = String> {
+    prop_oneof![
+        6 => prop::sample::select(vec!["0.5", "1", "2"]).prop_map(str::to_string),
+        1 => prop::sample::select(vec!["0", "-1", "1e19", "1e300", "nan", "x"]).prop_map(str::to_string),
+    ]
+}
+
+/// `--digits`: absent, ordinary, or out of range.
+fn digits() -> impl Strategy<Value = Option<String>> {
+    prop_oneof![
+        6 => Just(None),
+        2 => (1u32..=40).prop_map(|d| Some(d.to_string())),
+        1 => prop::sample::select(vec!["0", "-1", "1001", "x"]).prop_map(|d| Some(d.to_string())),
+    ]
+}
+
+/// How long a run may take: its budget plus a second (a refused budget ends at once).
+fn limit_for(budget: &str) -> Duration {
+    let seconds = budget
+        .parse::<f64>()
+        .ok()
+        .filter(|s| s.is_finite() && *s > 0.0 && *s <= 1e6);
+    Duration::from_secs_f64(seconds.unwrap_or(0.0) + 1.0)
+}
+
+/// A printed value in scientific notation as (significand digits, decimal exponent of the first).
+fn significand(text: &str) -> Option<(String, i32, bool)> {
+    let (mantissa, exponent) = text.split_once('e')?;
+    let negative = mantissa.starts_with('-');
+    let digits: String = mantissa.chars().filter(char::is_ascii_digit).collect();
+    Some((digits, exponent.parse().ok()?, negative))
+}
+
+/// Whether `printed` (n significant digits) is `reference` (more digits) rounded to n
+/// digits, to within one unit of the n-th digit.
+fn agrees(printed: &str, reference: &str) -> bool {
+    agrees_within(printed, reference, 1.0)
+}
+
+/// Whether `printed` is within `units` units of its last digit of `reference`.
+fn agrees_within(printed: &str, reference: &str, units: f64) -> bool {
+    let (Some((a, ea, sa)), Some((r, er, sr))) = (significand(printed), significand(reference)) else {
+        return false;
+    };
+    let zero = |d: &str| d.bytes().all(|b| b == b'0');
+    if zero(&a) || zero(&r) {
+        return zero(&a) && zero(&r);
+    }
+    if sa != sr {
+        return false;
+    }
+    let n = a.len();
+    // Both as multiples of one unit of the n-th printed digit: a exactly, r to f64 accuracy.
+    let a_units: f64 = a.parse().unwrap_or(f64::NAN);
+    let r_digits: f64 = format!("{}.{}", &r[..1], &r[1..]).parse().unwrap_or(f64::NAN);
+    let r_units = r_digits * 10f64.powi(n as i32 - 1 + er - ea);
+    (a_units - r_units).abs() <= units + 4e-16 * a_units
+}
+
+fn json_field(stdout: &str, field: &str) -> Option<String> {
+    let value: serde_json::Value = serde_json::from_str(stdout.trim()).ok()?;
+    value[field].as_str().map(str::to_string)
+}
+
+/// The f64 run (with --json) against a 30-digit run of the same arguments.
+fn differential(args: &[String], value_field: &str, units: f64, outcome: &Outcome) -> Result<(), TestCaseError> {
+    let Some(printed) = json_field(&outcome.stdout, value_field) else {
+        return Err(TestCaseError::fail(format!("no {value_field} in {}", outcome.stdout)));
+    };
+    let mut precise = args.to_vec();
+    let at = precise
+        .iter()
+        .position(|a| a == "--max-seconds")
+        .expect("a budget is given");
+    precise[at + 1] = "5".to_string();
+    precise.extend(["--digits".to_string(), "30".to_string()]);
+    let reference = run_bounded(&precise, limit_for("5"))?;
+    check_outcome(&precise, &reference)?;
+    if reference.code == 0 {
+        let Some(thirty) = json_field(&reference.stdout, value_field) else {
+            return Err(TestCaseError::fail(format!("no {value_field} in {}", reference.stdout)));
+        };
+        prop_assert!(
+            agrees_within(&printed, &thirty, units),
+            "{value_field} = {printed} printed, {thirty} to 30 digits, for {args:?}"
+        );
+    }
+    Ok(())
+}
+
+#[test]
+fn rounding_comparison_allows_one_unit_of_the_last_digit_only() {
+    assert!(agrees("4.062475792458e-1", "4.06247579245834567890123456789e-1"));
+    assert!(agrees("4.062475792459e-1", "4.06247579245834567890123456789e-1"));
+    assert!(!agrees("4.062475792460e-1", "4.06247579245834567890123456789e-1"));
+    assert!(agrees("1.00000000000e1", "9.99999999999999999999999999999e0"));
+    assert!(!agrees("0.00000000000000e0", "1.23e-300"));
+    assert!(!agrees("-4.06e-1", "4.06e-1"));
+}
+
+#[test]
+fn dissipation_on_any_flags_never_panics_hangs_or_prints_on_failure() {
+    let strategy = (case(), digits(), budget(), prop::bool::weighted(0.8));
+    let _serial = SERIAL.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+    runner(1)
+        .run(&strategy, |(case, digits, budget, as_json)| {
+            logged((|| {
+                let mut args = vec!["dissipation".to_string()];
+                for (flag, value) in &case.flags {
+                    args.extend([flag.clone(), value.clone()]);
+                }
+                args.extend(["--max-seconds".to_string(), budget.clone()]);
+                if let Some(d) = &digits {
+                    args.extend(["--digits".to_string(), d.clone()]);
+                }
+                if as_json {
+                    args.push("--json".to_string());
+                }
+                let outcome = run_bounded(&args, limit_for(&budget))?;
+                check_outcome(&args, &outcome)?;
+                if outcome.code == 0 && digits.is_none() && as_json {
+                    differential(&args, "W", 1.0, &outcome)?;
+                }
+                Ok(())
+            })())
+        })
+        .unwrap();
+}
+
+prop_compose! {
+    fn shape()(
+        rho in prop_oneof![
+            4 => (0.01f64..3.0).prop_map(|r| format!("{r}")),
+            1 => (1.0f64..10.0, ranges().smallest_ratio_exponent..=ranges().largest_ratio_exponent)
+                .prop_map(|(m, k)| decimal(m, k)),
+            1 => (1i32..=15).prop_map(|j| format!("{}", 1.0 - 10f64.powi(-j))),
+            1 => garbage(),
+        ],
+        phi in prop_oneof![5 => phase(), 1 => garbage()],
+    ) -> (String, String) {
+        (rho, phi)
+    }
+}
+
+#[test]
+fn small_amplitude_on_any_flags_never_panics_hangs_or_prints_on_failure() {
+    let strategy = (shape(), digits(), budget());
+    let _serial = SERIAL.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+    runner(2)
+        .run(&strategy, |((rho, phi), digits, budget)| {
+            logged((|| {
+                let mut args: Vec<String> = [
+                    "small-amplitude",
+                    "--rho",
+                    &rho,
+                    "--phi",
+                    &phi,
+                    "--max-seconds",
+                    &budget,
+                    "--json",
+                ]
+                .iter()
+                .map(|s| s.to_string())
+                .collect();
+                if let Some(d) = &digits {
+                    args.extend(["--digits".to_string(), d.clone()]);
+                }
+                let outcome = run_bounded(&args, limit_for(&budget))?;
+                check_outcome(&args, &outcome)?;
+                if outcome.code == 0 && digits.is_none() {
+                    differential(&args, "I", ranges().coefficient_units, &outcome)?;
+                }
+                Ok(())
+            })())
+        })
+        .unwrap();
+}
+
+#[test]
+fn simulate_on_any_flags_never_panics_hangs_or_prints_on_failure() {
+    let strategy = (
+        case(),
+        prop_oneof![5 => (20usize..80).prop_map(|n| n.to_string()), 1 => garbage()],
+        prop_oneof![5 => (40usize..150).prop_map(|n| n.to_string()), 1 => garbage()],
+        prop_oneof![3 => Just("1e-3".to_string()), 1 => Just("1e-6".to_string()), 1 => garbage()],
+        budget(),
+        prop_oneof![
+            6 => Just(Vec::<(&str, &str)>::new()),
+            1 => Just(vec![("--loop", "loop.csv")]),
+            1 => Just(vec![("--plot", "cycle.svg")]),
+            1 => Just(vec![("--loop", "same.csv"), ("--plot", "same.csv")]),
+            1 => Just(vec![("--plot", "cycle.pdf")]),
+            1 => Just(vec![("--loop", "missing/loop.csv")]),
+        ],
+    );
+    let directory = std::env::temp_dir().join(format!("microslip-cli-properties-{}", std::process::id()));
+    std::fs::create_dir_all(&directory).unwrap();
+    let _serial = SERIAL.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
+    runner(3)
+        .run(&strategy, |(case, elements, steps, tolerance, budget, files)| {
+            logged((|| {
+                let mut args = vec!["simulate".to_string()];
+                for (flag, value) in &case.flags {
+                    args.extend([flag.clone(), value.clone()]);
+                }
+                for (flag, value) in [
+                    ("--elements", &elements),
+                    ("--steps", &steps),
+                    ("--tolerance", &tolerance),
+                    ("--max-seconds", &budget),
+                ] {
+                    args.extend([flag.to_string(), value.clone()]);
+                }
+                for (flag, name) in &files {
+                    args.extend([flag.to_string(), directory.join(name).display().to_string()]);
+                }
+                args.push("--json".to_string());
+                let outcome = run_bounded(&args, limit_for(&budget))?;
+                check_outcome(&args, &outcome)?;
+                // Files are written whole or not at all: no temporary is left behind.
+                let leftovers: Vec<_> = std::fs::read_dir(&directory)
+                    .map_err(|e| TestCaseError::fail(e.to_string()))?
+                    .filter_map(Result::ok)
+                    .filter(|entry| entry.file_name().to_string_lossy().starts_with('.'))
+                    .collect();
+                prop_assert!(leftovers.is_empty(), "temporary files left: {leftovers:?}");
+                Ok(())
+            })())
+        })
+        .unwrap();
+    let _ = std::fs::remove_dir_all(&directory);
+}
