@@ -9,12 +9,12 @@ use clap::{Args, Parser, Subcommand};
 use serde_json::json;
 
 use microslip::accuracy;
+use microslip::batch::{self, case_dissipation};
 use microslip::catalogue;
 use microslip::dissipation::{dissipation, Method, Options};
 use microslip::inputs::{Case, CaseText};
 use microslip::plot::{plot_accuracy, plot_cycle};
 use microslip::real::{Precision, Real};
-use microslip::reference::printable_dissipation;
 use microslip::simulate::{simulate, write_loop_csv, SimulationOptions};
 use microslip::verify::{self, small_amplitude, GateOptions};
 
@@ -46,6 +46,8 @@ enum Command {
     /// A table of Ŵ = W/(γσλf²) against the phase φ for Persson's compliance
     /// v' = γσ/P, P0 = 1, P1 = 0.4 (the paper's Fig. 5).
     Table,
+    /// W for every load cycle (row) of a CSV file, on all cores, in input order.
+    Batch(BatchArgs),
 }
 
 /// A load cycle P = P0 + P1 cos θ, Q = Q0 + Q1 cos(θ − φ) on a contact.
@@ -194,6 +196,25 @@ struct ReferenceArgs {
     max_seconds: f64,
 }
 
+#[derive(Args)]
+struct BatchArgs {
+    /// Input CSV (`-` for stdin): p0,p1,q1,phi,friction,lambda or nu,compliance; optional q0, id.
+    #[arg(long)]
+    input: String,
+    /// Output file (`-` for stdout), written whole or not at all.
+    #[arg(long)]
+    output: String,
+    /// Verified significant digits for every row (1–1000); without it, f64 as a single run.
+    #[arg(long)]
+    digits: Option<u32>,
+    /// Output format.
+    #[arg(long, value_parser = ["csv", "jsonl"], default_value = "csv")]
+    format: String,
+    /// Time budget per row for --digits, in seconds.
+    #[arg(long, default_value_t = 60.0)]
+    max_seconds: f64,
+}
+
 /// A failure to report: one line on stderr, exit code 2.
 struct Failure(String);
 
@@ -220,7 +241,13 @@ fn run_dissipation(args: &DissipationArgs) -> Result<String, Failure> {
             args.max_seconds
         )));
     }
-    let printed = printable_dissipation(&case, args.digits, Duration::from_secs_f64(args.max_seconds))?;
+    let result = case_dissipation(&case, args.digits, Duration::from_secs_f64(args.max_seconds)).map_err(|e| {
+        match e {
+            batch::CaseError::DigitsForTable => Failure(format!("{e}; drop --digits")),
+            other => Failure(other.to_string()),
+        }
+    })?;
+    let (printed, table) = (result.printed, result.table);
     if args.json {
         let segments: serde_json::Map<String, serde_json::Value> = printed
             .segments
@@ -237,6 +264,8 @@ fn run_dissipation(args: &DissipationArgs) -> Result<String, Failure> {
             "method": method_name(printed.method),
             "segments": segments,
             "inputs": case,
+            "table_error": table.as_ref().map(|t| t.error),
+            "smoothing_residual": table.as_ref().map(|t| t.smoothing_residual),
         });
         return Ok(object.to_string());
     }
@@ -256,6 +285,17 @@ fn run_dissipation(args: &DissipationArgs) -> Result<String, Failure> {
     );
     for (name, value) in &printed.segments {
         out.push_str(&format!("  {name}  {value}\n"));
+    }
+    if let Some(table) = table {
+        out.push_str(&format!(
+            "  table error estimate {:.1e} (from the table and its every other row; quadrature {:.1e}){}\n",
+            table.error,
+            printed.error_estimate.unwrap_or(0.0),
+            match table.smoothing_residual {
+                r if r > 0.0 => format!("; smoothing moved the data by up to {r:.1e} relative"),
+                _ => String::new(),
+            }
+        ));
     }
     Ok(out.trim_end().to_string())
 }
@@ -470,6 +510,53 @@ fn run_table() -> Result<String, Failure> {
     Ok(out)
 }
 
+/// Runs a batch; Ok(failed rows). Nothing is written when the input cannot be read.
+fn run_batch(args: &BatchArgs) -> Result<usize, Failure> {
+    if !(args.max_seconds.is_finite() && args.max_seconds > 0.0) {
+        return Err(Failure(format!(
+            "--max-seconds must be a positive number, got {}",
+            args.max_seconds
+        )));
+    }
+    let input = if args.input == "-" {
+        batch::read_input(std::io::stdin().lock())?
+    } else {
+        let file = std::fs::File::open(&args.input).map_err(|e| Failure(format!("{}: {e}", args.input)))?;
+        batch::read_input(std::io::BufReader::new(file)).map_err(|e| Failure(format!("{}: {e}", args.input)))?
+    };
+    let bar = indicatif::ProgressBar::with_draw_target(
+        Some(input.rows.len() as u64),
+        if std::io::stderr().is_terminal() {
+            indicatif::ProgressDrawTarget::stderr()
+        } else {
+            indicatif::ProgressDrawTarget::hidden()
+        },
+    );
+    let started = std::time::Instant::now();
+    let results = batch::run(&input, args.digits, Duration::from_secs_f64(args.max_seconds), &|| bar.inc(1));
+    bar.finish_and_clear();
+    let contents = match args.format.as_str() {
+        "jsonl" => batch::to_jsonl(&input, &results),
+        _ => batch::to_csv(&input, &results)?,
+    };
+    if args.output == "-" {
+        std::io::Write::write_all(&mut std::io::stdout().lock(), &contents).map_err(|e| Failure(format!("stdout: {e}")))?;
+    } else {
+        batch::write_atomically(std::path::Path::new(&args.output), &contents)
+            .map_err(|e| Failure(format!("{}: {e}", args.output)))?;
+    }
+    let failed = results.iter().filter(|r| !r.succeeded()).count();
+    if failed > 0 || args.output != "-" {
+        eprintln!(
+            "microslip: {} rows in {:.2} s, {failed} failed{}",
+            results.len(),
+            started.elapsed().as_secs_f64(),
+            if failed > 0 { " (see their error column)" } else { "" }
+        );
+    }
+    Ok(failed)
+}
+
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
@@ -499,6 +586,10 @@ fn main() -> ExitCode {
         Command::Accuracy(args) => run_accuracy(args),
         Command::Reference(args) => run_reference(args),
         Command::Table => run_table(),
+        Command::Batch(args) => match run_batch(args) {
+            Ok(failed) => return if failed == 0 { ExitCode::SUCCESS } else { ExitCode::from(1) },
+            Err(failure) => Err(failure),
+        },
     };
     match outcome {
         Ok(text) => {
