@@ -9,9 +9,14 @@ use std::io::{Read, Write};
 use std::path::Path;
 use std::time::Duration;
 
+use std::sync::Arc;
+
 use rayon::prelude::*;
 
-use crate::compliance::{parse_spec_with, tables_in_spec, Difference, TableError, TableInterpolant, TABLE_ORDER};
+use crate::compliance::{
+    parse_spec_with, tables_in_spec, ComplianceTable, Difference, TableError, TableInterpolant, TABLE_ORDER,
+};
+use crate::cycle::LoadCycle;
 use crate::dissipation::{dissipation, DissipationError, Method, Options};
 use crate::inputs::{Case, CaseText};
 use crate::real::{Precision, Real};
@@ -76,11 +81,7 @@ impl From<DissipationError> for CaseError {
 /// W for one case: [`printable_dissipation`], or for a compliance with a table term, W
 /// in f64 from the table's cubic interpolant, rounded to the digits that its quadrature
 /// error plus the table's error leave.
-pub fn case_dissipation(
-    case: &CaseText,
-    digits: Option<u32>,
-    budget: Duration,
-) -> Result<CaseDissipation, CaseError> {
+pub fn case_dissipation(case: &CaseText, digits: Option<u32>, budget: Duration) -> Result<CaseDissipation, CaseError> {
     let tables = tables_in_spec(&case.compliance)?;
     if tables.is_empty() {
         return Ok(CaseDissipation {
@@ -93,11 +94,7 @@ pub fn case_dissipation(
     }
     let Case { cycle, compliance } = case.read::<f64>(Precision::DOUBLE).map_err(ReferenceError::from)?;
     cycle.validate().map_err(DissipationError::from)?;
-    let low = (cycle.mean_normal_load - cycle.normal_amplitude).min(cycle.permanent_stick_load());
-    let high = cycle.mean_normal_load + cycle.normal_amplitude;
-    for table in &tables {
-        table.check_covers(low, high)?;
-    }
+    tables_cover(&tables, &cycle)?;
     let in_f64 = |error: DissipationError| match error {
         DissipationError::IllConditioned { .. } | DissipationError::NotConverged { .. } => {
             CaseError::TableInF64 { source: error }
@@ -159,6 +156,23 @@ pub fn case_dissipation(
             unrounded: result.total,
         }),
     })
+}
+
+/// Refuses a valid cycle whose loads, from min(P_T, P0 − P1) to P0 + P1, leave a table.
+fn tables_cover(tables: &[Arc<ComplianceTable>], cycle: &LoadCycle<f64>) -> Result<(), TableError> {
+    let low = (cycle.mean_normal_load - cycle.normal_amplitude).min(cycle.permanent_stick_load());
+    let high = cycle.mean_normal_load + cycle.normal_amplitude;
+    tables.iter().try_for_each(|table| table.check_covers(low, high))
+}
+
+/// Refuses a cycle that leaves a table of the compliance SPEC, naming the table's range
+/// (for computations that check the compliance themselves, as the simulation does). A
+/// cycle outside the theory passes here: its own check says what is wrong.
+pub fn check_table_range(spec: &str, cycle: &LoadCycle<f64>) -> Result<(), TableError> {
+    if cycle.validate().is_err() {
+        return Ok(());
+    }
+    tables_cover(&tables_in_spec(spec)?, cycle)
 }
 
 /// A short machine-readable name of a method.
@@ -274,11 +288,7 @@ fn row_case(header: &[String], text: &[Option<String>], columns: &[Option<usize>
     if let Some(i) = text.iter().position(Option::is_none) {
         return Err(format!("{} is not UTF-8 text", header[i]));
     }
-    let cell = |k: usize| -> Option<String> {
-        columns[k]
-            .and_then(|i| text[i].clone())
-            .filter(|s| !s.is_empty())
-    };
+    let cell = |k: usize| -> Option<String> { columns[k].and_then(|i| text[i].clone()).filter(|s| !s.is_empty()) };
     let required = |k: usize, name: &str| cell(k).ok_or_else(|| format!("{name} is empty"));
     let (lambda, nu) = (cell(6), cell(7));
     if lambda.is_some() == nu.is_some() {
@@ -330,9 +340,7 @@ fn row_result(row: &InputRow, digits: Option<u32>, budget: Duration) -> RowResul
         Ok(case) => case,
         Err(problem) => return failed(problem.clone()),
     };
-    let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-        case_dissipation(case, digits, budget)
-    }));
+    let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| case_dissipation(case, digits, budget)));
     match outcome {
         Ok(Ok(result)) => {
             let printed = result.printed;
@@ -382,10 +390,7 @@ fn estimate_text(value: Option<f64>) -> String {
 pub fn to_csv(input: &BatchInput, results: &[RowResult]) -> Result<Vec<u8>, BatchError> {
     let keep = echoed(input);
     let mut writer = csv::Writer::from_writer(Vec::new());
-    let header = keep
-        .iter()
-        .map(|&i| input.header[i].as_str())
-        .chain(RESULT_COLUMNS);
+    let header = keep.iter().map(|&i| input.header[i].as_str()).chain(RESULT_COLUMNS);
     let io = |e: csv::Error| BatchError::Input(e.to_string());
     writer.write_record(header).map_err(io)?;
     for (row, result) in input.rows.iter().zip(results) {
@@ -428,7 +433,9 @@ pub fn to_jsonl(input: &BatchInput, results: &[RowResult]) -> Vec<u8> {
 /// Writes `contents` to `path` through a temporary file beside it and a rename, so that
 /// a reader never sees half a file and an interrupted batch leaves the old one.
 pub fn write_atomically(path: &Path, contents: &[u8]) -> std::io::Result<()> {
-    let name = path.file_name().map_or_else(|| "output".into(), |n| n.to_string_lossy().into_owned());
+    let name = path
+        .file_name()
+        .map_or_else(|| "output".into(), |n| n.to_string_lossy().into_owned());
     let temporary = path.with_file_name(format!(".{name}.{}.tmp", std::process::id()));
     let written = std::fs::File::create(&temporary).and_then(|mut file| {
         file.write_all(contents)?;

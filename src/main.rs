@@ -241,12 +241,11 @@ fn run_dissipation(args: &DissipationArgs) -> Result<String, Failure> {
             args.max_seconds
         )));
     }
-    let result = case_dissipation(&case, args.digits, Duration::from_secs_f64(args.max_seconds)).map_err(|e| {
-        match e {
+    let result =
+        case_dissipation(&case, args.digits, Duration::from_secs_f64(args.max_seconds)).map_err(|e| match e {
             batch::CaseError::DigitsForTable => Failure(format!("{e}; drop --digits")),
             other => Failure(other.to_string()),
-        }
-    })?;
+        })?;
     let (printed, table) = (result.printed, result.table);
     if args.json {
         let segments: serde_json::Map<String, serde_json::Value> = printed
@@ -333,6 +332,7 @@ fn run_reference(args: &ReferenceArgs) -> Result<String, Failure> {
 
 fn run_simulate(args: &SimulateArgs) -> Result<String, Failure> {
     let Case { cycle, compliance } = args.case.text().read::<f64>(Precision::DOUBLE)?;
+    batch::check_table_range(&args.case.compliance, &cycle)?;
     let options = SimulationOptions {
         elements: args.elements,
         steps: args.steps,
@@ -533,14 +533,17 @@ fn run_batch(args: &BatchArgs) -> Result<usize, Failure> {
         },
     );
     let started = std::time::Instant::now();
-    let results = batch::run(&input, args.digits, Duration::from_secs_f64(args.max_seconds), &|| bar.inc(1));
+    let results = batch::run(&input, args.digits, Duration::from_secs_f64(args.max_seconds), &|| {
+        bar.inc(1)
+    });
     bar.finish_and_clear();
     let contents = match args.format.as_str() {
         "jsonl" => batch::to_jsonl(&input, &results),
         _ => batch::to_csv(&input, &results)?,
     };
     if args.output == "-" {
-        std::io::Write::write_all(&mut std::io::stdout().lock(), &contents).map_err(|e| Failure(format!("stdout: {e}")))?;
+        std::io::Write::write_all(&mut std::io::stdout().lock(), &contents)
+            .map_err(|e| Failure(format!("stdout: {e}")))?;
     } else {
         batch::write_atomically(std::path::Path::new(&args.output), &contents)
             .map_err(|e| Failure(format!("{}: {e}", args.output)))?;
@@ -587,7 +590,13 @@ fn main() -> ExitCode {
         Command::Reference(args) => run_reference(args),
         Command::Table => run_table(),
         Command::Batch(args) => match run_batch(args) {
-            Ok(failed) => return if failed == 0 { ExitCode::SUCCESS } else { ExitCode::from(1) },
+            Ok(failed) => {
+                return if failed == 0 {
+                    ExitCode::SUCCESS
+                } else {
+                    ExitCode::from(1)
+                }
+            }
             Err(failure) => Err(failure),
         },
     };

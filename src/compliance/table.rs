@@ -204,7 +204,11 @@ fn non_increasing_fit(values: &[f64], weights: &[f64]) -> Vec<f64> {
                 break;
             }
             let weight = last.1 + before.1;
-            let merged = ((last.0 * last.1 + before.0 * before.1) / weight, weight, last.2 + before.2);
+            let merged = (
+                (last.0 * last.1 + before.0 * before.1) / weight,
+                weight,
+                last.2 + before.2,
+            );
             blocks.pop();
             *blocks.last_mut().expect("two blocks") = merged;
         }
@@ -222,7 +226,11 @@ fn stencil_derivative(x: &[f64], y: &[f64], i: usize, stencil: std::ops::Range<u
         let weight = if j == i {
             stencil.clone().filter(|&k| k != i).map(|k| 1.0 / (x[i] - x[k])).sum()
         } else {
-            let numerator: f64 = stencil.clone().filter(|&k| k != i && k != j).map(|k| x[i] - x[k]).product();
+            let numerator: f64 = stencil
+                .clone()
+                .filter(|&k| k != i && k != j)
+                .map(|k| x[i] - x[k])
+                .product();
             let denominator: f64 = stencil.clone().filter(|&k| k != j).map(|k| x[j] - x[k]).product();
             numerator / denominator
         };
@@ -240,13 +248,19 @@ fn monotone_tangents(x: &[f64], y: &[f64]) -> Vec<f64> {
     (0..n)
         .map(|i| {
             let (raw, limit) = if i == 0 {
-                (delta[0] + (delta[0] - delta[1]) * h[0] / (h[0] + h[1]), 3.0 * delta[0].abs())
+                (
+                    delta[0] + (delta[0] - delta[1]) * h[0] / (h[0] + h[1]),
+                    3.0 * delta[0].abs(),
+                )
             } else if i == n - 1 {
                 let (a, b) = (delta[n - 2], delta[n - 3]);
                 (a + (a - b) * h[n - 2] / (h[n - 2] + h[n - 3]), 3.0 * a.abs())
             } else {
                 let (a, b) = (delta[i - 1], delta[i]);
-                ((h[i] * a + h[i - 1] * b) / (h[i - 1] + h[i]), 3.0 * a.abs().min(b.abs()))
+                (
+                    (h[i] * a + h[i - 1] * b) / (h[i - 1] + h[i]),
+                    3.0 * a.abs().min(b.abs()),
+                )
             };
             // v' does not increase: a node derivative is ≤ 0 and within the Hyman bound.
             raw.min(0.0).max(-limit)
@@ -275,7 +289,11 @@ impl ComplianceTable {
         }
         for i in 1..n {
             if raw.loads[i] <= raw.loads[i - 1] {
-                let word = if raw.loads[i] == raw.loads[i - 1] { "repeats" } else { "is below" };
+                let word = if raw.loads[i] == raw.loads[i - 1] {
+                    "repeats"
+                } else {
+                    "is below"
+                };
                 return Err(row(
                     i,
                     format!(
@@ -294,10 +312,7 @@ impl ComplianceTable {
                 if let Some(i) = raw.values.iter().position(|&s| s <= 0.0) {
                     return Err(row(
                         i,
-                        format!(
-                            "slope {} is not positive; a contact needs v' > 0",
-                            raw.values[i]
-                        ),
+                        format!("slope {} is not positive; a contact needs v' > 0", raw.values[i]),
                     ));
                 }
                 (raw.values.clone(), vec![1.0; n], "slope")
@@ -445,7 +460,12 @@ impl ComplianceTable {
     /// ∫ of the cubic v' over piece k from its start to the fraction t of its width.
     fn cubic_piece_integral(&self, k: usize, t: f64) -> f64 {
         let h = self.loads[k + 1] - self.loads[k];
-        let (y0, y1, m0, m1) = (self.slopes[k], self.slopes[k + 1], self.curvatures[k], self.curvatures[k + 1]);
+        let (y0, y1, m0, m1) = (
+            self.slopes[k],
+            self.slopes[k + 1],
+            self.curvatures[k],
+            self.curvatures[k + 1],
+        );
         let (t2, t3, t4) = (t * t, t * t * t, t * t * t * t);
         h * (y0 * (t - t3 + t4 / 2.0)
             + y1 * (t3 - t4 / 2.0)
