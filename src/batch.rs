@@ -123,7 +123,7 @@ pub fn case_dissipation(case: &CaseText, digits: Option<u32>, budget: Duration) 
         if error <= 0.0 {
             return 15;
         }
-        if !(value.abs() > error) {
+        if value.abs() <= error || !value.is_finite() {
             return 1;
         }
         ((value.abs() / error).log10().floor() as u32).clamp(1, 15)
@@ -280,7 +280,7 @@ pub fn read_input(source: impl Read) -> Result<BatchInput, BatchError> {
 fn row_case(header: &[String], text: &[Option<String>], columns: &[Option<usize>; 9]) -> Result<CaseText, String> {
     if text.len() != header.len() {
         return Err(format!(
-            "the row has {} fields, the header {}",
+            "the row has {} fields, the header {} (a compliance SPEC with commas must be quoted: \"persson:gamma=1,sigma=1\")",
             text.len(),
             header.len()
         ));
