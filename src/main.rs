@@ -275,6 +275,7 @@ fn run_dissipation(args: &DissipationArgs) -> Result<String, Failure> {
         printed.digits,
         match (&printed.fallback, printed.error_estimate) {
             (Some(reason), _) => format!(", verified in MPFR: {reason}"),
+            (None, Some(_)) if table.is_some() => ", f64, as far as the table and the quadrature vouch".to_string(),
             (None, Some(error)) if printed.digits < 15 => {
                 format!(", f64, error estimate {error:.1e}; --digits N gives more")
             }
@@ -287,7 +288,7 @@ fn run_dissipation(args: &DissipationArgs) -> Result<String, Failure> {
     }
     if let Some(table) = table {
         out.push_str(&format!(
-            "  table error estimate {:.1e} (from the table and its every other row; quadrature {:.1e}){}\n",
+            "  error estimates: table {:.1e} (from the table and its every other row), quadrature {:.1e}{}\n",
             table.error,
             printed.error_estimate.unwrap_or(0.0),
             match table.smoothing_residual {

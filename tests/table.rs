@@ -398,3 +398,12 @@ fn the_quadrature_estimate_holds_on_the_piecewise_cubic() {
         result.error_estimate
     );
 }
+
+#[test]
+fn the_example_table_gives_w_within_its_estimate() {
+    let path = format!("{}/tests/data/rough-surface.csv", env!("CARGO_MANIFEST_DIR"));
+    let exact = analytic("persson:gamma=1,sigma=1");
+    let (error, estimate) = table_w(&path, exact);
+    eprintln!("tests/data/rough-surface.csv: relative error of W {error:.2e}, table estimate {estimate:.2e}");
+    assert!(error <= estimate && estimate < 1e-4, "error {error:.1e}, estimate {estimate:.1e}");
+}
