@@ -405,5 +405,8 @@ fn the_example_table_gives_w_within_its_estimate() {
     let exact = analytic("persson:gamma=1,sigma=1");
     let (error, estimate) = table_w(&path, exact);
     eprintln!("tests/data/rough-surface.csv: relative error of W {error:.2e}, table estimate {estimate:.2e}");
-    assert!(error <= estimate && estimate < 1e-4, "error {error:.1e}, estimate {estimate:.1e}");
+    assert!(
+        error <= estimate && estimate < 1e-4,
+        "error {error:.1e}, estimate {estimate:.1e}"
+    );
 }
