@@ -29,16 +29,19 @@ pub const TABLE_QUADRATURE_TOLERANCE: f64 = 1e-12;
 /// Relative quadrature tolerance of the table-error integral (only its size matters).
 const TABLE_ERROR_TOLERANCE: f64 = 1e-3;
 
-/// W[half table] − W[table] ≈ (2^p − 1)·(error of W[table]) for a construction of order p.
+/// W[half table] − W[table] ≈ (2^p − 1)·(error of W[table]) for a construction of order
+/// p. The divisor takes one order less than the construction has (2^(p−1) − 1 = 3 for
+/// p = 3): where the data are not yet asymptotic (a cycle on a few rows, say) the ratio
+/// falls below 2^p − 1, and a short estimate would print a wrong digit.
 fn half_table_divisor() -> f64 {
-    f64::from((1u32 << TABLE_ORDER) - 1)
+    f64::from((1u32 << (TABLE_ORDER - 1)) - 1)
 }
 
 /// What a table compliance adds to a result.
 #[derive(Clone, Debug, PartialEq)]
 pub struct TableEstimate {
     /// Estimated absolute error of W due to the table: |W[half table] − W[table]| (plus
-    /// the quadrature error of that difference) over 2^p − 1, p = [`TABLE_ORDER`].
+    /// the quadrature error of that difference) over 2^(p−1) − 1, p = [`TABLE_ORDER`].
     pub error: f64,
     /// The largest relative change the smoothing fit made to the data (0 when none).
     pub smoothing_residual: f64,

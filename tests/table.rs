@@ -410,3 +410,30 @@ fn the_example_table_gives_w_within_its_estimate() {
         "error {error:.1e}, estimate {estimate:.1e}"
     );
 }
+
+#[test]
+fn the_closed_form_paths_take_tables_too() {
+    // In phase (φ = 0, integrals from P1 down to −Q1/f) and at constant normal load (P1 = 0).
+    let dir = scratch("closed-forms");
+    let path = write_table(&dir, "persson", "slope", 80, FAMILIES[0].slope);
+    for (p1, phi) in [("0.4", "0"), ("0.4", "pi"), ("0", "0.4pi")] {
+        let with = |compliance: &str| CaseText {
+            p1: p1.into(),
+            phi: phi.into(),
+            ..case(compliance)
+        };
+        let exact = case_dissipation(&with("persson:gamma=1,sigma=1"), Some(20), Duration::from_secs(60))
+            .expect("analytic W")
+            .printed;
+        let exact_w: f64 = exact.total.parse().expect("W");
+        let result = case_dissipation(&with(&format!("table:{path}")), None, Duration::from_secs(60)).expect("table W");
+        let table = result.table.expect("table estimate");
+        assert_eq!(result.printed.method, exact.method, "P1 = {p1}, φ = {phi}");
+        assert!(
+            (table.unrounded - exact_w).abs() <= table.error + result.printed.error_estimate.unwrap_or(0.0),
+            "P1 = {p1}, φ = {phi}: {} against {exact_w}, table estimate {:e}",
+            table.unrounded,
+            table.error
+        );
+    }
+}

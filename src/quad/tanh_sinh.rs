@@ -86,7 +86,8 @@ impl<R: Real> Transform<R> {
 
 /// ∫ₐᵇ f to an absolute tolerance, halving the step (one level) until two
 /// successive levels agree to `tolerance` or `max_level` is reached (then
-/// `converged` is false). The integrand is never evaluated at a or b.
+/// `converged` is false). The integrand is never evaluated at a or b. A reversed
+/// interval (b < a) gives −∫_b^a f.
 pub fn integrate<R: Real, F: FnMut(&R) -> R>(
     mut integrand: F,
     a: &R,
@@ -94,6 +95,14 @@ pub fn integrate<R: Real, F: FnMut(&R) -> R>(
     tolerance: &R,
     max_level: u32,
 ) -> Estimate<R> {
+    if b < a {
+        // The node placement below assumes a < b (nodes inside (a, b)).
+        let reversed = integrate(integrand, b, a, tolerance, max_level);
+        return Estimate {
+            value: -reversed.value,
+            ..reversed
+        };
+    }
     let transform = Transform::new(a, b);
     let mut evaluations = 0;
     let mut spacing = 1.0f64;
