@@ -105,6 +105,10 @@ fn read_raw(path: &str) -> Result<RawTable, TableError> {
         path: path.to_string(),
         problem,
     };
+    // A device or a pipe could be endless: only files are tables.
+    if std::fs::metadata(path).is_ok_and(|m| !m.is_file()) {
+        return Err(file_error("is not a regular file".to_string()));
+    }
     let mut reader = csv::ReaderBuilder::new()
         .comment(Some(b'#'))
         .trim(csv::Trim::All)
