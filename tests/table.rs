@@ -437,3 +437,19 @@ fn the_closed_form_paths_take_tables_too() {
         );
     }
 }
+
+#[test]
+fn a_convex_approach_is_refused_at_the_row_where_its_secants_rise() {
+    let dir = scratch("convex-approach");
+    // Secants 3, 2, then 7 (rising at the row of load 1.0), then 1.
+    let path = persson_table(
+        &dir,
+        "convex.csv",
+        "load,approach\n0.2,0\n0.6,1.2\n1.0,2.0\n1.4,4.8\n1.6,5.0\n",
+    );
+    let message = refusal(&run_cli("0.4", &format!("table:{path}"), &[]));
+    assert!(
+        message.contains("line 4") && message.contains("secant slope of the approach rises from 2.0000e0 to 7.0000e0"),
+        "{message}"
+    );
+}

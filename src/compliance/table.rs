@@ -343,16 +343,17 @@ impl ComplianceTable {
         for (k, (&data, &fit)) in checked.iter().zip(&fitted).enumerate() {
             let relative = (data - fit).abs() / data.abs();
             if relative > tolerance {
-                // The first row at which the data rise: where the fit had to pool.
-                let rise = (1..checked.len()).find(|&j| checked[j] > checked[j - 1]).unwrap_or(k);
-                let line_index = match raw.column {
-                    TableColumn::Slope => rise,
-                    TableColumn::Approach => rise + 1,
-                };
+                // The rise nearest the value the fit moved most: where the fit had to pool.
+                let rise = (1..checked.len())
+                    .filter(|&j| checked[j] > checked[j - 1])
+                    .min_by_key(|&j| j.abs_diff(k))
+                    .unwrap_or(k.max(1));
+                // A rise of the slopes at row j; of the secants, at the row between secants j − 1 and j.
+                let line_index = rise;
                 return Err(row(
                     line_index,
                     format!(
-                        "the {name} rises from {:e} to {:e}: the data are not concave (v'' ≤ 0) here; the nearest concave fit moves them by {relative:.1e} relative, beyond the smoothing tolerance {tolerance:.0e} (raise smoothing= to fit noisy data)",
+                        "the {name} rises from {:.4e} to {:.4e}: the data are not concave (v'' ≤ 0) here; the nearest concave fit moves them by {relative:.1e} relative, beyond the smoothing tolerance {tolerance:.0e} (raise smoothing= to fit noisy data)",
                         checked[rise - 1],
                         checked[rise]
                     ),
