@@ -519,6 +519,12 @@ fn run_batch(args: &BatchArgs) -> Result<usize, Failure> {
             args.max_seconds
         )));
     }
+    if let Some(digits) = args.digits.filter(|d| *d == 0 || *d > microslip::reference::MAX_DIGITS) {
+        return Err(Failure(format!(
+            "--digits must be between 1 and {}, got {digits}",
+            microslip::reference::MAX_DIGITS
+        )));
+    }
     let input = if args.input == "-" {
         batch::read_input(std::io::stdin().lock())?
     } else {

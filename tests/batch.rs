@@ -382,6 +382,10 @@ fn an_unreadable_input_exits_2_and_writes_nothing() {
         match name {
             "missing" => assert!(stderr.contains("No such file"), "{stderr}"),
             "no-columns" => assert!(stderr.contains("no column compliance"), "{stderr}"),
+            "digits" => assert!(
+                stderr.contains("--digits must be between 1 and 1000, got 0"),
+                "{stderr}"
+            ),
             _ => assert!(stderr.contains("no column lambda (or nu)"), "{stderr}"),
         }
     }
