@@ -7,6 +7,7 @@
 //! closed forms).
 
 pub mod accuracy;
+pub mod batch;
 pub mod catalogue;
 pub mod compliance;
 pub mod cycle;

@@ -17,13 +17,14 @@ use cli::parse;
 use cli::progress::Progress;
 use cli::report::{emit, fail, parse_error, Failure};
 use microslip::accuracy;
+use microslip::batch::{self, case_dissipation, CaseError};
 use microslip::catalogue;
 use microslip::dissipation::{dissipation, DissipationError, Method, Options};
-use microslip::files::{check_writable, write_text_atomically};
+use microslip::files::{check_writable, write_atomically, write_text_atomically};
 use microslip::inputs::{Case, CaseText};
 use microslip::plot::{check_drawing, plot_accuracy, plot_cycle, PLOT_EXTENSIONS};
 use microslip::real::{Precision, Real};
-use microslip::reference::{printable_dissipation, ReferenceError};
+use microslip::reference::ReferenceError;
 use microslip::simulate::{loop_csv, simulate, SimulationError, SimulationOptions, SimulationResult};
 use microslip::verify::{self, small_amplitude, GateOptions};
 
@@ -59,6 +60,8 @@ enum Command {
     Table,
     /// Regenerate the paper's Figures 4–8 (CSV, SVG, PNG) and the facts it states (facts.json).
     Figures(FiguresArgs),
+    /// W for every load cycle (row) of a CSV file, on all cores, in input order.
+    Batch(BatchArgs),
 }
 
 /// A load cycle P = P0 + P1 cos θ, Q = Q0 + Q1 cos(θ − φ) on a contact.
@@ -220,6 +223,25 @@ struct ReferenceArgs {
 }
 
 #[derive(Args)]
+struct BatchArgs {
+    /// Input CSV (`-` for stdin): p0,p1,q1,phi,friction,lambda or nu,compliance; optional q0, id.
+    #[arg(long)]
+    input: String,
+    /// Output file (`-` for stdout), written whole or not at all.
+    #[arg(long)]
+    output: String,
+    /// Verified significant digits for every row (1–1000); without it, f64 as a single run.
+    #[arg(long, allow_hyphen_values = true, value_parser = parse::digits)]
+    digits: Option<u32>,
+    /// Output format.
+    #[arg(long, value_parser = ["csv", "jsonl"], default_value = "csv")]
+    format: String,
+    /// Time budget per row for --digits, in seconds (up to 1e6).
+    #[arg(long, allow_hyphen_values = true, value_parser = parse::seconds, default_value = "60")]
+    max_seconds: Duration,
+}
+
+#[derive(Args)]
 struct FiguresArgs {
     /// Directory for fig4…fig8 (.csv, .svg, .png), limit_slopes.csv and facts.json.
     #[arg(long)]
@@ -252,8 +274,12 @@ fn reference_failure(error: ReferenceError, digits_given: bool) -> Failure {
 
 fn run_dissipation(args: &DissipationArgs) -> Result<String, Failure> {
     let case = args.case.text();
-    let printed = printable_dissipation(&case, args.digits, args.max_seconds)
-        .map_err(|error| reference_failure(error, args.digits.is_some()))?;
+    let result = case_dissipation(&case, args.digits, args.max_seconds).map_err(|error| match error {
+        CaseError::Reference(error) => reference_failure(error, args.digits.is_some()),
+        CaseError::DigitsForTable => Failure::refused(format!("{error}; drop --digits")),
+        other => Failure::refused(other.to_string()),
+    })?;
+    let (printed, table) = (result.printed, result.table);
     if args.json {
         let segments: Vec<String> = printed.segments.iter().map(|(_, value)| value.clone()).collect();
         let report = DissipationReport {
@@ -268,6 +294,8 @@ fn run_dissipation(args: &DissipationArgs) -> Result<String, Failure> {
             segments: Segments::from_slice(&segments),
             segments_f64: printed.binary64.and_then(|values| Segments::from_slice(&values[1..])),
             inputs: &case,
+            table_error: table.as_ref().map(|t| t.error),
+            smoothing_residual: table.as_ref().map(|t| t.smoothing_residual),
         };
         return Ok(serde_json::to_string(&report)?);
     }
@@ -278,6 +306,7 @@ fn run_dissipation(args: &DissipationArgs) -> Result<String, Failure> {
         printed.digits,
         match (&printed.fallback, printed.error_estimate) {
             (Some(reason), _) => format!(", verified in MPFR: {reason}"),
+            (None, Some(_)) if table.is_some() => ", f64, as far as the table and the quadrature vouch".to_string(),
             (None, Some(error)) if printed.digits < 15 => {
                 format!(", f64, error estimate {error:.1e}; --digits N gives more")
             }
@@ -287,6 +316,17 @@ fn run_dissipation(args: &DissipationArgs) -> Result<String, Failure> {
     );
     for (name, value) in &printed.segments {
         out.push_str(&format!("  {name}  {value}\n"));
+    }
+    if let Some(table) = table {
+        out.push_str(&format!(
+            "  error estimates: table {:.1e} (from the table and its every other row), quadrature {:.1e}{}\n",
+            table.error,
+            printed.error_estimate.unwrap_or(0.0),
+            match table.smoothing_residual {
+                r if r > 0.0 => format!("; smoothing moved the data by up to {r:.1e} relative"),
+                _ => String::new(),
+            }
+        ));
     }
     Ok(out.trim_end().to_string())
 }
@@ -371,6 +411,7 @@ fn run_simulate(args: &SimulateArgs) -> Result<String, Failure> {
     }
     let case = args.case.text();
     let Case { cycle, compliance } = case.read::<f64>(Precision::DOUBLE)?;
+    batch::check_table_range(&args.case.compliance, &cycle)?;
     let options = SimulationOptions {
         elements: args.elements,
         steps: args.steps,
@@ -641,6 +682,53 @@ fn run_figures(args: &FiguresArgs) -> Result<String, Failure> {
     ))
 }
 
+/// Runs a batch; Ok(failed rows). Nothing is written when the input cannot be read.
+fn run_batch(args: &BatchArgs) -> Result<usize, Failure> {
+    if args.output != "-" {
+        check_writable(Path::new(&args.output), &[])?;
+    }
+    let input = if args.input == "-" {
+        batch::read_input(std::io::stdin().lock())?
+    } else {
+        let file = std::fs::File::open(&args.input).map_err(|e| Failure::refused(format!("{}: {e}", args.input)))?;
+        batch::read_input(std::io::BufReader::new(file)).map_err(|e| Failure::refused(format!("{}: {e}", args.input)))?
+    };
+    let progress = Progress::new(input.rows.len());
+    let done = std::sync::atomic::AtomicUsize::new(0);
+    let started = Instant::now();
+    let results = batch::run(&input, args.digits, args.max_seconds, &|| {
+        let finished = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+        progress.at(finished, "rows");
+    });
+    progress.finish();
+    let contents = match args.format.as_str() {
+        "jsonl" => batch::to_jsonl(&input, &results),
+        _ => batch::to_csv(&input, &results)?,
+    };
+    if args.output == "-" {
+        let mut stdout = std::io::stdout().lock();
+        match std::io::Write::write_all(&mut stdout, &contents).and_then(|()| std::io::Write::flush(&mut stdout)) {
+            Err(error) if error.kind() != std::io::ErrorKind::BrokenPipe => {
+                return Err(Failure::failed(format!("writing to standard output: {error}")));
+            }
+            _ => {}
+        }
+    } else {
+        write_atomically(Path::new(&args.output), |file| std::fs::write(file, &contents))
+            .map_err(|e| Failure::failed(e.to_string()))?;
+    }
+    let failed = results.iter().filter(|r| !r.succeeded()).count();
+    if failed > 0 || args.output != "-" {
+        cli::report::warn(&format!(
+            "{} rows in {:.2} s, {failed} failed{}",
+            results.len(),
+            started.elapsed().as_secs_f64(),
+            if failed > 0 { " (see their error column)" } else { "" }
+        ));
+    }
+    Ok(failed)
+}
+
 fn main() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(cli) => cli,
@@ -660,6 +748,11 @@ fn main() -> ExitCode {
         Command::Reference(args) => run_reference(args),
         Command::Table => run_table(),
         Command::Figures(args) => run_figures(args),
+        Command::Batch(args) => match run_batch(args) {
+            Ok(0) => return ExitCode::SUCCESS,
+            Ok(_) => return ExitCode::from(cli::report::FAILED),
+            Err(failure) => Err(failure),
+        },
     };
     match outcome {
         Ok(text) => emit(&text, ExitCode::SUCCESS),

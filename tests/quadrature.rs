@@ -130,3 +130,15 @@ fn tanh_sinh_in_f64_reaches_full_precision_on_smooth_and_singular_integrands() {
         reference
     );
 }
+
+#[test]
+fn tanh_sinh_integrates_a_reversed_interval_to_minus_the_integral() {
+    // The in-phase closed form integrates from P1 down to −Q1/f; a reversed interval used to
+    // evaluate the midpoint only.
+    let forward = tanh_sinh::integrate(|x: &f64| x.exp(), &-0.5, &0.4, &1e-15, 10);
+    let reversed = tanh_sinh::integrate(|x: &f64| x.exp(), &0.4, &-0.5, &1e-15, 10);
+    let exact = 0.4f64.exp() - (-0.5f64).exp();
+    assert!((forward.value - exact).abs() < 1e-15, "{}", forward.value);
+    assert!((reversed.value + exact).abs() < 1e-15, "{}", reversed.value);
+    assert!(reversed.converged);
+}

@@ -55,6 +55,10 @@ pub struct DissipationReport<'a> {
     pub segments: Option<Segments<String>>,
     pub segments_f64: Option<Segments<f64>>,
     pub inputs: &'a CaseText,
+    /// For a table compliance: the error of W due to the table (null otherwise).
+    pub table_error: Option<f64>,
+    /// For a smoothed table: the largest relative move of the data (null otherwise).
+    pub smoothing_residual: Option<f64>,
 }
 
 /// The inputs of `microslip simulate`: the case and the resolution asked for.

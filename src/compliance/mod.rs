@@ -10,10 +10,14 @@
 mod combinators;
 mod families;
 mod spec;
+mod table;
 
 pub use combinators::{LoadScaled, Scaled, Shifted, Sum};
 pub use families::{Exponential, Hertz, Persson, Polynomial, PowerLaw, Rational};
-pub use spec::{parse_spec, SpecError};
+pub use spec::{parse_spec, parse_spec_with, tables_in_spec, SpecError};
+pub use table::{
+    cached_table, ComplianceTable, Difference, TableColumn, TableCompliance, TableError, TableInterpolant, TABLE_ORDER,
+};
 
 use std::fmt::Debug;
 

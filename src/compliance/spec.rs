@@ -10,9 +10,13 @@
 //!         | rational:a,b,c    v' = a + b/(P + c)
 //!         | exp:a,c,d         v' = a·exp(−P/c) + d
 //!         | const:c           v' = c
+//!         | table:FILE[,smoothing=TOL]  v' from a CSV table (see table.rs)
 //! ```
 //! Numbers are read as exact decimals at the working precision.
 
+use std::sync::Arc;
+
+use super::table::{cached_table, parse_table_term, ComplianceTable, TableCompliance, TableError, TableInterpolant};
 use super::{Compliance, Exponential, Hertz, Persson, Polynomial, PowerLaw, Rational, Scaled, Sum};
 use crate::real::{Precision, Real};
 
@@ -28,19 +32,42 @@ pub struct SpecError {
 
 /// Parses a SPEC at the given precision.
 pub fn parse_spec<R: Real>(spec: &str, precision: Precision) -> Result<Box<dyn Compliance<R>>, SpecError> {
+    parse_spec_with(spec, precision, TableInterpolant::Cubic)
+}
+
+/// Parses a SPEC at the given precision, its tables (if any) evaluated by `interpolant`.
+pub fn parse_spec_with<R: Real>(
+    spec: &str,
+    precision: Precision,
+    interpolant: TableInterpolant,
+) -> Result<Box<dyn Compliance<R>>, SpecError> {
     let error = |problem: String| SpecError {
         spec: spec.to_string(),
         problem,
     };
     let mut terms = split_terms(spec)
         .into_iter()
-        .map(|term| parse_term::<R>(term, precision).map_err(error))
+        .map(|term| parse_term::<R>(term, precision, interpolant).map_err(error))
         .collect::<Result<Vec<_>, _>>()?;
     if terms.len() == 1 {
         Ok(terms.remove(0))
     } else {
         Ok(Box::new(Sum { terms }))
     }
+}
+
+/// The tables a SPEC's `table:` terms name, read (once per process) and validated.
+pub fn tables_in_spec(spec: &str) -> Result<Vec<Arc<ComplianceTable>>, TableError> {
+    let mut tables = Vec::new();
+    for term in split_terms(spec) {
+        let body = term.split_once('*').map_or(term, |(_, body)| body).trim();
+        if let Some(("table", text)) = body.split_once(':').map(|(f, t)| (f.trim(), t)) {
+            if let Ok((path, smoothing)) = parse_table_term(text) {
+                tables.push(cached_table(&path, smoothing)?);
+            }
+        }
+    }
+    Ok(tables)
 }
 
 /// Splits at each '+' that joins two terms, not at the sign of an exponent (1e+3).
@@ -137,7 +164,11 @@ impl<'a> Parameters<'a> {
     }
 }
 
-fn parse_term<R: Real>(term: &str, precision: Precision) -> Result<Box<dyn Compliance<R>>, String> {
+fn parse_term<R: Real>(
+    term: &str,
+    precision: Precision,
+    interpolant: TableInterpolant,
+) -> Result<Box<dyn Compliance<R>>, String> {
     let term = term.trim();
     if term.is_empty() {
         return Err("empty term (a '+' with nothing beside it?)".to_string());
@@ -148,6 +179,18 @@ fn parse_term<R: Real>(term: &str, precision: Precision) -> Result<Box<dyn Compl
     };
     let (family, parameters) = body.split_once(':').unwrap_or((body, ""));
     let family = family.trim();
+    if family == "table" {
+        let (path, smoothing) = parse_table_term(parameters)?;
+        let table = cached_table(&path, smoothing).map_err(|e| e.to_string())?;
+        let compliance: Box<dyn Compliance<R>> = Box::new(TableCompliance { table, interpolant });
+        return Ok(match factor {
+            Some(factor) => Box::new(Scaled {
+                factor,
+                inner: compliance,
+            }),
+            None => compliance,
+        });
+    }
     let params = Parameters::parse(family, parameters)?;
     let compliance: Box<dyn Compliance<R>> = match family {
         "power" => {
@@ -209,7 +252,7 @@ fn parse_term<R: Real>(term: &str, precision: Precision) -> Result<Box<dyn Compl
         "" => return Err("a term names no family".to_string()),
         other => {
             return Err(format!(
-                "unknown family '{other}' (known: power, persson, hertz, poly, rational, exp, const)"
+                "unknown family '{other}' (known: power, persson, hertz, poly, rational, exp, const, table)"
             ))
         }
     };

@@ -92,7 +92,7 @@ impl<R: Real> Transform<R> {
 /// bring the difference between levels below a tenth of the smallest seen: a rule that
 /// converges gains digits with every level by then, and one that stops gaining has
 /// reached the rounding noise of the integrand, which further levels, each twice as
-/// costly, cannot get below.
+/// costly, cannot get below. A reversed interval (b < a) gives −∫_b^a f.
 pub fn integrate<R: Real, F: FnMut(&R) -> R>(
     mut integrand: F,
     a: &R,
@@ -100,6 +100,14 @@ pub fn integrate<R: Real, F: FnMut(&R) -> R>(
     tolerance: &R,
     max_level: u32,
 ) -> Estimate<R> {
+    if b < a {
+        // The node placement below assumes a < b (nodes inside (a, b)).
+        let reversed = integrate(integrand, b, a, tolerance, max_level);
+        return Estimate {
+            value: -reversed.value,
+            ..reversed
+        };
+    }
     let transform = Transform::new(a, b);
     let mut evaluations = 0;
     let mut spacing = 1.0f64;

@@ -1,0 +1,171 @@
+#!/usr/bin/env python3
+"""W by mpmath's tanh-sinh beside microslip's verified digits (issue 14, part 3).
+
+The same four segment integrals in the cycle angle (src/dissipation/segments.rs,
+proofs/four-segment.md) are integrated by mpmath.quad (tanh-sinh, split at the same
+lowest-load points) at 15, 30, 50 and 100 digits, for three cases; microslip computes the
+same W to the same number of verified digits, timed as a whole process and per row of a
+batch (node tables warm). Both are compared with a 130-digit value from microslip.
+
+Usage: benches/mpmath_side_by_side.py [path/to/microslip]   (optional dependency: mpmath;
+not run in CI). mpmath is timed with its caches warm (one run first, then the best of 3);
+the batch per-row time is (t(N + 1 rows) - t(1 row)) / N on one thread.
+"""
+
+import json
+import os
+import subprocess
+import sys
+import tempfile
+import time
+
+try:
+    import mpmath
+    from mpmath import mp
+except ImportError:  # pragma: no cover
+    sys.exit("this benchmark needs mpmath (pip install mpmath)")
+
+CASES = [
+    # name, flags, v'(P) for mpmath
+    ("persson", dict(p0="1", p1="0.4", q0="0", q1="0.5", phi="0.4pi", friction="1", **{"lambda": "1"},
+                     compliance="persson:gamma=1,sigma=1"), lambda P: 1 / P),
+    ("power", dict(p0="1", p1="0.4", q0="0", q1="0.5", phi="0.4pi", friction="1", **{"lambda": "1"},
+                   compliance="power:c=0.5,beta=-0.5"), lambda P: mpmath.mpf("0.5") * P ** mpmath.mpf("-0.5")),
+    ("hertz", dict(p0="1", p1="0.4", q0="0.1", q1="0.3", phi="0.3pi", friction="0.5", **{"lambda": "1.2"},
+                   compliance="hertz:r=1,estar=1"),
+     lambda P: mpmath.mpf(2) / 3 * mpmath.cbrt(mpmath.mpf(9) / 16) * P ** (mpmath.mpf(-1) / 3)),
+]
+DIGITS = [15, 30, 50, 100]
+REFERENCE_DIGITS = 130
+
+
+def number(text):
+    """A decimal, or a multiple of pi written '0.4pi'."""
+    if text.endswith("pi"):
+        return mpmath.mpf(text[:-2] or 1) * mp.pi
+    return mpmath.mpf(text)
+
+
+def mpmath_w(flags, slope):
+    """W = lambda * sum of the four segment integrals, by mpmath.quad at the current precision."""
+    P0, P1, Q1 = number(flags["p0"]), number(flags["p1"]), number(flags["q1"])
+    f, lam, phi = number(flags["friction"]), number(flags["lambda"]), number(flags["phi"]) % mp.pi
+    pi = mp.pi
+    plus = mpmath.hypot(Q1 * mpmath.cos(phi) + f * P1, Q1 * mpmath.sin(phi))
+    minus = mpmath.hypot(Q1 * mpmath.cos(phi) - f * P1, Q1 * mpmath.sin(phi))
+    theta_e = mpmath.atan2(Q1 * mpmath.sin(phi), Q1 * mpmath.cos(phi) - f * P1)
+    stick = mpmath.atan2(2 * Q1 * f * P1 * mpmath.sin(phi), Q1 ** 2 - (f * P1) ** 2)
+    theta_c = theta_e + pi
+    theta_b, theta_h = theta_c - stick, theta_c + stick
+    p_t = P0 - (plus + minus) / (2 * f)
+
+    def P(t):
+        return P0 + P1 * mpmath.cos(t)
+
+    def dP(t):
+        return -P1 * mpmath.sin(t)
+
+    def Q(t):  # Q - Q0
+        return Q1 * mpmath.cos(t - phi)
+
+    def dQ(t):
+        return -Q1 * mpmath.sin(t - phi)
+
+    def eb(t):
+        p_s = p_t + plus * mpmath.sin((t - theta_b) / 2) ** 2 / f
+        return Q(t) * (-f * slope(P(t)) * dP(t) + slope(p_s) * plus * mpmath.sin(t - theta_b))
+
+    def bc(t):
+        return Q(t) * slope(P(t)) * dQ(t)
+
+    def ch(t):
+        p_y = P(2 * theta_c - t)
+        return Q(t) * (f * slope(P(t)) * dP(t) - slope(p_y) * minus * mpmath.sin(t - theta_e))
+
+    def he(t):
+        p_k = p_t + minus * mpmath.sin((t - theta_e) / 2) ** 2 / f
+        return Q(t) * (f * slope(P(t)) * dP(t) - slope(p_k) * minus * mpmath.sin(t - theta_e))
+
+    def breaks(start, end, mirror=False):
+        points = [start]
+        for k in range(-2, 4):
+            lowest = (2 * k + 1) * pi
+            for x in [lowest] + ([2 * theta_c - lowest] if mirror else []):
+                if start < x < end:
+                    points.append(x)
+        return sorted(points) + [end]
+
+    total = mpmath.quad(eb, breaks(theta_e, theta_b), method="tanh-sinh")
+    total += mpmath.quad(bc, breaks(theta_b, theta_c), method="tanh-sinh")
+    total += mpmath.quad(ch, breaks(theta_c, theta_h, mirror=True), method="tanh-sinh")
+    total += mpmath.quad(he, breaks(theta_h, theta_e + 2 * pi), method="tanh-sinh")
+    return lam * total
+
+
+def flag_args(flags):
+    return [item for key, value in flags.items() for item in (f"--{key}", value)]
+
+
+def microslip_json(binary, flags, digits):
+    out = subprocess.run([binary, "dissipation", "--json", "--digits", str(digits), *flag_args(flags)],
+                         check=True, capture_output=True, text=True).stdout
+    return json.loads(out)
+
+
+def whole_process_seconds(binary, flags, digits, repeats=5):
+    best = float("inf")
+    for _ in range(repeats):
+        start = time.perf_counter()
+        subprocess.run([binary, "dissipation", "--digits", str(digits), *flag_args(flags)],
+                       check=True, capture_output=True)
+        best = min(best, time.perf_counter() - start)
+    return best
+
+
+def batch_seconds(binary, flags, digits, rows, directory):
+    path = os.path.join(directory, f"rows-{rows}.csv")
+    with open(path, "w") as handle:
+        handle.write(",".join(flags) + "\n")
+        for _ in range(rows):
+            handle.write(",".join(f'"{v}"' for v in flags.values()) + "\n")
+    env = dict(os.environ, RAYON_NUM_THREADS="1")
+    best = float("inf")
+    for _ in range(3):
+        start = time.perf_counter()
+        subprocess.run([binary, "batch", "--input", path, "--output", "-", "--digits", str(digits)],
+                       check=True, capture_output=True, env=env)
+        best = min(best, time.perf_counter() - start)
+    return best
+
+
+def main():
+    binary = sys.argv[1] if len(sys.argv) > 1 else os.path.join(
+        os.path.dirname(__file__), "..", "target", "release", "microslip")
+    print(f"{'case':<8} {'digits':>6} {'mpmath s':>10} {'mpmath err':>10} {'process s':>10} "
+          f"{'row s':>9} {'ms err':>9} {'mpmath/row':>10}")
+    with tempfile.TemporaryDirectory() as directory:
+        for name, flags, slope in CASES:
+            mp.dps = REFERENCE_DIGITS + 10
+            reference = mpmath.mpf(microslip_json(binary, flags, REFERENCE_DIGITS)["W"])
+            for digits in DIGITS:
+                mp.dps = digits
+                mpmath_w(flags, slope)  # warm mpmath's node caches at this precision
+                best, value = float("inf"), None
+                for _ in range(3):
+                    start = time.perf_counter()
+                    value = mpmath_w(flags, slope)
+                    best = min(best, time.perf_counter() - start)
+                mp.dps = REFERENCE_DIGITS + 10
+                mpmath_error = abs(value - reference) / abs(reference)
+                ours = mpmath.mpf(microslip_json(binary, flags, digits)["W"])
+                our_error = abs(ours - reference) / abs(reference)
+                process = whole_process_seconds(binary, flags, digits)
+                rows = 40 if digits <= 50 else 20
+                per_row = (batch_seconds(binary, flags, digits, rows + 1, directory)
+                           - batch_seconds(binary, flags, digits, 1, directory)) / rows
+                print(f"{name:<8} {digits:>6} {best:>10.4f} {float(mpmath_error):>10.1e} {process:>10.4f} "
+                      f"{per_row:>9.4f} {float(our_error):>9.1e} {best / per_row:>10.1f}")
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,392 @@
+//! `microslip batch`: rows in, results out in input order, every row as a single run
+//! prints it; bad rows reported in their row, unreadable input refused.
+
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn microslip(args: &[&str], stdin: Option<&str>) -> Output {
+    use std::io::Write;
+    let mut child = Command::new(env!("CARGO_BIN_EXE_microslip"))
+        .args(args)
+        .stdin(std::process::Stdio::piped())
+        .stdout(std::process::Stdio::piped())
+        .stderr(std::process::Stdio::piped())
+        .spawn()
+        .expect("run microslip");
+    let mut input = child.stdin.take().expect("stdin");
+    input.write_all(stdin.unwrap_or("").as_bytes()).expect("write stdin");
+    drop(input);
+    child.wait_with_output().expect("wait")
+}
+
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("microslip-batch-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    dir
+}
+
+fn path_text(path: &Path) -> String {
+    path.to_string_lossy().into_owned()
+}
+
+/// A deterministic stream of numbers in [0, 1) (SplitMix64).
+struct Draws(u64);
+
+impl Draws {
+    fn next(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    }
+}
+
+const HEADER: &str = "id,p0,p1,q0,q1,phi,friction,lambda,nu,compliance";
+
+/// `rows` random cycles within the theory (most of them) over several compliances,
+/// with the example table among them.
+fn random_rows(seed: u64, rows: usize) -> Vec<[String; 10]> {
+    let mut draws = Draws(seed);
+    let table = format!("table:{}/tests/data/rough-surface.csv", env!("CARGO_MANIFEST_DIR"));
+    let compliances = [
+        "persson:gamma=1,sigma=1".to_string(),
+        "power:c=0.5,beta=-0.5".to_string(),
+        "hertz:r=2,estar=3".to_string(),
+        "exp:a=1,c=0.5,d=0.2".to_string(),
+        "rational:a=0.1,b=1,c=0.5".to_string(),
+        table,
+    ];
+    (0..rows)
+        .map(|i| {
+            let p1 = 0.05 + 0.5 * draws.next();
+            let q1 = (0.05 + 0.6 * draws.next()) * p1;
+            let phase = draws.next();
+            let compliance = compliances[i % compliances.len()].clone();
+            let (lambda, nu) = if i % 3 == 0 {
+                (String::new(), format!("{:.2}", 0.5 * draws.next()))
+            } else {
+                (format!("{:.3}", 1.0 + draws.next()), String::new())
+            };
+            [
+                format!("row-{i}"),
+                "1".to_string(),
+                format!("{p1:.4}"),
+                format!("{:.3}", 0.2 * (draws.next() - 0.5) * q1),
+                format!("{q1:.4}"),
+                format!("{phase:.3}pi"),
+                format!("{:.2}", 0.3 + draws.next()),
+                lambda,
+                nu,
+                compliance,
+            ]
+        })
+        .collect()
+}
+
+fn to_csv(rows: &[[String; 10]]) -> String {
+    let mut text = format!("{HEADER}\n");
+    for row in rows {
+        let cells: Vec<String> = row
+            .iter()
+            .map(|cell| {
+                if cell.contains(',') {
+                    format!("\"{cell}\"")
+                } else {
+                    cell.clone()
+                }
+            })
+            .collect();
+        text.push_str(&cells.join(","));
+        text.push('\n');
+    }
+    text
+}
+
+/// The single run's JSON for one row.
+fn single_run(row: &[String; 10], digits: Option<&str>) -> serde_json::Value {
+    let names = ["p0", "p1", "q0", "q1", "phi", "friction", "lambda", "nu", "compliance"];
+    let mut args: Vec<String> = vec!["dissipation".into(), "--json".into()];
+    for (name, value) in names.iter().zip(&row[1..]) {
+        if !value.is_empty() {
+            args.push(format!("--{name}"));
+            args.push(value.clone());
+        }
+    }
+    if let Some(digits) = digits {
+        args.extend(["--digits".to_string(), digits.to_string()]);
+    }
+    let args: Vec<&str> = args.iter().map(String::as_str).collect();
+    let output = microslip(&args, None);
+    if output.status.success() {
+        serde_json::from_slice(&output.stdout).expect("json")
+    } else {
+        serde_json::json!({"error": String::from_utf8_lossy(&output.stderr).trim().to_string()})
+    }
+}
+
+fn read_jsonl(bytes: &[u8]) -> Vec<serde_json::Value> {
+    String::from_utf8_lossy(bytes)
+        .lines()
+        .map(|line| serde_json::from_str(line).expect("a JSON line"))
+        .collect()
+}
+
+fn compare_with_single_runs(
+    rows: &[[String; 10]],
+    results: &[serde_json::Value],
+    sample: &[usize],
+    digits: Option<&str>,
+) {
+    for &i in sample {
+        let single = single_run(&rows[i], digits);
+        let batch = &results[i];
+        assert_eq!(batch["id"], rows[i][0]);
+        match single.get("error") {
+            Some(error) => {
+                let message = error.as_str().unwrap_or_default().trim_start_matches("microslip: ");
+                let batch_error = batch["error"].as_str().expect("the batch row failed too");
+                assert!(
+                    batch_error.ends_with(message),
+                    "row {i}: {batch_error} against {message}"
+                );
+            }
+            None => {
+                assert_eq!(batch["W"], single["W"], "row {i}: {:?}", rows[i]);
+                assert_eq!(batch["digits"], single["digits"], "row {i}");
+                assert_eq!(batch["table_error"], single["table_error"], "row {i}");
+                assert!(batch["error"].is_null(), "row {i}: {}", batch["error"]);
+            }
+        }
+    }
+}
+
+#[test]
+fn batch_output_equals_single_runs_row_by_row() {
+    let rows = random_rows(14, 60);
+    let output = microslip(
+        &["batch", "--input", "-", "--output", "-", "--format", "jsonl"],
+        Some(&to_csv(&rows)),
+    );
+    let code = output.status.code();
+    assert!(
+        code == Some(0) || code == Some(1),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let results = read_jsonl(&output.stdout);
+    assert_eq!(results.len(), rows.len());
+    for (row, result) in rows.iter().zip(&results) {
+        assert_eq!(result["id"], row[0], "input order");
+    }
+    let succeeded = results.iter().filter(|r| r["error"].is_null()).count();
+    assert!(succeeded >= 50, "{succeeded} of 60 rows succeeded");
+    // A random sample of rows, each also run alone (the table rows included).
+    let mut draws = Draws(2026);
+    let mut sample: Vec<usize> = (0..16).map(|_| (draws.next() * rows.len() as f64) as usize).collect();
+    sample.extend([5, 11]);
+    compare_with_single_runs(&rows, &results, &sample, None);
+}
+
+#[test]
+fn batch_with_verified_digits_equals_single_runs() {
+    let rows: Vec<[String; 10]> = random_rows(7, 12)
+        .into_iter()
+        .filter(|row| !row[9].starts_with("table:"))
+        .collect();
+    let output = microslip(
+        &[
+            "batch", "--input", "-", "--output", "-", "--format", "jsonl", "--digits", "25",
+        ],
+        Some(&to_csv(&rows)),
+    );
+    let results = read_jsonl(&output.stdout);
+    assert_eq!(results.len(), rows.len());
+    let sample: Vec<usize> = (0..rows.len()).step_by(3).collect();
+    compare_with_single_runs(&rows, &results, &sample, Some("25"));
+    assert!(results
+        .iter()
+        .filter(|r| r["error"].is_null())
+        .all(|r| r["digits"] == 25 && r["error_estimate"].is_null()));
+}
+
+#[test]
+fn bad_rows_are_reported_in_their_row_and_the_others_computed() {
+    let dir = scratch("bad-rows");
+    let table = format!("{}/tests/data/rough-surface.csv", env!("CARGO_MANIFEST_DIR"));
+    let bad_table = dir.join("bad-table.csv");
+    std::fs::write(&bad_table, "load,slope\n1,1\n2,0.5\n").expect("write");
+    let input = format!(
+        "{HEADER}\n\
+         good-1,1,0.4,0,0.5,0.4pi,1,1,,\"persson:gamma=1,sigma=1\"\n\
+         text,one,0.4,0,0.5,0.4pi,1,1,,\"persson:gamma=1,sigma=1\"\n\
+         empty,1,,0,0.5,0.4pi,1,1,,\"persson:gamma=1,sigma=1\"\n\
+         both,1,0.4,0,0.5,0.4pi,1,1,0.3,\"persson:gamma=1,sigma=1\"\n\
+         unquoted,1,0.4,0,0.5,0.4pi,1,1,,persson:gamma=1,sigma=1\n\
+         gross-slip,1,0.4,0,2,0.4pi,1,1,,\"persson:gamma=1,sigma=1\"\n\
+         spec,1,0.4,0,0.5,0.4pi,1,1,,persson:gamma=1\n\
+         range,1.5,0.7,0,0.3,0.4pi,1,1,,table:{table}\n\
+         bad-table,1,0.4,0,0.5,0.4pi,1,1,,table:{}\n\
+         good-2,1,0.4,0,0.5,0.2pi,1,1,,table:{table}\n",
+        path_text(&bad_table)
+    );
+    let input_path = dir.join("input.csv");
+    std::fs::write(&input_path, &input).expect("write");
+    let output_path = dir.join("out.csv");
+    let output = microslip(
+        &[
+            "batch",
+            "--input",
+            &path_text(&input_path),
+            "--output",
+            &path_text(&output_path),
+        ],
+        None,
+    );
+    assert_eq!(
+        output.status.code(),
+        Some(1),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    assert!(output.stdout.is_empty());
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(stderr.contains("8 failed"), "{stderr}");
+    let mut reader = csv::Reader::from_path(&output_path).expect("output");
+    let header = reader.headers().expect("header").clone();
+    let column = |name: &str| header.iter().position(|h| h == name).expect(name);
+    let records: Vec<csv::StringRecord> = reader.records().map(|r| r.expect("record")).collect();
+    let ids: Vec<&str> = records.iter().map(|r| &r[column("id")]).collect();
+    assert_eq!(
+        ids,
+        [
+            "good-1",
+            "text",
+            "empty",
+            "both",
+            "unquoted",
+            "gross-slip",
+            "spec",
+            "range",
+            "bad-table",
+            "good-2"
+        ]
+    );
+    let error = |id: &str| records[ids.iter().position(|i| *i == id).expect(id)][column("error")].to_string();
+    for (id, expected) in [
+        ("text", "line 3: --p0: 'one' is not a decimal number"),
+        ("empty", "line 4: p1 is empty"),
+        ("both", "line 5: give exactly one of lambda and nu"),
+        ("unquoted", "line 6: the row has 11 fields, the header 10"),
+        ("gross-slip", "line 7: gross slip"),
+        ("spec", "line 8: compliance spec 'persson:gamma=1'"),
+        ("range", "line 9: table"),
+        ("bad-table", "line 10: table"),
+    ] {
+        assert!(error(id).starts_with(expected), "{id}: {}", error(id));
+    }
+    assert!(
+        error("range").contains("covers loads [1e-1, 2e0]"),
+        "{}",
+        error("range")
+    );
+    assert!(error("bad-table").contains("has 2 data rows"), "{}", error("bad-table"));
+    for id in ["good-1", "good-2"] {
+        let record = &records[ids.iter().position(|i| *i == id).expect(id)];
+        assert!(record[column("error")].is_empty(), "{id}");
+        let w: f64 = record[column("W")].parse().expect("W");
+        assert!(w > 0.1, "{id}: W = {w}");
+    }
+    let table_row = &records[9];
+    assert!(!table_row[column("table_error")].is_empty());
+}
+
+#[test]
+fn all_rows_computed_exits_0_and_replaces_the_output_whole() {
+    let dir = scratch("ok");
+    let output_path = dir.join("result.jsonl");
+    std::fs::write(&output_path, "old contents\n").expect("write");
+    let example = format!("{}/tests/data/batch-example.csv", env!("CARGO_MANIFEST_DIR"));
+    let good: String = std::fs::read_to_string(&example)
+        .expect("example")
+        .lines()
+        .filter(|line| !line.starts_with("gross-slip"))
+        .map(|line| format!("{line}\n"))
+        .collect();
+    let input_path = dir.join("good.csv");
+    std::fs::write(&input_path, good).expect("write");
+    let output = Command::new(env!("CARGO_BIN_EXE_microslip"))
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .args([
+            "batch",
+            "--input",
+            &path_text(&input_path),
+            "--output",
+            &path_text(&output_path),
+            "--format",
+            "jsonl",
+        ])
+        .output()
+        .expect("run");
+    assert_eq!(
+        output.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let results = read_jsonl(&std::fs::read(&output_path).expect("output"));
+    assert_eq!(results.len(), 7);
+    assert!(results.iter().all(|r| r["error"].is_null() && r["W"].is_string()));
+    // No temporary file left beside the output.
+    let names: Vec<String> = std::fs::read_dir(&dir)
+        .expect("dir")
+        .map(|e| e.expect("entry").file_name().to_string_lossy().into_owned())
+        .collect();
+    assert_eq!(names.len(), 2, "{names:?}");
+}
+
+#[test]
+fn an_unreadable_input_exits_2_and_writes_nothing() {
+    let dir = scratch("unreadable");
+    let output_path = dir.join("out.csv");
+    for (name, input) in [
+        ("missing", None),
+        (
+            "no-columns",
+            Some("id,p0,p1,q1,phi,friction,lambda\n1,1,0.4,0.5,0.4pi,1,1\n"),
+        ),
+        (
+            "misspelled",
+            Some("p0,p1,q1,phi,friction,lamda,compliance\n1,0.4,0.5,0.4pi,1,1,const:c=1\n"),
+        ),
+    ] {
+        let input_path = dir.join(format!("{name}.csv"));
+        if let Some(text) = input {
+            std::fs::write(&input_path, text).expect("write");
+        }
+        let output = microslip(
+            &[
+                "batch",
+                "--input",
+                &path_text(&input_path),
+                "--output",
+                &path_text(&output_path),
+            ],
+            None,
+        );
+        assert_eq!(output.status.code(), Some(2), "{name}");
+        assert!(output.stdout.is_empty(), "{name}");
+        let stderr = String::from_utf8_lossy(&output.stderr);
+        assert_eq!(stderr.trim_end().lines().count(), 1, "{name}: {stderr}");
+        assert!(!output_path.exists(), "{name}: output written");
+        match name {
+            "missing" => assert!(stderr.contains("No such file"), "{stderr}"),
+            "no-columns" => assert!(stderr.contains("no column compliance"), "{stderr}"),
+            "digits" => assert!(
+                stderr.contains("--digits must be between 1 and 1000, got 0"),
+                "{stderr}"
+            ),
+            _ => assert!(stderr.contains("no column lambda (or nu)"), "{stderr}"),
+        }
+    }
+}

@@ -1,0 +1,455 @@
+//! Compliance from a table (`table:FILE`): accuracy against analytic compliances, its
+//! error estimate, and every refusal of a bad table through the command line.
+
+mod common;
+
+use std::path::PathBuf;
+use std::time::Duration;
+
+use microslip::batch::case_dissipation;
+use microslip::inputs::CaseText;
+
+/// A fresh directory for this test's files.
+fn scratch(name: &str) -> PathBuf {
+    let dir = std::env::temp_dir().join(format!("microslip-table-{}-{name}", std::process::id()));
+    std::fs::create_dir_all(&dir).expect("temp dir");
+    dir
+}
+
+struct Family {
+    name: &'static str,
+    spec: &'static str,
+    slope: fn(f64) -> f64,
+    approach: fn(f64) -> f64,
+}
+
+const FAMILIES: [Family; 3] = [
+    Family {
+        name: "persson",
+        spec: "persson:gamma=1,sigma=1",
+        slope: |p| 1.0 / p,
+        approach: f64::ln,
+    },
+    Family {
+        name: "hertz",
+        spec: "hertz:r=1,estar=1",
+        slope: |p| (2.0 / 3.0) * (9.0f64 / 16.0).cbrt() * p.powf(-1.0 / 3.0),
+        approach: |p| (9.0 * p * p / 16.0).cbrt(),
+    },
+    Family {
+        name: "exponential",
+        spec: "exp:a=1,c=0.5,d=0.2",
+        slope: |p| (-p / 0.5).exp() + 0.2,
+        approach: |p| 0.2 * p - 0.5 * (-p / 0.5).exp(),
+    },
+];
+
+/// `rows` log-spaced loads over [0.2, 1.5] (the cycle below reaches [0.228, 1.4]).
+fn write_table(dir: &std::path::Path, name: &str, column: &str, rows: usize, f: fn(f64) -> f64) -> String {
+    let path = dir.join(format!("{name}-{column}-{rows}.csv"));
+    let mut text = format!("# {name} sampled at {rows} loads\nload,{column}\n");
+    for i in 0..rows {
+        let load = 0.2 * (1.5f64 / 0.2).powf(i as f64 / (rows - 1) as f64);
+        text.push_str(&format!("{load:e},{:e}\n", f(load)));
+    }
+    std::fs::write(&path, text).expect("write table");
+    path.to_string_lossy().into_owned()
+}
+
+fn case(compliance: &str) -> CaseText {
+    CaseText {
+        p0: "1".into(),
+        p1: "0.4".into(),
+        q0: "0".into(),
+        q1: "0.5".into(),
+        phi: "0.4pi".into(),
+        friction: "1".into(),
+        lambda: Some("1".into()),
+        nu: None,
+        compliance: compliance.into(),
+    }
+}
+
+fn analytic(spec: &str) -> f64 {
+    let result = case_dissipation(&case(spec), Some(20), Duration::from_secs(60)).expect("analytic W");
+    result.printed.total.parse().expect("W parses")
+}
+
+/// (relative error of W, relative table-error estimate) for a sampled table.
+fn table_w(path: &str, exact: f64) -> (f64, f64) {
+    let result = case_dissipation(&case(&format!("table:{path}")), None, Duration::from_secs(60)).expect("table W");
+    let table = result.table.expect("a table estimate");
+    ((table.unrounded - exact).abs() / exact, table.error / exact)
+}
+
+#[test]
+fn table_w_converges_to_the_analytic_w_at_a_measured_order() {
+    let dir = scratch("order");
+    for family in &FAMILIES {
+        let exact = analytic(family.spec);
+        for (column, f) in [("slope", family.slope), ("approach", family.approach)] {
+            let mut errors = Vec::new();
+            for rows in [20, 40, 80, 160] {
+                let path = write_table(&dir, family.name, column, rows, f);
+                let (error, estimate) = table_w(&path, exact);
+                eprintln!(
+                    "{:<12} {column:<9} {rows:>4} rows: relative error {error:.2e}, estimate {estimate:.2e}",
+                    family.name
+                );
+                assert!(
+                    estimate >= error,
+                    "{} {column} {rows}: estimate {estimate:.1e} below the error {error:.1e}",
+                    family.name
+                );
+                errors.push(error);
+            }
+            assert!(
+                errors[2] < 1e-5,
+                "{} {column}: 80 rows give {:.1e}",
+                family.name,
+                errors[2]
+            );
+            let order = (errors[1] / errors[3]).log2() / 2.0;
+            eprintln!("{:<12} {column:<9} order from 40 to 160 rows: {order:.2}", family.name);
+            assert!(order > 2.5, "{} {column}: order {order:.2}", family.name);
+        }
+    }
+}
+
+/// Runs `microslip dissipation` on the acceptance cycle (with `p1` given) and a compliance.
+fn run_cli(p1: &str, compliance: &str, extra: &[&str]) -> std::process::Output {
+    let mut args = vec![
+        "dissipation",
+        "--p0",
+        "1",
+        "--p1",
+        p1,
+        "--q1",
+        "0.5",
+        "--phi",
+        "0.4pi",
+        "--friction",
+        "1",
+        "--lambda",
+        "1",
+        "--compliance",
+        compliance,
+    ];
+    args.extend_from_slice(extra);
+    std::process::Command::new(env!("CARGO_BIN_EXE_microslip"))
+        .args(&args)
+        .output()
+        .expect("run microslip")
+}
+
+/// The one line a refused run prints, after checking exit code 2 and an empty stdout.
+fn refusal(output: &std::process::Output) -> String {
+    let stderr = String::from_utf8_lossy(&output.stderr).to_string();
+    assert_eq!(output.status.code(), Some(2), "{stderr}");
+    assert!(output.stdout.is_empty(), "{}", String::from_utf8_lossy(&output.stdout));
+    assert_eq!(stderr.trim_end().lines().count(), 1, "{stderr}");
+    stderr
+}
+
+/// Writes `text` as a table file.
+fn persson_table(dir: &std::path::Path, name: &str, text: &str) -> String {
+    let path = dir.join(name);
+    std::fs::write(&path, text).expect("write table");
+    path.to_string_lossy().into_owned()
+}
+
+fn good_rows() -> Vec<String> {
+    (0..8)
+        .map(|i| {
+            let load = 0.2 * (1.5f64 / 0.2).powf(f64::from(i) / 7.0);
+            format!("{load},{}", 1.0 / load)
+        })
+        .collect()
+}
+
+#[test]
+fn bad_tables_are_refused_with_the_line_and_the_problem() {
+    let dir = scratch("bad");
+    let rows = good_rows();
+    let with = |header: &str, rows: &[String]| format!("# measured\n{header}\n{}\n", rows.join("\n"));
+    let edited = |line: usize, replacement: &str| {
+        let mut rows = rows.clone();
+        rows[line - 3] = replacement.to_string();
+        with("load,slope", &rows)
+    };
+    let cases: Vec<(&str, String, Vec<&str>)> = vec![
+        (
+            "misspelled",
+            with("load,slop", &rows),
+            vec!["neither an 'approach' nor a 'slope' column", "load,slop"],
+        ),
+        ("noload", with("laod,slope", &rows), vec!["no 'load' column"]),
+        (
+            "both",
+            with("load,slope,approach", &rows),
+            vec!["both an 'approach' and a 'slope'"],
+        ),
+        (
+            "text",
+            edited(5, "0.5,abc"),
+            vec!["line 5", "slope 'abc' is not a number"],
+        ),
+        ("infinite", edited(6, "0.7,inf"), vec!["line 6", "is not finite"]),
+        ("nan", edited(4, "NaN,2"), vec!["line 4", "load 'NaN' is not finite"]),
+        (
+            "short",
+            with("load,slope", &rows[..3]),
+            vec!["has 3 data rows", "at least 4"],
+        ),
+        (
+            "unsorted",
+            edited(5, "0.25,4"),
+            vec!["line 5", "is below the previous row's", "increase strictly"],
+        ),
+        ("repeated", edited(4, &rows[0].clone()), vec!["line 4", "repeats"]),
+        ("negative", edited(10, "1.5,-0.1"), vec!["line 10", "not positive"]),
+    ];
+    for (name, text, expected) in cases {
+        let path = persson_table(&dir, &format!("{name}.csv"), &text);
+        let message = refusal(&run_cli("0.4", &format!("table:{path}"), &[]));
+        for part in expected {
+            assert!(message.contains(part), "{name}: '{part}' not in {message}");
+        }
+    }
+    // v' that rises between two rows: not concave.
+    let mut rows_convex = rows.clone();
+    let load: f64 = rows[3].split(',').next().and_then(|x| x.parse().ok()).expect("load");
+    rows_convex[3] = format!("{load},{}", 1.2 / load * 1.5);
+    let path = persson_table(&dir, "convex.csv", &with("load,slope", &rows_convex));
+    let message = refusal(&run_cli("0.4", &format!("table:{path}"), &[]));
+    assert!(
+        message.contains("line 6") && message.contains("not concave"),
+        "{message}"
+    );
+    assert!(message.contains("smoothing tolerance"), "{message}");
+    // An approach that falls.
+    let approach: Vec<String> = (0..8)
+        .map(|i| {
+            let load = 0.2 * (1.5f64 / 0.2).powf(f64::from(i) / 7.0);
+            let v = if i == 4 { -5.0 } else { f64::ln(load) };
+            format!("{load},{v}")
+        })
+        .collect();
+    let path = persson_table(&dir, "falling.csv", &with("load,approach", &approach));
+    let message = refusal(&run_cli("0.4", &format!("table:{path}"), &[]));
+    assert!(
+        message.contains("line 7") && message.contains("does not increase"),
+        "{message}"
+    );
+    // A file that is not there.
+    let message = refusal(&run_cli("0.4", "table:/nonexistent/table.csv", &[]));
+    assert!(message.contains("cannot be read"), "{message}");
+}
+
+#[test]
+fn a_cycle_leaving_the_table_is_refused_with_the_range() {
+    let dir = scratch("range");
+    let path = persson_table(&dir, "good.csv", &format!("load,slope\n{}\n", good_rows().join("\n")));
+    // P1 = 0.6 reaches 1.6 > 1.5 and P_T below 0.2.
+    let message = refusal(&run_cli("0.6", &format!("table:{path}"), &[]));
+    assert!(
+        message.contains("covers loads [2e-1, 1.5e0]") && message.contains("never extrapolated"),
+        "{message}"
+    );
+    let output = std::process::Command::new(env!("CARGO_BIN_EXE_microslip"))
+        .args([
+            "simulate",
+            "--p0",
+            "1",
+            "--p1",
+            "0.6",
+            "--q1",
+            "0.5",
+            "--phi",
+            "0.4pi",
+            "--friction",
+            "1",
+            "--lambda",
+            "1",
+            "--compliance",
+        ])
+        .arg(format!("table:{path}"))
+        .output()
+        .expect("run");
+    let message = refusal(&output);
+    assert!(message.contains("covers loads [2e-1, 1.5e0]"), "{message}");
+}
+
+#[test]
+fn digits_are_refused_for_tables_with_the_reason() {
+    let dir = scratch("digits");
+    let path = persson_table(&dir, "good.csv", &format!("load,slope\n{}\n", good_rows().join("\n")));
+    let message = refusal(&run_cli("0.4", &format!("table:{path}"), &["--digits", "20"]));
+    assert!(
+        message.contains("verified digits are not computed for a table compliance")
+            && message.contains("drop --digits"),
+        "{message}"
+    );
+}
+
+/// v' = 1/P with relative noise of ±`size` at every other row.
+fn noisy_table(dir: &std::path::Path, size: f64) -> String {
+    let rows: Vec<String> = (0..80)
+        .map(|i| {
+            let load = 0.2 * (1.5f64 / 0.2).powf(f64::from(i) / 79.0);
+            let noise = if i % 2 == 0 { 1.0 + size } else { 1.0 - size };
+            format!("{load},{}", noise / load)
+        })
+        .collect();
+    persson_table(
+        dir,
+        &format!("noisy-{size}.csv"),
+        &format!("load,slope\n{}\n", rows.join("\n")),
+    )
+}
+
+#[test]
+fn noisy_data_are_fitted_within_the_smoothing_tolerance_and_the_residual_reported() {
+    let dir = scratch("noisy");
+    let path = noisy_table(&dir, 2e-2);
+    // Without smoothing the noise is a violation of v'' ≤ 0.
+    let message = refusal(&run_cli("0.4", &format!("table:{path}"), &[]));
+    assert!(message.contains("not concave"), "{message}");
+    let output = run_cli("0.4", &format!("table:{path},smoothing=0.05"), &["--json"]);
+    assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    let json: serde_json::Value = serde_json::from_slice(&output.stdout).expect("json");
+    let residual = json["smoothing_residual"].as_f64().expect("residual");
+    assert!(residual > 1e-3 && residual <= 0.05, "residual {residual}");
+    let exact = analytic("persson:gamma=1,sigma=1");
+    let (error, estimate) = table_w(&format!("{path},smoothing=0.05"), exact);
+    eprintln!("±2% noise, smoothing=0.05: relative error of W {error:.2e}, table estimate {estimate:.2e}, fit residual {residual:.2e}");
+    // The fit averages the ±2% noise: W within a few tenths of a per cent.
+    assert!(error < 5e-3, "relative error {error:.2e}");
+}
+
+#[test]
+fn the_interpolant_keeps_the_physics_between_the_rows() {
+    use microslip::compliance::{cached_table, Compliance, TableCompliance, TableInterpolant};
+    let dir = scratch("shape");
+    for (name, column, rows, f) in [
+        ("hertz", "approach", 6, FAMILIES[1].approach),
+        ("exponential", "slope", 5, FAMILIES[2].slope),
+        ("persson", "approach", 12, FAMILIES[0].approach),
+    ] {
+        let path = write_table(&dir, name, column, rows, f);
+        let table = cached_table(&path, 0.0).expect("table");
+        for interpolant in [TableInterpolant::Cubic, TableInterpolant::HalfTable] {
+            let compliance = TableCompliance {
+                table: table.clone(),
+                interpolant,
+            };
+            let (first, last) = table.range();
+            let mut previous = f64::INFINITY;
+            for i in 0..=2000 {
+                let load = first + (last - first) * f64::from(i) / 2000.0;
+                let slope: f64 = compliance.slope(&load);
+                let curvature: f64 = compliance.curvature(&load);
+                assert!(
+                    slope > 0.0 && slope <= previous * (1.0 + 1e-15),
+                    "{name} {interpolant:?} at {load}"
+                );
+                assert!(
+                    curvature <= 1e-12 * slope,
+                    "{name} {interpolant:?}: v'' = {curvature} at {load}"
+                );
+                previous = slope;
+            }
+            // Outside the table: not a number, never an extrapolation.
+            assert!(Compliance::<f64>::slope(&compliance, &(last * 1.01)).is_nan());
+            assert!(Compliance::<f64>::slope(&compliance, &(first * 0.99)).is_nan());
+        }
+    }
+}
+
+#[test]
+fn the_quadrature_estimate_holds_on_the_piecewise_cubic() {
+    use microslip::compliance::{cached_table, TableCompliance, TableInterpolant};
+    use microslip::dissipation::{dissipation, Options};
+    let dir = scratch("quadrature");
+    let path = write_table(&dir, "persson", "slope", 40, FAMILIES[0].slope);
+    let compliance = TableCompliance {
+        table: cached_table(&path, 0.0).expect("table"),
+        interpolant: TableInterpolant::Cubic,
+    };
+    let cycle = common::acceptance_cycle(0.4 * std::f64::consts::PI);
+    let options = Options {
+        relative_tolerance: Some(microslip::batch::TABLE_QUADRATURE_TOLERANCE),
+        ..Options::default()
+    };
+    let result = dissipation(&cycle, &compliance, &options).expect("W");
+    let fine = dissipation(
+        &cycle,
+        &compliance,
+        &Options {
+            fixed_points: Some(4096),
+            ..Options::default()
+        },
+    )
+    .expect("W at 4096 points");
+    let difference = (result.total - fine.total).abs();
+    assert!(
+        difference <= result.error_estimate.max(1e-14 * fine.total),
+        "difference {difference:e}, estimate {:e}",
+        result.error_estimate
+    );
+}
+
+#[test]
+fn the_example_table_gives_w_within_its_estimate() {
+    let path = format!("{}/tests/data/rough-surface.csv", env!("CARGO_MANIFEST_DIR"));
+    let exact = analytic("persson:gamma=1,sigma=1");
+    let (error, estimate) = table_w(&path, exact);
+    eprintln!("tests/data/rough-surface.csv: relative error of W {error:.2e}, table estimate {estimate:.2e}");
+    assert!(
+        error <= estimate && estimate < 1e-4,
+        "error {error:.1e}, estimate {estimate:.1e}"
+    );
+}
+
+#[test]
+fn the_closed_form_paths_take_tables_too() {
+    // In phase (φ = 0, integrals from P1 down to −Q1/f) and at constant normal load (P1 = 0).
+    let dir = scratch("closed-forms");
+    let path = write_table(&dir, "persson", "slope", 80, FAMILIES[0].slope);
+    for (p1, phi) in [("0.4", "0"), ("0.4", "pi"), ("0", "0.4pi")] {
+        let with = |compliance: &str| CaseText {
+            p1: p1.into(),
+            phi: phi.into(),
+            ..case(compliance)
+        };
+        let exact = case_dissipation(&with("persson:gamma=1,sigma=1"), Some(20), Duration::from_secs(60))
+            .expect("analytic W")
+            .printed;
+        let exact_w: f64 = exact.total.parse().expect("W");
+        let result = case_dissipation(&with(&format!("table:{path}")), None, Duration::from_secs(60)).expect("table W");
+        let table = result.table.expect("table estimate");
+        assert_eq!(result.printed.method, exact.method, "P1 = {p1}, φ = {phi}");
+        assert!(
+            (table.unrounded - exact_w).abs() <= table.error + result.printed.error_estimate.unwrap_or(0.0),
+            "P1 = {p1}, φ = {phi}: {} against {exact_w}, table estimate {:e}",
+            table.unrounded,
+            table.error
+        );
+    }
+}
+
+#[test]
+fn a_convex_approach_is_refused_at_the_row_where_its_secants_rise() {
+    let dir = scratch("convex-approach");
+    // Secants 3, 2, then 7 (rising at the row of load 1.0), then 1.
+    let path = persson_table(
+        &dir,
+        "convex.csv",
+        "load,approach\n0.2,0\n0.6,1.2\n1.0,2.0\n1.4,4.8\n1.6,5.0\n",
+    );
+    let message = refusal(&run_cli("0.4", &format!("table:{path}"), &[]));
+    assert!(
+        message.contains("line 4") && message.contains("secant slope of the approach rises from 2.0000e0 to 7.0000e0"),
+        "{message}"
+    );
+}
