@@ -329,11 +329,16 @@ fn every_example_in_the_readme_runs() {
         // Commands that write files get a scratch directory for them.
         let mut args: Vec<String> = command.clone();
         let directory = scratch("readme");
+        let mut previous = String::new();
         for arg in args.iter_mut() {
-            if arg.ends_with(".csv") || arg.ends_with(".svg") || arg.ends_with(".png") {
+            let is_output = ["--loop", "--plot", "--out", "--output"].contains(&previous.as_str());
+            previous = arg.clone();
+            if is_output && arg != "-" {
                 *arg = directory.join(&*arg).display().to_string();
             } else if arg.starts_with("tests/") {
                 *arg = format!("{root}/{arg}");
+            } else if let Some(file) = arg.strip_prefix("table:tests/") {
+                *arg = format!("table:{root}/tests/{file}");
             }
         }
         let refs: Vec<&str> = args.iter().map(String::as_str).collect();
