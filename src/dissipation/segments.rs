@@ -145,8 +145,14 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
     pub fn pieces_with_slope(&self, slope: SlopeChange<'a, R>) -> Vec<Integral<'a, R>> {
         let slope = Rc::new(slope);
         let mut pieces = Vec::new();
+        let knots = self.knot_offsets();
         for (index, name) in SEGMENT_NAMES.iter().enumerate() {
-            let breaks = self.lowest_load_points(index);
+            let mut breaks = self.lowest_load_points(index);
+            if !knots.is_empty() {
+                breaks.extend(self.knot_crossings(index, &knots));
+                breaks.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
+                breaks.dedup();
+            }
             let peaks = self.low_load_peaks(index);
             for window in breaks.windows(2) {
                 for part in resolve_peaks(&window[0], &window[1], &peaks) {
@@ -213,6 +219,68 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
             });
         }
         peaks
+    }
+
+    /// The compliance's breakpoints as offsets x = P − P0 (empty for an analytic v').
+    fn knot_offsets(&self) -> Vec<R> {
+        let mean = &self.geometry.mean_normal_load;
+        self.compliance
+            .breakpoints(mean)
+            .into_iter()
+            .map(|knot| knot - mean)
+            .collect()
+    }
+
+    /// The angles s strictly inside segment `index` where a load that v' is taken at
+    /// crosses a knot (given as offsets x = P − P0), so that between two of them (and
+    /// the lowest-load points) every v' in the integrand is one analytic piece:
+    ///
+    /// ```text
+    /// P    = P0 + P1 cos θ                 θ = ±acos(x/P1) + 2πm          (all segments)
+    /// P_Y  = P0 + P1 cos(θ_C − s)          s = θ_C ∓ acos(x/P1) − 2πm     (CH)
+    /// P_S  = P_T + σ₊ sin²h/f, h = (s − L)/2 ∈ [−π/2, 0]:
+    ///                                      s = L − 2 asin(√((P − P_T) f/σ₊))   (EB; HE with P_K, σ₋)
+    /// ```
+    fn knot_crossings(&self, index: usize, knots: &[R]) -> Vec<R> {
+        let g = self.geometry;
+        let (start, length) = self.extent(index);
+        let zero = length.int(0);
+        let one = length.int(1);
+        let two_pi = length.pi_like() * &length.int(2);
+        let mut crossings = Vec::new();
+        let slip_amplitude = match index {
+            0 => Some(&g.sum_amplitude),
+            3 => Some(&g.difference_amplitude),
+            _ => None,
+        };
+        for knot in knots {
+            if g.normal_amplitude > zero {
+                let cosine = knot.clone() / &g.normal_amplitude;
+                if cosine > -one.clone() && cosine < one {
+                    // acos c = atan2(√((1 − c)(1 + c)), c), free of cancellation near c = ±1.
+                    let sine = ((one.clone() - &cosine) * &(one.clone() + &cosine)).sqrt();
+                    let angle = sine.atan2(&cosine);
+                    for m in -2..=3i64 {
+                        let turn = two_pi.clone() * &length.int(m);
+                        for theta in [turn.clone() + &angle, turn.clone() - &angle] {
+                            crossings.push(theta.clone() - start);
+                            if index == 2 {
+                                crossings.push(g.theta_c.clone() - &theta);
+                            }
+                        }
+                    }
+                }
+            }
+            if let Some(amplitude) = slip_amplitude.filter(|a| **a > zero) {
+                let fraction = (knot.clone() - &g.permanent_stick_offset) * &g.friction / amplitude;
+                if fraction > zero && fraction < one {
+                    let half = fraction.sqrt().atan2(&(one.clone() - &fraction).sqrt());
+                    crossings.push(length.clone() - &(half * &length.int(2)));
+                }
+            }
+        }
+        crossings.retain(|s| *s > zero && s < length);
+        crossings
     }
 
     /// The break points 0 = s₀ < s₁ < … < L of a segment: the angles where P (and,
