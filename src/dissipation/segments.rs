@@ -305,3 +305,123 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
         breaks
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::compliance::Persson;
+    use crate::cycle::LoadCycle;
+
+    /// Persson's v' = 1/P with knots declared at given loads (v' itself stays analytic).
+    #[derive(Debug)]
+    struct WithKnots {
+        inner: Persson<f64>,
+        knots: Vec<f64>,
+    }
+
+    impl Compliance<f64> for WithKnots {
+        fn approach(&self, load: &f64) -> f64 {
+            self.inner.approach(load)
+        }
+        fn slope(&self, load: &f64) -> f64 {
+            self.inner.slope(load)
+        }
+        fn curvature(&self, load: &f64) -> f64 {
+            self.inner.curvature(load)
+        }
+        fn breakpoints(&self, _: &f64) -> Vec<f64> {
+            self.knots.clone()
+        }
+        fn describe(&self) -> String {
+            "Persson with knots".into()
+        }
+    }
+
+    #[test]
+    fn knot_crossings_are_where_a_load_of_the_integrand_meets_a_knot() {
+        let knots: Vec<f64> = (0..40).map(|i| 0.3 + 0.04 * i as f64).collect();
+        let compliance = WithKnots {
+            inner: Persson { gamma: 1.0, sigma: 1.0 },
+            knots: knots.clone(),
+        };
+        for phase in [0.1, 0.4, 0.7, 0.95].map(|x| x * std::f64::consts::PI) {
+            let cycle = LoadCycle {
+                mean_normal_load: 1.0,
+                normal_amplitude: 0.6,
+                mean_tangential_load: 0.0,
+                tangential_amplitude: 0.3,
+                phase,
+                friction: 0.8,
+                compliance_ratio: 1.0,
+            };
+            let g = cycle.geometry().expect("valid cycle");
+            let integrands = SegmentIntegrands {
+                geometry: &g,
+                compliance: &compliance,
+                remove_constant_slope: true,
+            };
+            let offsets = integrands.knot_offsets();
+            let on_knot = |offset: f64| offsets.iter().any(|x| (x - offset).abs() < 1e-12);
+            let mut normal_crossings = 0;
+            for index in 0..4 {
+                let (start, length) = integrands.extent(index);
+                for s in integrands.knot_crossings(index, &offsets) {
+                    assert!(s > 0.0 && s < *length);
+                    let half_sin = ((s - length) / 2.0).sin();
+                    let normal = on_knot(g.normal_offset(&(start + s)));
+                    let other = match index {
+                        0 => on_knot(g.reverse_slip_offset(&half_sin)),
+                        2 => on_knot(g.normal_offset(&(g.theta_c - s))),
+                        3 => on_knot(g.forward_slip_offset(&half_sin)),
+                        _ => false,
+                    };
+                    assert!(normal || other, "segment {index}, s = {s}: no load on a knot");
+                    normal_crossings += usize::from(normal);
+                }
+            }
+            // P = P0 + P1 cos θ meets each knot strictly inside (P0 − P1, P0 + P1) twice a cycle.
+            let inside = knots.iter().filter(|&&k| (k - 1.0).abs() < 0.6).count();
+            assert_eq!(normal_crossings, 2 * inside, "phase {phase}");
+        }
+    }
+
+    #[test]
+    fn an_analytic_compliance_gets_no_extra_pieces() {
+        let cycle = LoadCycle {
+            mean_normal_load: 1.0,
+            normal_amplitude: 0.6,
+            mean_tangential_load: 0.0,
+            tangential_amplitude: 0.3,
+            phase: 1.0,
+            friction: 0.8,
+            compliance_ratio: 1.0,
+        };
+        let g = cycle.geometry().expect("valid cycle");
+        let plain = Persson { gamma: 1.0, sigma: 1.0 };
+        let knotted = WithKnots {
+            inner: plain.clone(),
+            knots: vec![0.7, 1.2],
+        };
+        let count = |compliance: &dyn Compliance<f64>| {
+            SegmentIntegrands {
+                geometry: &g,
+                compliance,
+                remove_constant_slope: true,
+            }
+            .pieces()
+            .len()
+        };
+        assert!(count(&knotted) > count(&plain));
+        let lowest: usize = (0..4)
+            .map(|index| {
+                let integrands = SegmentIntegrands {
+                    geometry: &g,
+                    compliance: &plain,
+                    remove_constant_slope: true,
+                };
+                integrands.lowest_load_points(index).len() - 1
+            })
+            .sum();
+        assert!(count(&plain) >= lowest && count(&plain) <= 2 * lowest);
+    }
+}
