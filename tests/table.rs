@@ -500,10 +500,11 @@ fn table_w_converges_with_an_estimate_that_bounds_a_dense_rule_between_knots() {
             .expect("W at 4096 points");
             let difference = (result.total - dense.total).abs();
             eprintln!(
-                "P1 {p1}, Q1 {q1}, φ {:.2}π, f {friction}, {interpolant:?}: W {:.6e}, |W − dense| {difference:.1e}, estimate {:.1e}",
+                "P1 {p1}, Q1 {q1}, φ {:.2}π, f {friction}, {interpolant:?}: W {:.6e}, |W − dense| {difference:.1e}, estimate {:.1e}, {} evaluations",
                 phase / pi,
                 result.total,
-                result.error_estimate
+                result.error_estimate,
+                result.evaluations
             );
             assert!(
                 difference <= result.error_estimate.max(1e-14 * dense.total.abs()),
