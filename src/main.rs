@@ -691,8 +691,7 @@ fn run_batch(args: &BatchArgs) -> Result<usize, Failure> {
         batch::read_input(std::io::stdin().lock())?
     } else {
         let file = std::fs::File::open(&args.input).map_err(|e| Failure::refused(format!("{}: {e}", args.input)))?;
-        batch::read_input(std::io::BufReader::new(file))
-            .map_err(|e| Failure::refused(format!("{}: {e}", args.input)))?
+        batch::read_input(std::io::BufReader::new(file)).map_err(|e| Failure::refused(format!("{}: {e}", args.input)))?
     };
     let progress = Progress::new(input.rows.len());
     let done = std::sync::atomic::AtomicUsize::new(0);

@@ -86,7 +86,8 @@ fn write_error(path: &Path, error: impl std::fmt::Display) -> FiguresError {
 }
 
 fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), FiguresError> {
-    crate::files::write_atomically(path, |temporary| std::fs::write(temporary, bytes)).map_err(|e| write_error(path, e))
+    crate::files::write_atomically(path, |temporary| std::fs::write(temporary, bytes))
+        .map_err(|e| write_error(path, e))
 }
 
 /// One row per sample: panel, curve, abscissa, Ŵ, the precision used, and on the end
