@@ -453,3 +453,133 @@ fn a_convex_approach_is_refused_at_the_row_where_its_secants_rise() {
         "{message}"
     );
 }
+
+/// The example table (v' = 1/P from 60 rows of the approach) over cycles of every kind:
+/// each converges under the default rules, and its quadrature estimate bounds the
+/// difference from a dense fixed rule (4096 points on every piece between knot crossings).
+#[test]
+fn table_w_converges_with_an_estimate_that_bounds_a_dense_rule_between_knots() {
+    use microslip::compliance::{cached_table, TableCompliance, TableInterpolant};
+    use microslip::cycle::LoadCycle;
+    use microslip::dissipation::{dissipation, Options};
+    let path = format!("{}/tests/data/rough-surface.csv", env!("CARGO_MANIFEST_DIR"));
+    let pi = std::f64::consts::PI;
+    // (P1, Q1, φ, f): ordinary phases, in phase, constant normal load, near separation
+    // (P0 − P1 = 0.15) and near gross slip.
+    let cycles = [
+        (0.4, 0.5, 0.4 * pi, 1.0),
+        (0.4, 0.5, 0.1 * pi, 1.0),
+        (0.4, 0.5, 0.9 * pi, 1.0),
+        (0.4, 0.5, 0.0, 1.0),
+        (0.0, 0.5, 0.4 * pi, 1.0),
+        (0.85, 0.1, 0.5 * pi, 1.0),
+        (0.3, 0.6, 0.5 * pi, 0.9),
+    ];
+    for interpolant in [TableInterpolant::Cubic, TableInterpolant::HalfTable] {
+        let compliance = TableCompliance {
+            table: cached_table(&path, 0.0).expect("table"),
+            interpolant,
+        };
+        for (p1, q1, phase, friction) in cycles {
+            let cycle = LoadCycle {
+                normal_amplitude: p1,
+                tangential_amplitude: q1,
+                friction,
+                ..common::acceptance_cycle(phase)
+            };
+            let result = dissipation(&cycle, &compliance, &Options::default())
+                .unwrap_or_else(|e| panic!("P1 {p1}, Q1 {q1}, φ {phase}, f {friction}, {interpolant:?}: {e}"));
+            let dense = dissipation(
+                &cycle,
+                &compliance,
+                &Options {
+                    fixed_points: Some(4096),
+                    ..Options::default()
+                },
+            )
+            .expect("W at 4096 points");
+            let difference = (result.total - dense.total).abs();
+            eprintln!(
+                "P1 {p1}, Q1 {q1}, φ {:.2}π, f {friction}, {interpolant:?}: W {:.6e}, |W − dense| {difference:.1e}, estimate {:.1e}, {} evaluations",
+                phase / pi,
+                result.total,
+                result.error_estimate,
+                result.evaluations
+            );
+            assert!(
+                difference <= result.error_estimate.max(1e-14 * dense.total.abs()),
+                "P1 {p1}, Q1 {q1}, φ {phase}: difference {difference:e}, estimate {:e}",
+                result.error_estimate
+            );
+            assert!(result.error_estimate <= 1e-12 * result.total.abs());
+        }
+    }
+}
+
+/// A table of a quadratic v' is reproduced exactly by the cubic interpolant (its node
+/// derivatives are exact for quadratics), so its W is the analytic W of the polynomial,
+/// across every knot crossing.
+#[test]
+fn a_table_of_a_quadratic_slope_gives_the_analytic_w() {
+    use microslip::compliance::{cached_table, Polynomial, TableCompliance, TableInterpolant};
+    use microslip::dissipation::{dissipation, Options};
+    let dir = scratch("quadratic");
+    let path = write_table(&dir, "quadratic", "slope", 30, |p| 3.0 - p - 0.5 * p * p);
+    let table = TableCompliance {
+        table: cached_table(&path, 0.0).expect("table"),
+        interpolant: TableInterpolant::Cubic,
+    };
+    let polynomial = Polynomial {
+        reference: 0.0,
+        coefficients: vec![3.0, -1.0, -0.5],
+    };
+    for phase in [0.0, 0.2, 0.4, 0.6, 0.8].map(|x| x * std::f64::consts::PI) {
+        let cycle = common::acceptance_cycle(phase);
+        let from_table = dissipation(&cycle, &table, &Options::default()).expect("table W");
+        let exact = dissipation(&cycle, &polynomial, &Options::default()).expect("polynomial W");
+        let difference = (from_table.total - exact.total).abs();
+        eprintln!(
+            "φ {:.1}π: |W_table − W| {difference:.1e}, estimates {:.1e} + {:.1e}",
+            phase / std::f64::consts::PI,
+            from_table.error_estimate,
+            exact.error_estimate
+        );
+        assert!(
+            difference <= from_table.error_estimate + exact.error_estimate + 1e-14 * exact.total.abs(),
+            "φ {phase}: W from the table {:e}, analytic {:e}",
+            from_table.total,
+            exact.total
+        );
+    }
+}
+
+/// A table declares its interior loads as breakpoints, combinators forward them, and
+/// the analytic families declare none.
+#[test]
+fn breakpoints_are_the_table_knots_through_combinators() {
+    use microslip::compliance::{
+        cached_table, Compliance, LoadScaled, Persson, Sum, TableCompliance, TableInterpolant,
+    };
+    let path = format!("{}/tests/data/rough-surface.csv", env!("CARGO_MANIFEST_DIR"));
+    let data = cached_table(&path, 0.0).expect("table");
+    let interior = data.loads[1..data.loads.len() - 1].to_vec();
+    let table = |interpolant| TableCompliance {
+        table: data.clone(),
+        interpolant,
+    };
+    let persson = || Persson { gamma: 1.0, sigma: 1.0 };
+    assert_eq!(table(TableInterpolant::Cubic).breakpoints(&1.0), interior);
+    let half = table(TableInterpolant::HalfTable).breakpoints(&1.0);
+    assert!(half.len() < interior.len() && half.iter().all(|k| interior.contains(k)));
+    assert!(Compliance::<f64>::breakpoints(&persson(), &1.0).is_empty());
+    let sum = Sum::<f64> {
+        terms: vec![Box::new(persson()), Box::new(table(TableInterpolant::Cubic))],
+    };
+    assert_eq!(sum.breakpoints(&1.0), interior);
+    let scaled = LoadScaled::<f64> {
+        factor: 2.0,
+        inner: Box::new(table(TableInterpolant::Cubic)),
+    };
+    let doubled: Vec<f64> = interior.iter().map(|k| 2.0 * k).collect();
+    assert_eq!(scaled.breakpoints(&1.0), doubled);
+}

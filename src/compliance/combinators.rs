@@ -1,7 +1,7 @@
 //! Compliances built from others: sums, multiples, a constant added to v', and
 //! the load scaling that models scaled roughness.
 
-use super::{Compliance, SlopeChange};
+use super::{merged_breakpoints, Compliance, SlopeChange};
 use crate::real::Real;
 
 /// v = Σ vᵢ: compliances in series add.
@@ -35,6 +35,9 @@ impl<R: Real> Compliance<R> for Sum<R> {
         let zero = reference.int(0);
         Box::new(move |offset: &R| terms.iter().fold(zero.clone(), |acc, term| acc + term(offset)))
     }
+    fn breakpoints(&self, like: &R) -> Vec<R> {
+        merged_breakpoints(self.terms.iter().map(|c| c.breakpoints(like)))
+    }
     fn describe(&self) -> String {
         let parts: Vec<String> = self.terms.iter().map(|c| c.describe()).collect();
         parts.join(" + ")
@@ -67,6 +70,9 @@ impl<R: Real> Compliance<R> for Scaled<R> {
         let inner = self.inner.slope_change_about(reference);
         Box::new(move |offset: &R| self.factor.clone() * &inner(offset))
     }
+    fn breakpoints(&self, like: &R) -> Vec<R> {
+        self.inner.breakpoints(like)
+    }
     fn describe(&self) -> String {
         format!("{} × ({})", self.factor.to_scientific(6), self.inner.describe())
     }
@@ -98,6 +104,9 @@ impl<R: Real> Compliance<R> for Shifted<R> {
     fn slope_change_about<'a>(&'a self, reference: &R) -> SlopeChange<'a, R> {
         self.inner.slope_change_about(reference)
     }
+    fn breakpoints(&self, like: &R) -> Vec<R> {
+        self.inner.breakpoints(like)
+    }
     fn describe(&self) -> String {
         format!("({}) + {}·P", self.inner.describe(), self.extra_slope.to_scientific(6))
     }
@@ -126,6 +135,17 @@ impl<R: Real> Compliance<R> for LoadScaled<R> {
     fn slope_change(&self, reference: &R, offset: &R) -> R {
         self.inner
             .slope_change(&(reference.clone() / &self.factor), &(offset.clone() / &self.factor))
+    }
+    fn breakpoints(&self, like: &R) -> Vec<R> {
+        let mut loads: Vec<R> = self
+            .inner
+            .breakpoints(like)
+            .into_iter()
+            .map(|load| load * &self.factor)
+            .collect();
+        // A negative factor reverses the order.
+        loads.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
+        loads
     }
     fn describe(&self) -> String {
         format!(

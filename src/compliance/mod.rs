@@ -50,8 +50,24 @@ pub trait Compliance<R: Real>: Debug + Send + Sync {
         let reference = reference.clone();
         Box::new(move |offset: &R| self.slope_change(&reference, offset))
     }
+    /// The loads where v' is not analytic (the knots of an interpolant, where its
+    /// derivatives jump), at the precision of `like`, increasing; none for the analytic
+    /// families. The dissipation integrals split at the angles where a load crosses
+    /// one, since a quadrature rule converges geometrically only on smooth pieces.
+    fn breakpoints(&self, like: &R) -> Vec<R> {
+        let _ = like;
+        Vec::new()
+    }
     /// A short human-readable description, e.g. `power law v' = 1·P^-1`.
     fn describe(&self) -> String;
+}
+
+/// The breakpoints of several compliances together, increasing and without repeats.
+pub(crate) fn merged_breakpoints<R: Real>(lists: impl IntoIterator<Item = Vec<R>>) -> Vec<R> {
+    let mut all: Vec<R> = lists.into_iter().flatten().collect();
+    all.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
+    all.dedup();
+    all
 }
 
 /// Why a compliance is not physical over a load range.

@@ -14,7 +14,7 @@ use std::path::{Path, PathBuf};
 use std::sync::{Arc, Mutex, OnceLock};
 use std::time::SystemTime;
 
-use super::Compliance;
+use super::{merged_breakpoints, Compliance};
 use crate::real::Real;
 
 /// The fewest rows a table may have: a cubic needs four.
@@ -649,6 +649,15 @@ impl<R: Real> Compliance<R> for TableCompliance {
         (d00 * &(y0 - &y1)) / &h + &(d10 * &m0) + &(d11 * &m1)
     }
 
+    fn breakpoints(&self, like: &R) -> Vec<R> {
+        // The interior loads: the first and last bound the table, beyond which v' is not finite.
+        let loads = &self.data().loads;
+        loads[1..loads.len() - 1]
+            .iter()
+            .map(|&load| R::from_f64(load, like.precision()))
+            .collect()
+    }
+
     fn describe(&self) -> String {
         let data = self.data();
         let (first, last) = data.range();
@@ -690,6 +699,9 @@ impl<R: Real> Compliance<R> for Difference<R> {
     }
     fn slope_change(&self, reference: &R, offset: &R) -> R {
         self.minuend.slope_change(reference, offset) - &self.subtrahend.slope_change(reference, offset)
+    }
+    fn breakpoints(&self, like: &R) -> Vec<R> {
+        merged_breakpoints([self.minuend.breakpoints(like), self.subtrahend.breakpoints(like)])
     }
     fn describe(&self) -> String {
         format!("({}) − ({})", self.minuend.describe(), self.subtrahend.describe())

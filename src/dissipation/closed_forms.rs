@@ -11,6 +11,8 @@
 //! The integrals are written in the offset x = P − P0 and use v'(P0 + x) − v'(P0)
 //! where the options ask for it (the weights integrate a constant to zero).
 
+use std::rc::Rc;
+
 use super::driver::{converge, Converged, Integral};
 use super::{prepare, scaled_result, slope_at, Dissipation, DissipationError, Method, Options};
 use crate::compliance::Compliance;
@@ -44,34 +46,40 @@ pub fn in_phase<R: Real>(
     let slope = slope_at(compliance, &cycle.mean_normal_load, options.remove_constant_slope);
     let slope = &slope;
     let (q_ref, p1_ref) = (&q, p1);
-    let pieces = vec![
-        Integral {
-            name: "W1",
-            segment: 3,
-            integrand: Box::new(move |x: &R| x.clone() * &slope(x)),
-            start: -p1.clone(),
-            end: p1.clone(),
-        },
-        Integral {
-            name: "W2",
-            segment: 3,
-            integrand: Box::new(move |x: &R| (x.clone() * &x.int(2) + p1_ref + q_ref) * &slope(x)),
-            start: -p1.clone(),
-            end: -q.clone(),
-        },
-        Integral {
-            name: "W4",
-            segment: 0,
-            integrand: Box::new(move |x: &R| (x.clone() * &x.int(2) - p1_ref + q_ref) * &slope(x)),
-            start: p1.clone(),
-            end: -q.clone(),
-        },
+    let knots = knot_offsets(cycle, compliance);
+    let (minus_p1, minus_q) = (-p1.clone(), -q.clone());
+    let terms: [(&'static str, usize, Weighted<'_, R>, &R, &R); 3] = [
+        ("W1", 3, Rc::new(move |x: &R| x.clone() * &slope(x)), &minus_p1, p1),
+        (
+            "W2",
+            3,
+            Rc::new(move |x: &R| (x.clone() * &x.int(2) + p1_ref + q_ref) * &slope(x)),
+            &minus_p1,
+            &minus_q,
+        ),
+        (
+            "W4",
+            0,
+            Rc::new(move |x: &R| (x.clone() * &x.int(2) - p1_ref + q_ref) * &slope(x)),
+            p1,
+            &minus_q,
+        ),
     ];
+    // Each term's pieces, and which term each piece belongs to.
+    let mut pieces = Vec::new();
+    let mut term_of_piece = Vec::new();
+    for (term, (name, segment, integrand, start, end)) in terms.into_iter().enumerate() {
+        for piece in split_at_knots(name, segment, integrand, start, end, &knots) {
+            pieces.push(piece);
+            term_of_piece.push(term);
+        }
+    }
     let converged = converge(&pieces, &options.tolerance_for(&zero), options)?;
-    let [j1, j2, j4]: [R; 3] = converged
-        .values
-        .try_into()
-        .unwrap_or_else(|_| unreachable!("three pieces in, three values out"));
+    let mut sums = [zero.clone(), zero.clone(), zero.clone()];
+    for (value, term) in converged.values.iter().zip(&term_of_piece) {
+        sums[*term] += value;
+    }
+    let [j1, j2, j4] = sums;
     let w1 = f.clone() * q1 / p1 * &j1;
     let w2 = f.clone() * q1 * &zero.int(2) / &(q.clone() - p1) * &j2;
     let w4 = f.clone() * q1 * &zero.int(2) / &(q.clone() + p1) * &j4;
@@ -97,21 +105,71 @@ pub fn constant_normal_load<R: Real>(
     let zero = f.int(0);
     let q = cycle.tangential_amplitude.clone() / f;
     let slope = slope_at(compliance, &cycle.mean_normal_load, options.remove_constant_slope);
-    let q_ref = &q;
-    let pieces = vec![Integral {
-        name: "Masing loop",
-        segment: 0,
-        integrand: Box::new(|x: &R| (-(x.clone() * &x.int(2)) - q_ref) * &slope(x)),
-        start: -q.clone(),
-        end: zero.clone(),
-    }];
+    let (q_ref, slope) = (&q, &slope);
+    let pieces = split_at_knots(
+        "Masing loop",
+        0,
+        Rc::new(move |x: &R| (-(x.clone() * &x.int(2)) - q_ref) * &slope(x)),
+        &-q.clone(),
+        &zero,
+        &knot_offsets(cycle, compliance),
+    );
     let converged = converge(&pieces, &options.tolerance_for(&zero), options)?;
     let factor = f.clone() * f * &zero.int(2);
-    let half = converged.values[0].clone() * &factor;
+    let loop_integral = converged.values.iter().fold(zero.clone(), |acc, value| acc + value);
+    let half = loop_integral * &factor;
     let values = vec![half.clone(), zero.clone(), zero, half];
     let error = converged.error * &factor * &f.int(2);
     let combined = Converged::combined(values, error, converged.evaluations, converged.points);
     scaled_result(cycle, combined, Method::ConstantNormalLoad, options)
+}
+
+/// A closed form's integrand in the offset x = P − P0, shared by the pieces it is split into.
+type Weighted<'a, R> = Rc<dyn Fn(&R) -> R + 'a>;
+
+/// The compliance's breakpoints as offsets x = P − P0 (empty for an analytic v').
+fn knot_offsets<R: Real>(cycle: &LoadCycle<R>, compliance: &dyn Compliance<R>) -> Vec<R> {
+    let mean = &cycle.mean_normal_load;
+    compliance
+        .breakpoints(mean)
+        .into_iter()
+        .map(|knot| knot - mean)
+        .collect()
+}
+
+/// ∫ₛₜₐᵣₜ^ₑₙd of `integrand` as pieces split at the knots strictly between the limits
+/// (in either order), so that v' is one analytic piece on each: a quadrature rule
+/// converges only algebraically across a knot, where v'' or v''' jumps.
+fn split_at_knots<'a, R: Real>(
+    name: &'static str,
+    segment: usize,
+    integrand: Weighted<'a, R>,
+    start: &R,
+    end: &R,
+    knots: &[R],
+) -> Vec<Integral<'a, R>> {
+    let (low, high) = if start <= end { (start, end) } else { (end, start) };
+    let mut points = vec![start.clone()];
+    let inside = knots.iter().filter(|x| *x > low && *x < high).cloned();
+    if start <= end {
+        points.extend(inside);
+    } else {
+        points.extend(inside.rev());
+    }
+    points.push(end.clone());
+    points
+        .windows(2)
+        .map(|limits| {
+            let integrand = Rc::clone(&integrand);
+            Integral {
+                name,
+                segment,
+                integrand: Box::new(move |x: &R| integrand(x)),
+                start: limits[0].clone(),
+                end: limits[1].clone(),
+            }
+        })
+        .collect()
 }
 
 /// How the elastic constants of a Hertz contact map onto E* (λ is (2 − ν)/(2(1 − ν)) in both).

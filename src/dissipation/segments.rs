@@ -145,8 +145,14 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
     pub fn pieces_with_slope(&self, slope: SlopeChange<'a, R>) -> Vec<Integral<'a, R>> {
         let slope = Rc::new(slope);
         let mut pieces = Vec::new();
+        let knots = self.knot_offsets();
         for (index, name) in SEGMENT_NAMES.iter().enumerate() {
-            let breaks = self.lowest_load_points(index);
+            let mut breaks = self.lowest_load_points(index);
+            if !knots.is_empty() {
+                breaks.extend(self.knot_crossings(index, &knots));
+                breaks.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
+                breaks.dedup();
+            }
             let peaks = self.low_load_peaks(index);
             for window in breaks.windows(2) {
                 for part in resolve_peaks(&window[0], &window[1], &peaks) {
@@ -215,6 +221,68 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
         peaks
     }
 
+    /// The compliance's breakpoints as offsets x = P − P0 (empty for an analytic v').
+    fn knot_offsets(&self) -> Vec<R> {
+        let mean = &self.geometry.mean_normal_load;
+        self.compliance
+            .breakpoints(mean)
+            .into_iter()
+            .map(|knot| knot - mean)
+            .collect()
+    }
+
+    /// The angles s strictly inside segment `index` where a load that v' is taken at
+    /// crosses a knot (given as offsets x = P − P0), so that between two of them (and
+    /// the lowest-load points) every v' in the integrand is one analytic piece:
+    ///
+    /// ```text
+    /// P    = P0 + P1 cos θ                 θ = ±acos(x/P1) + 2πm          (all segments)
+    /// P_Y  = P0 + P1 cos(θ_C − s)          s = θ_C ∓ acos(x/P1) − 2πm     (CH)
+    /// P_S  = P_T + σ₊ sin²h/f, h = (s − L)/2 ∈ [−π/2, 0]:
+    ///                                      s = L − 2 asin(√((P − P_T) f/σ₊))   (EB; HE with P_K, σ₋)
+    /// ```
+    fn knot_crossings(&self, index: usize, knots: &[R]) -> Vec<R> {
+        let g = self.geometry;
+        let (start, length) = self.extent(index);
+        let zero = length.int(0);
+        let one = length.int(1);
+        let two_pi = length.pi_like() * &length.int(2);
+        let mut crossings = Vec::new();
+        let slip_amplitude = match index {
+            0 => Some(&g.sum_amplitude),
+            3 => Some(&g.difference_amplitude),
+            _ => None,
+        };
+        for knot in knots {
+            if g.normal_amplitude > zero {
+                let cosine = knot.clone() / &g.normal_amplitude;
+                if cosine > -one.clone() && cosine < one {
+                    // acos c = atan2(√((1 − c)(1 + c)), c), free of cancellation near c = ±1.
+                    let sine = ((one.clone() - &cosine) * &(one.clone() + &cosine)).sqrt();
+                    let angle = sine.atan2(&cosine);
+                    for m in -2..=3i64 {
+                        let turn = two_pi.clone() * &length.int(m);
+                        for theta in [turn.clone() + &angle, turn.clone() - &angle] {
+                            crossings.push(theta.clone() - start);
+                            if index == 2 {
+                                crossings.push(g.theta_c.clone() - &theta);
+                            }
+                        }
+                    }
+                }
+            }
+            if let Some(amplitude) = slip_amplitude.filter(|a| **a > zero) {
+                let fraction = (knot.clone() - &g.permanent_stick_offset) * &g.friction / amplitude;
+                if fraction > zero && fraction < one {
+                    let half = fraction.sqrt().atan2(&(one.clone() - &fraction).sqrt());
+                    crossings.push(length.clone() - &(half * &length.int(2)));
+                }
+            }
+        }
+        crossings.retain(|s| *s > zero && s < length);
+        crossings
+    }
+
     /// The break points 0 = s₀ < s₁ < … < L of a segment: the angles where P (and,
     /// for CH, P at the mirror point θ_C − s) is least, θ ≡ π (mod 2π). A compliance
     /// singular at P → 0 is nearly singular there when the cycle nears separation,
@@ -235,5 +303,125 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
         breaks.push(length.clone());
         breaks.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
         breaks
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::compliance::Persson;
+    use crate::cycle::LoadCycle;
+
+    /// Persson's v' = 1/P with knots declared at given loads (v' itself stays analytic).
+    #[derive(Debug)]
+    struct WithKnots {
+        inner: Persson<f64>,
+        knots: Vec<f64>,
+    }
+
+    impl Compliance<f64> for WithKnots {
+        fn approach(&self, load: &f64) -> f64 {
+            self.inner.approach(load)
+        }
+        fn slope(&self, load: &f64) -> f64 {
+            self.inner.slope(load)
+        }
+        fn curvature(&self, load: &f64) -> f64 {
+            self.inner.curvature(load)
+        }
+        fn breakpoints(&self, _: &f64) -> Vec<f64> {
+            self.knots.clone()
+        }
+        fn describe(&self) -> String {
+            "Persson with knots".into()
+        }
+    }
+
+    #[test]
+    fn knot_crossings_are_where_a_load_of_the_integrand_meets_a_knot() {
+        let knots: Vec<f64> = (0..40).map(|i| 0.3 + 0.04 * i as f64).collect();
+        let compliance = WithKnots {
+            inner: Persson { gamma: 1.0, sigma: 1.0 },
+            knots: knots.clone(),
+        };
+        for phase in [0.1, 0.4, 0.7, 0.95].map(|x| x * std::f64::consts::PI) {
+            let cycle = LoadCycle {
+                mean_normal_load: 1.0,
+                normal_amplitude: 0.6,
+                mean_tangential_load: 0.0,
+                tangential_amplitude: 0.3,
+                phase,
+                friction: 0.8,
+                compliance_ratio: 1.0,
+            };
+            let g = cycle.geometry().expect("valid cycle");
+            let integrands = SegmentIntegrands {
+                geometry: &g,
+                compliance: &compliance,
+                remove_constant_slope: true,
+            };
+            let offsets = integrands.knot_offsets();
+            let on_knot = |offset: f64| offsets.iter().any(|x| (x - offset).abs() < 1e-12);
+            let mut normal_crossings = 0;
+            for index in 0..4 {
+                let (start, length) = integrands.extent(index);
+                for s in integrands.knot_crossings(index, &offsets) {
+                    assert!(s > 0.0 && s < *length);
+                    let half_sin = ((s - length) / 2.0).sin();
+                    let normal = on_knot(g.normal_offset(&(start + s)));
+                    let other = match index {
+                        0 => on_knot(g.reverse_slip_offset(&half_sin)),
+                        2 => on_knot(g.normal_offset(&(g.theta_c - s))),
+                        3 => on_knot(g.forward_slip_offset(&half_sin)),
+                        _ => false,
+                    };
+                    assert!(normal || other, "segment {index}, s = {s}: no load on a knot");
+                    normal_crossings += usize::from(normal);
+                }
+            }
+            // P = P0 + P1 cos θ meets each knot strictly inside (P0 − P1, P0 + P1) twice a cycle.
+            let inside = knots.iter().filter(|&&k| (k - 1.0).abs() < 0.6).count();
+            assert_eq!(normal_crossings, 2 * inside, "phase {phase}");
+        }
+    }
+
+    #[test]
+    fn an_analytic_compliance_gets_no_extra_pieces() {
+        let cycle = LoadCycle {
+            mean_normal_load: 1.0,
+            normal_amplitude: 0.6,
+            mean_tangential_load: 0.0,
+            tangential_amplitude: 0.3,
+            phase: 1.0,
+            friction: 0.8,
+            compliance_ratio: 1.0,
+        };
+        let g = cycle.geometry().expect("valid cycle");
+        let plain = Persson { gamma: 1.0, sigma: 1.0 };
+        let knotted = WithKnots {
+            inner: plain.clone(),
+            knots: vec![0.7, 1.2],
+        };
+        let count = |compliance: &dyn Compliance<f64>| {
+            SegmentIntegrands {
+                geometry: &g,
+                compliance,
+                remove_constant_slope: true,
+            }
+            .pieces()
+            .len()
+        };
+        assert!(count(&knotted) > count(&plain));
+        let lowest: usize = (0..4)
+            .map(|index| {
+                let integrands = SegmentIntegrands {
+                    geometry: &g,
+                    compliance: &plain,
+                    remove_constant_slope: true,
+                };
+                integrands.lowest_load_points(index).len() - 1
+            })
+            .sum();
+        assert!(count(&plain) >= lowest && count(&plain) <= 2 * lowest);
     }
 }
