@@ -144,9 +144,12 @@ fn naive_in_load(case: &CaseText, panels: usize) -> Option<(f64, usize)> {
     };
     let pi = std::f64::consts::PI;
     let (mut total, mut evaluations) = (0.0, 0);
-    for piece in integrands.pieces() {
-        let start = integrands.extent(piece.segment).0;
-        let (theta_a, theta_b) = (start + piece.start, start + piece.end);
+    let slope = integrands.prepared_slope();
+    for (index, (piece_start, piece_end)) in
+        (0..4).flat_map(|index| integrands.windows(index).into_iter().map(move |w| (index, w)))
+    {
+        let start = integrands.extent(index).0;
+        let (theta_a, theta_b) = (start + piece_start, start + piece_end);
         // Split at multiples of π, where P turns.
         let mut cuts = vec![theta_a];
         let mut k = (theta_a / pi).floor() + 1.0;
@@ -171,7 +174,7 @@ fn naive_in_load(case: &CaseText, panels: usize) -> Option<(f64, usize)> {
                 };
                 // Uniform in P is uniform in c = cos θ: dθ = dc / (−sin θ).
                 let jacobian = -1.0 / theta.sin();
-                total += (piece.integrand)(&(theta - start)) * jacobian * h;
+                total += integrands.integrand_with(index, &(theta - start), slope.as_ref()) * jacobian * h;
                 evaluations += 1;
             }
         }

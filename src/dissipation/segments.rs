@@ -79,7 +79,7 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
         self.integrand_with(index, s, &self.prepared_slope())
     }
 
-    fn integrand_with(&self, index: usize, s: &R, slope: &dyn Fn(&R) -> R) -> R {
+    pub(crate) fn integrand_with(&self, index: usize, s: &R, slope: &dyn Fn(&R) -> R) -> R {
         let g = self.geometry;
         let two = s.int(2);
         match index {
@@ -140,22 +140,29 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
         self.pieces_with_slope(self.prepared_slope())
     }
 
+    /// The windows of segment `index` in s, between its break points (lowest loads and
+    /// knot crossings), before narrow peaks are mapped: for rules that integrate in s
+    /// or in the load themselves.
+    pub fn windows(&self, index: usize) -> Vec<(R, R)> {
+        let mut breaks = self.lowest_load_points(index);
+        let knots = self.knot_offsets();
+        if !knots.is_empty() {
+            breaks.extend(self.knot_crossings(index, &knots));
+            breaks.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
+            breaks.dedup();
+        }
+        breaks.windows(2).map(|w| (w[0].clone(), w[1].clone())).collect()
+    }
+
     /// The same pieces with the compliance's slope replaced by `slope` (a function of
     /// the offset x = P − P0): W is linear in v', so parts of v' can be integrated apart.
     pub fn pieces_with_slope(&self, slope: SlopeChange<'a, R>) -> Vec<Integral<'a, R>> {
         let slope = Rc::new(slope);
         let mut pieces = Vec::new();
-        let knots = self.knot_offsets();
         for (index, name) in SEGMENT_NAMES.iter().enumerate() {
-            let mut breaks = self.lowest_load_points(index);
-            if !knots.is_empty() {
-                breaks.extend(self.knot_crossings(index, &knots));
-                breaks.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
-                breaks.dedup();
-            }
             let peaks = self.low_load_peaks(index);
-            for window in breaks.windows(2) {
-                for part in resolve_peaks(&window[0], &window[1], &peaks) {
+            for (start, end) in self.windows(index) {
+                for part in resolve_peaks(&start, &end, &peaks) {
                     let (integrands, slope) = (*self, Rc::clone(&slope));
                     let integrand: Box<dyn Fn(&R) -> R + 'a> = match part.map {
                         None => Box::new(move |s: &R| integrands.integrand_with(index, s, slope.as_ref())),
