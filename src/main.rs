@@ -434,7 +434,9 @@ fn run_small_amplitude(args: &SmallAmplitudeArgs) -> Result<String, Failure> {
     let budget = Duration::from_secs_f64(args.max_seconds);
     let printed = small_amplitude::evaluate(&args.rho, &args.phi, args.digits, budget)?;
     if args.json {
-        return Ok(json!({"rho": args.rho, "phi": args.phi, "I": printed.value, "digits": printed.digits}).to_string());
+        return Ok(json!({"rho": args.rho, "phi": args.phi, "I": printed.value, "I_f64": printed.binary64,
+            "digits": printed.digits, "digits_verified": printed.digits})
+        .to_string());
     }
     Ok(format!("I(ρ = {}, φ = {}) = {}", args.rho, args.phi, printed.value))
 }

@@ -35,7 +35,9 @@ pub enum VerifyError<E> {
 /// Runs `compute` at a precision p and at p' > p and accepts the results when every
 /// value agrees to `digits` + [`GUARD_DIGITS`] significant digits; otherwise raises
 /// the precision by the digits that were missing and tries again until `deadline`.
-/// `compute` must re-read its inputs at the precision it is given.
+/// `compute` must re-read its inputs at the precision it is given. A value that is
+/// exactly zero at both precisions does not count as agreeing (it is what complete
+/// cancellation looks like); exact zeros are for the caller to recognise.
 pub fn verified_values<E>(
     digits: u32,
     deadline: Instant,
@@ -45,13 +47,23 @@ pub fn verified_values<E>(
     let mut precision = Precision::decimal_digits(required + 8);
     let mut reached = 0;
     loop {
+        if Instant::now() >= deadline {
+            return Err(VerifyError::OutOfTime { required, reached });
+        }
         let higher = Precision::bits(precision.in_bits() * 5 / 4 + 32);
         let first = compute(precision).map_err(VerifyError::Failed)?;
         let second = compute(higher).map_err(VerifyError::Failed)?;
         let agreed = first
             .iter()
             .zip(&second)
-            .map(|(a, b)| agreeing_digits(&Float::with_val(higher.in_bits(), a), b))
+            // Two zeros say nothing: a difference that cancelled completely at both precisions.
+            .map(|(a, b)| {
+                if a.is_zero() && b.is_zero() {
+                    0
+                } else {
+                    agreeing_digits(&Float::with_val(higher.in_bits(), a), b)
+                }
+            })
             .min()
             .unwrap_or(u32::MAX);
         if agreed >= required {
@@ -62,9 +74,6 @@ pub fn verified_values<E>(
             });
         }
         reached = reached.max(agreed);
-        if Instant::now() >= deadline {
-            return Err(VerifyError::OutOfTime { required, reached });
-        }
         let missing = Precision::decimal_digits(required - agreed + 8).in_bits();
         precision = Precision::bits((precision.in_bits() * 5 / 4).max(precision.in_bits() + missing));
     }

@@ -310,7 +310,7 @@ fn small_amplitude_command_prints_i_and_verifies_digits() {
         "--digits",
         "1000",
         "--max-seconds",
-        "0.001",
+        "1e-9",
     ]);
     assert_eq!(code, 2);
     assert!(
