@@ -41,6 +41,8 @@ enum Command {
     Verify(VerifyArgs),
     /// The small-amplitude coefficient I(ρ, φ) of W ≈ λ f² P1³ v''(P0) I.
     SmallAmplitude(SmallAmplitudeArgs),
+    /// The small-amplitude series: Iₙ(ρ, φ) for n = 0 … N, or a case's partial sums beside W.
+    Series(Box<SeriesArgs>),
     /// Recompute the reference values of a catalogue of cases, in place.
     Reference(ReferenceArgs),
     /// A table of Ŵ = W/(γσλf²) against the phase φ for Persson's compliance
@@ -174,6 +176,53 @@ struct SmallAmplitudeArgs {
     #[arg(long)]
     digits: Option<u32>,
     /// Time budget for verified digits, in seconds.
+    #[arg(long, default_value_t = 60.0)]
+    max_seconds: f64,
+    /// Print one JSON object.
+    #[arg(long)]
+    json: bool,
+}
+
+/// `--rho` for the coefficients Iₙ alone, or a case (`--p0 … --compliance`) for its partial sums.
+#[derive(Args)]
+struct SeriesArgs {
+    /// ρ = Q1/(f P1) (> 0): print I₀ … I_N.
+    #[arg(long, allow_hyphen_values = true, conflicts_with_all = ["p0", "compliance"])]
+    rho: Option<String>,
+    /// The phase φ, in radians or as a multiple of π (`0.4pi`).
+    #[arg(long, allow_hyphen_values = true)]
+    phi: String,
+    /// The highest order N.
+    #[arg(long)]
+    order: usize,
+    /// Mean normal load P0 (with a case).
+    #[arg(long, allow_hyphen_values = true, requires_all = ["p1", "q1", "friction", "compliance"])]
+    p0: Option<String>,
+    /// Normal load amplitude P1.
+    #[arg(long, allow_hyphen_values = true)]
+    p1: Option<String>,
+    /// Mean tangential load Q0.
+    #[arg(long, allow_hyphen_values = true, default_value = "0")]
+    q0: String,
+    /// Tangential load amplitude Q1.
+    #[arg(long, allow_hyphen_values = true)]
+    q1: Option<String>,
+    /// Coulomb friction coefficient f.
+    #[arg(long, allow_hyphen_values = true)]
+    friction: Option<String>,
+    /// Tangential/normal compliance ratio λ, in [1, 2].
+    #[arg(long, allow_hyphen_values = true, conflicts_with = "nu")]
+    lambda: Option<String>,
+    /// Poisson's ratio ν.
+    #[arg(long, allow_hyphen_values = true)]
+    nu: Option<String>,
+    /// Normal compliance SPEC (as for `dissipation`).
+    #[arg(long, allow_hyphen_values = true, requires = "p0")]
+    compliance: Option<String>,
+    /// Verified significant digits (1–1000); without it, f64 (Iₙ) or 15 verified digits (a case).
+    #[arg(long)]
+    digits: Option<u32>,
+    /// Time budget, in seconds.
     #[arg(long, default_value_t = 60.0)]
     max_seconds: f64,
     /// Print one JSON object.
@@ -441,6 +490,55 @@ fn run_small_amplitude(args: &SmallAmplitudeArgs) -> Result<String, Failure> {
     Ok(format!("I(ρ = {}, φ = {}) = {}", args.rho, args.phi, printed.value))
 }
 
+fn run_series(args: &SeriesArgs) -> Result<String, Failure> {
+    use microslip::exact::printing::{printed_coefficients, printed_partial_sums};
+    if !(args.max_seconds.is_finite() && args.max_seconds > 0.0) {
+        return Err(Failure(format!("--max-seconds must be a positive number, got {}", args.max_seconds)));
+    }
+    let budget = Duration::from_secs_f64(args.max_seconds);
+    let Some(p0) = &args.p0 else {
+        let rho = args.rho.as_deref().ok_or_else(|| Failure("give --rho, or a case with --p0 … --compliance".into()))?;
+        let printed = printed_coefficients(rho, &args.phi, args.order, args.digits, budget)?;
+        let digits = printed.digits.iter().copied().min().unwrap_or(0);
+        if args.json {
+            let mut out = json!({"rho": rho, "phi": args.phi, "digits": digits, "coefficients": printed.values,
+                "digits_verified": printed.digits});
+            if !printed.binary64.is_empty() {
+                out["coefficients_f64"] = json!(printed.binary64);
+            }
+            return Ok(out.to_string());
+        }
+        let rows: Vec<String> = printed.values.iter().enumerate().map(|(n, v)| format!("I_{n:<3} = {v}")).collect();
+        return Ok(format!("Iₙ(ρ = {rho}, φ = {}), n = 0 … {}:\n{}", args.phi, args.order, rows.join("\n")));
+    };
+    let missing = || Failure("a case needs --p0, --p1, --q1, --friction, --lambda or --nu, and --compliance".into());
+    let case = CaseText {
+        p0: p0.clone(),
+        p1: args.p1.clone().ok_or_else(missing)?,
+        q0: args.q0.clone(),
+        q1: args.q1.clone().ok_or_else(missing)?,
+        phi: args.phi.clone(),
+        friction: args.friction.clone().ok_or_else(missing)?,
+        lambda: args.lambda.clone(),
+        nu: args.nu.clone(),
+        compliance: args.compliance.clone().ok_or_else(missing)?,
+    };
+    let printed = printed_partial_sums(&case, args.order, args.digits, budget)?;
+    let differences: Vec<String> =
+        printed.differences.iter().map(|d| d.clone().unwrap_or_else(|| "0".into())).collect();
+    if args.json {
+        return Ok(json!({"W": printed.dissipation, "W_digits_verified": printed.dissipation_digits,
+            "partial_sums": printed.sums, "differences": differences, "digits_verified": printed.digits})
+        .to_string());
+    }
+    let mut out = format!("W (four-segment) = {}\n   N  W_N (series to order N){}W_N − W", printed.dissipation,
+        " ".repeat(printed.digits as usize));
+    for (n, (sum, difference)) in printed.sums.iter().zip(&differences).enumerate() {
+        out.push_str(&format!("\n{:>4}  {sum:<width$}  {difference}", n + 1, width = printed.digits as usize + 24));
+    }
+    Ok(out)
+}
+
 fn run_table() -> Result<String, Failure> {
     let amplitudes = ["0.2", "0.4", "0.5", "0.6"];
     let mut out = String::from("Ŵ = W/(γσλf²) for v' = γσ/P, P0 = 1, P1 = 0.4, f = 1 (f64)\n   φ/π");
@@ -497,6 +595,7 @@ fn main() -> ExitCode {
             Err(failure) => Err(failure),
         },
         Command::SmallAmplitude(args) => run_small_amplitude(args),
+        Command::Series(args) => run_series(args),
         Command::Simulate(args) => run_simulate(args),
         Command::Accuracy(args) => run_accuracy(args),
         Command::Reference(args) => run_reference(args),

@@ -4,6 +4,7 @@
 //! proofs/small-amplitude-coefficient.md).
 
 pub mod coefficient;
+pub mod printing;
 pub mod polynomial_w;
 pub mod series;
 pub mod trig;

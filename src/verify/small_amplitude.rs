@@ -20,6 +20,7 @@ use crate::dissipation::{dissipation, Dissipation, DissipationError, Options};
 use crate::inputs::parse_phase;
 use crate::real::{ParseRealError, Precision, Real};
 use crate::exact::closed_form_coefficient;
+use crate::exact::printing::vanishes_in_phase;
 use crate::reference::{agreeing_digits, GUARD_DIGITS, MAX_DIGITS};
 use crate::verified::{verified_values, VerifyError};
 
@@ -146,20 +147,6 @@ fn phase_text<R: Real>(phase: R) -> String {
 /// printed; below that the verified MPFR digits are printed instead.
 const F64_DIGITS_KEPT: u32 = 13;
 
-/// Where I vanishes exactly: in phase (φ ≡ 0 mod π, exactly at two precisions) with
-/// ρ ≤ 1 there is no slip, and at ρ = 1 the closed form's limit is 0.
-fn exactly_zero(rho: &str, phase: &str) -> Result<bool, CoefficientError> {
-    for bits in [64, 256] {
-        let (rho, phase) = read_shape::<Float>(rho, phase, Precision::bits(bits))?;
-        let pi = phase.pi_like();
-        let reduced = phase.clone() - &((phase / &pi).floor() * &pi);
-        if !(reduced.is_zero() && rho <= rho.int(1)) {
-            return Ok(false);
-        }
-    }
-    Ok(true)
-}
-
 /// I(ρ, φ) for printing, from the closed form (no quadrature): with `digits` = None,
 /// f64 with the digits on which it agrees with verified MPFR digits (at most 15; f64
 /// is printed when it keeps at least 13, the verified 15 MPFR digits otherwise — also
@@ -211,7 +198,8 @@ pub fn verified_coefficient(
         return Err(CoefficientError::DigitsOutOfRange(digits));
     }
     let started = Instant::now();
-    if exactly_zero(rho, phase)? {
+    // In phase with ρ ≤ 1 nothing slips; at ρ = 1 this is also the closed form's limit.
+    if vanishes_in_phase(rho, phase) {
         let zero = Float::with_val(Precision::decimal_digits(digits).in_bits(), 0);
         return Ok(PrintedCoefficient {
             value: zero.to_scientific(digits as usize),
