@@ -118,7 +118,7 @@ pub fn gate(options: GateOptions) -> Vec<GateStep> {
                 vec![
                     claims::closed_form_coefficient_claim(seed + 16, n(6, 60)),
                     claims::polynomial_dissipation_claim(seed + 17, n(3, 30)),
-                    claims::series_claim(seed + 18, n(2, 20)),
+                    claims::series_claim(seed + 18, n(4, 20)),
                 ]
             }),
         ),
