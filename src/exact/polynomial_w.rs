@@ -102,27 +102,37 @@ fn segment_terms<R: Real>(g: &EllipseGeometry<R>) -> [(Vec<Term<R>>, R, R); 4] {
 /// W[v' = (P − P0)ⁿ] per unit λ for n = 0 … `order`, segment by segment (index n).
 /// W[1] vanishes by the constant-term theorem; its computed value is rounding.
 pub fn monomial_dissipations<R: Real>(geometry: &EllipseGeometry<R>, order: usize) -> Vec<Segments<R>> {
+    monomials_with_scale(geometry, order).0
+}
+
+/// [`monomial_dissipations`] with, for each n, a bound on the magnitudes of the terms
+/// summed (Σ |coefficients| × 2π over every term): their rounding is a few ulps of it.
+pub(super) fn monomials_with_scale<R: Real>(geometry: &EllipseGeometry<R>, order: usize) -> (Vec<Segments<R>>, Vec<R>) {
     let zero = geometry.phase.int(0);
+    let turn = zero.pi_like() * &zero.int(2);
     let mut per_segment: Vec<Vec<R>> = Vec::with_capacity(4);
+    let mut scales = vec![zero.clone(); order + 1];
     for (terms, start, length) in segment_terms(geometry) {
         let mut values = vec![zero.clone(); order + 1];
         for Term { weight, load } in terms {
             let mut integrand = weight;
-            for value in values.iter_mut() {
+            for (value, scale) in values.iter_mut().zip(scales.iter_mut()) {
                 *value += &integrand.integral(&start, &length);
+                *scale += &(integrand.magnitude() * &turn);
                 integrand = integrand.times(&load);
             }
         }
         per_segment.push(values);
     }
-    (0..=order)
+    let segments = (0..=order)
         .map(|n| Segments {
             eb: per_segment[0][n].clone(),
             bc: per_segment[1][n].clone(),
             ch: per_segment[2][n].clone(),
             he: per_segment[3][n].clone(),
         })
-        .collect()
+        .collect();
+    (segments, scales)
 }
 
 /// The coefficients of a polynomial v' re-expanded about P0: v' = Σ dₖ (P − P0)^k,

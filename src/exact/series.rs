@@ -8,7 +8,7 @@ use crate::compliance::Compliance;
 use crate::cycle::{CycleError, LoadCycle};
 use crate::real::Real;
 
-use super::polynomial_w::monomial_dissipations;
+use super::polynomial_w::monomials_with_scale;
 
 /// Why the series could not be formed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -30,9 +30,8 @@ pub enum SeriesError {
     NotFinite { order: usize },
 }
 
-/// I₀ … I_`order` at (ρ, φ), with for each the sum of the magnitudes of its four
-/// segment contributions (the scale its rounding error is proportional to; I₀ = 0 is
-/// resolved to that scale times the working epsilon).
+/// I₀ … I_`order` at (ρ, φ), each with a bound on the magnitudes of the terms it is
+/// summed from (its rounding error is a few ulps of that; I₀ = 0 is resolved to it).
 pub fn series_coefficients<R: Real>(rho: &R, phase: &R, order: usize) -> Result<Vec<(R, R)>, SeriesError> {
     let zero = rho.int(0);
     if !(rho.is_finite() && *rho > zero) {
@@ -50,13 +49,8 @@ pub fn series_coefficients<R: Real>(rho: &R, phase: &R, order: usize) -> Result<
         compliance_ratio: one,
     };
     let geometry = cycle.geometry()?;
-    Ok(monomial_dissipations(&geometry, order)
-        .into_iter()
-        .map(|segments| {
-            let scale = segments.named().iter().fold(zero.clone(), |acc, (_, v)| acc + &v.abs());
-            (segments.total(), scale)
-        })
-        .collect())
+    let (segments, scales) = monomials_with_scale(&geometry, order);
+    Ok(segments.iter().map(|s| s.total()).zip(scales).collect())
 }
 
 /// The partial sums W_N = λ f² Σ_{n=1}^{N} v⁽ⁿ⁺¹⁾(P0)/n! · P1ⁿ⁺² Iₙ, N = 1 … `order`,
