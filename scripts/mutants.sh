@@ -55,7 +55,7 @@ src/exact/polynomial_w.rs|exact slip loads factor 2|let two_f = g.friction.clone
 src/exact/polynomial_w.rs|exact EB angle from E|TrigPolynomial::linear(zero.clone(), -b_sin.clone(), b_cos.clone())|TrigPolynomial::linear(zero.clone(), -e_sin.clone(), e_cos.clone())
 src/exact/polynomial_w.rs|exact CH P_Y at C not 2C|g.normal_amplitude.clone() * &double_c_cos,|g.normal_amplitude.clone() * c_cos,
 src/exact/trig.rs|trig product sign|product.cos[sum] += cos_cos.clone() - &sin_sin;|product.cos[sum] += cos_cos.clone() + &sin_sin;
-src/exact/trig.rs|trig integral factor|let weight = half * &two / &kk;|let weight = half / &kk;
+src/exact/trig.rs|trig integral factor|.sin() * &two / &kk;|.sin() / &kk;
 src/exact/series.rs|series factorial|factorial *= &zero.int(n as i64);|factorial *= &zero.int(n as i64 + 1);
 src/compliance/families.rs|power-law derivative order|* &falling_factorial(&self.exponent, n - 1)|* &falling_factorial(&self.exponent, n)
 LIST

@@ -12,9 +12,9 @@
 //!
 //! each of degree one in (cos θ, sin θ), as are P', Q', sin(θ − θ_B) and sin(θ − θ_E).
 //! For v' = xⁿ the integrand of a segment is a sum of terms weight(θ)·load(θ)ⁿ with a
-//! weight of degree two, integrated exactly by [`TrigPolynomial::integral`].
+//! weight of degree two, integrated exactly by [`TrigPolynomial::integral_over`].
 
-use super::trig::TrigPolynomial;
+use super::trig::{Interval, TrigPolynomial};
 use crate::compliance::Polynomial;
 use crate::cycle::{CycleError, EllipseGeometry, LoadCycle};
 use crate::dissipation::Segments;
@@ -113,11 +113,13 @@ pub(super) fn monomials_with_scale<R: Real>(geometry: &EllipseGeometry<R>, order
     let mut per_segment: Vec<Vec<R>> = Vec::with_capacity(4);
     let mut scales = vec![zero.clone(); order + 1];
     for (terms, start, length) in segment_terms(geometry) {
+        // Weights of degree 2, loads of degree 1: the integrands reach degree order + 2.
+        let interval = Interval::new(&start, &length, order + 2);
         let mut values = vec![zero.clone(); order + 1];
         for Term { weight, load } in terms {
             let mut integrand = weight;
             for (value, scale) in values.iter_mut().zip(scales.iter_mut()) {
-                *value += &integrand.integral(&start, &length);
+                *value += &integrand.integral_over(&interval);
                 *scale += &(integrand.magnitude() * &turn);
                 integrand = integrand.times(&load);
             }

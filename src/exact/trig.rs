@@ -119,19 +119,16 @@ impl<R: Real> TrigPolynomial<R> {
         product
     }
 
-    /// ∫ from `start` to `start + length` dθ, exactly:
-    /// ∫ cos kθ = (2/k) cos(k m) sin(k L/2) and ∫ sin kθ = (2/k) sin(k m) sin(k L/2) with
-    /// m the middle of the interval, so that short intervals do not cancel.
+    /// ∫ from `start` to `start + length` dθ, exactly (see [`Interval`]).
     pub fn integral(&self, start: &R, length: &R) -> R {
-        let two = length.int(2);
-        let middle = start.clone() + &(length.clone() / &two);
-        let mut total = self.cos[0].clone() * length;
+        self.integral_over(&Interval::new(start, length, self.degree()))
+    }
+
+    /// ∫ over a prepared interval (which must reach this polynomial's degree).
+    pub fn integral_over(&self, interval: &Interval<R>) -> R {
+        let mut total = self.cos[0].clone() * &interval.length;
         for k in 1..=self.degree() {
-            let kk = length.int(k as i64);
-            let (sin_m, cos_m) = (middle.clone() * &kk).sin_cos();
-            let half = (length.clone() * &kk / &two).sin();
-            let weight = half * &two / &kk;
-            total += (self.cos[k].clone() * &cos_m + &(self.sin[k].clone() * &sin_m)) * &weight;
+            total += (self.cos[k].clone() * &interval.cos_integrals[k]) + &(self.sin[k].clone() * &interval.sin_integrals[k]);
         }
         total
     }
@@ -141,6 +138,37 @@ impl<R: Real> TrigPolynomial<R> {
     pub fn magnitude(&self) -> R {
         let zero = self.cos[0].int(0);
         self.cos.iter().chain(&self.sin).fold(zero, |acc, c| acc + &c.abs())
+    }
+}
+
+/// An interval of angles with the integrals of cos kθ and sin kθ over it, k ≤ a degree:
+/// ∫ cos kθ = (2/k) cos(k m) sin(k L/2) and ∫ sin kθ = (2/k) sin(k m) sin(k L/2), with m
+/// the middle and L the length, so that short intervals do not cancel.
+#[derive(Clone, Debug)]
+pub struct Interval<R> {
+    length: R,
+    cos_integrals: Vec<R>,
+    sin_integrals: Vec<R>,
+}
+
+impl<R: Real> Interval<R> {
+    /// [start, start + length], for trigonometric polynomials up to `degree`.
+    pub fn new(start: &R, length: &R, degree: usize) -> Self {
+        let two = length.int(2);
+        let middle = start.clone() + &(length.clone() / &two);
+        let (mut cos_integrals, mut sin_integrals) = (vec![length.int(0)], vec![length.int(0)]);
+        for k in 1..=degree {
+            let kk = length.int(k as i64);
+            let (sin_m, cos_m) = (middle.clone() * &kk).sin_cos();
+            let weight = (length.clone() * &kk / &two).sin() * &two / &kk;
+            cos_integrals.push(cos_m * &weight);
+            sin_integrals.push(sin_m * &weight);
+        }
+        Interval {
+            length: length.clone(),
+            cos_integrals,
+            sin_integrals,
+        }
     }
 }
 
