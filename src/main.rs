@@ -483,9 +483,11 @@ fn run_small_amplitude(args: &SmallAmplitudeArgs) -> Result<String, Failure> {
     let budget = Duration::from_secs_f64(args.max_seconds);
     let printed = small_amplitude::evaluate(&args.rho, &args.phi, args.digits, budget)?;
     if args.json {
-        return Ok(json!({"rho": args.rho, "phi": args.phi, "I": printed.value, "I_f64": printed.binary64,
+        return Ok(
+            json!({"rho": args.rho, "phi": args.phi, "I": printed.value, "I_f64": printed.binary64,
             "digits": printed.digits, "digits_verified": printed.digits})
-        .to_string());
+            .to_string(),
+        );
     }
     Ok(format!("I(ρ = {}, φ = {}) = {}", args.rho, args.phi, printed.value))
 }
@@ -493,11 +495,17 @@ fn run_small_amplitude(args: &SmallAmplitudeArgs) -> Result<String, Failure> {
 fn run_series(args: &SeriesArgs) -> Result<String, Failure> {
     use microslip::exact::printing::{printed_coefficients, printed_partial_sums};
     if !(args.max_seconds.is_finite() && args.max_seconds > 0.0) {
-        return Err(Failure(format!("--max-seconds must be a positive number, got {}", args.max_seconds)));
+        return Err(Failure(format!(
+            "--max-seconds must be a positive number, got {}",
+            args.max_seconds
+        )));
     }
     let budget = Duration::from_secs_f64(args.max_seconds);
     let Some(p0) = &args.p0 else {
-        let rho = args.rho.as_deref().ok_or_else(|| Failure("give --rho, or a case with --p0 … --compliance".into()))?;
+        let rho = args
+            .rho
+            .as_deref()
+            .ok_or_else(|| Failure("give --rho, or a case with --p0 … --compliance".into()))?;
         let printed = printed_coefficients(rho, &args.phi, args.order, args.digits, budget)?;
         let digits = printed.digits.iter().copied().min().unwrap_or(0);
         if args.json {
@@ -508,8 +516,18 @@ fn run_series(args: &SeriesArgs) -> Result<String, Failure> {
             }
             return Ok(out.to_string());
         }
-        let rows: Vec<String> = printed.values.iter().enumerate().map(|(n, v)| format!("I_{n:<3} = {v}")).collect();
-        return Ok(format!("Iₙ(ρ = {rho}, φ = {}), n = 0 … {}:\n{}", args.phi, args.order, rows.join("\n")));
+        let rows: Vec<String> = printed
+            .values
+            .iter()
+            .enumerate()
+            .map(|(n, v)| format!("I_{n:<3} = {v}"))
+            .collect();
+        return Ok(format!(
+            "Iₙ(ρ = {rho}, φ = {}), n = 0 … {}:\n{}",
+            args.phi,
+            args.order,
+            rows.join("\n")
+        ));
     };
     let missing = || Failure("a case needs --p0, --p1, --q1, --friction, --lambda or --nu, and --compliance".into());
     let case = CaseText {
@@ -524,17 +542,29 @@ fn run_series(args: &SeriesArgs) -> Result<String, Failure> {
         compliance: args.compliance.clone().ok_or_else(missing)?,
     };
     let printed = printed_partial_sums(&case, args.order, args.digits, budget)?;
-    let differences: Vec<String> =
-        printed.differences.iter().map(|d| d.clone().unwrap_or_else(|| "0".into())).collect();
+    let differences: Vec<String> = printed
+        .differences
+        .iter()
+        .map(|d| d.clone().unwrap_or_else(|| "0".into()))
+        .collect();
     if args.json {
-        return Ok(json!({"W": printed.dissipation, "W_digits_verified": printed.dissipation_digits,
+        return Ok(
+            json!({"W": printed.dissipation, "W_digits_verified": printed.dissipation_digits,
             "partial_sums": printed.sums, "differences": differences, "digits_verified": printed.digits})
-        .to_string());
+            .to_string(),
+        );
     }
-    let mut out = format!("W (four-segment) = {}\n   N  W_N (series to order N){}W_N − W", printed.dissipation,
-        " ".repeat(printed.digits as usize));
+    let mut out = format!(
+        "W (four-segment) = {}\n   N  W_N (series to order N){}W_N − W",
+        printed.dissipation,
+        " ".repeat(printed.digits as usize)
+    );
     for (n, (sum, difference)) in printed.sums.iter().zip(&differences).enumerate() {
-        out.push_str(&format!("\n{:>4}  {sum:<width$}  {difference}", n + 1, width = printed.digits as usize + 24));
+        out.push_str(&format!(
+            "\n{:>4}  {sum:<width$}  {difference}",
+            n + 1,
+            width = printed.digits as usize + 24
+        ));
     }
     Ok(out)
 }

@@ -2,9 +2,10 @@
 //! W for polynomial compliances and the closed-form coefficient I(ρ, φ).
 
 use microslip::compliance::Polynomial;
+use microslip::compliance::{Compliance, Hertz};
 use microslip::cycle::LoadCycle;
-use microslip::dissipation::{four_segment, in_phase, Options};
-use microslip::exact::{closed_form_coefficient, polynomial_dissipation, series_coefficients};
+use microslip::dissipation::{four_segment, in_phase, HertzConfiguration, MindlinDeresiewicz, Options};
+use microslip::exact::{closed_form_coefficient, polynomial_dissipation};
 use microslip::real::{Precision, Real};
 use microslip::verify::small_amplitude::coefficient_with_error;
 use rug::Float;
@@ -100,5 +101,109 @@ fn closed_form_coefficient_equals_the_quadrature_to_100_digits() {
             "ρ = {rho_text}, φ = {phi_text}: {agreed:.1} digits (estimate {})",
             error.to_scientific(3)
         );
+    }
+}
+
+fn closed(rho: &str, phi: &str, bits: u32) -> Float {
+    let precision = Precision::bits(bits);
+    let rho = Float::parse_decimal(rho, precision).unwrap();
+    let phi = microslip::inputs::parse_phase::<Float>(phi, precision).unwrap();
+    closed_form_coefficient(&rho, &phi)
+}
+
+#[test]
+fn closed_form_limits_in_rho() {
+    let bits = 200;
+    let pi = Float::pi(Precision::bits(bits));
+    for phi in ["0.3", "1.2", "2.8"] {
+        let phase = Float::parse_decimal(phi, Precision::bits(bits)).unwrap();
+        let (sin, cos) = phase.clone().sin_cos(Float::new(bits));
+        // ρ → 0: I = −(8/3)ρ² sin²φ (1 + ρ cos φ) + O(ρ⁴).
+        let rho = Float::parse_decimal("1e-6", Precision::bits(bits)).unwrap();
+        let small = -(rho.clone() * &rho * &sin * &sin * 8i32 / 3i32) * (rho.clone() * &cos + 1i32);
+        let relative = ((closed("1e-6", phi, bits) - &small) / &small).abs().to_f64();
+        assert!(relative < 1e-11, "φ = {phi}: {relative:e}");
+        // ρ → ∞: I = −(2/3)ρ³ + (7cos²φ/3 − 5/3 − (π/2) sin φ cos φ)ρ + O(1).
+        let rho = Float::parse_decimal("1e8", Precision::bits(bits)).unwrap();
+        let second =
+            cos.clone() * &cos * 7i32 / 3i32 - Float::with_val(bits, 5) / 3i32 - pi.clone() * &sin * &cos / 2i32;
+        let large = -(rho.clone() * &rho * &rho * 2i32 / 3i32) + second * &rho;
+        let remainder = (closed("1e8", phi, bits) - &large).abs().to_f64();
+        assert!(remainder < 10.0, "φ = {phi}: O(1) remainder {remainder}");
+    }
+}
+
+#[test]
+fn closed_form_limits_in_phase() {
+    let bits = 200;
+    // ρ < 1: I ≈ −(8/3)ρ²φ²/(1 − ρ); ρ = 1: I ≈ −(13/6 + π/4)φ; ρ > 1: I ≈ −(2/3)ρ(ρ² − 1) − (π/2)ρφ.
+    let phi = 1e-12;
+    let below = closed("0.6", "1e-12", bits).to_f64();
+    assert!(
+        (below / (-8.0 / 3.0 * 0.36 * phi * phi / 0.4) - 1.0).abs() < 1e-9,
+        "{below}"
+    );
+    let at_one = closed("1", "1e-12", bits).to_f64();
+    let slope = -(13.0 / 6.0 + std::f64::consts::FRAC_PI_4);
+    assert!((at_one / (slope * phi) - 1.0).abs() < 1e-9, "{at_one}");
+    let above = closed("2.5", "1e-12", bits).to_f64();
+    let expected = -2.0 / 3.0 * 2.5 * (2.5 * 2.5 - 1.0) - std::f64::consts::FRAC_PI_2 * 2.5 * phi;
+    assert!((above - expected).abs() < 1e-20, "{above} against {expected}");
+    // Exactly in phase the closed form equals the paper's in-phase closed form (ρ > 1) and 0 (ρ ≤ 1).
+    let precision = Precision::bits(bits);
+    for rho in ["0.4", "1", "1.7", "30"] {
+        let one = Float::with_val(bits, 1);
+        let amplitude = Float::parse_decimal("0.01", precision).unwrap();
+        let cycle = microslip::cycle::LoadCycle {
+            mean_normal_load: one.clone(),
+            normal_amplitude: amplitude.clone(),
+            mean_tangential_load: Float::with_val(bits, 0),
+            tangential_amplitude: Float::parse_decimal(rho, precision).unwrap() * &amplitude,
+            phase: Float::with_val(bits, 0),
+            friction: one.clone(),
+            compliance_ratio: one.clone(),
+        };
+        let linear = Polynomial {
+            reference: one.clone(),
+            coefficients: vec![Float::with_val(bits, 0), one.clone()],
+        };
+        let options = Options {
+            check_compliance: false,
+            ..Options::default()
+        };
+        let w = in_phase(&cycle, &linear, &options).unwrap().total;
+        let from_closed_form = closed(rho, "0", bits) * &amplitude * &amplitude * &amplitude;
+        let difference = (w - &from_closed_form).abs().to_f64();
+        assert!(difference < 1e-50, "ρ = {rho}: {difference:e}");
+    }
+}
+
+#[test]
+fn closed_form_large_rho_is_the_cubic_term_of_mindlin_deresiewicz() {
+    // P1 → 0 at fixed Q1 is ρ → ∞: λ f² P1³ v''(P0) I → −(2/3) λ v''(P0) Q1³/f, which for a Hertz
+    // sphere on a rigid flat is the cubic term (2 − ν) Q1³/(36 G a f P0) of Mindlin–Deresiewicz.
+    let bits = 200;
+    let p = Precision::bits(bits);
+    let number = |text: &str| Float::parse_decimal(text, p).unwrap();
+    let md = MindlinDeresiewicz {
+        shear_modulus: number("1"),
+        poisson_ratio: number("0.3"),
+        configuration: HertzConfiguration::SphereOnRigidFlat,
+    };
+    let hertz = Hertz {
+        radius: number("1"),
+        contact_modulus: md.contact_modulus(),
+    };
+    let (p0, f, lambda) = (number("1"), number("0.5"), number("1.7") / number("1.4"));
+    for q in ["1e-3", "1e-5"] {
+        let q1 = number(q) * &f * &p0;
+        let exact = md.dissipation(&f, &p0, &q1, &hertz.contact_radius(&p0));
+        let rho = number("1e9");
+        let p1 = q1.clone() / (f.clone() * &rho);
+        let coefficient = closed_form_coefficient(&rho, &number("0.7"));
+        let series = lambda.clone() * &f * &f * &p1 * &p1 * &p1 * &hertz.curvature(&p0) * &coefficient;
+        let relative = ((series / &exact) - 1i32).abs().to_f64();
+        // The cubic term is exact up to O(q) (the bracket's next term).
+        assert!(relative < 2.0 * q.parse::<f64>().unwrap(), "q = {q}: {relative:e}");
     }
 }

@@ -3,7 +3,7 @@
 
 use std::process::Command;
 
-use microslip::compliance::{parse_spec, Compliance, Polynomial};
+use microslip::compliance::{parse_spec, Polynomial};
 use microslip::cycle::LoadCycle;
 use microslip::dissipation::{dissipation, four_segment, Options};
 use microslip::exact::{closed_form_coefficient, partial_sums, series_coefficients};
@@ -11,7 +11,10 @@ use microslip::real::{Precision, Real};
 use rug::Float;
 
 fn microslip(args: &[&str]) -> (i32, String, String) {
-    let output = Command::new(env!("CARGO_BIN_EXE_microslip")).args(args).output().unwrap();
+    let output = Command::new(env!("CARGO_BIN_EXE_microslip"))
+        .args(args)
+        .output()
+        .unwrap();
     (
         output.status.code().unwrap_or(-1),
         String::from_utf8_lossy(&output.stdout).into_owned(),
@@ -68,23 +71,54 @@ fn acceptance_index_one_is_the_small_amplitude_coefficient_and_index_zero_vanish
 #[test]
 fn series_command_refuses_in_its_own_terms() {
     for (args, expected) in [
-        (&["series", "--rho", "-1", "--phi", "1", "--order", "3"][..], "ρ = Q1/(fP1) must be a positive"),
-        (&["series", "--rho", "1", "--phi", "x", "--order", "3"][..], "φ is not a number"),
-        (&["series", "--rho", "1", "--phi", "1", "--order", "0"][..], "order of the series"),
-        (&["series", "--rho", "1", "--phi", "1", "--order", "3", "--digits", "0"][..], "digits"),
+        (
+            &["series", "--rho", "-1", "--phi", "1", "--order", "3"][..],
+            "ρ = Q1/(fP1) must be a positive",
+        ),
+        (
+            &["series", "--rho", "1", "--phi", "x", "--order", "3"][..],
+            "φ is not a number",
+        ),
+        (
+            &["series", "--rho", "1", "--phi", "1", "--order", "0"][..],
+            "order of the series",
+        ),
+        (
+            &["series", "--rho", "1", "--phi", "1", "--order", "3", "--digits", "0"][..],
+            "digits",
+        ),
     ] {
         let (code, stdout, stderr) = microslip(args);
         assert_eq!(code, 2, "{args:?}: {stdout}");
         assert!(stdout.is_empty());
-        assert!(stderr.contains(expected) && stderr.lines().count() == 1, "{args:?}: {stderr}");
+        assert!(
+            stderr.contains(expected) && stderr.lines().count() == 1,
+            "{args:?}: {stderr}"
+        );
     }
 }
 
 #[test]
 fn case_partial_sums_approach_the_four_segment_w() {
     let (code, stdout, stderr) = microslip(&[
-        "series", "--p0", "1", "--p1", "0.2", "--q1", "0.15", "--phi", "0.4pi", "--friction", "1", "--lambda",
-        "1", "--compliance", "persson:gamma=1,sigma=1", "--order", "12", "--json",
+        "series",
+        "--p0",
+        "1",
+        "--p1",
+        "0.2",
+        "--q1",
+        "0.15",
+        "--phi",
+        "0.4pi",
+        "--friction",
+        "1",
+        "--lambda",
+        "1",
+        "--compliance",
+        "persson:gamma=1,sigma=1",
+        "--order",
+        "12",
+        "--json",
     ]);
     assert_eq!(code, 0, "{stderr}");
     let value: serde_json::Value = serde_json::from_str(stdout.trim()).unwrap();
@@ -104,7 +138,13 @@ fn case_partial_sums_approach_the_four_segment_w() {
 #[test]
 fn index_one_equals_the_closed_form_and_index_thirty_the_quadrature() {
     let bits = 300;
-    for (rho, phi) in [("0.001", "0.3"), ("0.7", "2.9"), ("1", "1.1"), ("40", "0.01"), ("1000", "1.5")] {
+    for (rho, phi) in [
+        ("0.001", "0.3"),
+        ("0.7", "2.9"),
+        ("1", "1.1"),
+        ("40", "0.01"),
+        ("1000", "1.5"),
+    ] {
         let (rho, phi) = (float(rho, bits), float(phi, bits));
         let values = series_coefficients(&rho, &phi, 1).unwrap();
         let (closed, exact) = (closed_form_coefficient(&rho, &phi), values[1].0.clone());
@@ -157,7 +197,9 @@ fn truncation_at_order_n_leaves_p1_to_the_n_plus_3() {
             .iter()
             .map(|p1| {
                 let cycle = cycle(&float(p1, bits), 1.7, 0.37, 0.6);
-                let w = dissipation(&cycle, compliance.as_ref(), &Options::default()).unwrap().total;
+                let w = dissipation(&cycle, compliance.as_ref(), &Options::default())
+                    .unwrap()
+                    .total;
                 let sums = partial_sums(&cycle, compliance.as_ref(), 10).unwrap();
                 sums.into_iter().map(|s| (s - &w).abs()).collect()
             })
@@ -209,7 +251,10 @@ fn coefficients_grow_as_the_reach_of_the_slip_loads_below_p0() {
         let reach = ((rho * c + 1.0f64).hypot(rho * s) + (rho * c - 1.0f64).hypot(rho * s)) / 2.0;
         let fitted = growth(rho, phase);
         println!("ρ = {rho}, φ = {fraction}π: fitted L = {fitted:.5}, (σ̂₊ + σ̂₋)/2 = {reach:.5}");
-        assert!((fitted / reach - 1.0).abs() < 0.02, "ρ = {rho}, φ = {fraction}π: L {fitted} against {reach}");
+        assert!(
+            (fitted / reach - 1.0).abs() < 0.02,
+            "ρ = {rho}, φ = {fraction}π: L {fitted} against {reach}"
+        );
     }
 }
 
@@ -228,13 +273,14 @@ fn every_family_gives_derivatives_of_every_order() {
         "persson:gamma=1,sigma=1 + exp:a=1,c=2,d=0",
     ] {
         let compliance = parse_spec::<Float>(spec, p).unwrap();
-        assert_eq!(compliance.derivative(1, &load).unwrap(), compliance.slope(&load), "{spec}");
-        let curvature = compliance.curvature(&load);
-        let second: Float = compliance.derivative(2, &load).unwrap();
-        assert!(
-            (second - &curvature).abs() <= curvature.abs() * 1e-55 + 1e-55,
+        assert_eq!(
+            compliance.derivative(1, &load).unwrap(),
+            compliance.slope(&load),
             "{spec}"
         );
+        let curvature = compliance.curvature(&load);
+        let second: Float = compliance.derivative(2, &load).unwrap();
+        assert!((second - &curvature).abs() <= curvature.abs() * 1e-55 + 1e-55, "{spec}");
         // v⁽ⁿ⁺¹⁾ against the central difference of v⁽ⁿ⁾ with h = 1e−20 (error ~ h² and ε/h).
         let h = float("1e-20", bits);
         for n in [2usize, 5, 12] {
@@ -242,7 +288,11 @@ fn every_family_gives_derivatives_of_every_order() {
             let down = compliance.derivative(n, &(load.clone() - &h)).unwrap();
             let difference: Float = (up - down) / (h.clone() * 2i32);
             let exact = compliance.derivative(n + 1, &load).unwrap();
-            let scale: Float = exact.clone().abs().max_of(&compliance.derivative(n, &load).unwrap().abs()) + 1e-30;
+            let scale: Float = exact
+                .clone()
+                .abs()
+                .max_of(&compliance.derivative(n, &load).unwrap().abs())
+                + 1e-30;
             assert!(
                 ((difference - &exact).abs() / scale).to_f64() < 1e-30,
                 "{spec}: order {}",

@@ -44,8 +44,8 @@ pub fn closed_form_coefficient<R: Real>(rho: &R, phase: &R) -> R {
         (product.clone() - &(gap.clone() * &span)) * &two
     };
     // σ₊² − 4e² = (r − e)(r + 3e) − 4re sin²(φ/2).
-    let plus_excess = -(gap.clone() * &(r.clone() + &(e.clone() * &rho.int(3))))
-        - &(r.clone() * &e * &half_sin_sq * &rho.int(4));
+    let plus_excess =
+        -(gap.clone() * &(r.clone() + &(e.clone() * &rho.int(3)))) - &(r.clone() * &e * &half_sin_sq * &rho.int(4));
     let z = plus_excess.square() - &(product.clone() * &plus_excess * &rho.int(11))
         + &(m.square() * &(u.square() * &rho.int(27) - &(e.square() * &rho.int(4))))
         - &(m.square() * &product);

@@ -4,8 +4,8 @@
 //! proofs/small-amplitude-coefficient.md).
 
 pub mod coefficient;
-pub mod printing;
 pub mod polynomial_w;
+pub mod printing;
 pub mod series;
 pub mod trig;
 

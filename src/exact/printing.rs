@@ -145,7 +145,12 @@ pub fn printed_coefficients(
         let f64_value = in_f64.as_ref().map(|values| values[n]);
         let kept = f64_value
             .filter(|v| v.is_finite() && v.abs() >= f64::MIN_POSITIVE)
-            .map(|v| (v, agreeing_digits(&Float::with_val(reference.prec(), v), reference).min(15)))
+            .map(|v| {
+                (
+                    v,
+                    agreeing_digits(&Float::with_val(reference.prec(), v), reference).min(15),
+                )
+            })
             .filter(|(_, kept)| *kept >= 13);
         match kept {
             Some((value, kept)) => {

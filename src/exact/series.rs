@@ -35,7 +35,9 @@ pub enum SeriesError {
 pub fn series_coefficients<R: Real>(rho: &R, phase: &R, order: usize) -> Result<Vec<(R, R)>, SeriesError> {
     let zero = rho.int(0);
     if !(rho.is_finite() && *rho > zero) {
-        return Err(SeriesError::NonPositiveRatio { rho: rho.to_f64_lossy() });
+        return Err(SeriesError::NonPositiveRatio {
+            rho: rho.to_f64_lossy(),
+        });
     }
     let one = rho.int(1);
     // P1 = f = λ = 1, Q1 = ρ; P0 only has to keep the cycle inside the theory.
@@ -76,11 +78,12 @@ pub fn partial_sums<R: Real>(
     let (mut total, mut power, mut factorial) = (zero.clone(), p1.clone(), zero.int(1));
     for (n, (value, _)) in coefficients.iter().enumerate().skip(1) {
         factorial *= &zero.int(n as i64);
-        let derivative = compliance
-            .derivative(n + 1, &cycle.mean_normal_load)
-            .ok_or_else(|| SeriesError::NoDerivatives {
-                describe: compliance.describe(),
-            })?;
+        let derivative =
+            compliance
+                .derivative(n + 1, &cycle.mean_normal_load)
+                .ok_or_else(|| SeriesError::NoDerivatives {
+                    describe: compliance.describe(),
+                })?;
         if !derivative.is_finite() {
             return Err(SeriesError::NotFinite { order: n + 1 });
         }

@@ -128,7 +128,8 @@ impl<R: Real> TrigPolynomial<R> {
     pub fn integral_over(&self, interval: &Interval<R>) -> R {
         let mut total = self.cos[0].clone() * &interval.length;
         for k in 1..=self.degree() {
-            total += (self.cos[k].clone() * &interval.cos_integrals[k]) + &(self.sin[k].clone() * &interval.sin_integrals[k]);
+            total += (self.cos[k].clone() * &interval.cos_integrals[k])
+                + &(self.sin[k].clone() * &interval.sin_integrals[k]);
         }
         total
     }

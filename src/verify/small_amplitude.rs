@@ -17,10 +17,10 @@ use rug::Float;
 use crate::compliance::Polynomial;
 use crate::cycle::LoadCycle;
 use crate::dissipation::{dissipation, Dissipation, DissipationError, Options};
-use crate::inputs::parse_phase;
-use crate::real::{ParseRealError, Precision, Real};
 use crate::exact::closed_form_coefficient;
 use crate::exact::printing::vanishes_in_phase;
+use crate::inputs::parse_phase;
+use crate::real::{ParseRealError, Precision, Real};
 use crate::reference::{agreeing_digits, GUARD_DIGITS, MAX_DIGITS};
 use crate::verified::{verified_values, VerifyError};
 
@@ -133,7 +133,9 @@ fn read_shape<R: Real>(rho: &str, phase: &str, precision: Precision) -> Result<(
     if !phase.is_finite() {
         return Err(CoefficientError::Number {
             flag: "phi",
-            source: ParseRealError { text: phase_text(phase) },
+            source: ParseRealError {
+                text: phase_text(phase),
+            },
         });
     }
     Ok((rho_value, phase))

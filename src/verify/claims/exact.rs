@@ -147,7 +147,5 @@ pub fn series_claim(seed: u64, cases: usize) -> ClaimReport {
             Err(e) => tally.fail(&label, e),
         }
     }
-    tally.note(format!(
-        "fitted order − (N + 3) in [{low:.4}, {high:.4}]"
-    ))
+    tally.note(format!("fitted order − (N + 3) in [{low:.4}, {high:.4}]"))
 }
