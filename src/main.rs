@@ -554,17 +554,13 @@ fn run_series(args: &SeriesArgs) -> Result<String, Failure> {
             .to_string(),
         );
     }
+    let width = printed.digits as usize + 8;
     let mut out = format!(
-        "W (four-segment) = {}\n   N  W_N (series to order N){}W_N − W",
-        printed.dissipation,
-        " ".repeat(printed.digits as usize)
+        "W (four-segment) = {}\n   N  {:<width$}  W_N − W",
+        printed.dissipation, "W_N (series to order N)"
     );
     for (n, (sum, difference)) in printed.sums.iter().zip(&differences).enumerate() {
-        out.push_str(&format!(
-            "\n{:>4}  {sum:<width$}  {difference}",
-            n + 1,
-            width = printed.digits as usize + 24
-        ));
+        out.push_str(&format!("\n{:>4}  {sum:<width$}  {difference}", n + 1));
     }
     Ok(out)
 }

@@ -68,6 +68,7 @@ fn polynomial_w_equals_the_quadrature_to_100_digits() {
         let quadrature = four_segment(&cycle, &polynomial, &options).unwrap();
         let scale = exact.named().iter().fold(at(0.0, bits), |acc, (_, v)| acc + &v.abs());
         let agreed = digits(&exact.total(), &quadrature.total, &scale);
+        println!("polynomial case {case} (degree {degree}): W agrees to {agreed:.1} digits");
         assert!(agreed >= 100.0, "case {case}: {agreed:.1} digits");
         for ((name, a), (_, b)) in exact.named().iter().zip(quadrature.segments.named()) {
             let agreed = digits(a, b, &scale);
@@ -96,6 +97,7 @@ fn closed_form_coefficient_equals_the_quadrature_to_100_digits() {
         let closed = closed_form_coefficient(&rho, &phi);
         let (quadrature, error) = coefficient_with_error(&rho, &phi, Options::default()).unwrap();
         let agreed = digits(&closed, &quadrature, &closed.clone().abs());
+        println!("ρ = {rho_text}, φ = {phi_text}: {agreed:.1} digits");
         assert!(
             agreed >= 100.0,
             "ρ = {rho_text}, φ = {phi_text}: {agreed:.1} digits (estimate {})",

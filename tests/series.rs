@@ -132,6 +132,8 @@ fn case_partial_sums_approach_the_four_segment_w() {
     assert_eq!(sums.len(), 12);
     // Geometric convergence: each few orders gain a factor ≈ L·P1/P0 ≈ 0.2 or better.
     let errors: Vec<f64> = sums.iter().map(|s| (s - w).abs() / w).collect();
+    let shown: Vec<String> = errors.iter().map(|e| format!("{e:.2e}")).collect();
+    println!("relative errors of W_1 … W_12: {}", shown.join(" "));
     assert!(errors[0] < 0.2 && errors[5] < 1e-4 && errors[11] < 1e-8, "{errors:?}");
 }
 
@@ -206,6 +208,7 @@ fn truncation_at_order_n_leaves_p1_to_the_n_plus_3() {
             .collect();
         for n in [1usize, 2, 5, 10] {
             let order = (errors[0][n - 1].clone() / &errors[1][n - 1]).log2().to_f64();
+            println!("{spec}: N = {n}, fitted order {order:.4}");
             assert!((order - (n + 3) as f64).abs() < 0.1, "{spec}, N = {n}: order {order}");
         }
     }
