@@ -102,8 +102,8 @@ pub enum CoefficientError {
         #[source]
         source: ParseRealError,
     },
-    /// ρ ≤ 0 or not finite.
-    #[error("--rho must be a positive number, got {0}")]
+    /// ρ ≤ 0, or not finite at the working precision.
+    #[error("--rho must be a positive number (and below MPFR's range, about 1e323228496), got {0}")]
     NonPositiveRatio(String),
     /// The digits asked for are out of range.
     #[error("--digits must be between 1 and {MAX_DIGITS}, got {0}")]
@@ -241,11 +241,21 @@ mod tests {
         let ordinary = evaluate("1.25", "0.4pi", None, budget).unwrap();
         assert_eq!(ordinary.precision_bits, 53);
         assert!(ordinary.value.starts_with("-3.479234857440"), "{ordinary:?}");
-        // Near in phase with ρ < 1, I ≈ −(4/3)φ² is 1e−18 of the segments: f64 cannot hold it.
+        // Near in phase with ρ < 1, I ≈ −(4/3)φ² is 1e−18 of the segments the quadrature sums;
+        // the closed form has no such cancellation and f64 keeps its digits.
         let thin = evaluate("0.5", "1e-9", None, budget).unwrap();
-        assert!(thin.precision_bits > 53, "{thin:?}");
+        assert_eq!(thin.precision_bits, 53, "{thin:?}");
         let value: f64 = thin.value.parse().unwrap();
-        assert!((value / (-4.0 / 3.0 * 1e-18) - 1.0).abs() < 1e-6, "{thin:?}");
+        assert!((value / (-4.0 / 3.0 * 1e-18) - 1.0).abs() < 1e-8, "{thin:?}");
+        // Beyond the range of f64 (I ≈ −⅔ρ³ = −6.7e308): the verified MPFR digits.
+        let huge = evaluate("1e103", "0.4pi", None, budget).unwrap();
+        assert!(huge.precision_bits > 53 && huge.binary64.is_none(), "{huge:?}");
+        assert_eq!(huge.value, "-6.66666666666667e308");
+        let tiny = evaluate("1e-300", "0.5pi", None, budget).unwrap();
+        assert!(
+            tiny.precision_bits > 53 && tiny.value.starts_with("-2.6666666666666"),
+            "{tiny:?}"
+        );
     }
 
     #[test]
