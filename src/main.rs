@@ -172,7 +172,8 @@ struct SmallAmplitudeArgs {
     #[arg(long, allow_hyphen_values = true)]
     phi: String,
     /// Significant digits, verified by a second run at higher precision (1–1000); without
-    /// it, 15 digits from f64, or from MPFR where f64 cannot resolve I.
+    /// it, f64 with the digits it shares with 15 verified MPFR digits (those MPFR digits
+    /// where f64 keeps fewer than 13 or I lies outside its range).
     #[arg(long)]
     digits: Option<u32>,
     /// Time budget for verified digits, in seconds.

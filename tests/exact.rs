@@ -209,3 +209,33 @@ fn closed_form_large_rho_is_the_cubic_term_of_mindlin_deresiewicz() {
         assert!(relative < 2.0 * q.parse::<f64>().unwrap(), "q = {q}: {relative:e}");
     }
 }
+
+/// The φ in (0, π) where I(ρ, ·) is most negative, by golden-section search in f64.
+fn most_dissipative_phase(rho: f64) -> f64 {
+    let golden = (5f64.sqrt() - 1.0) / 2.0;
+    let (mut low, mut high) = (0.05, std::f64::consts::PI - 0.05);
+    for _ in 0..200 {
+        let (a, b) = (high - golden * (high - low), low + golden * (high - low));
+        if closed_form_coefficient(&rho, &a) < closed_form_coefficient(&rho, &b) {
+            high = b;
+        } else {
+            low = a;
+        }
+    }
+    (low + high) / 2.0
+}
+
+#[test]
+fn i_is_largest_near_half_pi_for_small_rho_and_near_0_406_pi_for_large_rho() {
+    use std::f64::consts::PI;
+    // ρ → 0: φ* ≈ π/2 − ρ/2 (from −(8/3)ρ² sin²φ (1 + ρ cos φ)).
+    let small = most_dissipative_phase(1e-3);
+    assert!((small - (PI / 2.0 - 5e-4)).abs() < 1e-5, "{small}");
+    // ρ → ∞: φ* → π/2 − atan(3π/14)/2 = 0.405699π (the ρ¹ term of the expansion).
+    let limit = PI / 2.0 - (3.0 * PI / 14.0).atan() / 2.0;
+    let large = most_dissipative_phase(1e4);
+    assert!((large - limit).abs() < 1e-4, "{} against {}", large / PI, limit / PI);
+    // In between φ* dips to about 0.394π near ρ = 1 (proofs/small-amplitude-coefficient.md).
+    let middle = most_dissipative_phase(1.0) / PI;
+    assert!((middle - 0.3944).abs() < 1e-3, "{middle}");
+}
