@@ -6,7 +6,12 @@
 #     P_T instead of P in the stick segment);
 #   - in the ellipse geometry (src/cycle.rs): the slip loads P_S, P_K and P_T built
 #     wrongly, and the stick and slip angles swapped;
-#   - in the in-phase closed form (src/dissipation/closed_forms.rs): a sign and a factor.
+#   - in the in-phase closed form (src/dissipation/closed_forms.rs): a sign and a factor;
+#   - in the exact methods (src/exact/, claim 7): the closed-form I (a sign, a factor, the
+#     stick angle for the slip angle), the exact segment integrands (a sign, a factor, a
+#     wrong angle or load), the trigonometric product and integral, the series' factorial
+#     and a compliance derivative.
+# MUTANTS_FILTER=regex runs only the mutations whose name matches it.
 # The mutated release binary then runs `microslip verify --quick`, which must fail
 # (exit 1). Prints one line per mutation with the claims that failed, and exits 1 if
 # any mutation is missed (or 2 if the tree does not build or the unmutated gate fails).
@@ -42,6 +47,17 @@ src/cycle.rs|P_T offset doubled|(cycle.friction.clone() * &phi.int(2))|cycle.fri
 src/cycle.rs|stick and slip angles swapped|let stick_angle = cross.atan2(&dot);|let stick_angle = cross.atan2(&(-dot.clone()));
 src/dissipation/closed_forms.rs|in-phase W2 sign flip|let w2 = f.clone() * q1|let w2 = -f.clone() * q1
 src/dissipation/closed_forms.rs|in-phase W4 factor 2|let w4 = f.clone() * q1 * &zero.int(2)|let w4 = f.clone() * q1 * &zero.int(4)
+src/exact/coefficient.rs|closed-form I slip sign|let j = -stick_part - &slip_part;|let j = -stick_part + &slip_part;
+src/exact/coefficient.rs|closed-form I factor|m.square() * u * &rho.int(96)|m.square() * u * &rho.int(48)
+src/exact/coefficient.rs|closed-form I stick angle|.atan2(&(gap * &span));|.atan2(&(-(gap * &span)));
+src/exact/polynomial_w.rs|exact EB sign flip|term(normal_work.scaled(&minus_one), &normal)|term(normal_work.clone(), &normal)
+src/exact/polynomial_w.rs|exact slip loads factor 2|let two_f = g.friction.clone() * &zero.int(2);|let two_f = g.friction.clone() * &zero.int(4);
+src/exact/polynomial_w.rs|exact EB angle from E|TrigPolynomial::linear(zero.clone(), -b_sin.clone(), b_cos.clone())|TrigPolynomial::linear(zero.clone(), -e_sin.clone(), e_cos.clone())
+src/exact/polynomial_w.rs|exact CH P_Y at C not 2C|g.normal_amplitude.clone() * &double_c_cos,|g.normal_amplitude.clone() * c_cos,
+src/exact/trig.rs|trig product sign|product.cos[sum] += cos_cos.clone() - &sin_sin;|product.cos[sum] += cos_cos.clone() + &sin_sin;
+src/exact/trig.rs|trig integral factor|.sin() * &two / &kk;|.sin() / &kk;
+src/exact/series.rs|series factorial|factorial *= &zero.int(n as i64);|factorial *= &zero.int(n as i64 + 1);
+src/compliance/families.rs|power-law derivative order|* &falling_factorial(&self.exponent, n - 1)|* &falling_factorial(&self.exponent, n)
 LIST
 )
 
@@ -79,6 +95,9 @@ fi
 missed=0
 printf '%-32s %-8s %s\n' "mutation" "result" "claims that failed"
 while IFS='|' read -r file name original replacement; do
+    if [ -n "${MUTANTS_FILTER:-}" ] && ! [[ "$name" =~ $MUTANTS_FILTER ]]; then
+        continue
+    fi
     cp "$root/$file" "$work/$file"
     python3 - "$work/$file" "$original" "$replacement" <<'PY'
 import sys

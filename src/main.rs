@@ -10,8 +10,8 @@ use std::time::{Duration, Instant};
 use clap::{Args, Parser, Subcommand};
 
 use cli::json::{
-    ClaimRow, CoefficientReport, DissipationReport, GateReport, Segments, ShapeInputs, SimulationInputs,
-    SimulationReport,
+    ClaimRow, CoefficientReport, DissipationReport, GateReport, PartialSumsReport, Segments, SeriesReport, ShapeInputs,
+    SimulationInputs, SimulationReport,
 };
 use cli::parse;
 use cli::progress::Progress;
@@ -52,6 +52,8 @@ enum Command {
     Verify(VerifyArgs),
     /// The small-amplitude coefficient I(ρ, φ) of W ≈ λ f² P1³ v''(P0) I.
     SmallAmplitude(SmallAmplitudeArgs),
+    /// The small-amplitude series: Iₙ(ρ, φ) for n = 0 … N, or a case's partial sums beside W.
+    Series(Box<SeriesArgs>),
     /// Check the reference values of a catalogue of cases against a fresh computation
     /// (or, with --write, replace them).
     Reference(ReferenceArgs),
@@ -194,10 +196,58 @@ struct SmallAmplitudeArgs {
     #[arg(long, allow_hyphen_values = true)]
     phi: String,
     /// Significant digits, verified by a second run at higher precision (1–1000); without
-    /// it, 15 digits from f64, or from MPFR where f64 cannot resolve I.
+    /// it, f64 with the digits it shares with 15 verified MPFR digits (those MPFR digits
+    /// where f64 keeps fewer than 13 or I lies outside its range).
     #[arg(long, allow_hyphen_values = true, value_parser = parse::digits)]
     digits: Option<u32>,
     /// Time budget for verified digits, in seconds (up to 1e6).
+    #[arg(long, allow_hyphen_values = true, value_parser = parse::seconds, default_value = "60")]
+    max_seconds: Duration,
+    /// Print one JSON object.
+    #[arg(long)]
+    json: bool,
+}
+
+/// `--rho` for the coefficients Iₙ alone, or a case (`--p0 … --compliance`) for its partial sums.
+#[derive(Args)]
+struct SeriesArgs {
+    /// ρ = Q1/(f P1) (> 0): print I₀ … I_N.
+    #[arg(long, allow_hyphen_values = true, conflicts_with_all = ["p0", "compliance"])]
+    rho: Option<String>,
+    /// The phase φ, in radians or as a multiple of π (`0.4pi`).
+    #[arg(long, allow_hyphen_values = true)]
+    phi: String,
+    /// The highest order N.
+    #[arg(long)]
+    order: usize,
+    /// Mean normal load P0 (with a case).
+    #[arg(long, allow_hyphen_values = true, requires_all = ["p1", "q1", "friction", "compliance"])]
+    p0: Option<String>,
+    /// Normal load amplitude P1.
+    #[arg(long, allow_hyphen_values = true)]
+    p1: Option<String>,
+    /// Mean tangential load Q0.
+    #[arg(long, allow_hyphen_values = true, default_value = "0")]
+    q0: String,
+    /// Tangential load amplitude Q1.
+    #[arg(long, allow_hyphen_values = true)]
+    q1: Option<String>,
+    /// Coulomb friction coefficient f.
+    #[arg(long, allow_hyphen_values = true)]
+    friction: Option<String>,
+    /// Tangential/normal compliance ratio λ, in [1, 2].
+    #[arg(long, allow_hyphen_values = true, conflicts_with = "nu")]
+    lambda: Option<String>,
+    /// Poisson's ratio ν.
+    #[arg(long, allow_hyphen_values = true)]
+    nu: Option<String>,
+    /// Normal compliance SPEC (as for `dissipation`).
+    #[arg(long, allow_hyphen_values = true, requires = "p0")]
+    compliance: Option<String>,
+    /// Verified significant digits (1–1000); without it, f64 (Iₙ) or 15 verified digits (a case).
+    #[arg(long, allow_hyphen_values = true, value_parser = parse::digits)]
+    digits: Option<u32>,
+    /// Time budget, in seconds (up to 1e6).
     #[arg(long, allow_hyphen_values = true, value_parser = parse::seconds, default_value = "60")]
     max_seconds: Duration,
     /// Print one JSON object.
@@ -617,8 +667,9 @@ fn run_small_amplitude(args: &SmallAmplitudeArgs) -> Result<String, Failure> {
     if args.json {
         let report = CoefficientReport {
             i: printed.value.clone(),
+            i_f64: printed.binary64,
             digits: printed.digits,
-            digits_verified: (printed.precision_bits != 53).then_some(printed.digits),
+            digits_verified: Some(printed.digits),
             precision_bits: printed.precision_bits,
             inputs: ShapeInputs {
                 rho: &args.rho,
@@ -628,6 +679,80 @@ fn run_small_amplitude(args: &SmallAmplitudeArgs) -> Result<String, Failure> {
         return Ok(serde_json::to_string(&report)?);
     }
     Ok(format!("I(ρ = {}, φ = {}) = {}", args.rho, args.phi, printed.value))
+}
+
+fn run_series(args: &SeriesArgs) -> Result<String, Failure> {
+    use microslip::exact::printing::{printed_coefficients, printed_partial_sums};
+    let budget = args.max_seconds;
+    let Some(p0) = &args.p0 else {
+        let rho = args
+            .rho
+            .as_deref()
+            .ok_or_else(|| Failure::refused("give --rho, or a case with --p0 … --compliance"))?;
+        let printed = printed_coefficients(rho, &args.phi, args.order, args.digits, budget)?;
+        let digits = printed.digits.iter().copied().min().unwrap_or(0);
+        if args.json {
+            let report = SeriesReport {
+                rho,
+                phi: &args.phi,
+                digits,
+                coefficients: &printed.values,
+                digits_verified: &printed.digits,
+                coefficients_f64: (!printed.binary64.is_empty()).then_some(&printed.binary64),
+            };
+            return Ok(serde_json::to_string(&report)?);
+        }
+        let rows: Vec<String> = printed
+            .values
+            .iter()
+            .enumerate()
+            .map(|(n, v)| format!("I_{n:<3} = {v}"))
+            .collect();
+        return Ok(format!(
+            "Iₙ(ρ = {rho}, φ = {}), n = 0 … {}:\n{}",
+            args.phi,
+            args.order,
+            rows.join("\n")
+        ));
+    };
+    let missing = || Failure::refused("a case needs --p0, --p1, --q1, --friction, --lambda or --nu, and --compliance");
+    let case = CaseText {
+        p0: p0.clone(),
+        p1: args.p1.clone().ok_or_else(missing)?,
+        q0: args.q0.clone(),
+        q1: args.q1.clone().ok_or_else(missing)?,
+        phi: args.phi.clone(),
+        friction: args.friction.clone().ok_or_else(missing)?,
+        lambda: args.lambda.clone(),
+        nu: args.nu.clone(),
+        compliance: args.compliance.clone().ok_or_else(missing)?,
+    };
+    let printed = printed_partial_sums(&case, args.order, args.digits, budget)?;
+    let differences: Vec<String> = printed
+        .differences
+        .iter()
+        .map(|d| d.clone().unwrap_or_else(|| "0".into()))
+        .collect();
+    if args.json {
+        let report = PartialSumsReport {
+            w: &printed.dissipation,
+            w_digits_verified: printed.dissipation_digits,
+            partial_sums: &printed.sums,
+            differences: &differences,
+            digits_verified: printed.digits,
+            inputs: &case,
+        };
+        return Ok(serde_json::to_string(&report)?);
+    }
+    let width = printed.digits as usize + 8;
+    let mut out = format!(
+        "W (four-segment) = {}\n   N  {:<width$}  W_N − W",
+        printed.dissipation, "W_N (series to order N)"
+    );
+    for (n, (sum, difference)) in printed.sums.iter().zip(&differences).enumerate() {
+        out.push_str(&format!("\n{:>4}  {sum:<width$}  {difference}", n + 1));
+    }
+    Ok(out)
 }
 
 fn run_table() -> Result<String, Failure> {
@@ -744,6 +869,7 @@ fn main() -> ExitCode {
             Err(failure) => Err(failure),
         },
         Command::SmallAmplitude(args) => run_small_amplitude(args),
+        Command::Series(args) => run_series(args),
         Command::Simulate(args) => run_simulate(args),
         Command::Accuracy(args) => run_accuracy(args),
         Command::Reference(args) => run_reference(args),

@@ -111,6 +111,9 @@ pub struct ShapeInputs<'a> {
 pub struct CoefficientReport<'a> {
     #[serde(rename = "I")]
     pub i: String,
+    /// I in binary64 where it is representable there (null otherwise).
+    #[serde(rename = "I_f64")]
+    pub i_f64: Option<f64>,
     pub digits: u32,
     pub digits_verified: Option<u32>,
     pub precision_bits: u32,
@@ -137,4 +140,32 @@ pub struct GateReport<'a> {
     pub quick: bool,
     pub seconds: f64,
     pub claims: Vec<ClaimRow<'a>>,
+}
+
+/// `microslip series --rho R --json`: the coefficients I₀ … I_N (index = n).
+#[derive(Serialize)]
+pub struct SeriesReport<'a> {
+    pub rho: &'a str,
+    pub phi: &'a str,
+    /// The fewest digits printed of any coefficient.
+    pub digits: u32,
+    pub coefficients: &'a [String],
+    /// The verified digits of each coefficient.
+    pub digits_verified: &'a [u32],
+    /// The coefficients in binary64 (f64 runs only).
+    pub coefficients_f64: Option<&'a [f64]>,
+}
+
+/// `microslip series` with a case `--json`: the partial sums W_N beside the four-segment W.
+#[derive(Serialize)]
+pub struct PartialSumsReport<'a> {
+    #[serde(rename = "W")]
+    pub w: &'a str,
+    #[serde(rename = "W_digits_verified")]
+    pub w_digits_verified: u32,
+    pub partial_sums: &'a [String],
+    /// W_N − W for N = 1 … order.
+    pub differences: &'a [String],
+    pub digits_verified: u32,
+    pub inputs: &'a CaseText,
 }

@@ -42,6 +42,11 @@ impl<R: Real> Compliance<R> for Sum<R> {
         let parts: Vec<String> = self.terms.iter().map(|c| c.describe()).collect();
         parts.join(" + ")
     }
+    fn derivative(&self, order: usize, load: &R) -> Option<R> {
+        self.terms
+            .iter()
+            .try_fold(load.int(0), |acc, c| Some(acc + c.derivative(order, load)?))
+    }
 }
 
 /// a·v: a scalar multiple.
@@ -76,6 +81,9 @@ impl<R: Real> Compliance<R> for Scaled<R> {
     fn describe(&self) -> String {
         format!("{} × ({})", self.factor.to_scientific(6), self.inner.describe())
     }
+    fn derivative(&self, order: usize, load: &R) -> Option<R> {
+        Some(self.factor.clone() * &self.inner.derivative(order, load)?)
+    }
 }
 
 /// v + c·P, i.e. v' + c: a constant added to the incremental compliance
@@ -109,6 +117,14 @@ impl<R: Real> Compliance<R> for Shifted<R> {
     }
     fn describe(&self) -> String {
         format!("({}) + {}·P", self.inner.describe(), self.extra_slope.to_scientific(6))
+    }
+    fn derivative(&self, order: usize, load: &R) -> Option<R> {
+        let inner = self.inner.derivative(order, load)?;
+        Some(match order {
+            0 => inner + &(self.extra_slope.clone() * load),
+            1 => inner + &self.extra_slope,
+            _ => inner,
+        })
     }
 }
 
@@ -153,5 +169,10 @@ impl<R: Real> Compliance<R> for LoadScaled<R> {
             self.inner.describe(),
             self.factor.to_scientific(6)
         )
+    }
+    fn derivative(&self, order: usize, load: &R) -> Option<R> {
+        // v_k⁽ⁿ⁾(P) = k¹⁻ⁿ v⁽ⁿ⁾(P/k).
+        let inner = self.inner.derivative(order, &(load.clone() / &self.factor))?;
+        Some(inner * &self.factor.powi(1 - order as i32))
     }
 }

@@ -1,6 +1,6 @@
 //! The built-in compliance families.
 
-use super::{Compliance, SlopeChange};
+use super::{falling_factorial, Compliance, SlopeChange};
 use crate::real::Real;
 
 /// v'(P) = C·P^β (β < 0 for a stiffening contact). Eq. (20) of the paper with the
@@ -53,6 +53,17 @@ impl<R: Real> Compliance<R> for PowerLaw<R> {
             self.exponent.to_scientific(6)
         )
     }
+    fn derivative(&self, order: usize, load: &R) -> Option<R> {
+        // v⁽ⁿ⁾ = C·β(β − 1)…(β − n + 2)·P^(β − n + 1) for n ≥ 1.
+        Some(match order {
+            0 => self.approach(load),
+            n => {
+                self.coefficient.clone()
+                    * &falling_factorial(&self.exponent, n - 1)
+                    * &load.powr(&(self.exponent.clone() - &load.int(n as i64 - 1)))
+            }
+        })
+    }
 }
 
 /// Persson's rough-surface compliance v'(P) = γσ/P (Akarapu et al. 2011; paper Section 5.2),
@@ -96,6 +107,17 @@ impl<R: Real> Compliance<R> for Persson<R> {
             self.gamma.to_scientific(6),
             self.sigma.to_scientific(6)
         )
+    }
+    fn derivative(&self, order: usize, load: &R) -> Option<R> {
+        // v⁽ⁿ⁾ = γσ (−1)ⁿ⁻¹ (n − 1)!/Pⁿ for n ≥ 1.
+        Some(match order {
+            0 => self.approach(load),
+            n => {
+                let factorial = falling_factorial(&load.int(n as i64 - 1), n - 1);
+                let sign = if n % 2 == 0 { -load.int(1) } else { load.int(1) };
+                self.gamma.clone() * &self.sigma * &factorial * &sign / &load.powi(n as i32)
+            }
+        })
     }
 }
 
@@ -150,6 +172,12 @@ impl<R: Real> Compliance<R> for Hertz<R> {
             self.radius.to_scientific(6),
             self.contact_modulus.to_scientific(6)
         )
+    }
+    fn derivative(&self, order: usize, load: &R) -> Option<R> {
+        match order {
+            0 => Some(self.approach(load)),
+            n => self.as_power_law().derivative(n, load),
+        }
     }
 }
 
@@ -217,6 +245,21 @@ impl<R: Real> Compliance<R> for Polynomial<R> {
             terms.join(", ")
         )
     }
+    fn derivative(&self, order: usize, load: &R) -> Option<R> {
+        if order == 0 {
+            return Some(self.approach(load));
+        }
+        // v⁽ⁿ⁾ = Σ_{k ≥ n−1} cₖ k!/(k − n + 1)! (P − P_ref)^(k − n + 1).
+        let x = load.clone() - &self.reference;
+        let derived: Vec<R> = self
+            .coefficients
+            .iter()
+            .enumerate()
+            .skip(order - 1)
+            .map(|(k, c)| c.clone() * &falling_factorial(&x.int(k as i64), order - 1))
+            .collect();
+        Some(Self::horner(&derived, &x))
+    }
 }
 
 /// v'(P) = a + b/(P + c): a rational compliance (b > 0 stiffens).
@@ -253,6 +296,18 @@ impl<R: Real> Compliance<R> for Rational<R> {
             self.numerator.to_scientific(6),
             self.offset.to_scientific(6)
         )
+    }
+    fn derivative(&self, order: usize, load: &R) -> Option<R> {
+        // v⁽ⁿ⁾ = b (−1)ⁿ⁻¹ (n − 1)!/(P + c)ⁿ for n ≥ 2.
+        Some(match order {
+            0 => self.approach(load),
+            1 => self.slope(load),
+            n => {
+                let factorial = falling_factorial(&load.int(n as i64 - 1), n - 1);
+                let sign = if n % 2 == 0 { -load.int(1) } else { load.int(1) };
+                self.numerator.clone() * &factorial * &sign / &(load.clone() + &self.offset).powi(n as i32)
+            }
+        })
     }
 }
 
@@ -295,5 +350,16 @@ impl<R: Real> Compliance<R> for Exponential<R> {
             self.decay_load.to_scientific(6),
             self.constant.to_scientific(6)
         )
+    }
+    fn derivative(&self, order: usize, load: &R) -> Option<R> {
+        // v⁽ⁿ⁾ = a (−1/c)ⁿ⁻¹ e^(−P/c) for n ≥ 2.
+        Some(match order {
+            0 => self.approach(load),
+            1 => self.slope(load),
+            n => {
+                let rate = -(load.int(1) / &self.decay_load);
+                self.amplitude.clone() * &rate.powi(n as i32 - 1) * &(-(load.clone() / &self.decay_load)).exp()
+            }
+        })
     }
 }

@@ -60,6 +60,19 @@ pub trait Compliance<R: Real>: Debug + Send + Sync {
     }
     /// A short human-readable description, e.g. `power law v' = 1·P^-1`.
     fn describe(&self) -> String;
+    /// The derivative of v of order `order` at `load` (0: v, 1: v', 2: v'', …), from a
+    /// closed form exact at the working precision, for the small-amplitude series at
+    /// every order. `None` for a compliance that cannot give it.
+    fn derivative(&self, order: usize, load: &R) -> Option<R> {
+        let _ = (order, load);
+        None
+    }
+}
+
+/// The falling factorial β(β − 1)…(β − k + 1) at the precision of `beta`:
+/// the k-th derivative of P^β is that times P^(β − k).
+pub(crate) fn falling_factorial<R: Real>(beta: &R, k: usize) -> R {
+    (0..k).fold(beta.int(1), |acc, j| acc * &(beta.clone() - &beta.int(j as i64)))
 }
 
 /// The breakpoints of several compliances together, increasing and without repeats.

@@ -112,6 +112,16 @@ pub fn gate(options: GateOptions) -> Vec<GateStep> {
             "simulation",
             Box::new(move || vec![claims::simulation_agrees(seed + 12, n(6, 60))]),
         ),
+        (
+            "exact methods",
+            Box::new(move || {
+                vec![
+                    claims::closed_form_coefficient_claim(seed + 16, n(6, 60)),
+                    claims::polynomial_dissipation_claim(seed + 17, n(3, 30)),
+                    claims::series_claim(seed + 18, n(4, 20)),
+                ]
+            }),
+        ),
     ]
 }
 

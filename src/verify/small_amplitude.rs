@@ -6,8 +6,9 @@
 //! λ f² P1³. That v' is not a physical compliance (it is negative below P0), so
 //! the admissibility check is off here.
 //!
-//! Near in-phase loading with ρ < 1, I is O(φ²) while the segments it is summed from
-//! are O(1): f64 then keeps few digits, and [`evaluate`] switches to verified MPFR.
+//! The functions here compute I by the four-segment quadrature (the gate checks the
+//! closed form against them); [`evaluate`], what `microslip small-amplitude` prints,
+//! uses the closed form of [`crate::exact::coefficient`] and no quadrature.
 
 use std::time::{Duration, Instant};
 
@@ -16,9 +17,12 @@ use rug::Float;
 use crate::compliance::Polynomial;
 use crate::cycle::LoadCycle;
 use crate::dissipation::{dissipation, Dissipation, DissipationError, Options};
+use crate::exact::closed_form_coefficient;
+use crate::exact::printing::vanishes_in_phase;
 use crate::inputs::parse_phase;
 use crate::real::{ParseRealError, Precision, Real};
 use crate::reference::{agreeing_digits, GUARD_DIGITS, MAX_DIGITS};
+use crate::verified::{verified_values, VerifyError};
 
 /// W[v' = P − P0] on the cycle P0 = 1, P1 = `amplitude`, Q1 = ρP1, f = λ = 1, so that
 /// I = W / P1³. `amplitude` must keep the cycle inside the theory: P1 (1 + ρ) < 1 does.
@@ -80,10 +84,12 @@ pub fn coefficient_with_error<R: Real>(rho: &R, phase: &R, options: Options<R>) 
 pub struct PrintedCoefficient {
     /// I in scientific notation, e.g. `-3.47923485744058e0`.
     pub value: String,
-    /// Significant digits printed.
+    /// Significant digits printed, each verified.
     pub digits: u32,
     /// The working precision of the value printed (53 for f64).
     pub precision_bits: u32,
+    /// I in binary64 when it is representable there (finite, not below the normal range).
+    pub binary64: Option<f64>,
 }
 
 /// Why I(ρ, φ) could not be computed.
@@ -96,8 +102,8 @@ pub enum CoefficientError {
         #[source]
         source: ParseRealError,
     },
-    /// ρ ≤ 0 or not finite.
-    #[error("--rho must be a positive number, got {0}")]
+    /// ρ ≤ 0, or not finite at the working precision.
+    #[error("--rho must be a positive number (and below MPFR's range, about 1e323228496), got {0}")]
     NonPositiveRatio(String),
     /// The digits asked for are out of range.
     #[error("--digits must be between 1 and {MAX_DIGITS}, got {0}")]
@@ -115,49 +121,75 @@ pub enum CoefficientError {
     },
 }
 
-/// ρ and φ read from text at a precision (φ in radians or as `0.4pi`), ρ checked positive.
+/// ρ and φ read from text at a precision (φ in radians or as `0.4pi`), ρ checked positive
+/// and finite at that precision.
 fn read_shape<R: Real>(rho: &str, phase: &str, precision: Precision) -> Result<(R, R), CoefficientError> {
     let rho_value =
         R::parse_decimal(rho, precision).map_err(|source| CoefficientError::Number { flag: "rho", source })?;
-    let phase = parse_phase(phase, precision).map_err(|source| CoefficientError::Number { flag: "phi", source })?;
+    let phase: R = parse_phase(phase, precision).map_err(|source| CoefficientError::Number { flag: "phi", source })?;
     if !(rho_value.is_finite() && rho_value > rho_value.int(0)) {
         return Err(CoefficientError::NonPositiveRatio(rho.to_string()));
+    }
+    if !phase.is_finite() {
+        return Err(CoefficientError::Number {
+            flag: "phi",
+            source: ParseRealError {
+                text: phase_text(phase),
+            },
+        });
     }
     Ok((rho_value, phase))
 }
 
-/// The relative error f64 may carry for its 15 printed digits to be trusted to 13.
-const F64_RELATIVE_LIMIT: f64 = 1e-13;
+fn phase_text<R: Real>(phase: R) -> String {
+    phase.to_scientific(6)
+}
 
-/// I(ρ, φ) for printing: with `digits` = None, f64 (15 digits) when its error estimate
-/// is within 1e−13 of I, otherwise 15 verified digits in MPFR; with `digits` = Some(N),
-/// N verified digits (see [`verified_coefficient`]).
+/// The digits f64 must keep (checked against verified MPFR digits) for its value to be
+/// printed; below that the verified MPFR digits are printed instead.
+const F64_DIGITS_KEPT: u32 = 13;
+
+/// I(ρ, φ) for printing, from the closed form (no quadrature): with `digits` = None,
+/// f64 with the digits on which it agrees with verified MPFR digits (at most 15; f64
+/// is printed when it keeps at least 13, the verified 15 MPFR digits otherwise — also
+/// where I or ρ is beyond the range of f64); with `digits` = Some(N), N verified digits.
 pub fn evaluate(
     rho: &str,
     phase: &str,
     digits: Option<u32>,
     budget: Duration,
 ) -> Result<PrintedCoefficient, CoefficientError> {
-    if let Some(digits) = digits {
-        return verified_coefficient(rho, phase, digits, budget);
-    }
-    let (rho_value, phase_value) = read_shape::<f64>(rho, phase, Precision::DOUBLE)?;
-    let (value, error) = coefficient_with_error(&rho_value, &phase_value, Options::default())?;
-    if error <= value.abs() * F64_RELATIVE_LIMIT {
-        return Ok(PrintedCoefficient {
-            value: value.to_scientific(15),
-            digits: 15,
-            precision_bits: 53,
-        });
-    }
-    verified_coefficient(rho, phase, 15, budget)
+    let Some(digits) = digits else {
+        let verified = verified_coefficient(rho, phase, 15, budget)?;
+        let binary64 = read_shape::<f64>(rho, phase, Precision::DOUBLE)
+            .ok()
+            // + 0.0 turns a −0 from the formula into 0.
+            .map(|(rho, phase)| closed_form_coefficient(&rho, &phase) + 0.0)
+            .filter(|value| value.is_finite() && (*value == 0.0 || value.abs() >= f64::MIN_POSITIVE));
+        if let Some(value) = binary64 {
+            let reference: Float = Float::parse_decimal(&verified.value, Precision::bits(verified.precision_bits))
+                .unwrap_or_else(|_| Float::with_val(verified.precision_bits, 0));
+            let kept = if value == 0.0 && reference.is_zero() {
+                15
+            } else {
+                agreeing_digits(&Float::with_val(verified.precision_bits, value), &reference).min(15)
+            };
+            if kept >= F64_DIGITS_KEPT {
+                return Ok(PrintedCoefficient {
+                    value: value.to_scientific(kept as usize),
+                    digits: kept,
+                    precision_bits: 53,
+                    binary64: Some(value),
+                });
+            }
+        }
+        return Ok(PrintedCoefficient { binary64, ..verified });
+    };
+    verified_coefficient(rho, phase, digits, budget)
 }
 
-/// I(ρ, φ) to `digits` verified significant digits: computed at two precisions (the
-/// inputs re-read exactly at each) with tolerances beyond the target, and printed only
-/// when the two agree to `digits` + 4 digits. Where they do not (I much smaller than
-/// the segments it is summed from, as near in-phase loading with ρ < 1), the precision
-/// is raised by the digits that were missing, until `budget` runs out.
+/// I(ρ, φ) to `digits` verified significant digits from the closed form, computed at
+/// two precisions (the inputs re-read exactly at each) by [`verified_values`].
 pub fn verified_coefficient(
     rho: &str,
     phase: &str,
@@ -168,54 +200,35 @@ pub fn verified_coefficient(
         return Err(CoefficientError::DigitsOutOfRange(digits));
     }
     let started = Instant::now();
-    let required = digits + GUARD_DIGITS;
-    let mut precision = Precision::decimal_digits(required + 12);
-    let mut reached = 0;
-    loop {
-        let at = |precision: Precision, extra: i32| -> Result<Float, CoefficientError> {
-            let (rho_value, phase_value) = read_shape::<Float>(rho, phase, precision)?;
-            let tolerance = Float::with_val(precision.in_bits(), 10).powi(-(required as i32 + extra));
-            let options = Options {
-                relative_tolerance: Some(tolerance),
-                deadline: Some(started + budget),
-                ..Options::default()
-            };
-            Ok(coefficient_with_error(&rho_value, &phase_value, options)?.0)
-        };
-        let higher = Precision::bits(precision.in_bits() * 5 / 4 + 32);
-        let outcome = at(precision, 2).and_then(|first| Ok((first, at(higher, 4)?)));
-        match outcome {
-            Ok((first, second)) => {
-                let agreed = agreeing_digits(&Float::with_val(higher.in_bits(), &first), &second);
-                if agreed >= required {
-                    return Ok(PrintedCoefficient {
-                        value: second.to_scientific(digits as usize),
-                        digits,
-                        precision_bits: higher.in_bits(),
-                    });
-                }
-                reached = reached.max(agreed);
-                // Raise the precision by the digits that were missing, and a margin.
-                let missing = (required - agreed.min(required)) + 8;
-                precision = Precision::bits(
-                    (precision.in_bits() * 5 / 4)
-                        .max(precision.in_bits() + Precision::decimal_digits(missing).in_bits()),
-                );
-            }
-            Err(CoefficientError::Dissipation(DissipationError::OutOfTime | DissipationError::NotConverged { .. })) => {
-                precision = Precision::bits(precision.in_bits() * 3 / 2);
-            }
-            Err(other) => return Err(other),
-        }
-        if started.elapsed() >= budget {
-            return Err(CoefficientError::Budget {
-                digits,
-                required,
-                reached,
-                seconds: started.elapsed().as_secs_f64(),
-            });
-        }
+    // In phase with ρ ≤ 1 nothing slips; at ρ = 1 this is also the closed form's limit.
+    if vanishes_in_phase(rho, phase) {
+        let zero = Float::with_val(Precision::decimal_digits(digits).in_bits(), 0);
+        return Ok(PrintedCoefficient {
+            value: zero.to_scientific(digits as usize),
+            digits,
+            precision_bits: zero.prec(),
+            binary64: Some(0.0),
+        });
     }
+    let verified = verified_values(digits, started + budget, |precision| {
+        let (rho, phase) = read_shape::<Float>(rho, phase, precision)?;
+        Ok(vec![closed_form_coefficient(&rho, &phase)])
+    })
+    .map_err(|error| match error {
+        VerifyError::Failed(error) => error,
+        VerifyError::OutOfTime { required, reached } => CoefficientError::Budget {
+            digits,
+            required,
+            reached,
+            seconds: started.elapsed().as_secs_f64(),
+        },
+    })?;
+    Ok(PrintedCoefficient {
+        value: verified.values[0].to_scientific(digits as usize),
+        digits,
+        precision_bits: verified.precision.in_bits(),
+        binary64: None,
+    })
 }
 
 #[cfg(test)]
@@ -228,11 +241,21 @@ mod tests {
         let ordinary = evaluate("1.25", "0.4pi", None, budget).unwrap();
         assert_eq!(ordinary.precision_bits, 53);
         assert!(ordinary.value.starts_with("-3.479234857440"), "{ordinary:?}");
-        // Near in phase with ρ < 1, I ≈ −(4/3)φ² is 1e−18 of the segments: f64 cannot hold it.
+        // Near in phase with ρ < 1, I ≈ −(4/3)φ² is 1e−18 of the segments the quadrature sums;
+        // the closed form has no such cancellation and f64 keeps its digits.
         let thin = evaluate("0.5", "1e-9", None, budget).unwrap();
-        assert!(thin.precision_bits > 53, "{thin:?}");
+        assert_eq!(thin.precision_bits, 53, "{thin:?}");
         let value: f64 = thin.value.parse().unwrap();
-        assert!((value / (-4.0 / 3.0 * 1e-18) - 1.0).abs() < 1e-6, "{thin:?}");
+        assert!((value / (-4.0 / 3.0 * 1e-18) - 1.0).abs() < 1e-8, "{thin:?}");
+        // Beyond the range of f64 (I ≈ −⅔ρ³ = −6.7e308): the verified MPFR digits.
+        let huge = evaluate("1e103", "0.4pi", None, budget).unwrap();
+        assert!(huge.precision_bits > 53 && huge.binary64.is_none(), "{huge:?}");
+        assert_eq!(huge.value, "-6.66666666666667e308");
+        let tiny = evaluate("1e-300", "0.5pi", None, budget).unwrap();
+        assert!(
+            tiny.precision_bits > 53 && tiny.value.starts_with("-2.6666666666666"),
+            "{tiny:?}"
+        );
     }
 
     #[test]

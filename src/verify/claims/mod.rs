@@ -8,6 +8,7 @@
 mod coefficient;
 mod constant_term;
 mod cubic_law;
+mod exact;
 mod invariants;
 mod linearity;
 mod roughness;
@@ -16,6 +17,7 @@ mod simulation;
 pub use coefficient::small_amplitude_coefficient;
 pub use constant_term::{constant_term, constant_term_simulated};
 pub use cubic_law::{cubic_law, least_squares_slope};
+pub use exact::{closed_form_coefficient_claim, polynomial_dissipation_claim, series_claim};
 pub use invariants::{in_phase_limit, invariants};
 pub use linearity::{linearity, linearity_simulated};
 pub use roughness::{roughness, roughness_simulated};

@@ -1,0 +1,95 @@
+//! The coefficients Iₙ(ρ, φ) = W[v' = (P − P0)ⁿ]/(λ f² P1ⁿ⁺²) of the small-amplitude
+//! series, exactly (no quadrature), at the working precision (proofs/series.md).
+//!
+//! For v' analytic at P0, W = λ f² Σ_{n≥1} v⁽ⁿ⁺¹⁾(P0)/n! · P1ⁿ⁺² Iₙ(Q1/(fP1), φ):
+//! I₀ = 0 is the constant-term theorem and I₁ = I the cubic-law coefficient.
+
+use crate::compliance::Compliance;
+use crate::cycle::{CycleError, LoadCycle};
+use crate::real::Real;
+
+use super::polynomial_w::monomials_with_scale;
+
+/// Why the series could not be formed.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SeriesError {
+    /// ρ ≤ 0 or not finite.
+    #[error("the amplitude ratio ρ = Q1/(fP1) must be a positive finite number (got {rho:e})")]
+    NonPositiveRatio { rho: f64 },
+    /// The cycle is outside the theory.
+    #[error(transparent)]
+    Cycle(#[from] CycleError),
+    /// The series needs P1 > 0 (ρ = Q1/(fP1)).
+    #[error("the series in P1 needs a normal load amplitude P1 > 0")]
+    NoNormalAmplitude,
+    /// The compliance cannot give its derivatives of every order.
+    #[error("the compliance {describe} does not provide its derivatives of every order at P0")]
+    NoDerivatives { describe: String },
+    /// A derivative is not finite at P0.
+    #[error("the derivative of order {order} of the compliance is not finite at P0")]
+    NotFinite { order: usize },
+}
+
+/// I₀ … I_`order` at (ρ, φ), each with a bound on the magnitudes of the terms it is
+/// summed from (its rounding error is a few ulps of that; I₀ = 0 is resolved to it).
+pub fn series_coefficients<R: Real>(rho: &R, phase: &R, order: usize) -> Result<Vec<(R, R)>, SeriesError> {
+    let zero = rho.int(0);
+    if !(rho.is_finite() && *rho > zero) {
+        return Err(SeriesError::NonPositiveRatio {
+            rho: rho.to_f64_lossy(),
+        });
+    }
+    let one = rho.int(1);
+    // P1 = f = λ = 1, Q1 = ρ; P0 only has to keep the cycle inside the theory.
+    let cycle = LoadCycle {
+        mean_normal_load: (rho.clone() + &one) * &rho.int(2) + &one,
+        normal_amplitude: one.clone(),
+        mean_tangential_load: zero.clone(),
+        tangential_amplitude: rho.clone(),
+        phase: phase.clone(),
+        friction: one.clone(),
+        compliance_ratio: one,
+    };
+    let geometry = cycle.geometry()?;
+    let (segments, scales) = monomials_with_scale(&geometry, order);
+    Ok(segments.iter().map(|s| s.total()).zip(scales).collect())
+}
+
+/// The partial sums W_N = λ f² Σ_{n=1}^{N} v⁽ⁿ⁺¹⁾(P0)/n! · P1ⁿ⁺² Iₙ, N = 1 … `order`,
+/// of the small-amplitude series of a cycle on a compliance (index N − 1).
+pub fn partial_sums<R: Real>(
+    cycle: &LoadCycle<R>,
+    compliance: &dyn Compliance<R>,
+    order: usize,
+) -> Result<Vec<R>, SeriesError> {
+    cycle.validate()?;
+    let zero = cycle.mean_normal_load.int(0);
+    if cycle.normal_amplitude == zero {
+        return Err(SeriesError::NoNormalAmplitude);
+    }
+    let p1 = &cycle.normal_amplitude;
+    let rho = cycle.tangential_amplitude.clone() / &(cycle.friction.clone() * p1);
+    if rho == zero {
+        return Ok(vec![zero; order]);
+    }
+    let coefficients = series_coefficients(&rho, &cycle.phase, order)?;
+    let prefactor = cycle.compliance_ratio.clone() * &cycle.friction.square() * &p1.square();
+    let mut sums = Vec::with_capacity(order);
+    let (mut total, mut power, mut factorial) = (zero.clone(), p1.clone(), zero.int(1));
+    for (n, (value, _)) in coefficients.iter().enumerate().skip(1) {
+        factorial *= &zero.int(n as i64);
+        let derivative =
+            compliance
+                .derivative(n + 1, &cycle.mean_normal_load)
+                .ok_or_else(|| SeriesError::NoDerivatives {
+                    describe: compliance.describe(),
+                })?;
+        if !derivative.is_finite() {
+            return Err(SeriesError::NotFinite { order: n + 1 });
+        }
+        total += derivative / &factorial * &power * value * &prefactor;
+        power *= p1;
+        sums.push(total.clone());
+    }
+    Ok(sums)
+}
