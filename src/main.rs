@@ -9,6 +9,7 @@ use std::time::{Duration, Instant};
 
 use clap::{Args, Parser, Subcommand};
 
+use cli::budget::within;
 use cli::json::{
     ClaimRow, CoefficientReport, DissipationReport, GateReport, PartialSumsReport, Segments, SeriesReport, ShapeInputs,
     SimulationInputs, SimulationReport,
@@ -861,16 +862,16 @@ fn main() -> ExitCode {
         Err(error) => return parse_error(&error),
     };
     let outcome = match &cli.command {
-        Command::Dissipation(args) => run_dissipation(args),
+        Command::Dissipation(args) => within(args.max_seconds, || run_dissipation(args)),
         Command::Verify(args) => match run_verify(args) {
             Ok((text, passed)) => {
                 return emit(&text, if passed { ExitCode::SUCCESS } else { ExitCode::from(1) });
             }
             Err(failure) => Err(failure),
         },
-        Command::SmallAmplitude(args) => run_small_amplitude(args),
-        Command::Series(args) => run_series(args),
-        Command::Simulate(args) => run_simulate(args),
+        Command::SmallAmplitude(args) => within(args.max_seconds, || run_small_amplitude(args)),
+        Command::Series(args) => within(args.max_seconds, || run_series(args)),
+        Command::Simulate(args) => within(args.max_seconds, || run_simulate(args)),
         Command::Accuracy(args) => run_accuracy(args),
         Command::Reference(args) => run_reference(args),
         Command::Table => run_table(),

@@ -6,10 +6,8 @@
 //! where an f64 run and a 30-digit run both succeed, the f64 digits are the 30 digits
 //! rounded (to within one unit of the last digit printed).
 //!
-//! By default some ranges are narrower than the harness can draw, where other parts of
-//! the program are known to fail it (see [`Ranges`]); `MICROSLIP_FUZZ_WIDE=1` draws
-//! from the full ranges. 64 cases per command by default; `PROPTEST_CASES=N` runs more, `MICROSLIP_FUZZ_SEED=S`
-//! other draws, and `MICROSLIP_FUZZ_LOG=FILE` appends every failure to FILE and goes on
+//! The draws reach the full ranges (see [`Ranges`]). 64 cases per command by default;
+//! `PROPTEST_CASES=N` runs more, `MICROSLIP_FUZZ_SEED=S` other draws, and `MICROSLIP_FUZZ_LOG=FILE` appends every failure to FILE and goes on
 //! (to survey a long run instead of stopping at the first failure).
 
 use std::io::Read;
@@ -135,21 +133,11 @@ fn check_outcome(args: &[String], outcome: &Outcome) -> Result<(), TestCaseError
     Ok(())
 }
 
-/// How far the draws reach. The full ranges are the harness's goal; the default ones
-/// leave out what other parts of the program do not meet yet (issue 11):
-/// - φ beyond 1e2 rad: f64 digits differ from the verified ones (inexact reduction of φ;
-///   `small-amplitude` with ρ near 1 at φ = 740 rad is off by 2e−12 relative);
-/// - loads beyond 1e±100: f64 prints W = 0 (15 digits) where W is 1e181 or 1e−334;
-/// - an exponential compliance e^(−P/c) with P0/c beyond ~700: its slope change underflows
-///   and f64 prints W = 0 where W = 3.3e−189 (the default draws take c = P0);
-/// - within 1e−4 P0 of separation or Q1 within 1e−4 of gross slip (where the f64 path
-///   falls back to verified digits, or they are asked for): the verified digits overrun
-///   `--max-seconds` (1.75 s for 0.5 s at 1e−5 from gross slip with P1 = 0, then succeed;
-///   3.8 s for 2 s at 1e−8 with `--digits 30`): the deadline is not checked within an attempt;
-/// - ρ beyond 1e100: `small-amplitude` prints I = −inf (I ~ ρ³ overflows f64); ρ below
-///   1e−15 with `--digits`: it overruns `--max-seconds` (3 s for 1 s);
-/// - `small-amplitude` in f64 prints 15 digits of which it trusts 13: its last two digits are
-///   not checked (`coefficient_units`).
+/// How far the draws reach: loads 1e−300 … 1e300, φ up to 1e6 rad, within 1e−15 of
+/// separation and of gross slip, ρ in 1e−300 … 1e300, the exponential's scale free of the
+/// load, and the printed f64 digits of I to one unit of the last digit. (Until the fixes
+/// of issue 11 these were narrowed: large phases, extreme scales and near separation
+/// printed wrong digits, and `small-amplitude` printed −inf; proofs/stability.md.)
 #[derive(Clone, Copy, Debug)]
 struct Ranges {
     largest_load_exponent: i32,
@@ -163,28 +151,15 @@ struct Ranges {
 }
 
 fn ranges() -> Ranges {
-    if std::env::var("MICROSLIP_FUZZ_WIDE").is_ok_and(|v| v == "1") {
-        Ranges {
-            largest_load_exponent: 300,
-            exponential_scaled_to_load: false,
-            closest_separation_exponent: 15,
-            largest_phase_exponent: 6.0,
-            closest_gross_slip_exponent: 15,
-            smallest_ratio_exponent: -300,
-            largest_ratio_exponent: 300,
-            coefficient_units: 1.0,
-        }
-    } else {
-        Ranges {
-            largest_load_exponent: 100,
-            exponential_scaled_to_load: true,
-            closest_separation_exponent: 3,
-            largest_phase_exponent: 2.0,
-            closest_gross_slip_exponent: 3,
-            smallest_ratio_exponent: -15,
-            largest_ratio_exponent: 100,
-            coefficient_units: 100.0,
-        }
+    Ranges {
+        largest_load_exponent: 300,
+        exponential_scaled_to_load: false,
+        closest_separation_exponent: 15,
+        largest_phase_exponent: 6.0,
+        closest_gross_slip_exponent: 15,
+        smallest_ratio_exponent: -300,
+        largest_ratio_exponent: 300,
+        coefficient_units: 1.0,
     }
 }
 

@@ -1,0 +1,46 @@
+//! The time budget as a promise to the user: whatever the library does inside one
+//! attempt, the command answers within `--max-seconds` and a moment.
+//!
+//! The library checks its deadline between refinements; a single refinement (one high
+//! precision rule, one tanh–sinh level) can still outlast it. The command therefore
+//! runs its work on a thread of its own and, once the budget and a short grace have
+//! passed without an answer, refuses with one line and ends the process.
+
+use std::sync::mpsc;
+use std::time::Duration;
+
+use super::report::{fail, Failure, REFUSED};
+
+/// What the library gets beyond the budget to return its own, more specific, answer.
+const GRACE: Duration = Duration::from_millis(300);
+
+/// Stack of the worker thread: as large as the main thread's usual one.
+const STACK_BYTES: usize = 64 << 20;
+
+/// `work()`, or a refusal (and the end of the process) when it has not answered within
+/// `budget` plus a short grace.
+pub fn within<T: Send>(budget: Duration, work: impl FnOnce() -> Result<T, Failure> + Send) -> Result<T, Failure> {
+    std::thread::scope(|scope| {
+        let (sender, receiver) = mpsc::channel();
+        let spawned = std::thread::Builder::new()
+            .stack_size(STACK_BYTES)
+            .spawn_scoped(scope, move || {
+                let _ = sender.send(work());
+            });
+        if let Err(error) = spawned {
+            return Err(Failure::failed(format!("cannot start the computation: {error}")));
+        }
+        match receiver.recv_timeout(budget.saturating_add(GRACE)) {
+            Ok(outcome) => outcome,
+            Err(mpsc::RecvTimeoutError::Disconnected) => Err(Failure::failed("the computation ended without a result")),
+            Err(mpsc::RecvTimeoutError::Timeout) => {
+                let _ = fail(&Failure::refused(format!(
+                    "the time budget of {} s ran out before the result was reached; raise --max-seconds",
+                    budget.as_secs_f64()
+                )));
+                // The worker cannot be interrupted; ending the process is the answer.
+                std::process::exit(i32::from(REFUSED))
+            }
+        }
+    })
+}
