@@ -44,14 +44,15 @@ fn zero_text() -> String {
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum InputError {
     /// A number that does not parse.
-    #[error("--{flag}: {source}")]
+    #[error("{} ({field}): {source}", quantity_of(.field))]
     Number {
-        flag: &'static str,
+        /// The field of the case (`p0`, `phi`, …).
+        field: &'static str,
         #[source]
         source: ParseRealError,
     },
     /// Neither or both of λ and ν.
-    #[error("give exactly one of --lambda and --nu")]
+    #[error("give exactly one of the compliance ratio λ and Poisson's ratio ν")]
     LambdaOrNu,
     /// The compliance SPEC is wrong.
     #[error(transparent)]
@@ -155,7 +156,8 @@ impl CaseText {
     /// the computations validate it and say what is wrong.
     pub fn read<R: Real>(&self, precision: Precision) -> Result<Case<R>, InputError> {
         let number = |flag: &'static str, text: &str| {
-            let value = R::parse_decimal(text, precision).map_err(|source| InputError::Number { flag, source })?;
+            let value =
+                R::parse_decimal(text, precision).map_err(|source| InputError::Number { field: flag, source })?;
             if outside_f64_range(&value, text) {
                 return Err(InputError::OutsideF64Range {
                     quantity: quantity_of(flag),
@@ -184,7 +186,7 @@ impl CaseText {
 
     /// φ at the precision, reduced modulo 2π where that matters; refused beyond [`MAX_PHASE`].
     fn phase<R: Real>(&self, precision: Precision) -> Result<R, InputError> {
-        let number = |source| InputError::Number { flag: "phi", source };
+        let number = |source| InputError::Number { field: "phi", source };
         let estimate: Float = phase_at(&self.phi, Precision::bits(64)).map_err(number)?;
         if estimate.is_finite() && estimate.clone().abs() > MAX_PHASE {
             return Err(CycleError::PhaseTooLarge { phi: estimate.to_f64() }.into());
@@ -203,6 +205,7 @@ fn quantity_of(flag: &'static str) -> &'static str {
         "friction" => "the friction coefficient f",
         "lambda" => "the compliance ratio λ",
         "nu" => "Poisson's ratio ν",
+        "phi" => "the phase φ",
         other => other,
     }
 }

@@ -274,7 +274,7 @@ fn bad_rows_are_reported_in_their_row_and_the_others_computed() {
     );
     let error = |id: &str| records[ids.iter().position(|i| *i == id).expect(id)][column("error")].to_string();
     for (id, expected) in [
-        ("text", "line 3: --p0: 'one' is not a decimal number"),
+        ("text", "line 3: P0 (p0): 'one' is not a decimal number"),
         ("empty", "line 4: p1 is empty"),
         ("both", "line 5: give exactly one of lambda and nu"),
         ("unquoted", "line 6: the row has 11 fields, the header 10"),

@@ -297,7 +297,7 @@ fn small_amplitude_command_prints_i_and_verifies_digits() {
     assert!(stdout.trim().ends_with("= 0.00000000000000e0"), "{stdout}");
     let (code, _, stderr) = microslip(&["small-amplitude", "--rho", "-1", "--phi", "1"]);
     assert_eq!(code, 2);
-    assert!(stderr.contains("--rho must be a positive number"), "{stderr}");
+    assert!(stderr.contains("ρ must be a positive number"), "{stderr}");
     let (code, _, stderr) = microslip(&["small-amplitude", "--rho", "1", "--phi", "1", "--max-seconds", "0"]);
     assert_eq!(code, 2);
     assert!(stderr.contains("--max-seconds must be a positive number"), "{stderr}");

@@ -188,7 +188,7 @@ fn command_line_reports_each_invalid_cycle_in_one_line_with_exit_code_2() {
     );
     assert_rejected(dissipation_with("--q0", "-0.7", &[]), "Q = −fP");
     assert_rejected(dissipation_with("--p0", "abc", &[]), "'abc' is not a decimal number");
-    assert_rejected(dissipation_with("--phi", "xpi", &[]), "--phi");
+    assert_rejected(dissipation_with("--phi", "xpi", &[]), "the phase φ (phi)");
 }
 
 #[test]

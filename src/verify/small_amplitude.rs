@@ -95,18 +95,18 @@ pub struct PrintedCoefficient {
 /// Why I(ρ, φ) could not be computed.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum CoefficientError {
-    /// `--rho` or `--phi` is not a number.
-    #[error("--{flag}: {source}")]
+    /// ρ or φ is not a number.
+    #[error("{quantity}: {source}")]
     Number {
-        flag: &'static str,
+        quantity: &'static str,
         #[source]
         source: ParseRealError,
     },
     /// ρ ≤ 0, or not finite at the working precision.
-    #[error("--rho must be a positive number (and below MPFR's range, about 1e323228496), got {0}")]
+    #[error("ρ must be a positive number (and below MPFR's range, about 1e323228496), got {0}")]
     NonPositiveRatio(String),
     /// The digits asked for are out of range.
-    #[error("--digits must be between 1 and {MAX_DIGITS}, got {0}")]
+    #[error("the digits asked for must be between 1 and {MAX_DIGITS}, got {0}")]
     DigitsOutOfRange(u32),
     /// The integrals failed (e.g. a phase too large to reduce).
     #[error(transparent)]
@@ -125,14 +125,15 @@ pub enum CoefficientError {
 /// and finite at that precision.
 fn read_shape<R: Real>(rho: &str, phase: &str, precision: Precision) -> Result<(R, R), CoefficientError> {
     let rho_value =
-        R::parse_decimal(rho, precision).map_err(|source| CoefficientError::Number { flag: "rho", source })?;
-    let phase: R = parse_phase(phase, precision).map_err(|source| CoefficientError::Number { flag: "phi", source })?;
+        R::parse_decimal(rho, precision).map_err(|source| CoefficientError::Number { quantity: "ρ", source })?;
+    let phase: R =
+        parse_phase(phase, precision).map_err(|source| CoefficientError::Number { quantity: "φ", source })?;
     if !(rho_value.is_finite() && rho_value > rho_value.int(0)) {
         return Err(CoefficientError::NonPositiveRatio(rho.to_string()));
     }
     if !phase.is_finite() {
         return Err(CoefficientError::Number {
-            flag: "phi",
+            quantity: "φ",
             source: ParseRealError {
                 text: phase_text(phase),
             },
