@@ -41,6 +41,29 @@ fn bench_dissipation(c: &mut Criterion) {
     }
 }
 
+/// The acceptance case with the general power law v' = P⁻¹ (`power:c=1,beta=-1`, the same
+/// compliance as Persson's with γσ = 1) in f64 with its error estimate. Goal: ≤ 10 µs.
+fn bench_power_law_f64(c: &mut Criterion) {
+    let text = CaseText {
+        p0: "1".into(),
+        p1: "0.4".into(),
+        q0: "0".into(),
+        q1: "0.5".into(),
+        phi: "0.4pi".into(),
+        friction: "1".into(),
+        lambda: Some("1".into()),
+        nu: None,
+        compliance: "power:c=1,beta=-1".into(),
+    };
+    let Case { cycle, compliance } = text.read::<f64>(Precision::DOUBLE).unwrap();
+    c.bench_function("dissipation/power-law-acceptance/f64", |b| {
+        b.iter(|| {
+            let result = dissipation(&cycle, compliance.as_ref(), &Options::default()).unwrap();
+            (result.total, result.error_estimate)
+        })
+    });
+}
+
 fn bench_verified_digits(c: &mut Criterion) {
     let mut group = c.benchmark_group("verified_digits/persson-ordinary");
     group.sample_size(10);
@@ -165,6 +188,7 @@ fn bench_near_separation(c: &mut Criterion) {
 criterion_group!(
     benches,
     bench_dissipation,
+    bench_power_law_f64,
     bench_verified_digits,
     bench_node_tables,
     bench_simulation,
