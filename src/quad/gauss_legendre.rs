@@ -12,6 +12,10 @@ use std::any::{Any, TypeId};
 use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
 
+mod fixed;
+
+use fixed::Fixed;
+
 use super::Estimate;
 use crate::real::{Precision, Real};
 
@@ -85,7 +89,7 @@ fn recurrence_ratios<R: Real>(points: usize, precision: Precision) -> Vec<R> {
         .collect()
 }
 
-/// The precisions of the Newton steps that take a node from the ~50 correct bits of the
+/// The precisions of the Newton steps that take a node from the ~52 correct bits of the
 /// f64 polish to `precision`: each step doubles the correct bits less the condition of
 /// the root (about log₂ n bits), so each step's precision is half the next one's plus
 /// `guard` bits; the last runs at `precision` itself.
@@ -93,7 +97,7 @@ fn newton_schedule(precision: u32, guard: u32) -> Vec<u32> {
     let mut schedule = vec![precision];
     while let Some(&last) = schedule.last() {
         let needed = last / 2 + guard;
-        if needed <= 50 || needed >= last {
+        if needed <= 64 || needed >= last {
             break;
         }
         schedule.push(needed);
@@ -102,24 +106,58 @@ fn newton_schedule(precision: u32, guard: u32) -> Vec<u32> {
     schedule
 }
 
+/// Tables of at least this many points above f64 precision are computed on several threads.
+const PARALLEL_POINTS: usize = 96;
+
+/// The most threads a table is computed on.
+const MAX_THREADS: usize = 4;
+
 /// Computes the table from scratch (no cache).
 ///
-/// Each node comes from Tricomi's asymptotic guess polished in f64, then Newton steps at
-/// precisions that double up to the working one ([`newton_schedule`]), so that only
-/// the last recurrence runs at the working precision. That last evaluation also gives
-/// the weight: P_n' at the corrected node follows from P_n' and the Legendre equation at
-/// the evaluated point by Taylor's theorem, to second order in the (half-precision) step.
+/// Each node comes from Tricomi's asymptotic guess polished in f64; above f64, Newton
+/// steps follow at precisions that double up to the working one ([`newton_schedule`]),
+/// each evaluating the recurrence in fixed point ([`fixed`]) with guard bits, so that only
+/// the last runs at the working precision. That last evaluation also gives the weight:
+/// P_n' at the corrected node follows from P_n' and the Legendre equation at the
+/// evaluated point by Taylor's theorem, to second order in the (half-precision) step.
 pub fn compute_node_table<R: Real>(points: usize, precision: Precision) -> NodeTable<R> {
     assert!(points >= 1, "a Gauss–Legendre rule needs at least one point");
     let half = points / 2;
-    let ratios = recurrence_ratios::<R>(points, precision);
     let double_ratios = recurrence_ratios::<f64>(points, Precision::DOUBLE);
-    let guard = 4 + usize::BITS - points.leading_zeros();
-    let schedule = newton_schedule(precision.in_bits(), guard);
+    let log_points = usize::BITS - points.leading_zeros();
+    let schedule = newton_schedule(precision.in_bits(), 4 + log_points);
+    // Guard bits: the linear growth of the recurrence's rounding, and the cancellation
+    // in P_n' = n (x P_n − P_{n−1})/(x² − 1) at nodes within ~1/n² of ±1.
+    let guarded = |bits: u32| bits + 2 * log_points + 16;
+    let limbs = |bits: u32| guarded(bits).div_ceil(64) as usize + 1;
+    let low_ratios = if precision > Precision::DOUBLE {
+        Vec::new()
+    } else {
+        recurrence_ratios::<R>(points, precision)
+    };
+    let fixed_ratios: Vec<Fixed> = if precision > Precision::DOUBLE {
+        let length = limbs(precision.in_bits());
+        (0..points as u64).map(|j| Fixed::ratio(j, j + 1, length)).collect()
+    } else {
+        Vec::new()
+    };
+    let step_ratios: Vec<Vec<Fixed>> = schedule
+        .iter()
+        .map(|&bits| fixed_ratios.iter().map(|ratio| ratio.resized(limbs(bits))).collect())
+        .collect();
+    // P_n(x) and P_{n−1}(x) with the guard bits of a step at `bits`, at x's precision or more.
+    let evaluate = |x: &R, step: usize| -> (R, R) {
+        if precision <= Precision::DOUBLE {
+            return legendre_pair(&low_ratios, x);
+        }
+        let bits = schedule[step];
+        let (value, below) = fixed::legendre_pair(&step_ratios[step], &Fixed::from_real(x, limbs(bits)));
+        let working = Precision::bits(guarded(bits).max(x.precision().in_bits()));
+        (value.to_real(working), below.to_real(working))
+    };
     let n = points as f64;
-    let mut positive_nodes = Vec::with_capacity(half + 1);
-    let mut positive_weights = Vec::with_capacity(half + 1);
-    for k in 1..=points.div_ceil(2) {
+    // The k-th node from the right, with its weight.
+    let node_and_weight = |k: usize| -> (R, R) {
         // Tricomi's asymptotic guess, then Newton in f64.
         let angle = std::f64::consts::PI * (k as f64 - 0.25) / (n + 0.5);
         let mut guess = (1.0 - (n - 1.0) / (8.0 * n * n * n)) * angle.cos();
@@ -132,30 +170,70 @@ pub fn compute_node_table<R: Real>(points: usize, precision: Precision) -> NodeT
             }
         }
         let middle = 2 * k - 1 == points;
-        let mut x = R::from_f64(if middle { 0.0 } else { guess }, precision);
-        if precision > Precision::DOUBLE && !middle {
-            // All but the last step at reduced precision (the value of x sets it).
-            for &bits in &schedule[..schedule.len() - 1] {
-                let at_step = R::from_f64(0.0, Precision::bits(bits)) + &x;
-                let (p, below) = legendre_pair(&ratios, &at_step);
+        if middle {
+            let x = R::from_f64(0.0, precision);
+            let (_, below) = evaluate(&x, schedule.len() - 1);
+            let derivative = below * x.int(points as i64);
+            let weight = R::from_f64(0.0, precision) + &(x.int(2) / derivative.square());
+            return (x, weight);
+        }
+        let mut x = R::from_f64(guess, precision);
+        if precision > Precision::DOUBLE {
+            // All but the last step at reduced precision.
+            for step in 0..schedule.len() - 1 {
+                let (p, below) = evaluate(&x, step);
+                let at_step = R::from_f64(0.0, p.precision()) + &x;
                 let derivative = legendre_derivative(points, &at_step, &p, &below);
                 x -= &(p / &derivative);
             }
         }
-        let (p, below) = legendre_pair(&ratios, &x);
-        let derivative = legendre_derivative(points, &x, &p, &below);
+        let (p, below) = evaluate(&x, schedule.len() - 1);
+        let mut x_guarded = R::from_f64(0.0, p.precision()) + &x;
+        let derivative = legendre_derivative(points, &x_guarded, &p, &below);
         let step = p.clone() / &derivative;
         // (1 − x²) P″ = 2x P′ − n(n+1) P and (1 − x²) P‴ = 4x P″ − (n(n+1) − 2) P′.
+        let x = &x_guarded;
         let one_minus_square = x.int(1) - x.square();
         let eigenvalue = x.int((points * (points + 1)) as i64);
-        let second = (x.int(2) * &x * &derivative - eigenvalue.clone() * &p) / &one_minus_square;
-        let third = (x.int(4) * &x * &second - (eigenvalue - x.int(2)) * &derivative) / &one_minus_square;
+        let second = (x.int(2) * x * &derivative - eigenvalue.clone() * &p) / &one_minus_square;
+        let third = (x.int(4) * x * &second - (eigenvalue - x.int(2)) * &derivative) / &one_minus_square;
         let corrected_derivative = derivative - step.clone() * &second + step.square() * &third / x.int(2);
-        x -= &step;
+        x_guarded -= &step;
+        let x = &x_guarded;
         let weight = x.int(2) / ((x.int(1) - x.square()) * corrected_derivative.square());
-        positive_nodes.push(x);
-        positive_weights.push(weight);
-    }
+        (R::from_f64(0.0, precision) + x, R::from_f64(0.0, precision) + &weight)
+    };
+    // Large tables at high precision are shared among the cores, in contiguous runs of roots.
+    let roots = points.div_ceil(2);
+    let threads = if precision > Precision::DOUBLE && points >= PARALLEL_POINTS {
+        std::thread::available_parallelism()
+            .map_or(1, |n| n.get())
+            .min(MAX_THREADS)
+    } else {
+        1
+    };
+    let pairs: Vec<(R, R)> = if threads <= 1 {
+        (1..=roots).map(node_and_weight).collect()
+    } else {
+        let run = roots.div_ceil(threads);
+        std::thread::scope(|scope| {
+            let handles: Vec<_> = (0..threads)
+                .map(|t| {
+                    let node_and_weight = &node_and_weight;
+                    scope.spawn(move || {
+                        (1 + t * run..=((t + 1) * run).min(roots))
+                            .map(node_and_weight)
+                            .collect::<Vec<_>>()
+                    })
+                })
+                .collect();
+            handles
+                .into_iter()
+                .flat_map(|handle| handle.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic)))
+                .collect()
+        })
+    };
+    let (positive_nodes, positive_weights): (Vec<R>, Vec<R>) = pairs.into_iter().unzip();
     // positive_nodes run from the largest node down; mirror them into increasing order.
     let mut nodes = Vec::with_capacity(points);
     let mut weights = Vec::with_capacity(points);
