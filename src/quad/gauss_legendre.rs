@@ -129,7 +129,7 @@ pub fn compute_node_table<R: Real>(points: usize, precision: Precision) -> NodeT
     // Guard bits: the linear growth of the recurrence's rounding, and the cancellation
     // in P_n' = n (x P_n − P_{n−1})/(x² − 1) at nodes within ~1/n² of ±1.
     let guarded = |bits: u32| bits + 2 * log_points + 16;
-    let limbs = |bits: u32| guarded(bits).div_ceil(64) as usize + 1;
+    let limbs = |bits: u32| guarded(bits).div_ceil(64) as usize;
     let low_ratios = if precision > Precision::DOUBLE {
         Vec::new()
     } else {
@@ -151,9 +151,10 @@ pub fn compute_node_table<R: Real>(points: usize, precision: Precision) -> NodeT
             return legendre_pair(&low_ratios, x);
         }
         let bits = schedule[step];
-        let (value, below) = fixed::legendre_pair(&step_ratios[step], &Fixed::from_real(x, limbs(bits)));
+        let (value, below) = fixed::legendre_quarters(&step_ratios[step], &Fixed::from_real(x, limbs(bits)));
         let working = Precision::bits(guarded(bits).max(x.precision().in_bits()));
-        (value.to_real(working), below.to_real(working))
+        let four = R::from_i64(4, working);
+        (value.to_real::<R>(working) * &four, below.to_real::<R>(working) * &four)
     };
     let n = points as f64;
     // The k-th node from the right, with its weight.
