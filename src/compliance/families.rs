@@ -48,7 +48,8 @@ impl<R: Real> PowerLaw<R> {
                     root_power *= &root;
                     root_sum += &root_power;
                 }
-                let root_minus_one = offset.clone() * &inverse / &root_sum;
+                let ratio = offset.clone() * &inverse;
+                let root_minus_one = if denominator == 1 { ratio } else { ratio / &root_sum };
                 let (mut sum, mut power) = (one.clone(), root.clone());
                 for _ in 1..numerator.unsigned_abs() {
                     sum = sum * &root + &one;
