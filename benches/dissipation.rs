@@ -41,6 +41,80 @@ fn bench_dissipation(c: &mut Criterion) {
     }
 }
 
+/// The acceptance case with the general power law v' = P⁻¹ (`power:c=1,beta=-1`, the same
+/// compliance as Persson's with γσ = 1) in f64 with its error estimate. Goal: ≤ 10 µs.
+fn bench_power_law_f64(c: &mut Criterion) {
+    let text = CaseText {
+        p0: "1".into(),
+        p1: "0.4".into(),
+        q0: "0".into(),
+        q1: "0.5".into(),
+        phi: "0.4pi".into(),
+        friction: "1".into(),
+        lambda: Some("1".into()),
+        nu: None,
+        compliance: "power:c=1,beta=-1".into(),
+    };
+    let Case { cycle, compliance } = text.read::<f64>(Precision::DOUBLE).unwrap();
+    c.bench_function("dissipation/power-law-acceptance/f64", |b| {
+        b.iter(|| {
+            let result = dissipation(&cycle, compliance.as_ref(), &Options::default()).unwrap();
+            (result.total, result.error_estimate)
+        })
+    });
+}
+
+/// One run at a fixed precision with its error estimate (no verifying run), node tables
+/// warm, for the three cases of `benches/mpmath_side_by_side.py`, which runs this group
+/// (`cargo bench --bench dissipation -- single_run`) and reads the `single-run` lines:
+/// case, digits, W, error estimate. Precision: the digits plus 10; tolerance 10^−(digits+1).
+/// Goal: ≥ 20× faster than one mpmath tanh–sinh run at 50 and 100 digits.
+fn bench_single_runs(c: &mut Criterion) {
+    let mut group = c.benchmark_group("single_run");
+    group.sample_size(10);
+    group.warm_up_time(Duration::from_millis(300));
+    group.measurement_time(Duration::from_secs(1));
+    let cases = [
+        ("persson", "0", "0.5", "0.4pi", "1", "1", "persson:gamma=1,sigma=1"),
+        ("power", "0", "0.5", "0.4pi", "1", "1", "power:c=0.5,beta=-0.5"),
+        ("hertz", "0.1", "0.3", "0.3pi", "0.5", "1.2", "hertz:r=1,estar=1"),
+    ];
+    for (name, q0, q1, phi, friction, lambda, compliance) in cases {
+        let text = CaseText {
+            p0: "1".into(),
+            p1: "0.4".into(),
+            q0: q0.into(),
+            q1: q1.into(),
+            phi: phi.into(),
+            friction: friction.into(),
+            lambda: Some(lambda.into()),
+            nu: None,
+            compliance: compliance.into(),
+        };
+        for digits in [15u32, 30, 50, 100] {
+            let precision = Precision::decimal_digits(digits + 10);
+            let Case { cycle, compliance } = text.read::<Float>(precision).unwrap();
+            let options = Options {
+                relative_tolerance: Some(Float::with_val(precision.in_bits(), 10).powi(-(digits as i32 + 1))),
+                ..Options::default()
+            };
+            let result = dissipation(&cycle, compliance.as_ref(), &options).unwrap();
+            println!(
+                "single-run {name} {digits} {} {:.3e}",
+                result.total.to_scientific(digits as usize + 5),
+                result.error_estimate.to_f64_lossy()
+            );
+            group.bench_function(format!("{name}/{digits}"), |b| {
+                b.iter(|| {
+                    let result = dissipation(&cycle, compliance.as_ref(), &options).unwrap();
+                    (result.total, result.error_estimate)
+                })
+            });
+        }
+    }
+    group.finish();
+}
+
 fn bench_verified_digits(c: &mut Criterion) {
     let mut group = c.benchmark_group("verified_digits/persson-ordinary");
     group.sample_size(10);
@@ -165,6 +239,8 @@ fn bench_near_separation(c: &mut Criterion) {
 criterion_group!(
     benches,
     bench_dissipation,
+    bench_power_law_f64,
+    bench_single_runs,
     bench_verified_digits,
     bench_node_tables,
     bench_simulation,

@@ -10,10 +10,17 @@ batch (node tables warm). Both are compared with a 130-digit value from microsli
 Usage: benches/mpmath_side_by_side.py [path/to/microslip]   (optional dependency: mpmath;
 not run in CI). mpmath is timed with its caches warm (one run first, then the best of 3);
 the batch per-row time is (t(N + 1 rows) - t(1 row)) / N on one thread.
+
+Besides the verified digits (two runs), microslip's single run at a fixed precision with its
+error estimate (no verifying run, node tables warm) is timed in process by the criterion
+group `single_run` of benches/dissipation.rs, which this script runs with cargo: that is
+the like-for-like comparison with one mpmath run (goal >= 20x at 50 and 100 digits; >= 10x
+for verified digits per row).
 """
 
 import json
 import os
+import re
 import subprocess
 import sys
 import tempfile
@@ -138,11 +145,34 @@ def batch_seconds(binary, flags, digits, rows, directory):
     return best
 
 
+UNITS = {"s": 1.0, "ms": 1e-3, "µs": 1e-6, "us": 1e-6, "ns": 1e-9}
+
+
+def single_runs():
+    """{(case, digits): (seconds, W, error estimate)} from `cargo bench --bench dissipation -- single_run`."""
+    root = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..")
+    out = subprocess.run(["cargo", "bench", "--bench", "dissipation", "--", "single_run"],
+                         cwd=root, check=True, capture_output=True, text=True).stdout
+    values = {}
+    for line in out.splitlines():
+        if line.startswith("single-run "):
+            _, name, digits, w, estimate = line.split()
+            values[(name, int(digits))] = (w, float(estimate))
+    runs = {}
+    for name, digits, middle, unit in re.findall(
+            r"single_run/(\w+)/(\d+)\s+time:\s+\[\S+ \S+ (\S+) (\S+)", out):
+        w, estimate = values[(name, int(digits))]
+        runs[(name, int(digits))] = (float(middle) * UNITS[unit], w, estimate)
+    return runs
+
+
 def main():
     binary = sys.argv[1] if len(sys.argv) > 1 else os.path.join(
         os.path.dirname(__file__), "..", "target", "release", "microslip")
+    singles = single_runs()
     print(f"{'case':<8} {'digits':>6} {'mpmath s':>10} {'mpmath err':>10} {'process s':>10} "
-          f"{'row s':>9} {'ms err':>9} {'mpmath/row':>10}")
+          f"{'row s':>9} {'ms err':>9} {'mpmath/row':>10} {'single s':>10} {'single err':>10} "
+          f"{'estimate':>9} {'mpmath/single':>13}")
     with tempfile.TemporaryDirectory() as directory:
         for name, flags, slope in CASES:
             mp.dps = REFERENCE_DIGITS + 10
@@ -163,8 +193,12 @@ def main():
                 rows = 40 if digits <= 50 else 20
                 per_row = (batch_seconds(binary, flags, digits, rows + 1, directory)
                            - batch_seconds(binary, flags, digits, 1, directory)) / rows
+                single, single_w, estimate = singles[(name, digits)]
+                single_error = abs(mpmath.mpf(single_w) - reference) / abs(reference)
                 print(f"{name:<8} {digits:>6} {best:>10.4f} {float(mpmath_error):>10.1e} {process:>10.4f} "
-                      f"{per_row:>9.4f} {float(our_error):>9.1e} {best / per_row:>10.1f}")
+                      f"{per_row:>9.4f} {float(our_error):>9.1e} {best / per_row:>10.1f} {single:>10.5f} "
+                      f"{float(single_error):>10.1e} {estimate / float(abs(reference)):>9.1e} "
+                      f"{best / single:>13.1f}", flush=True)
 
 
 if __name__ == "__main__":
