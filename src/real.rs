@@ -76,6 +76,8 @@ pub trait Real:
     fn from_f64(x: f64, precision: Precision) -> Self;
     /// The integer `n`, rounded to the precision.
     fn from_i64(n: i64, precision: Precision) -> Self;
+    /// An MPFR value rounded once to the precision (to nearest).
+    fn from_float(x: &rug::Float, precision: Precision) -> Self;
     /// A decimal string read as an exact decimal, rounded once to the precision
     /// (`"0.4"` means 4/10, not the double nearest to it).
     fn parse_decimal(text: &str, precision: Precision) -> Result<Self, ParseRealError>;
@@ -166,6 +168,9 @@ impl Real for f64 {
     fn from_i64(n: i64, _: Precision) -> Self {
         n as f64
     }
+    fn from_float(x: &rug::Float, _: Precision) -> Self {
+        x.to_f64()
+    }
     fn parse_decimal(text: &str, _: Precision) -> Result<Self, ParseRealError> {
         text.trim()
             .parse::<f64>()
@@ -242,6 +247,9 @@ impl Real for Float {
     }
     fn from_i64(n: i64, precision: Precision) -> Self {
         Float::with_val(precision.in_bits(), n)
+    }
+    fn from_float(x: &Float, precision: Precision) -> Self {
+        Float::with_val(precision.in_bits(), x)
     }
     fn parse_decimal(text: &str, precision: Precision) -> Result<Self, ParseRealError> {
         let error = || ParseRealError { text: text.to_string() };

@@ -13,6 +13,7 @@ use std::collections::HashMap;
 use std::sync::{Arc, Mutex, OnceLock};
 
 mod fixed;
+mod stored;
 
 use fixed::Fixed;
 
@@ -44,7 +45,9 @@ pub fn node_table<R: Real>(points: usize, precision: Precision) -> Arc<NodeTable
             return table;
         }
     }
-    let table = Arc::new(compute_node_table::<R>(points, precision));
+    let table = Arc::new(
+        stored::stored_table::<R>(points, precision).unwrap_or_else(|| compute_node_table::<R>(points, precision)),
+    );
     cache()
         .lock()
         .unwrap_or_else(|e| e.into_inner())
