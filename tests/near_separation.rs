@@ -284,3 +284,30 @@ fn a_fixed_rule_reports_the_error_its_nodes_leave() {
         );
     }
 }
+
+#[test]
+fn a_fixed_rule_without_its_error_estimate_spends_only_its_own_points() {
+    // The verification's check run compares its value with an independent one and needs no
+    // estimate of its own: without the quarter-size rule it costs the rule's points alone,
+    // gives the same value, and its estimate is the rounding floor only.
+    let text = case("0.4", "0", "0.5", "0.4pi", "persson:gamma=1,sigma=1");
+    let precision = Precision::bits(200);
+    let Case { cycle, compliance } = text.read::<Float>(precision).unwrap();
+    let with = Options {
+        fixed_points: Some(64),
+        ..Options::default()
+    };
+    let without = Options {
+        fixed_rule_error: false,
+        ..with.clone()
+    };
+    let estimated = dissipation(&cycle, compliance.as_ref(), &with).unwrap();
+    let bare = dissipation(&cycle, compliance.as_ref(), &without).unwrap();
+    assert_eq!(bare.total, estimated.total);
+    assert_eq!(
+        bare.evaluations * 5,
+        estimated.evaluations * 4,
+        "64 of 64 + 16 points per piece"
+    );
+    assert!(bare.error_estimate <= estimated.error_estimate);
+}

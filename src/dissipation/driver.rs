@@ -111,14 +111,19 @@ pub(crate) fn converge<R: Real>(
         let mut error = zero.clone();
         for piece in pieces {
             let (value, magnitude) = gauss(piece, points)?;
-            let (coarse, _) = gauss(piece, coarse_points)?;
-            error += (value.clone() - &coarse).abs().max_of(&rounding_floor(&magnitude));
+            let floor = rounding_floor(&magnitude);
+            if options.fixed_rule_error {
+                let (coarse, _) = gauss(piece, coarse_points)?;
+                error += (value.clone() - &coarse).abs().max_of(&floor);
+            } else {
+                error += floor;
+            }
             values.push(value);
         }
         return Ok(Converged {
             values,
             error,
-            evaluations: (points + coarse_points) * pieces.len(),
+            evaluations: (points + if options.fixed_rule_error { coarse_points } else { 0 }) * pieces.len(),
             points,
         });
     }
