@@ -319,6 +319,7 @@ pub fn verified_dissipation(
             // run below decides).
             let check_options = Options {
                 fixed_points: Some((2 * first.points).max(32)),
+                fixed_points_per_piece: Some(first.piece_points.iter().map(|&n| (2 * n).max(32)).collect()),
                 fixed_rule_error: false,
                 check_compliance: false,
                 deadline,

@@ -38,6 +38,9 @@ pub(crate) struct Converged<R> {
     pub error: R,
     pub evaluations: usize,
     pub points: usize,
+    /// The Gauss–Legendre rule each piece ended with, in the order given (empty where the
+    /// caller combined pieces of its own).
+    pub piece_points: Vec<usize>,
 }
 
 impl<R: Real> Converged<R> {
@@ -48,6 +51,7 @@ impl<R: Real> Converged<R> {
             error,
             evaluations,
             points,
+            piece_points: Vec::new(),
         }
     }
 }
@@ -106,14 +110,21 @@ pub(crate) fn converge<R: Real>(
         // The rule of a quarter of the points sizes the error (generously, and at a quarter
         // of the cost): the rule alone cannot tell a converged piece from one whose peak
         // its nodes miss.
-        let coarse_points = (points / 4).max(1);
+        let sizes: Vec<usize> = match &options.fixed_points_per_piece {
+            Some(sizes) if sizes.len() == pieces.len() => sizes.clone(),
+            _ => vec![points; pieces.len()],
+        };
         let mut values = Vec::with_capacity(pieces.len());
         let mut error = zero.clone();
-        for piece in pieces {
-            let (value, magnitude) = gauss(piece, points)?;
+        let mut evaluations = 0;
+        for (piece, &size) in pieces.iter().zip(&sizes) {
+            let (value, magnitude) = gauss(piece, size)?;
+            evaluations += size;
             let floor = rounding_floor(&magnitude);
             if options.fixed_rule_error {
+                let coarse_points = (size / 4).max(1);
                 let (coarse, _) = gauss(piece, coarse_points)?;
+                evaluations += coarse_points;
                 error += (value.clone() - &coarse).abs().max_of(&floor);
             } else {
                 error += floor;
@@ -123,8 +134,9 @@ pub(crate) fn converge<R: Real>(
         return Ok(Converged {
             values,
             error,
-            evaluations: (points + if options.fixed_rule_error { coarse_points } else { 0 }) * pieces.len(),
-            points,
+            evaluations,
+            points: sizes.iter().copied().max().unwrap_or(points),
+            piece_points: sizes,
         });
     }
     let mut evaluations = 0;
@@ -139,6 +151,8 @@ pub(crate) fn converge<R: Real>(
     let count = zero.int(pieces.len().max(1) as i64);
     let mut allowed = scale(&values) * relative_tolerance / &count;
     let mut errors = vec![zero.clone(); pieces.len()];
+    // The rule each piece ends with; 0 for a piece tanh–sinh finished (the largest rule then stands in).
+    let mut piece_points = vec![first_points; pieces.len()];
     for (i, piece) in pieces.iter().enumerate() {
         if piece.start == piece.end {
             continue;
@@ -151,6 +165,7 @@ pub(crate) fn converge<R: Real>(
             if points * 2 > max_points || stalled >= 2 {
                 // Gauss–Legendre stalled: a near-singularity at an end, or the rounding noise
                 // of the integrand. Tanh–sinh resolves the first and tells the second.
+                piece_points[i] = 0;
                 let estimate = tanh_sinh::integrate(
                     &piece.integrand,
                     &piece.start,
@@ -180,6 +195,7 @@ pub(crate) fn converge<R: Real>(
                 return Err(DissipationError::OutOfTime);
             }
             points *= 2;
+            piece_points[i] = points;
             largest_rule = largest_rule.max(points);
             let (refined, magnitude) = gauss(piece, points)?;
             evaluations += points;
@@ -208,11 +224,15 @@ pub(crate) fn converge<R: Real>(
         allowed = scale(&values) * relative_tolerance / &count;
     }
     let error = errors.iter().fold(zero.clone(), |acc, e| acc + e);
+    for size in piece_points.iter_mut().filter(|size| **size == 0) {
+        *size = largest_rule;
+    }
     Ok(Converged {
         values,
         error,
         evaluations,
         points: largest_rule,
+        piece_points,
     })
 }
 

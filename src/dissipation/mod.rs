@@ -88,6 +88,9 @@ pub struct Dissipation<R> {
     pub evaluations: usize,
     /// The largest Gauss–Legendre rule used on any one piece.
     pub points: usize,
+    /// The Gauss–Legendre rule each piece of the four-segment integrals ended with (for a
+    /// piece tanh–sinh finished, the largest rule); empty for the closed forms.
+    pub piece_points: Vec<usize>,
     /// Which formula produced it.
     pub method: Method,
 }
@@ -125,6 +128,9 @@ pub struct Options<R> {
     /// default). Off where the value is only compared with an independent one, as the
     /// verification's check run is: the estimate would cost a fifth more and go unused.
     pub fixed_rule_error: bool,
+    /// With `fixed_points`, the rule of each piece in turn (as [`Dissipation::piece_points`]
+    /// gives them for the same case); where the count differs, `fixed_points` for all.
+    pub fixed_points_per_piece: Option<Vec<usize>>,
     /// The largest Gauss–Legendre rule per segment before giving up.
     pub max_points: usize,
     /// Integrate with v'(x) − v'(P0) in place of v'(x) (exact, and free of cancellation).
@@ -154,6 +160,7 @@ impl<R> Default for Options<R> {
             min_points: 0,
             fixed_points: None,
             fixed_rule_error: true,
+            fixed_points_per_piece: None,
             max_points: 512,
             remove_constant_slope: true,
             remove_linear_slope: false,
@@ -345,7 +352,8 @@ fn integrate_segments<R: Real>(
     for (value, piece) in converged.values.iter().zip(&pieces) {
         values[piece.segment] += value;
     }
-    let combined = Converged::combined(values, converged.error, converged.evaluations, converged.points);
+    let mut combined = Converged::combined(values, converged.error, converged.evaluations, converged.points);
+    combined.piece_points = converged.piece_points;
     scaled_result(cycle, combined, Method::FourSegment, options)
 }
 
@@ -410,6 +418,7 @@ pub(crate) fn scaled_result<R: Real>(
         error_estimate,
         evaluations: converged.evaluations,
         points: converged.points,
+        piece_points: converged.piece_points,
         method,
     })
 }
