@@ -10,7 +10,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use crate::cycle::LoadCycle;
-use crate::files::{write_atomically, OutputError};
+use crate::files::OutputError;
 use crate::simulate::SimulationResult;
 
 /// The font text is drawn and measured with (plotters lays out text only with a registered font).
@@ -33,8 +33,30 @@ pub enum PlotError {
 /// The extensions a plot can be written as.
 pub const PLOT_EXTENSIONS: [&str; 2] = ["svg", "png"];
 
+/// Draws into `path` atomically, as PNG or SVG by its extension (any other refused, the
+/// font checked first): `$draw(root, args…)` with `$draw` generic over the plotters backend,
+/// so that one expansion serves both. Evaluates to `Result<(), PlotError>`.
+macro_rules! write_picture {
+    ($path:expr, $size:expr, $draw:ident($($arg:expr),*)) => {{
+        let path: &::std::path::Path = $path;
+        let png = $crate::plot::is_png(path)?;
+        $crate::plot::register_font()?;
+        let size: (u32, u32) = $size;
+        Ok($crate::files::write_atomically(path, |file: &::std::path::Path| {
+            if png {
+                $draw(::plotters::prelude::BitMapBackend::new(file, size).into_drawing_area(), $($arg),*)
+                    .map_err($crate::plot::describe)
+            } else {
+                $draw(::plotters::prelude::SVGBackend::new(file, size).into_drawing_area(), $($arg),*)
+                    .map_err($crate::plot::describe)
+            }
+        })?)
+    }};
+}
+pub(crate) use write_picture;
+
 /// Whether `path` names a PNG (otherwise an SVG); any other extension is refused.
-fn is_png(path: &Path) -> Result<bool, PlotError> {
+pub(crate) fn is_png(path: &Path) -> Result<bool, PlotError> {
     match path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()) {
         Some(e) if e == "png" => Ok(true),
         Some(e) if e == "svg" => Ok(false),
@@ -123,16 +145,7 @@ pub fn plot_cycle(path: &Path, cycle: &LoadCycle<f64>, result: &SimulationResult
         segments,
         dissipation: result.w_work,
     };
-    let png = is_png(path)?;
-    register_font()?;
-    let size = (1200, 520);
-    Ok(write_atomically(path, |file: &Path| {
-        if png {
-            draw(BitMapBackend::new(file, size).into_drawing_area(), &scene).map_err(describe)
-        } else {
-            draw(SVGBackend::new(file, size).into_drawing_area(), &scene).map_err(describe)
-        }
-    })?)
+    write_picture!(path, (1200, 520), draw(&scene))
 }
 
 /// Checks that plots can be drawn (the font is there), before anything is computed.
@@ -232,16 +245,7 @@ where
 /// One curve per (rule, precision): log10 relative error against log10 seconds,
 /// with the Pareto front circled, into `path` (.svg or .png).
 pub fn plot_accuracy(path: &Path, measurements: &[crate::accuracy::Measurement]) -> Result<(), PlotError> {
-    let png = is_png(path)?;
-    register_font()?;
-    let size = (1100, 700);
-    Ok(write_atomically(path, |file: &Path| {
-        if png {
-            draw_accuracy(BitMapBackend::new(file, size).into_drawing_area(), measurements).map_err(describe)
-        } else {
-            draw_accuracy(SVGBackend::new(file, size).into_drawing_area(), measurements).map_err(describe)
-        }
-    })?)
+    write_picture!(path, (1100, 700), draw_accuracy(measurements))
 }
 
 fn draw_accuracy<DB: DrawingBackend>(

@@ -9,8 +9,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use super::{Curve, Figure, Style};
-use crate::files::write_atomically;
-use crate::plot::{describe, register_font, PlotError};
+use crate::plot::{write_picture, PlotError};
 
 const COLOURS: [RGBColor; 8] = [
     RGBColor(31, 119, 180),
@@ -23,18 +22,9 @@ const COLOURS: [RGBColor; 8] = [
     RGBColor(23, 190, 207),
 ];
 
-/// Draws `figure` into `path` (.png for a bitmap, anything else SVG).
+/// Draws `figure` into `path` (.svg or .png).
 pub fn draw_figure(path: &Path, figure: &Figure) -> Result<(), PlotError> {
-    register_font()?;
-    let size = (820 * figure.panels.len() as u32, 640);
-    let png = path.extension().is_some_and(|e| e.eq_ignore_ascii_case("png"));
-    Ok(write_atomically(path, |file: &Path| {
-        if png {
-            draw(BitMapBackend::new(file, size).into_drawing_area(), figure).map_err(describe)
-        } else {
-            draw(SVGBackend::new(file, size).into_drawing_area(), figure).map_err(describe)
-        }
-    })?)
+    write_picture!(path, (820 * figure.panels.len() as u32, 640), draw(figure))
 }
 
 /// The samples of a curve in plotting coordinates (log10 of both for log–log figures).
