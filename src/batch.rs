@@ -20,6 +20,7 @@ use crate::dissipation::{dissipation, DissipationError, Method, Options};
 use crate::inputs::{Case, CaseText};
 use crate::real::{Precision, Real};
 use crate::reference::{printable_dissipation, PrintedDissipation, ReferenceError};
+use crate::verified::resolved_digits;
 
 /// Relative quadrature tolerance of W from a table: far below any table's own error,
 /// and reachable on the interpolant's piecewise-cubic v' in f64.
@@ -121,15 +122,8 @@ pub fn case_dissipation(case: &CaseText, digits: Option<u32>, budget: Duration) 
     };
     let change = dissipation(&cycle, &difference, &error_options).map_err(in_f64)?;
     let table_error = (change.total.abs() + change.error_estimate) / half_table_divisor();
-    let digits_for = |value: f64, error: f64| -> u32 {
-        if error <= 0.0 {
-            return 15;
-        }
-        if value.abs() <= error || !value.is_finite() {
-            return 1;
-        }
-        ((value.abs() / error).log10().floor() as u32).clamp(1, 15)
-    };
+    // At least one digit: a table is f64 only, and its W is printed whatever it resolves.
+    let digits_for = |value: f64, error: f64| resolved_digits(value, error).max(1);
     let total_error = result.error_estimate + table_error;
     let digits = digits_for(result.total, total_error);
     let segments = result

@@ -891,6 +891,7 @@ fn main() -> ExitCode {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use microslip::verified::OutOfBudget;
 
     #[test]
     fn the_digits_hint_is_given_only_where_digits_were_not() {
@@ -899,11 +900,13 @@ mod tests {
             .message
             .ends_with("try --digits N (verified digits in MPFR)"));
         assert!(!reference_failure(out_of_range(), true).message.contains("--digits"));
-        let budget = || ReferenceError::Budget {
-            digits_requested: 30,
-            digits_reached: 3,
-            seconds: 1.0,
-            precision_bits: 256,
+        let budget = || {
+            ReferenceError::Budget(OutOfBudget {
+                digits_requested: 30,
+                digits_agreed: 3,
+                seconds: 1.0,
+                precision_bits: 256,
+            })
         };
         assert!(reference_failure(budget(), true).message.contains("fewer --digits"));
         assert!(!reference_failure(budget(), false).message.contains("--digits"));

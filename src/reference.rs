@@ -1,10 +1,11 @@
 //! Reference values: W to a requested number of verified significant digits.
 //!
-//! The case is computed twice — at a working precision and rule chosen for the
-//! target, then again at a higher precision with at least twice the quadrature
-//! points — with the decimal inputs re-read exactly at each precision. Digits are
-//! only reported when the two agree to the target plus guard digits; otherwise both
-//! precision and rule are raised, until a time budget runs out.
+//! The case is computed twice by [`crate::verified::verify`] — at a working precision
+//! and rule chosen for the target, then again at a higher precision with twice the
+//! quadrature points — with the decimal inputs re-read exactly at each precision. Digits
+//! are only reported when the two agree to the target plus guard digits; otherwise both
+//! precision and rule are raised, until a time budget runs out. Without a digit count,
+//! f64 is printed where it suffices ([`crate::verified::f64_printed_digits`]).
 
 use std::time::{Duration, Instant};
 
@@ -15,12 +16,12 @@ use crate::cycle::LoadCycle;
 use crate::dissipation::{dissipation, Dissipation, DissipationError, Method, Options};
 use crate::inputs::{Case, CaseText, InputError};
 use crate::real::{Precision, Real};
+use crate::verified::{
+    agreeing_digits, f64_printed_digits, resolved_digits, verify, OutOfBudget, TwoPrecisions, Verified,
+    F64_MOST_DIGITS, GUARD_DIGITS,
+};
 
-/// Digits agreed beyond the target before a value counts as verified.
-pub const GUARD_DIGITS: u32 = 4;
-
-/// The most digits that may be asked for.
-pub const MAX_DIGITS: u32 = 1000;
+pub use crate::verified::MAX_DIGITS;
 
 /// W with its segments, rounded to the verified digits.
 #[derive(Clone, Debug)]
@@ -63,14 +64,10 @@ pub struct PrintedDissipation {
     pub binary64: Option<[f64; 5]>,
 }
 
-/// The fewest significant digits an f64 result may print; where f64 resolves fewer (a W
-/// that is a small difference of large segments), refuses a cycle as ill-conditioned or
-/// does not converge, [`printable_dissipation`] computes 15 verified digits in MPFR instead.
-pub const F64_DIGITS_FLOOR: u32 = 12;
-
 /// W for printing: with `digits` = Some(N), N verified digits; without, f64 with the
-/// digits its error estimate vouches for (segments to the same absolute accuracy), or 15
-/// verified digits where f64 cannot give [`F64_DIGITS_FLOOR`] — and why.
+/// digits its error estimate vouches for (segments to the same absolute accuracy), or
+/// [`F64_MOST_DIGITS`] verified digits where f64 does not suffice
+/// ([`f64_printed_digits`]: too few digits, or a failure of f64 itself) — and why.
 pub fn printable_dissipation(
     case: &CaseText,
     digits: Option<u32>,
@@ -96,12 +93,12 @@ pub fn printable_dissipation(
         Ok(case) => case,
         // A number f64 cannot hold (1e-400, c=1e400): MPFR reads the text exactly.
         Err(error) if case.read::<Float>(Precision::bits(64)).is_ok() => {
-            return verified(15, Some(format!("f64 cannot read the case: {error}")))
+            return verified(F64_MOST_DIGITS, Some(format!("f64 cannot read the case: {error}")))
         }
         Err(error) => return Err(error.into()),
     };
     if let Some(reason) = slope_change_differs_from_mpfr(case, &cycle, compliance.as_ref()) {
-        return verified(15, Some(reason));
+        return verified(F64_MOST_DIGITS, Some(reason));
     }
     let result = match dissipation(&cycle, compliance.as_ref(), &Options::default()) {
         Ok(result) => result,
@@ -113,7 +110,7 @@ pub fn printable_dissipation(
             ..
         }) => {
             return verified(
-                15,
+                F64_MOST_DIGITS,
                 Some(format!(
                     "{quantity} = {value:.1e} is outside the magnitudes f64 carries through the integrals without overflow or underflow ({low:.0e} to {high:.0e})"
                 )),
@@ -125,41 +122,41 @@ pub fn printable_dissipation(
             error @ (DissipationError::OutOfRange { .. }
             | DissipationError::NotFinite { .. }
             | DissipationError::Compliance(_)),
-        ) => return verified(15, Some(format!("f64 fails here: {error}"))),
+        ) => return verified(F64_MOST_DIGITS, Some(format!("f64 fails here: {error}"))),
         Err(DissipationError::IllConditioned { cause, expected, .. }) => {
             return verified(
-                15,
+                F64_MOST_DIGITS,
                 Some(format!(
                     "f64 is ill-conditioned here ({cause}): rounding alone would move W by ~{expected:.0e}"
                 )),
             )
         }
         Err(DissipationError::NotConverged { .. }) => {
-            return verified(15, Some("the f64 integrals did not converge here".to_string()))
+            return verified(F64_MOST_DIGITS, Some("the f64 integrals did not converge here".to_string()))
         }
         Err(other) => return Err(other.into()),
     };
-    let resolved = result.resolved_digits(&result.total, 15);
-    if resolved < F64_DIGITS_FLOOR {
+    let resolved = resolved_digits(result.total, result.error_estimate);
+    let Some(digits) = f64_printed_digits(resolved) else {
         let largest = result.segments.named().iter().map(|(_, v)| v.abs()).fold(0.0, f64::max);
         return verified(
-            15,
+            F64_MOST_DIGITS,
             Some(format!(
                 "f64 resolves {resolved} digits here: its segments, up to {largest:.1e}, cancel to W"
             )),
         );
-    }
+    };
     // A segment gets the digits the same absolute error leaves it (at least one).
-    let segment_digits = |value: &f64| result.resolved_digits(value, 15).max(1) as usize;
+    let segment_digits = |value: &f64| resolved_digits(*value, result.error_estimate).max(1) as usize;
     Ok(PrintedDissipation {
-        total: result.total.to_scientific(resolved as usize),
+        total: result.total.to_scientific(digits as usize),
         segments: result
             .segments
             .named()
             .iter()
             .map(|(name, value)| (*name, value.to_scientific(segment_digits(value))))
             .collect(),
-        digits: resolved,
+        digits,
         method: result.method,
         precision_bits: 53,
         error_estimate: Some(result.error_estimate),
@@ -233,13 +230,8 @@ pub enum ReferenceError {
     #[error("the significant digits asked for must be between 1 and {MAX_DIGITS}, got {0}")]
     DigitsOutOfRange(u32),
     /// The budget ran out first.
-    #[error("only {digits_reached} of {digits_requested} digits could be verified within {seconds:.1} s (two precisions must agree to {GUARD_DIGITS} digits more; last attempt at {precision_bits} bits)")]
-    Budget {
-        digits_requested: u32,
-        digits_reached: u32,
-        seconds: f64,
-        precision_bits: u32,
-    },
+    #[error("only {} of {} digits could be verified within {:.1} s (two precisions must agree to {GUARD_DIGITS} digits more; last attempt at {} bits)", .0.digits_reached(), .0.digits_requested, .0.seconds, .0.precision_bits)]
+    Budget(OutOfBudget),
 }
 
 fn attempt(
@@ -249,22 +241,6 @@ fn attempt(
 ) -> Result<Dissipation<Float>, ReferenceError> {
     let Case { cycle, compliance } = case.read::<Float>(precision)?;
     Ok(dissipation(&cycle, compliance.as_ref(), options)?)
-}
-
-/// The number of leading significant digits on which `a` and `b` agree (1000+ when equal).
-pub fn agreeing_digits(a: &Float, b: &Float) -> u32 {
-    if a == b {
-        return u32::MAX;
-    }
-    let difference = (a.clone() - b).abs();
-    let scale = a.clone().abs().max_of(&b.clone().abs());
-    let relative = difference / scale;
-    let digits = -relative.log10().to_f64();
-    if digits.is_finite() && digits > 0.0 {
-        digits.floor() as u32
-    } else {
-        0
-    }
 }
 
 /// The digits that rounding inside the four-segment integrands costs on `case`: log10 of
@@ -282,7 +258,97 @@ fn conditioning_digits(case: &CaseText) -> u32 {
     }
 }
 
-/// W for `case` to `digits` verified significant digits, within `budget`.
+/// W by the four-segment integrals as a [`TwoPrecisions`] computation: the first run is
+/// held to the target itself (the agreement with the check, not this tolerance, vouches
+/// for the digits), with a quadrature limit that doubles with every attempt. The check is
+/// first a single rule of twice each piece's points at the higher precision; if that does
+/// not agree (a piece that needed tanh–sinh, say), a full converged run there.
+struct FourSegmentW<'a> {
+    case: &'a CaseText,
+    /// The significant digits that must agree.
+    required: u32,
+    deadline: Instant,
+}
+
+impl FourSegmentW<'_> {
+    fn tolerance(&self, precision: Precision, extra: i32) -> Option<Float> {
+        Some(Float::with_val(precision.in_bits(), 10).powi(-(self.required as i32 + extra)))
+    }
+
+    fn max_points(attempt: u32) -> usize {
+        512usize << attempt.min(20)
+    }
+}
+
+impl TwoPrecisions for FourSegmentW<'_> {
+    type Output = Dissipation<Float>;
+    type Error = ReferenceError;
+
+    /// Twelve digits beyond those required, and those the case's conditioning costs.
+    fn starting_precision(&self, required: u32) -> Precision {
+        Precision::decimal_digits(required + 12 + conditioning_digits(self.case))
+    }
+
+    fn first(&mut self, precision: Precision, attempt_number: u32) -> Result<Self::Output, ReferenceError> {
+        let options = Options {
+            relative_tolerance: self.tolerance(precision, 0),
+            max_points: Self::max_points(attempt_number),
+            deadline: Some(self.deadline),
+            ..Options::default()
+        };
+        attempt(self.case, precision, &options)
+    }
+
+    fn check(
+        &mut self,
+        first: &Self::Output,
+        higher: Precision,
+        attempt_number: u32,
+    ) -> Result<Self::Output, ReferenceError> {
+        // The check's own error estimate goes unused and its compliance was checked by the
+        // first run: it only has to agree (a check that missed something disagrees, and the
+        // full run below decides).
+        let fixed = Options {
+            fixed_points: Some((2 * first.points).max(32)),
+            fixed_points_per_piece: Some(first.piece_points.iter().map(|&n| (2 * n).max(32)).collect()),
+            fixed_rule_error: false,
+            check_compliance: false,
+            deadline: Some(self.deadline),
+            ..Options::default()
+        };
+        let check = attempt(self.case, higher, &fixed)?;
+        if agreeing_digits(&first.total, &check.total) >= self.required {
+            return Ok(check);
+        }
+        let converged = Options {
+            relative_tolerance: self.tolerance(higher, 4),
+            min_points: (2 * first.points).max(16),
+            max_points: Self::max_points(attempt_number).max(4 * first.points),
+            deadline: Some(self.deadline),
+            ..Options::default()
+        };
+        attempt(self.case, higher, &converged)
+    }
+
+    fn values<'a>(&self, output: &'a Self::Output) -> &'a [Float] {
+        std::slice::from_ref(&output.total)
+    }
+
+    /// A closed form's W = 0 (no tangential oscillation, in phase with nothing slipping).
+    fn zeros_are_exact(&self, output: &Self::Output) -> bool {
+        output.method != Method::FourSegment
+    }
+
+    /// An integral that did not converge within the attempt's points or time.
+    fn retries(&self, error: &ReferenceError) -> bool {
+        matches!(
+            error,
+            ReferenceError::Dissipation(DissipationError::NotConverged { .. } | DissipationError::OutOfTime)
+        )
+    }
+}
+
+/// W for `case` to `digits` verified significant digits, within `budget`, by [`verify`].
 pub fn verified_dissipation(
     case: &CaseText,
     digits: u32,
@@ -291,89 +357,21 @@ pub fn verified_dissipation(
     if digits == 0 || digits > MAX_DIGITS {
         return Err(ReferenceError::DigitsOutOfRange(digits));
     }
-    let started = Instant::now();
-    let target = digits + GUARD_DIGITS;
-    let mut precision = Precision::decimal_digits(target + 12 + conditioning_digits(case));
-    let mut max_points = 512;
-    let mut best_digits = 0;
-    loop {
-        let tolerance = |p: Precision, extra: i32| {
-            let ten = Float::with_val(p.in_bits(), 10);
-            ten.powi(-(target as i32 + extra))
-        };
-        let deadline = Some(started + budget);
-        // The first run is held to the target itself: the agreement with the check, not this
-        // tolerance, is what vouches for the digits (a first run short of it disagrees).
-        let first_options = Options {
-            relative_tolerance: Some(tolerance(precision, 0)),
-            max_points,
-            deadline,
-            ..Options::default()
-        };
-        let higher = Precision::bits(precision.in_bits() + 32 + precision.in_bits() / 8);
-        let outcome = attempt(case, precision, &first_options).and_then(|first| {
-            // First a single rule of twice the points at the higher precision; if that does
-            // not agree (a piece that needed tanh–sinh, say), a full converged run there.
-            // Its own error estimate goes unused and its compliance was checked by the first
-            // run: it only has to agree (a check that missed something disagrees, and the full
-            // run below decides).
-            let check_options = Options {
-                fixed_points: Some((2 * first.points).max(32)),
-                fixed_points_per_piece: Some(first.piece_points.iter().map(|&n| (2 * n).max(32)).collect()),
-                fixed_rule_error: false,
-                check_compliance: false,
-                deadline,
-                ..Options::default()
-            };
-            let check = attempt(case, higher, &check_options)?;
-            if agreeing_digits(&first.total, &check.total) >= target {
-                return Ok((first, check));
-            }
-            let second_options = Options {
-                relative_tolerance: Some(tolerance(higher, 4)),
-                min_points: (2 * first.points).max(16),
-                max_points: max_points.max(4 * first.points),
-                deadline,
-                ..Options::default()
-            };
-            let second = attempt(case, higher, &second_options)?;
-            Ok((first, second))
-        });
-        match outcome {
-            Ok((first, second)) => {
-                let agreed = agreeing_digits(&first.total, &second.total);
-                if agreed >= target {
-                    let round = |x: &Float| x.to_scientific(digits as usize);
-                    let s = &second.segments;
-                    return Ok(VerifiedDissipation {
-                        total: round(&second.total),
-                        segments: [
-                            ("EB", round(&s.eb)),
-                            ("BC", round(&s.bc)),
-                            ("CH", round(&s.ch)),
-                            ("HE", round(&s.he)),
-                        ],
-                        digits_requested: digits,
-                        digits_verified: digits,
-                        precision_bits: higher.in_bits(),
-                        method: second.method,
-                        value: second,
-                    });
-                }
-                best_digits = best_digits.max(agreed.min(digits));
-            }
-            Err(ReferenceError::Dissipation(DissipationError::NotConverged { .. } | DissipationError::OutOfTime)) => {}
-            Err(other) => return Err(other),
-        }
-        if started.elapsed() >= budget {
-            return Err(ReferenceError::Budget {
-                digits_requested: digits,
-                digits_reached: best_digits,
-                seconds: started.elapsed().as_secs_f64(),
-                precision_bits: higher.in_bits(),
-            });
-        }
-        precision = Precision::bits(precision.in_bits() * 3 / 2);
-        max_points *= 2;
-    }
+    let mut w = FourSegmentW {
+        case,
+        required: digits + GUARD_DIGITS,
+        deadline: Instant::now() + budget,
+    };
+    let Verified { output, precision, .. } =
+        verify(digits, w.deadline, &mut w).map_err(|error| error.into_error(ReferenceError::Budget))?;
+    let round = |x: &Float| x.to_scientific(digits as usize);
+    Ok(VerifiedDissipation {
+        total: round(&output.total),
+        segments: output.segments.named().map(|(name, value)| (name, round(value))),
+        digits_requested: digits,
+        digits_verified: digits,
+        precision_bits: precision.in_bits(),
+        method: output.method,
+        value: output,
+    })
 }

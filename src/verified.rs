@@ -1,19 +1,122 @@
 //! Verified digits: a computation run at two working precisions, its results
 //! printed only as far as the two agree (with guard digits), the precision raised
-//! until they do or the deadline passes.
+//! until they do or the deadline passes — and the rule for when f64 suffices instead.
+//!
+//! [`verify`] is the one loop; what a run at one precision is, and how it is checked at
+//! the higher one, is the caller's [`TwoPrecisions`] strategy (the four-segment W checks
+//! with a fixed rule first, a closed form just recomputes). [`verified_values`] is the
+//! strategy of a computation that only needs re-running.
 
 use std::time::Instant;
 
 use rug::Float;
 
-use crate::real::Precision;
-use crate::reference::{agreeing_digits, GUARD_DIGITS};
+use crate::real::{Precision, Real};
 
-/// Values on which two precisions agreed.
+/// Digits agreed beyond the target before a value counts as verified.
+pub const GUARD_DIGITS: u32 = 4;
+
+/// The most digits that may be asked for.
+pub const MAX_DIGITS: u32 = 1000;
+
+/// The number of leading significant digits on which `a` and `b` agree (`u32::MAX`
+/// when they are equal).
+pub fn agreeing_digits(a: &Float, b: &Float) -> u32 {
+    if a == b {
+        return u32::MAX;
+    }
+    let difference = (a.clone() - b).abs();
+    let scale = a.clone().abs().max_of(&b.clone().abs());
+    let relative = difference / scale;
+    let digits = -relative.log10().to_f64();
+    if digits.is_finite() && digits > 0.0 {
+        digits.floor() as u32
+    } else {
+        0
+    }
+}
+
+/// The digits on which every pair of values agrees (`u32::MAX` for no values). Two
+/// exact zeros count as agreeing on none unless `zeros_exact`: that is what a complete
+/// cancellation looks like at both precisions, and only the computation knows when a
+/// zero is exact (a closed form's W = 0).
+pub fn agreement(first: &[Float], second: &[Float], zeros_exact: bool) -> u32 {
+    first
+        .iter()
+        .zip(second)
+        .map(|(a, b)| {
+            if a.is_zero() && b.is_zero() {
+                if zeros_exact {
+                    u32::MAX
+                } else {
+                    0
+                }
+            } else {
+                agreeing_digits(&Float::with_val(a.prec().max(b.prec()), a), b)
+            }
+        })
+        .min()
+        .unwrap_or(u32::MAX)
+}
+
+/// The higher of the two precisions: 32 bits (about 10 digits) more, so that the first
+/// run's rounding errors are a billion times the check's and disagreement measures them,
+/// plus an eighth, for rounding errors that grow with the length of the computation.
+pub fn check_precision(precision: Precision) -> Precision {
+    Precision::bits(precision.in_bits() + 32 + precision.in_bits() / 8)
+}
+
+/// The precision of the next attempt after one at `precision` agreed on `agreed` of the
+/// `required` digits (0 after a run that gave nothing to compare): the digits still
+/// missing plus 8, since rounding is what two precisions disagree about, and at least
+/// ×5/4, so that a disagreement that is not rounding (an integral that did not converge)
+/// still meets a schedule that grows geometrically; at most [`MAX_PRECISION_BITS`].
+pub fn next_precision(precision: Precision, required: u32, agreed: u32) -> Precision {
+    let missing = Precision::decimal_digits(required.saturating_sub(agreed) + 8).in_bits();
+    let raised = (precision.in_bits() * 5 / 4).max(precision.in_bits() + missing);
+    Precision::bits(raised.min(MAX_PRECISION_BITS))
+}
+
+/// The highest working precision tried (about five million digits): far beyond any
+/// case's needs, well inside MPFR's limits, so that a computation that never agrees
+/// (complete cancellation) runs into its deadline, not an overflow.
+pub const MAX_PRECISION_BITS: u32 = 1 << 24;
+
+/// A computation to verify: a run at one precision, its check at a higher one, and the
+/// values in which the two must agree.
+pub trait TwoPrecisions {
+    /// One run's result.
+    type Output;
+    /// Why a run failed.
+    type Error;
+    /// The first precision to try for `required` significant digits.
+    fn starting_precision(&self, required: u32) -> Precision {
+        Precision::decimal_digits(required + 8)
+    }
+    /// The run at `precision`; `attempt` counts from 0 (a strategy may widen its own
+    /// limits with it).
+    fn first(&mut self, precision: Precision, attempt: u32) -> Result<Self::Output, Self::Error>;
+    /// The run at the higher `precision` that checks `first`.
+    fn check(&mut self, first: &Self::Output, precision: Precision, attempt: u32) -> Result<Self::Output, Self::Error>;
+    /// The values that must agree.
+    fn values<'a>(&self, output: &'a Self::Output) -> &'a [Float];
+    /// Whether the exact zeros among `output`'s values are zeros by theory (a closed
+    /// form's), not complete cancellation; by default they are not.
+    fn zeros_are_exact(&self, _output: &Self::Output) -> bool {
+        false
+    }
+    /// Whether a failed run may succeed at a higher precision in a later attempt (a
+    /// quadrature that did not converge); otherwise the failure is final.
+    fn retries(&self, _error: &Self::Error) -> bool {
+        false
+    }
+}
+
+/// A result on which two precisions agreed.
 #[derive(Clone, Debug)]
-pub struct Verified {
-    /// The values from the higher of the two precisions.
-    pub values: Vec<Float>,
+pub struct Verified<T> {
+    /// The check run's result (the higher precision).
+    pub output: T,
     /// The significant digits on which every value agreed (at least those asked for
     /// plus [`GUARD_DIGITS`]).
     pub agreed: u32,
@@ -21,87 +124,343 @@ pub struct Verified {
     pub precision: Precision,
 }
 
-/// Why verified digits were not obtained.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum VerifyError<E> {
-    /// The computation itself failed.
-    #[error(transparent)]
-    Failed(E),
-    /// The deadline passed before enough digits agreed.
-    #[error("only {reached} of the {required} significant digits needed ({GUARD_DIGITS} of them guard digits) agreed between two precisions before the time budget ran out")]
-    OutOfTime { required: u32, reached: u32 },
+/// The time budget ran out before two precisions agreed to the digits asked for plus
+/// [`GUARD_DIGITS`].
+#[derive(Debug, Clone, PartialEq)]
+pub struct OutOfBudget {
+    /// The significant digits asked for.
+    pub digits_requested: u32,
+    /// The most significant digits on which two precisions agreed.
+    pub digits_agreed: u32,
+    /// The time spent.
+    pub seconds: f64,
+    /// The higher precision of the last attempt.
+    pub precision_bits: u32,
 }
 
-/// Runs `compute` at a precision p and at p' > p and accepts the results when every
-/// value agrees to `digits` + [`GUARD_DIGITS`] significant digits; otherwise raises
-/// the precision by the digits that were missing and tries again until `deadline`.
-/// `compute` must re-read its inputs at the precision it is given. A value that is
-/// exactly zero at both precisions does not count as agreeing (it is what complete
-/// cancellation looks like); exact zeros are for the caller to recognise.
+impl OutOfBudget {
+    /// The digits two precisions must agree on: those asked for and the guard digits.
+    pub fn digits_required(&self) -> u32 {
+        self.digits_requested + GUARD_DIGITS
+    }
+
+    /// The agreed digits that would have been printed, at most those asked for.
+    pub fn digits_reached(&self) -> u32 {
+        self.digits_agreed.min(self.digits_requested)
+    }
+}
+
+/// Why verified digits were not obtained.
+#[derive(Debug, Clone, PartialEq)]
+pub enum VerifyError<E> {
+    /// A run failed, and a higher precision would not help.
+    Failed(E),
+    /// The deadline passed first.
+    OutOfBudget(OutOfBudget),
+}
+
+impl<E> VerifyError<E> {
+    /// The caller's error: a failed run's own, or `budget` made of the budget error.
+    pub fn into_error(self, budget: impl FnOnce(OutOfBudget) -> E) -> E {
+        match self {
+            VerifyError::Failed(error) => error,
+            VerifyError::OutOfBudget(out) => budget(out),
+        }
+    }
+}
+
+/// Runs `computation` at a precision p and checks it at [`check_precision`] (p), and
+/// accepts the check's result when every value agrees to `digits` + [`GUARD_DIGITS`]
+/// significant digits ([`agreement`]); otherwise tries again at [`next_precision`],
+/// until `deadline`. The deadline is looked at before every attempt (none is made past
+/// it), and a run that can stop early should be handed it too.
+pub fn verify<C: TwoPrecisions>(
+    digits: u32,
+    deadline: Instant,
+    computation: &mut C,
+) -> Result<Verified<C::Output>, VerifyError<C::Error>> {
+    let started = Instant::now();
+    let required = digits + GUARD_DIGITS;
+    let mut precision = computation.starting_precision(required);
+    let mut best = 0;
+    // The higher precision of the last attempt, as the budget error reports it.
+    let mut last = check_precision(precision);
+    for attempt in 0.. {
+        if Instant::now() >= deadline {
+            return Err(VerifyError::OutOfBudget(OutOfBudget {
+                digits_requested: digits,
+                digits_agreed: best,
+                seconds: started.elapsed().as_secs_f64(),
+                precision_bits: last.in_bits(),
+            }));
+        }
+        let higher = check_precision(precision);
+        last = higher;
+        let outcome = computation
+            .first(precision, attempt)
+            .and_then(|first| Ok((computation.check(&first, higher, attempt)?, first)));
+        let agreed = match outcome {
+            Ok((second, first)) => {
+                let exact = computation.zeros_are_exact(&first) && computation.zeros_are_exact(&second);
+                let agreed = agreement(computation.values(&first), computation.values(&second), exact);
+                if agreed >= required {
+                    return Ok(Verified {
+                        output: second,
+                        agreed,
+                        precision: higher,
+                    });
+                }
+                agreed
+            }
+            Err(error) if computation.retries(&error) => 0,
+            Err(error) => return Err(VerifyError::Failed(error)),
+        };
+        best = best.max(agreed);
+        precision = next_precision(precision, required, agreed);
+    }
+    unreachable!("the attempts are unbounded")
+}
+
+/// A computation whose check is the same computation at the higher precision; it must
+/// re-read its inputs at the precision it is given.
+struct Recompute<F>(F);
+
+impl<E, F: FnMut(Precision) -> Result<Vec<Float>, E>> TwoPrecisions for Recompute<F> {
+    type Output = Vec<Float>;
+    type Error = E;
+
+    fn first(&mut self, precision: Precision, _attempt: u32) -> Result<Vec<Float>, E> {
+        (self.0)(precision)
+    }
+
+    fn check(&mut self, _first: &Vec<Float>, precision: Precision, _attempt: u32) -> Result<Vec<Float>, E> {
+        (self.0)(precision)
+    }
+
+    fn values<'a>(&self, output: &'a Vec<Float>) -> &'a [Float] {
+        output
+    }
+}
+
+/// [`verify`] for values that are checked by computing them again at the higher
+/// precision (`compute` re-reads its inputs at the precision it is given).
 pub fn verified_values<E>(
     digits: u32,
     deadline: Instant,
-    mut compute: impl FnMut(Precision) -> Result<Vec<Float>, E>,
-) -> Result<Verified, VerifyError<E>> {
-    let required = digits + GUARD_DIGITS;
-    let mut precision = Precision::decimal_digits(required + 8);
-    let mut reached = 0;
-    loop {
-        if Instant::now() >= deadline {
-            return Err(VerifyError::OutOfTime { required, reached });
-        }
-        let higher = Precision::bits(precision.in_bits() * 5 / 4 + 32);
-        let first = compute(precision).map_err(VerifyError::Failed)?;
-        let second = compute(higher).map_err(VerifyError::Failed)?;
-        let agreed = first
-            .iter()
-            .zip(&second)
-            // Two zeros say nothing: a difference that cancelled completely at both precisions.
-            .map(|(a, b)| {
-                if a.is_zero() && b.is_zero() {
-                    0
-                } else {
-                    agreeing_digits(&Float::with_val(higher.in_bits(), a), b)
-                }
-            })
-            .min()
-            .unwrap_or(u32::MAX);
-        if agreed >= required {
-            return Ok(Verified {
-                values: second,
-                agreed,
-                precision: higher,
-            });
-        }
-        reached = reached.max(agreed);
-        let missing = Precision::decimal_digits(required - agreed + 8).in_bits();
-        precision = Precision::bits((precision.in_bits() * 5 / 4).max(precision.in_bits() + missing));
+    compute: impl FnMut(Precision) -> Result<Vec<Float>, E>,
+) -> Result<Verified<Vec<Float>>, VerifyError<E>> {
+    verify(digits, deadline, &mut Recompute(compute))
+}
+
+/// The most significant digits an f64 result is printed with: binary64 carries 15.95
+/// decimal digits, and 15 always survive a round trip through decimal text.
+pub const F64_MOST_DIGITS: u32 = 15;
+
+/// The fewest significant digits an f64 result may be printed with. Where f64 holds
+/// fewer — rounding or cancellation has cost it more than a few of its 15 — the verified
+/// [`F64_MOST_DIGITS`] digits in MPFR are printed instead: they cost milliseconds, while
+/// most cases (more than four in five ordinary cycles) hold 12 or more and print at f64
+/// speed.
+pub const F64_DIGITS_FLOOR: u32 = 12;
+
+/// The significant digits of `value` that an absolute `error` leaves standing (0 to
+/// [`F64_MOST_DIGITS`]; all of them for no error).
+pub fn resolved_digits(value: f64, error: f64) -> u32 {
+    if error <= 0.0 {
+        return F64_MOST_DIGITS;
     }
+    if !value.is_finite() || value.abs() <= error {
+        return 0;
+    }
+    ((value.abs() / error).log10().floor() as u32).min(F64_MOST_DIGITS)
+}
+
+/// The digits to print the f64 `value` with, given verified digits of the same quantity:
+/// the most (up to [`F64_MOST_DIGITS`]) at which `value` rounds to the same decimal as
+/// `verified` does, so that every digit printed is a verified one — or `None` where that
+/// is fewer than [`F64_DIGITS_FLOOR`], or `value` is outside f64's normal range, and f64
+/// does not suffice. (A count of agreeing
+/// digits would not do: 6.666660000000006e8 and 6.666660000000016e8 agree to 15 digits
+/// and round to different 15th digits.)
+pub fn f64_digits_against(value: f64, verified: &Float) -> Option<u32> {
+    if !value.is_finite() || (value != 0.0 && value.abs() < f64::MIN_POSITIVE) {
+        return None;
+    }
+    (F64_DIGITS_FLOOR..=F64_MOST_DIGITS)
+        .rev()
+        .find(|&digits| value.to_scientific(digits as usize) == verified.to_scientific(digits as usize))
+}
+
+/// The digits to print an f64 result with that holds `digits` significant digits (by its
+/// error estimate, or by agreement with verified digits), or `None` where f64 does not
+/// suffice ([`F64_DIGITS_FLOOR`]).
+pub fn f64_printed_digits(digits: u32) -> Option<u32> {
+    (digits >= F64_DIGITS_FLOOR).then_some(digits.min(F64_MOST_DIGITS))
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
     use crate::real::Real;
+    use std::cell::Cell;
     use std::time::Duration;
 
+    fn soon() -> Instant {
+        Instant::now() + Duration::from_secs(30)
+    }
+
+    fn at(p: Precision, text: &str) -> Float {
+        Float::parse_decimal(text, p).unwrap()
+    }
+
     #[test]
-    fn cancellation_raises_the_precision_until_the_digits_agree() {
+    fn agreeing_digits_counts_the_leading_digits_two_values_share() {
+        let p = Precision::bits(200);
+        assert_eq!(agreeing_digits(&at(p, "1.23456"), &at(p, "1.23457")), 5);
+        assert_eq!(agreeing_digits(&at(p, "-2"), &at(p, "2")), 0);
+        assert_eq!(agreeing_digits(&at(p, "3.5"), &at(p, "3.5")), u32::MAX);
+        let zero = Float::with_val(64, 0);
+        assert_eq!(agreement(&[zero.clone()], &[zero.clone()], false), 0);
+        assert_eq!(agreement(&[zero.clone()], &[zero.clone()], true), u32::MAX);
+        let (first, second) = ([at(p, "1"), at(p, "5")], [at(p, "1.002"), at(p, "5")]);
+        assert_eq!(agreement(&first, &second, false), 2);
+    }
+
+    #[test]
+    fn values_that_agree_at_two_precisions_are_accepted_at_the_first_attempt() {
+        let runs = Cell::new(0);
+        let third = |p: Precision| -> Result<Vec<Float>, ()> {
+            runs.set(runs.get() + 1);
+            Ok(vec![Float::with_val(p.in_bits(), 1) / 3u32])
+        };
+        let verified = verified_values(30, soon(), third).unwrap();
+        assert_eq!(runs.get(), 2);
+        assert!(verified.agreed >= 34, "{}", verified.agreed);
+        let first = Precision::decimal_digits(30 + GUARD_DIGITS + 8);
+        assert_eq!(verified.precision, check_precision(first));
+        assert_eq!(verified.output[0].to_scientific(30), format!("3.{}e-1", "3".repeat(29)));
+    }
+
+    #[test]
+    fn two_exact_zeros_are_not_agreement() {
+        // Complete cancellation at every precision: never verified, and the budget error
+        // says no digit agreed.
+        let cancelled = |p: Precision| -> Result<Vec<Float>, ()> {
+            let one = Float::with_val(p.in_bits(), 1);
+            Ok(vec![one.clone() - &one])
+        };
+        let deadline = Instant::now() + Duration::from_millis(50);
+        match verified_values(10, deadline, cancelled) {
+            Err(VerifyError::OutOfBudget(budget)) => {
+                assert_eq!((budget.digits_agreed, budget.digits_requested), (0, 10));
+                assert_eq!(budget.digits_required(), 10 + GUARD_DIGITS);
+            }
+            other => panic!("{other:?}"),
+        }
+    }
+
+    #[test]
+    fn the_schedule_raises_the_precision_through_a_cancellation() {
         // (1 + 10⁻⁶⁰) − 1 needs more than 200 bits to keep any digit.
-        let deadline = Instant::now() + Duration::from_secs(10);
         let tiny = |p: Precision| -> Result<Vec<Float>, ()> {
             let one = Float::with_val(p.in_bits(), 1);
-            let small = Float::parse_decimal("1e-60", p).map_err(|_| ())?;
-            Ok(vec![(one.clone() + &small) - &one])
+            Ok(vec![(one.clone() + &at(p, "1e-60")) - &one])
         };
-        let verified = verified_values(20, deadline, tiny).unwrap();
+        let verified = verified_values(20, soon(), tiny).unwrap();
         assert!(verified.precision.in_bits() > 260, "{:?}", verified.precision);
-        assert_eq!(verified.values[0].to_scientific(20), "1.0000000000000000000e-60");
-        let never = |p: Precision| -> Result<Vec<Float>, ()> { Ok(vec![Float::with_val(p.in_bits(), p.in_bits())]) };
-        let past = Instant::now();
+        assert_eq!(verified.output[0].to_scientific(20), "1.0000000000000000000e-60");
+        // The schedule adds the missing digits, and grows by at least a quarter.
+        let p = Precision::bits(400);
+        assert_eq!(next_precision(p, 24, 24 - 10).in_bits(), 500);
+        let missing = Precision::decimal_digits(100 + 8).in_bits();
+        assert_eq!(next_precision(p, 100, 0).in_bits(), 400 + missing);
+    }
+
+    #[test]
+    fn a_deadline_gives_a_budget_error_naming_the_digits_reached() {
+        // Every other run is off by 3e-12: 11 digits agree at any precision.
+        let calls = Cell::new(0);
+        let stuck = |p: Precision| -> Result<Vec<Float>, ()> {
+            calls.set(calls.get() + 1);
+            let offset = if calls.get() % 2 == 0 { "3e-12" } else { "0" };
+            Ok(vec![Float::with_val(p.in_bits(), 1) + &at(p, offset)])
+        };
+        let deadline = Instant::now() + Duration::from_millis(100);
+        let error = verified_values(20, deadline, stuck).unwrap_err();
+        let VerifyError::OutOfBudget(budget) = error else {
+            panic!("{error:?}")
+        };
+        assert_eq!(budget.digits_agreed, 11, "{budget:?}");
+        assert_eq!(budget.digits_reached(), 11);
+        assert!(budget.seconds >= 0.1 && budget.precision_bits > 100, "{budget:?}");
+        // Past the deadline already: no attempt, and the precision it would have checked at.
+        calls.set(0);
+        let start = Precision::decimal_digits(15 + GUARD_DIGITS + 8);
+        match verified_values(15, Instant::now(), stuck) {
+            Err(VerifyError::OutOfBudget(budget)) => {
+                assert_eq!(
+                    (budget.digits_agreed, budget.precision_bits),
+                    (0, check_precision(start).in_bits())
+                )
+            }
+            other => panic!("{other:?}"),
+        }
+        assert_eq!(calls.get(), 0);
+    }
+
+    #[test]
+    fn failures_end_the_loop_unless_the_strategy_retries_them() {
+        struct Flaky(u32);
+        impl TwoPrecisions for Flaky {
+            type Output = Vec<Float>;
+            type Error = &'static str;
+            fn first(&mut self, p: Precision, attempt: u32) -> Result<Vec<Float>, &'static str> {
+                self.0 += 1;
+                match attempt {
+                    0 => Err("not converged"),
+                    _ => Ok(vec![Float::with_val(p.in_bits(), 2).sqrt()]),
+                }
+            }
+            fn check(&mut self, _: &Vec<Float>, p: Precision, a: u32) -> Result<Vec<Float>, &'static str> {
+                self.first(p, a)
+            }
+            fn values<'a>(&self, output: &'a Vec<Float>) -> &'a [Float] {
+                output
+            }
+            fn retries(&self, error: &&'static str) -> bool {
+                *error == "not converged"
+            }
+        }
+        let verified = verify(25, soon(), &mut Flaky(0)).unwrap();
+        assert!(verified.agreed >= 29);
+        let broken = |_: Precision| -> Result<Vec<Float>, &'static str> { Err("broken") };
         assert!(matches!(
-            verified_values(5, past, never),
-            Err(VerifyError::OutOfTime { .. })
+            verified_values(25, soon(), broken),
+            Err(VerifyError::Failed("broken"))
         ));
+    }
+
+    #[test]
+    fn f64_suffices_from_twelve_digits() {
+        assert_eq!(resolved_digits(0.4, 1.37e-14), 13);
+        assert_eq!(resolved_digits(1.0, 0.0), F64_MOST_DIGITS);
+        assert_eq!(resolved_digits(1e-3, 2e-3), 0);
+        assert_eq!(resolved_digits(f64::INFINITY, 1.0), 0);
+        assert_eq!(f64_printed_digits(11), None);
+        assert_eq!(f64_printed_digits(12), Some(12));
+        assert_eq!(f64_printed_digits(u32::MAX), Some(F64_MOST_DIGITS));
+        let third = Float::with_val(200, 1) / 3u32;
+        assert_eq!(f64_digits_against(1.0 / 3.0, &third), Some(15));
+        assert_eq!(f64_digits_against(0.3333333333334, &third), Some(12));
+        assert_eq!(f64_digits_against(0.33333333334, &third), None);
+        assert_eq!(f64_digits_against(0.0, &Float::with_val(64, 0)), Some(F64_MOST_DIGITS));
+        // Agreeing to 15 digits is not enough: the 15th digit must round the same way.
+        let verified = Float::parse_decimal("-6.66666000000001570796329128232e8", Precision::bits(128)).unwrap();
+        assert_eq!(f64_digits_against(-6.666660000000006e8, &verified), Some(14));
+        assert_eq!(f64_digits_against(-6.666660000000016e8, &verified), Some(15));
+        assert_eq!(
+            f64_digits_against(f64::MIN_POSITIVE / 2.0, &Float::with_val(64, f64::MIN_POSITIVE / 2.0)),
+            None
+        );
     }
 }

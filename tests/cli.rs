@@ -573,6 +573,7 @@ fn json_reports_share_one_vocabulary() {
 fn library_error_texts_name_no_command_line_flags() {
     use microslip::dissipation::DissipationError;
     use microslip::reference::ReferenceError;
+    use microslip::verified::OutOfBudget;
     let errors: Vec<String> = vec![
         DissipationError::NotConverged {
             points: 512,
@@ -589,12 +590,12 @@ fn library_error_texts_name_no_command_line_flags() {
         .to_string(),
         DissipationError::OutOfRange { scale: 1e-300 }.to_string(),
         ReferenceError::DigitsOutOfRange(0).to_string(),
-        ReferenceError::Budget {
+        ReferenceError::Budget(OutOfBudget {
             digits_requested: 50,
-            digits_reached: 3,
+            digits_agreed: 3,
             seconds: 1.0,
             precision_bits: 256,
-        }
+        })
         .to_string(),
     ];
     for text in errors {

@@ -7,8 +7,8 @@ use rug::Float;
 use super::series::{partial_sums, series_coefficients, SeriesError};
 use crate::inputs::{parse_phase, Case, CaseText, InputError};
 use crate::real::{ParseRealError, Precision, Real};
-use crate::reference::{agreeing_digits, printable_dissipation, ReferenceError, MAX_DIGITS};
-use crate::verified::{verified_values, VerifyError};
+use crate::reference::{printable_dissipation, ReferenceError};
+use crate::verified::{f64_digits_against, verified_values, OutOfBudget, VerifyError, F64_MOST_DIGITS, MAX_DIGITS};
 
 /// The highest order the series is computed to.
 pub const MAX_ORDER: usize = 200;
@@ -42,16 +42,13 @@ pub enum PrintedSeriesError {
     #[error("I₀ = {value:e} exceeds its rounding bound {bound:e}: the exact integration is inconsistent here")]
     ConstantTerm { value: f64, bound: f64 },
     /// The time budget ran out.
-    #[error("only {reached} of the {required} digits needed agreed between two precisions within the time budget; ask for fewer digits or a lower order")]
-    OutOfTime { required: u32, reached: u32 },
+    #[error("only {} of the {} digits needed agreed between two precisions within the time budget; ask for fewer digits or a lower order", .0.digits_agreed, .0.digits_required())]
+    OutOfTime(OutOfBudget),
 }
 
 impl From<VerifyError<PrintedSeriesError>> for PrintedSeriesError {
     fn from(error: VerifyError<PrintedSeriesError>) -> Self {
-        match error {
-            VerifyError::Failed(error) => error,
-            VerifyError::OutOfTime { required, reached } => PrintedSeriesError::OutOfTime { required, reached },
-        }
+        error.into_error(PrintedSeriesError::OutOfTime)
     }
 }
 
@@ -98,9 +95,22 @@ pub fn vanishes_in_phase(rho: &str, phase: &str) -> bool {
     })
 }
 
+/// The verified digits to compute for `order` and `digits` (without, [`F64_MOST_DIGITS`]),
+/// each checked in range.
+fn digits_asked(order: usize, digits: Option<u32>) -> Result<u32, PrintedSeriesError> {
+    if order == 0 || order > MAX_ORDER {
+        return Err(PrintedSeriesError::OrderOutOfRange(order));
+    }
+    let asked = digits.unwrap_or(F64_MOST_DIGITS);
+    if asked == 0 || asked > MAX_DIGITS {
+        return Err(PrintedSeriesError::DigitsOutOfRange(asked));
+    }
+    Ok(asked)
+}
+
 /// I₀ … I_`order` at (ρ, φ) given as text: with `digits` = Some(D), each to D verified
 /// digits; without, f64 with the digits on which it agrees with 15 verified digits
-/// (the verified digits themselves where f64 keeps fewer than 13).
+/// where that suffices ([`f64_digits_against`]), the verified digits themselves otherwise.
 pub fn printed_coefficients(
     rho: &str,
     phase: &str,
@@ -108,13 +118,7 @@ pub fn printed_coefficients(
     digits: Option<u32>,
     budget: Duration,
 ) -> Result<PrintedCoefficients, PrintedSeriesError> {
-    if order == 0 || order > MAX_ORDER {
-        return Err(PrintedSeriesError::OrderOutOfRange(order));
-    }
-    let asked = digits.unwrap_or(15);
-    if asked == 0 || asked > MAX_DIGITS {
-        return Err(PrintedSeriesError::DigitsOutOfRange(asked));
-    }
+    let asked = digits_asked(order, digits)?;
     let zero = Float::with_val(Precision::decimal_digits(asked).in_bits(), 0).to_scientific(asked as usize);
     if vanishes_in_phase(rho, phase) {
         return Ok(PrintedCoefficients {
@@ -141,17 +145,10 @@ pub fn printed_coefficients(
     if let Some(values) = &in_f64 {
         printed.binary64 = std::iter::once(0.0).chain(values.iter().copied()).collect();
     }
-    for (n, reference) in verified.values.iter().enumerate() {
-        let f64_value = in_f64.as_ref().map(|values| values[n]);
-        let kept = f64_value
-            .filter(|v| v.is_finite() && v.abs() >= f64::MIN_POSITIVE)
-            .map(|v| {
-                (
-                    v,
-                    agreeing_digits(&Float::with_val(reference.prec(), v), reference).min(15),
-                )
-            })
-            .filter(|(_, kept)| *kept >= 13);
+    for (n, reference) in verified.output.iter().enumerate() {
+        let kept = in_f64
+            .as_ref()
+            .and_then(|values| Some((values[n], f64_digits_against(values[n], reference)?)));
         match kept {
             Some((value, kept)) => {
                 printed.values.push(value.to_scientific(kept as usize));
@@ -190,13 +187,7 @@ pub fn printed_partial_sums(
     digits: Option<u32>,
     budget: Duration,
 ) -> Result<PrintedPartialSums, PrintedSeriesError> {
-    if order == 0 || order > MAX_ORDER {
-        return Err(PrintedSeriesError::OrderOutOfRange(order));
-    }
-    let asked = digits.unwrap_or(15);
-    if asked == 0 || asked > MAX_DIGITS {
-        return Err(PrintedSeriesError::DigitsOutOfRange(asked));
-    }
+    let asked = digits_asked(order, digits)?;
     let started = Instant::now();
     let sums = verified_values(asked, started + budget, |precision| {
         let Case { cycle, compliance } = case.read::<Float>(precision)?;
@@ -208,7 +199,7 @@ pub fn printed_partial_sums(
     let w_value = Float::parse_decimal(&w.total, sums.precision).unwrap_or_else(|_| Float::with_val(bits, 0));
     let resolved = w_value.clone().abs() * Float::with_val(bits, 10).powi(-(w.digits as i32));
     let differences = sums
-        .values
+        .output
         .iter()
         .map(|sum| {
             let difference = sum.clone() - &w_value;
@@ -218,7 +209,7 @@ pub fn printed_partial_sums(
     Ok(PrintedPartialSums {
         dissipation: w.total,
         dissipation_digits: w.digits,
-        sums: sums.values.iter().map(|s| s.to_scientific(asked as usize)).collect(),
+        sums: sums.output.iter().map(|s| s.to_scientific(asked as usize)).collect(),
         differences,
         digits: asked,
     })

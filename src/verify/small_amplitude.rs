@@ -21,8 +21,7 @@ use crate::exact::closed_form_coefficient;
 use crate::exact::printing::vanishes_in_phase;
 use crate::inputs::parse_phase;
 use crate::real::{ParseRealError, Precision, Real};
-use crate::reference::{agreeing_digits, GUARD_DIGITS, MAX_DIGITS};
-use crate::verified::{verified_values, VerifyError};
+use crate::verified::{f64_digits_against, verified_values, OutOfBudget, F64_MOST_DIGITS, GUARD_DIGITS, MAX_DIGITS};
 
 /// W[v' = P − P0] on the cycle P0 = 1, P1 = `amplitude`, Q1 = ρP1, f = λ = 1, so that
 /// I = W / P1³. `amplitude` must keep the cycle inside the theory: P1 (1 + ρ) < 1 does.
@@ -112,13 +111,8 @@ pub enum CoefficientError {
     #[error(transparent)]
     Dissipation(#[from] DissipationError),
     /// The time budget ran out before two precisions agreed.
-    #[error("only {reached} of the {required} digits of I needed ({digits} asked for and {GUARD_DIGITS} guard digits) agreed between two precisions within {seconds:.1} s; ask for fewer digits")]
-    Budget {
-        digits: u32,
-        required: u32,
-        reached: u32,
-        seconds: f64,
-    },
+    #[error("only {} of the {} digits of I needed ({} asked for and {GUARD_DIGITS} guard digits) agreed between two precisions within {:.1} s; ask for fewer digits", .0.digits_agreed, .0.digits_required(), .0.digits_requested, .0.seconds)]
+    Budget(OutOfBudget),
 }
 
 /// ρ and φ read from text at a precision (φ in radians or as `0.4pi`), ρ checked positive
@@ -146,14 +140,10 @@ fn phase_text<R: Real>(phase: R) -> String {
     phase.to_scientific(6)
 }
 
-/// The digits f64 must keep (checked against verified MPFR digits) for its value to be
-/// printed; below that the verified MPFR digits are printed instead.
-const F64_DIGITS_KEPT: u32 = 13;
-
 /// I(ρ, φ) for printing, from the closed form (no quadrature): with `digits` = None,
-/// f64 with the digits on which it agrees with verified MPFR digits (at most 15; f64
-/// is printed when it keeps at least 13, the verified 15 MPFR digits otherwise — also
-/// where I or ρ is beyond the range of f64); with `digits` = Some(N), N verified digits.
+/// f64 with the digits on which it agrees with verified MPFR digits where that suffices
+/// ([`f64_digits_against`]), the verified [`F64_MOST_DIGITS`] MPFR digits otherwise — also
+/// where I or ρ is beyond the range of f64; with `digits` = Some(N), N verified digits.
 pub fn evaluate(
     rho: &str,
     phase: &str,
@@ -161,32 +151,23 @@ pub fn evaluate(
     budget: Duration,
 ) -> Result<PrintedCoefficient, CoefficientError> {
     let Some(digits) = digits else {
-        let verified = verified_coefficient(rho, phase, 15, budget)?;
+        let (verified, reference) = verified_closed_form(rho, phase, F64_MOST_DIGITS, budget)?;
         let binary64 = read_shape::<f64>(rho, phase, Precision::DOUBLE)
             .ok()
             // + 0.0 turns a −0 from the formula into 0.
             .map(|(rho, phase)| closed_form_coefficient(&rho, &phase) + 0.0)
             .filter(|value| value.is_finite() && (*value == 0.0 || value.abs() >= f64::MIN_POSITIVE));
-        if let Some(value) = binary64 {
-            let reference: Float = Float::parse_decimal(&verified.value, Precision::bits(verified.precision_bits))
-                .unwrap_or_else(|_| Float::with_val(verified.precision_bits, 0));
-            let kept = if value == 0.0 && reference.is_zero() {
-                15
-            } else {
-                agreeing_digits(&Float::with_val(verified.precision_bits, value), &reference).min(15)
-            };
-            if kept >= F64_DIGITS_KEPT {
-                return Ok(PrintedCoefficient {
-                    value: value.to_scientific(kept as usize),
-                    digits: kept,
-                    precision_bits: 53,
-                    binary64: Some(value),
-                });
-            }
+        if let Some((value, kept)) = binary64.and_then(|value| Some((value, f64_digits_against(value, &reference)?))) {
+            return Ok(PrintedCoefficient {
+                value: value.to_scientific(kept as usize),
+                digits: kept,
+                precision_bits: 53,
+                binary64: Some(value),
+            });
         }
         return Ok(PrintedCoefficient { binary64, ..verified });
     };
-    verified_coefficient(rho, phase, digits, budget)
+    Ok(verified_closed_form(rho, phase, digits, budget)?.0)
 }
 
 /// I(ρ, φ) to `digits` verified significant digits from the closed form, computed at
@@ -197,39 +178,43 @@ pub fn verified_coefficient(
     digits: u32,
     budget: Duration,
 ) -> Result<PrintedCoefficient, CoefficientError> {
+    Ok(verified_closed_form(rho, phase, digits, budget)?.0)
+}
+
+/// [`verified_coefficient`] with the verified value itself.
+fn verified_closed_form(
+    rho: &str,
+    phase: &str,
+    digits: u32,
+    budget: Duration,
+) -> Result<(PrintedCoefficient, Float), CoefficientError> {
     if digits == 0 || digits > MAX_DIGITS {
         return Err(CoefficientError::DigitsOutOfRange(digits));
     }
-    let started = Instant::now();
     // In phase with ρ ≤ 1 nothing slips; at ρ = 1 this is also the closed form's limit.
     if vanishes_in_phase(rho, phase) {
         let zero = Float::with_val(Precision::decimal_digits(digits).in_bits(), 0);
-        return Ok(PrintedCoefficient {
+        let printed = PrintedCoefficient {
             value: zero.to_scientific(digits as usize),
             digits,
             precision_bits: zero.prec(),
             binary64: Some(0.0),
-        });
+        };
+        return Ok((printed, zero));
     }
-    let verified = verified_values(digits, started + budget, |precision| {
+    let mut verified = verified_values(digits, Instant::now() + budget, |precision| {
         let (rho, phase) = read_shape::<Float>(rho, phase, precision)?;
         Ok(vec![closed_form_coefficient(&rho, &phase)])
     })
-    .map_err(|error| match error {
-        VerifyError::Failed(error) => error,
-        VerifyError::OutOfTime { required, reached } => CoefficientError::Budget {
-            digits,
-            required,
-            reached,
-            seconds: started.elapsed().as_secs_f64(),
-        },
-    })?;
-    Ok(PrintedCoefficient {
-        value: verified.values[0].to_scientific(digits as usize),
+    .map_err(|error| error.into_error(CoefficientError::Budget))?;
+    let value = verified.output.swap_remove(0);
+    let printed = PrintedCoefficient {
+        value: value.to_scientific(digits as usize),
         digits,
         precision_bits: verified.precision.in_bits(),
         binary64: None,
-    })
+    };
+    Ok((printed, value))
 }
 
 #[cfg(test)]
