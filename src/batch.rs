@@ -123,36 +123,12 @@ pub fn case_dissipation(case: &CaseText, digits: Option<u32>, budget: Duration) 
     let change = dissipation(&cycle, &difference, &error_options).map_err(in_f64)?;
     let table_error = (change.total.abs() + change.error_estimate) / half_table_divisor();
     // At least one digit: a table is f64 only, and its W is printed whatever it resolves.
-    let digits_for = |value: f64, error: f64| resolved_digits(value, error).max(1);
-    let total_error = result.error_estimate + table_error;
-    let digits = digits_for(result.total, total_error);
-    let segments = result
-        .segments
-        .named()
-        .iter()
-        .zip(change.segments.named())
-        .map(|((name, value), (_, shift))| {
-            let error = result.error_estimate + (change.error_estimate + shift.abs()) / half_table_divisor();
-            (*name, value.to_scientific(digits_for(**value, error) as usize))
-        })
-        .collect();
+    let digits = resolved_digits(result.total, result.error_estimate + table_error).max(1);
+    let shifts = change.segments.named().map(|(_, shift)| shift.abs());
+    let segment_errors =
+        shifts.map(|shift| result.error_estimate + (change.error_estimate + shift) / half_table_divisor());
     Ok(CaseDissipation {
-        printed: PrintedDissipation {
-            total: result.total.to_scientific(digits as usize),
-            segments,
-            digits,
-            method: result.method,
-            precision_bits: 53,
-            error_estimate: Some(result.error_estimate),
-            fallback: None,
-            binary64: Some([
-                result.total,
-                result.segments.eb,
-                result.segments.bc,
-                result.segments.ch,
-                result.segments.he,
-            ]),
-        },
+        printed: PrintedDissipation::from_f64(&result, digits, segment_errors),
         table: Some(TableEstimate {
             error: table_error,
             smoothing_residual: tables.iter().map(|t| t.smoothing_residual).fold(0.0, f64::max),

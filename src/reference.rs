@@ -64,6 +64,34 @@ pub struct PrintedDissipation {
     pub binary64: Option<[f64; 5]>,
 }
 
+impl PrintedDissipation {
+    /// An f64 result printed: W to `digits`, each segment to the digits its absolute error
+    /// in `segment_errors` (EB, BC, CH, HE) leaves it, at least one.
+    pub fn from_f64(result: &Dissipation<f64>, digits: u32, segment_errors: [f64; 4]) -> Self {
+        let s = &result.segments;
+        PrintedDissipation {
+            total: result.total.to_scientific(digits as usize),
+            segments: s
+                .named()
+                .iter()
+                .zip(segment_errors)
+                .map(|((name, value), error)| {
+                    (
+                        *name,
+                        value.to_scientific(resolved_digits(**value, error).max(1) as usize),
+                    )
+                })
+                .collect(),
+            digits,
+            method: result.method,
+            precision_bits: 53,
+            error_estimate: Some(result.error_estimate),
+            fallback: None,
+            binary64: Some([result.total, s.eb, s.bc, s.ch, s.he]),
+        }
+    }
+}
+
 /// W for printing: with `digits` = Some(N), N verified digits; without, f64 with the
 /// digits its error estimate vouches for (segments to the same absolute accuracy), or
 /// [`F64_MOST_DIGITS`] verified digits where f64 does not suffice
@@ -146,29 +174,11 @@ pub fn printable_dissipation(
             )),
         );
     };
-    // A segment gets the digits the same absolute error leaves it (at least one).
-    let segment_digits = |value: &f64| resolved_digits(*value, result.error_estimate).max(1) as usize;
-    Ok(PrintedDissipation {
-        total: result.total.to_scientific(digits as usize),
-        segments: result
-            .segments
-            .named()
-            .iter()
-            .map(|(name, value)| (*name, value.to_scientific(segment_digits(value))))
-            .collect(),
+    Ok(PrintedDissipation::from_f64(
+        &result,
         digits,
-        method: result.method,
-        precision_bits: 53,
-        error_estimate: Some(result.error_estimate),
-        fallback: None,
-        binary64: Some([
-            result.total,
-            result.segments.eb,
-            result.segments.bc,
-            result.segments.ch,
-            result.segments.he,
-        ]),
-    })
+        [result.error_estimate; 4],
+    ))
 }
 
 /// Interior loads of the cycle at which [`slope_change_differs_from_mpfr`] compares.
