@@ -198,7 +198,7 @@ struct SmallAmplitudeArgs {
     phi: String,
     /// Significant digits, verified by a second run at higher precision (1–1000); without
     /// it, f64 with the digits it shares with 15 verified MPFR digits (those MPFR digits
-    /// where f64 keeps fewer than 13 or I lies outside its range).
+    /// where f64 keeps fewer than 12 or I lies outside its range).
     #[arg(long, allow_hyphen_values = true, value_parser = parse::digits)]
     digits: Option<u32>,
     /// Time budget for verified digits, in seconds (up to 1e6).

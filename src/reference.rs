@@ -385,3 +385,42 @@ pub fn verified_dissipation(
         value: output,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_budget_error_reads_as_before() {
+        let budget = OutOfBudget {
+            digits_requested: 1000,
+            digits_agreed: 1002,
+            seconds: 0.01,
+            precision_bits: 3834,
+        };
+        assert_eq!(
+            ReferenceError::Budget(budget).to_string(),
+            "only 1000 of 1000 digits could be verified within 0.0 s (two precisions must agree to 4 digits more; last attempt at 3834 bits)"
+        );
+    }
+
+    #[test]
+    fn a_closed_form_zero_is_verified_as_exact() {
+        let case = |q1: &str| CaseText {
+            p0: "1".into(),
+            p1: "0.4".into(),
+            q0: "0".into(),
+            q1: q1.into(),
+            phi: "0.4pi".into(),
+            friction: "1".into(),
+            lambda: Some("1".into()),
+            nu: None,
+            compliance: "persson:gamma=1,sigma=1".into(),
+        };
+        let zero = verified_dissipation(&case("0"), 20, Duration::from_secs(30)).unwrap();
+        assert_eq!(zero.method, Method::NoTangentialOscillation);
+        assert_eq!(zero.total, "0.0000000000000000000e0");
+        let w = verified_dissipation(&case("0.5"), 20, Duration::from_secs(30)).unwrap();
+        assert_eq!(w.total, "4.0624757924582385709e-1");
+    }
+}

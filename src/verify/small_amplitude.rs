@@ -245,6 +245,33 @@ mod tests {
     }
 
     #[test]
+    fn every_printed_f64_digit_is_a_verified_digit() {
+        // f64 −7.621618987768808 agrees with I = −7.6216189877688040355… to 15 digits, but its
+        // 15th digit rounds to 1 where I's rounds to 0: 14 digits are printed.
+        let printed = evaluate("2", "0.7", None, Duration::from_secs(30)).unwrap();
+        assert_eq!(
+            (printed.value.as_str(), printed.precision_bits),
+            ("-7.6216189877688e0", 53)
+        );
+        let verified = verified_coefficient("2", "0.7", 20, Duration::from_secs(30)).unwrap();
+        assert_eq!(verified.value, "-7.6216189877688040355e0");
+    }
+
+    #[test]
+    fn the_budget_error_reads_as_before() {
+        let budget = OutOfBudget {
+            digits_requested: 1000,
+            digits_agreed: 998,
+            seconds: 0.04,
+            precision_bits: 3834,
+        };
+        assert_eq!(
+            CoefficientError::Budget(budget).to_string(),
+            "only 998 of the 1004 digits of I needed (1000 asked for and 4 guard digits) agreed between two precisions within 0.0 s; ask for fewer digits"
+        );
+    }
+
+    #[test]
     fn verified_digits_survive_cancellation() {
         let thin = verified_coefficient("0.5", "1e-6", 30, Duration::from_secs(30)).unwrap();
         assert!(thin.value.starts_with("-1.33333333333155555555555"), "{thin:?}");
