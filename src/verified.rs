@@ -320,8 +320,9 @@ mod tests {
         assert_eq!(agreeing_digits(&at(p, "-2"), &at(p, "2")), 0);
         assert_eq!(agreeing_digits(&at(p, "3.5"), &at(p, "3.5")), u32::MAX);
         let zero = Float::with_val(64, 0);
-        assert_eq!(agreement(&[zero.clone()], &[zero.clone()], false), 0);
-        assert_eq!(agreement(&[zero.clone()], &[zero.clone()], true), u32::MAX);
+        let zeros = [zero.clone()];
+        assert_eq!(agreement(&zeros, &zeros, false), 0);
+        assert_eq!(agreement(&zeros, &zeros, true), u32::MAX);
         let (first, second) = ([at(p, "1"), at(p, "5")], [at(p, "1.002"), at(p, "5")]);
         assert_eq!(agreement(&first, &second, false), 2);
     }
