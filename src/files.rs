@@ -36,6 +36,23 @@ pub enum OutputError {
     Content { path: String, message: String },
 }
 
+/// The CSV text of a header and rows, quoted where a cell needs it (by the csv crate).
+pub fn csv_text<Row, Cell>(header: &[&str], rows: impl IntoIterator<Item = Row>) -> Result<String, csv::Error>
+where
+    Row: IntoIterator<Item = Cell>,
+    Cell: AsRef<[u8]>,
+{
+    let mut writer = csv::Writer::from_writer(Vec::new());
+    writer.write_record(header)?;
+    for row in rows {
+        writer.write_record(row)?;
+    }
+    let bytes = writer
+        .into_inner()
+        .map_err(|error| csv::Error::from(error.into_error()))?;
+    Ok(String::from_utf8_lossy(&bytes).into_owned())
+}
+
 /// The directory a file goes in (`.` for a bare file name).
 fn directory_of(path: &Path) -> PathBuf {
     match path.parent() {

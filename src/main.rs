@@ -23,7 +23,7 @@ use microslip::catalogue;
 use microslip::dissipation::{dissipation, DissipationError, Method, Options};
 use microslip::files::{check_writable, write_atomically, write_text_atomically};
 use microslip::inputs::{Case, CaseText};
-use microslip::plot::{check_drawing, plot_accuracy, plot_cycle, PLOT_EXTENSIONS};
+use microslip::plot::{plot_accuracy, plot_cycle, PLOT_EXTENSIONS};
 use microslip::real::{Precision, Real};
 use microslip::reference::ReferenceError;
 use microslip::simulate::{loop_csv, simulate, SimulationError, SimulationOptions, SimulationResult};
@@ -450,7 +450,6 @@ fn run_simulate(args: &SimulateArgs) -> Result<String, Failure> {
     }
     if let Some(path) = &args.plot {
         check_writable(path, &PLOT_EXTENSIONS)?;
-        check_drawing()?;
     }
     if let (Some(csv), Some(plot)) = (&args.loop_csv, &args.plot) {
         if same_file(csv, plot) {
@@ -477,7 +476,8 @@ fn run_simulate(args: &SimulateArgs) -> Result<String, Failure> {
     let lost =
         |error: &dyn std::fmt::Display| Failure::failed(format!("{error} (the simulation's W = {w} is not lost)"));
     if let Some(path) = &args.loop_csv {
-        write_text_atomically(path, &loop_csv(&result)).map_err(|e| lost(&e))?;
+        let text = loop_csv(&result).map_err(|e| lost(&e))?;
+        write_text_atomically(path, &text).map_err(|e| lost(&e))?;
     }
     if let Some(path) = &args.plot {
         plot_cycle(path, &cycle, &result).map_err(|e| lost(&e))?;
@@ -536,7 +536,6 @@ fn run_accuracy(args: &AccuracyArgs) -> Result<String, Failure> {
     for path in [&csv, &svg, &png] {
         check_writable(path, &[])?;
     }
-    check_drawing()?;
     let cases = accuracy::standard_cases(args.quick);
     let progress = Progress::new(cases.len());
     let mut measurements = Vec::new();
@@ -555,8 +554,9 @@ fn run_accuracy(args: &AccuracyArgs) -> Result<String, Failure> {
         }));
     }
     progress.finish();
-    let written = write_text_atomically(&csv, &accuracy::to_csv(&measurements))
+    let written = accuracy::to_csv(&measurements)
         .map_err(|e| e.to_string())
+        .and_then(|text| write_text_atomically(&csv, &text).map_err(|e| e.to_string()))
         .and_then(|()| plot_accuracy(&svg, &measurements).map_err(|e| e.to_string()))
         .and_then(|()| plot_accuracy(&png, &measurements).map_err(|e| e.to_string()));
     written.map_err(Failure::failed)?;
@@ -605,15 +605,11 @@ fn run_verify(args: &VerifyArgs) -> Result<(String, bool), Failure> {
         quick: args.quick,
     };
     let started = Instant::now();
-    let mut progress: Option<Progress> = None;
+    let progress = Progress::new(0);
     let reports = verify::run(options, |done, total, name| {
-        progress
-            .get_or_insert_with(|| Progress::new(total))
-            .at(done, &format!("{name} done"));
+        progress.at_of(done, total, &format!("{name} done"));
     });
-    if let Some(progress) = &progress {
-        progress.finish();
-    }
+    progress.finish();
     let passed = reports.iter().all(|r| r.passed);
     let seconds = started.elapsed().as_secs_f64();
     if args.json {
@@ -788,17 +784,11 @@ fn run_table() -> Result<String, Failure> {
 }
 
 fn run_figures(args: &FiguresArgs) -> Result<String, Failure> {
-    let bar = indicatif::ProgressBar::new(0).with_style(
-        indicatif::ProgressStyle::with_template("{bar:40} {pos}/{len} steps  {elapsed}")
-            .unwrap_or_else(|_| indicatif::ProgressStyle::default_bar()),
-    );
-    let summary = microslip::figures::regenerate(&args.out, &|done, total| {
-        bar.set_length(total as u64);
-        bar.set_position(done as u64);
-    });
-    bar.finish_and_clear();
+    let progress = Progress::new(0);
+    let summary = microslip::figures::regenerate(&args.out, &|done, total| progress.at_of(done, total, "steps"));
+    progress.finish();
     let summary = summary?;
-    let facts = microslip::figures::output::facts_json(&summary.figures.facts);
+    let facts = microslip::figures::output::FactsJson::of(&summary.figures.facts);
     Ok(format!(
         "{} files written to {}\n{}\n{}",
         summary.files.len(),
@@ -829,7 +819,7 @@ fn run_batch(args: &BatchArgs) -> Result<usize, Failure> {
     });
     progress.finish();
     let contents = match args.format.as_str() {
-        "jsonl" => batch::to_jsonl(&input, &results),
+        "jsonl" => cli::json::lines(&batch::records(&input, &results))?,
         _ => batch::to_csv(&input, &results)?,
     };
     if args.output == "-" {
