@@ -8,7 +8,7 @@
 //!
 //! The default feature `cli` adds the tools around the library: the plots
 //! ([`plot`], [`figures`]), the accuracy benchmark ([`accuracy`]) and the catalogue
-//! of reference values ([`catalogue`]). Without it (`--no-default-features`) the
+//! of reference values ([`catalogue`]). Built without it (no default features) the
 //! library needs no argument parser, plotting, progress display or JSON text.
 
 #[cfg(feature = "cli")]
