@@ -455,3 +455,30 @@ pub fn records<'a>(input: &'a BatchInput, results: &'a [RowResult]) -> Vec<Batch
         })
         .collect()
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_record_echoes_the_inputs_and_gives_absent_results_as_null() {
+        let text = "id,p0,p1,q1,phi,friction,lambda,compliance,W\n\
+                    a,1,0.4,0.5,0.4pi,1,1,\"persson:gamma=1,sigma=1\",old\n\
+                    b,1,0.4,5,0.4pi,1,1,\"persson:gamma=1,sigma=1\",old\n";
+        let input = read_input(text.as_bytes()).unwrap();
+        let results = run(&input, None, Duration::from_secs(10), &|| {});
+        let lines: Vec<serde_json::Value> = records(&input, &results)
+            .iter()
+            .map(|record| serde_json::to_value(record).unwrap())
+            .collect();
+        // The input's own W column is not echoed: the result's W takes its place.
+        assert_eq!(lines[0]["W"], "4.062475792458e-1");
+        assert_eq!(lines[0]["id"], "a");
+        assert_eq!(lines[0]["compliance"], "persson:gamma=1,sigma=1");
+        assert_eq!(lines[0]["digits"], 13);
+        assert!(lines[0]["error"].is_null() && lines[0]["table_error"].is_null());
+        assert!(lines[1]["W"].is_null() && lines[1]["method"].is_null());
+        assert!(lines[1]["error"].as_str().unwrap().contains("gross slip"));
+        assert_eq!(lines[0].as_object().unwrap().len(), 14);
+    }
+}

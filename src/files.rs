@@ -193,4 +193,14 @@ mod tests {
         assert_eq!(std::fs::read_dir(&directory).unwrap().count(), 0);
         std::fs::remove_dir_all(&directory).unwrap();
     }
+
+    #[test]
+    fn csv_text_quotes_only_the_cells_that_need_it() {
+        let rows = [["1.5e-3", "persson:gamma=1,sigma=1", ""], ["-2", "say \"hi\"", "x"]];
+        let text = csv_text(&["a", "b", "c"], rows).unwrap();
+        assert_eq!(
+            text,
+            "a,b,c\n1.5e-3,\"persson:gamma=1,sigma=1\",\n-2,\"say \"\"hi\"\"\",x\n"
+        );
+    }
 }

@@ -313,3 +313,14 @@ where
     root.present()?;
     Ok(())
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_built_in_font_is_a_truetype_font_the_drawing_library_accepts() {
+        assert_eq!(FONT[..4], [0, 1, 0, 0], "TrueType version 1.0 header");
+        assert!(register_font().is_ok());
+    }
+}
