@@ -6,9 +6,9 @@
 //! cycle and its ellipse), [`dissipation`] (W over the four segments, and the
 //! closed forms).
 //!
-//! The default feature `cli` adds the tools around the library: the plots
-//! ([`plot`], [`figures`]), the accuracy benchmark ([`accuracy`]) and the catalogue
-//! of reference values ([`catalogue`]). Built without it (no default features) the
+//! The default feature `cli` adds the tools around the library: the plots (`plot`,
+//! `figures`), the accuracy benchmark (`accuracy`) and the catalogue of reference
+//! values (`catalogue`). Built without it (no default features) the
 //! library needs no argument parser, plotting, progress display or JSON text.
 
 #[cfg(feature = "cli")]
