@@ -10,7 +10,6 @@ command -v m4 >/dev/null 2>&1 || need_packages="$need_packages m4"
 command -v cc >/dev/null 2>&1 || need_packages="$need_packages gcc libc6-dev"
 command -v make >/dev/null 2>&1 || need_packages="$need_packages make"
 command -v cargo >/dev/null 2>&1 || [ -x "$HOME/.cargo/bin/cargo" ] || need_packages="$need_packages curl ca-certificates"
-[ -f /usr/share/fonts/truetype/dejavu/DejaVuSans.ttf ] || need_packages="$need_packages fonts-dejavu-core"
 if [ -n "$need_packages" ]; then
     echo "installing:$need_packages" >&2
     apt-get update -qq
@@ -31,6 +30,8 @@ case "${1:-}" in
     test)
         cargo test --release
         cargo run --release --quiet -- verify --quick
+        # The library alone, without the command line's dependencies.
+        cargo build --release --quiet --lib --no-default-features
         ;;
     *)
         echo "usage: sh scripts/run.sh main|test" >&2

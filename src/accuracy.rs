@@ -14,6 +14,7 @@ use rug::Float;
 use serde::Serialize;
 
 use crate::dissipation::{Integral, SegmentIntegrands};
+use crate::files::csv_text;
 use crate::inputs::{Case, CaseText};
 use crate::quad::{gauss_legendre, tanh_sinh};
 use crate::real::{Precision, Real};
@@ -331,13 +332,26 @@ pub fn cheapest_for(measurements: &[Measurement], target: f64) -> Option<&Measur
 }
 
 /// The CSV text: rule,precision_bits,parameter,evaluations,seconds,rel_error,case.
-pub fn to_csv(measurements: &[Measurement]) -> String {
-    let mut text = String::from("rule,precision_bits,parameter,evaluations,seconds,rel_error,case\n");
-    for m in measurements {
-        text.push_str(&format!(
-            "{},{},{},{},{:.6e},{:.3e},{}\n",
-            m.rule, m.precision_bits, m.parameter, m.evaluations, m.seconds, m.rel_error, m.case
-        ));
-    }
-    text
+pub fn to_csv(measurements: &[Measurement]) -> Result<String, csv::Error> {
+    let header = [
+        "rule",
+        "precision_bits",
+        "parameter",
+        "evaluations",
+        "seconds",
+        "rel_error",
+        "case",
+    ];
+    let rows = measurements.iter().map(|m| {
+        [
+            m.rule.to_string(),
+            m.precision_bits.to_string(),
+            m.parameter.to_string(),
+            m.evaluations.to_string(),
+            format!("{:.6e}", m.seconds),
+            format!("{:.3e}", m.rel_error),
+            m.case.clone(),
+        ]
+    });
+    csv_text(&header, rows)
 }

@@ -5,12 +5,14 @@
 //! [`printable_dissipation`] gives them, and for a compliance from a table the f64
 //! value with the error the table introduces beside the quadrature's.
 
+use std::collections::BTreeMap;
 use std::io::Read;
 use std::time::Duration;
 
 use std::sync::Arc;
 
 use rayon::prelude::*;
+use serde::Serialize;
 
 use crate::compliance::{
     parse_spec_with, tables_in_spec, ComplianceTable, Difference, TableError, TableInterpolant, TABLE_ORDER,
@@ -386,25 +388,67 @@ pub fn to_csv(input: &BatchInput, results: &[RowResult]) -> Result<Vec<u8>, Batc
     writer.into_inner().map_err(|e| BatchError::Input(e.to_string()))
 }
 
-/// The results as JSON lines: one object per row with the input columns (as text) and
-/// the result fields (null where absent).
-pub fn to_jsonl(input: &BatchInput, results: &[RowResult]) -> Vec<u8> {
+/// One output row of a batch as a JSON object: the echoed input columns (as text,
+/// the last of equally named ones kept) and the result fields (null where absent).
+#[derive(Debug, Serialize)]
+pub struct BatchRecord<'a> {
+    #[serde(flatten)]
+    pub inputs: BTreeMap<&'a str, &'a str>,
+    #[serde(rename = "W")]
+    pub w: Option<&'a str>,
+    pub digits: Option<u32>,
+    pub error_estimate: Option<f64>,
+    pub table_error: Option<f64>,
+    pub method: Option<&'a str>,
+    pub error: Option<&'a str>,
+}
+
+/// The results as records, one per row in input order (the JSON lines output).
+pub fn records<'a>(input: &'a BatchInput, results: &'a [RowResult]) -> Vec<BatchRecord<'a>> {
     let keep = echoed(input);
-    let mut out = Vec::new();
-    for (row, result) in input.rows.iter().zip(results) {
-        let mut object = serde_json::Map::new();
-        for &i in &keep {
-            object.insert(input.header[i].clone(), row.cells[i].clone().into());
-        }
-        let text = |s: &str| (!s.is_empty()).then(|| s.to_string());
-        object.insert("W".into(), text(&result.total).into());
-        object.insert("digits".into(), result.digits.into());
-        object.insert("error_estimate".into(), result.error_estimate.into());
-        object.insert("table_error".into(), result.table_error.into());
-        object.insert("method".into(), text(&result.method).into());
-        object.insert("error".into(), text(&result.error).into());
-        out.extend(serde_json::Value::Object(object).to_string().into_bytes());
-        out.push(b'\n');
+    let text = |s: &'a str| (!s.is_empty()).then_some(s);
+    input
+        .rows
+        .iter()
+        .zip(results)
+        .map(|(row, result)| BatchRecord {
+            inputs: keep
+                .iter()
+                .map(|&i| (input.header[i].as_str(), row.cells[i].as_str()))
+                .collect(),
+            w: text(&result.total),
+            digits: result.digits,
+            error_estimate: result.error_estimate,
+            table_error: result.table_error,
+            method: text(&result.method),
+            error: text(&result.error),
+        })
+        .collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_record_echoes_the_inputs_and_gives_absent_results_as_null() {
+        let text = "id,p0,p1,q1,phi,friction,lambda,compliance,W\n\
+                    a,1,0.4,0.5,0.4pi,1,1,\"persson:gamma=1,sigma=1\",old\n\
+                    b,1,0.4,5,0.4pi,1,1,\"persson:gamma=1,sigma=1\",old\n";
+        let input = read_input(text.as_bytes()).unwrap();
+        let results = run(&input, None, Duration::from_secs(10), &|| {});
+        let lines: Vec<serde_json::Value> = records(&input, &results)
+            .iter()
+            .map(|record| serde_json::to_value(record).unwrap())
+            .collect();
+        // The input's own W column is not echoed: the result's W takes its place.
+        assert_eq!(lines[0]["W"], "4.062475792458e-1");
+        assert_eq!(lines[0]["id"], "a");
+        assert_eq!(lines[0]["compliance"], "persson:gamma=1,sigma=1");
+        assert_eq!(lines[0]["digits"], 13);
+        assert!(lines[0]["error"].is_null() && lines[0]["table_error"].is_null());
+        assert!(lines[1]["W"].is_null() && lines[1]["method"].is_null());
+        assert!(lines[1]["error"].as_str().unwrap().contains("gross slip"));
+        assert_eq!(lines[0].as_object().unwrap().len(), 14);
     }
-    out
 }

@@ -36,6 +36,23 @@ pub enum OutputError {
     Content { path: String, message: String },
 }
 
+/// The CSV text of a header and rows, quoted where a cell needs it (by the csv crate).
+pub fn csv_text<Row, Cell>(header: &[&str], rows: impl IntoIterator<Item = Row>) -> Result<String, csv::Error>
+where
+    Row: IntoIterator<Item = Cell>,
+    Cell: AsRef<[u8]>,
+{
+    let mut writer = csv::Writer::from_writer(Vec::new());
+    writer.write_record(header)?;
+    for row in rows {
+        writer.write_record(row)?;
+    }
+    let bytes = writer
+        .into_inner()
+        .map_err(|error| csv::Error::from(error.into_error()))?;
+    Ok(String::from_utf8_lossy(&bytes).into_owned())
+}
+
 /// The directory a file goes in (`.` for a bare file name).
 fn directory_of(path: &Path) -> PathBuf {
     match path.parent() {
@@ -175,5 +192,15 @@ mod tests {
         ));
         assert_eq!(std::fs::read_dir(&directory).unwrap().count(), 0);
         std::fs::remove_dir_all(&directory).unwrap();
+    }
+
+    #[test]
+    fn csv_text_quotes_only_the_cells_that_need_it() {
+        let rows = [["1.5e-3", "persson:gamma=1,sigma=1", ""], ["-2", "say \"hi\"", "x"]];
+        let text = csv_text(&["a", "b", "c"], rows).unwrap();
+        assert_eq!(
+            text,
+            "a,b,c\n1.5e-3,\"persson:gamma=1,sigma=1\",\n-2,\"say \"\"hi\"\"\",x\n"
+        );
     }
 }

@@ -5,17 +5,26 @@
 //! [`compliance`] (the contact's normal compliance v(P)), [`cycle`] (the load
 //! cycle and its ellipse), [`dissipation`] (W over the four segments, and the
 //! closed forms).
+//!
+//! The default feature `cli` adds the tools around the library: the plots (`plot`,
+//! `figures`), the accuracy benchmark (`accuracy`) and the catalogue of reference
+//! values (`catalogue`). Built without it (no default features) the
+//! library needs no argument parser, plotting, progress display or JSON text.
 
+#[cfg(feature = "cli")]
 pub mod accuracy;
 pub mod batch;
+#[cfg(feature = "cli")]
 pub mod catalogue;
 pub mod compliance;
 pub mod cycle;
 pub mod dissipation;
 pub mod exact;
+#[cfg(feature = "cli")]
 pub mod figures;
 pub mod files;
 pub mod inputs;
+#[cfg(feature = "cli")]
 pub mod plot;
 pub mod quad;
 pub mod real;

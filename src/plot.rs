@@ -1,8 +1,9 @@
 //! Pictures of a simulated cycle: the load ellipse in the (P, Q) plane with the
 //! friction wedge |Q| = fP and the points B, C, H, E, beside the Q–u hysteresis
 //! loop with its four segments coloured. SVG or PNG by the file name's extension
-//! (others are refused); files are written atomically. Text needs the DejaVu Sans
-//! font (Debian package fonts-dejavu-core).
+//! (others are refused); files are written atomically. Text is laid out with the
+//! DejaVu Sans font built into the program (assets/, with its license), so plots do
+//! not depend on the fonts installed.
 
 use std::path::Path;
 
@@ -13,8 +14,9 @@ use crate::cycle::LoadCycle;
 use crate::files::OutputError;
 use crate::simulate::SimulationResult;
 
-/// The font text is drawn and measured with (plotters lays out text only with a registered font).
-const FONT: &str = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
+/// The font text is drawn and measured with (plotters lays out text only with a
+/// registered font); an SVG names its family, `sans-serif`.
+const FONT: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
 
 /// Why a picture could not be drawn.
 #[derive(Debug, thiserror::Error)]
@@ -22,9 +24,9 @@ pub enum PlotError {
     /// The cycle is outside the theory.
     #[error(transparent)]
     Cycle(#[from] crate::cycle::CycleError),
-    /// Text needs a font file.
-    #[error("plots need the font {FONT} (apt-get install fonts-dejavu-core)")]
-    FontMissing,
+    /// The built-in font was not accepted by the drawing library.
+    #[error("the built-in plot font cannot be read")]
+    Font,
     /// The file could not be written, or has an extension other than .svg or .png.
     #[error(transparent)]
     Output(#[from] OutputError),
@@ -34,7 +36,7 @@ pub enum PlotError {
 pub const PLOT_EXTENSIONS: [&str; 2] = ["svg", "png"];
 
 /// Draws into `path` atomically, as PNG or SVG by its extension (any other refused, the
-/// font checked first): `$draw(root, args…)` with `$draw` generic over the plotters backend,
+/// font registered first): `$draw(root, args…)` with `$draw` generic over the plotters backend,
 /// so that one expansion serves both. Evaluates to `Result<(), PlotError>`.
 macro_rules! write_picture {
     ($path:expr, $size:expr, $draw:ident($($arg:expr),*)) => {{
@@ -148,25 +150,15 @@ pub fn plot_cycle(path: &Path, cycle: &LoadCycle<f64>, result: &SimulationResult
     write_picture!(path, (1200, 520), draw(&scene))
 }
 
-/// Checks that plots can be drawn (the font is there), before anything is computed.
-pub fn check_drawing() -> Result<(), PlotError> {
-    register_font()
-}
-
 /// Registers the font once per process: text layout needs its metrics in SVG too.
 pub(crate) fn register_font() -> Result<(), PlotError> {
     static REGISTERED: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
-    let registered = REGISTERED.get_or_init(|| {
-        let Ok(font) = std::fs::read(FONT) else {
-            return false;
-        };
-        let font: &'static [u8] = Box::leak(font.into_boxed_slice());
-        plotters::style::register_font("sans-serif", FontStyle::Normal, font).is_ok()
-    });
+    let registered =
+        REGISTERED.get_or_init(|| plotters::style::register_font("sans-serif", FontStyle::Normal, FONT).is_ok());
     if *registered {
         Ok(())
     } else {
-        Err(PlotError::FontMissing)
+        Err(PlotError::Font)
     }
 }
 
@@ -320,4 +312,15 @@ where
         .draw()?;
     root.present()?;
     Ok(())
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_built_in_font_is_a_truetype_font_the_drawing_library_accepts() {
+        assert_eq!(FONT[..4], [0, 1, 0, 0], "TrueType version 1.0 header");
+        assert!(register_font().is_ok());
+    }
 }

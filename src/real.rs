@@ -158,7 +158,22 @@ pub trait Real:
     }
 }
 
+/// The one-argument functions both types provide under the same name.
+macro_rules! elementary_functions {
+    (f64: $($name:ident),*) => {
+        $(fn $name(&self) -> Self {
+            f64::$name(*self)
+        })*
+    };
+    (Float: $($name:ident),*) => {
+        $(fn $name(&self) -> Self {
+            self.clone().$name()
+        })*
+    };
+}
+
 impl Real for f64 {
+    elementary_functions!(f64: sqrt, cbrt, ln, ln_1p, exp, exp_m1, sin, cos, abs, floor);
     fn precision(&self) -> Precision {
         Precision::DOUBLE
     }
@@ -185,50 +200,20 @@ impl Real for f64 {
     fn smallest_full_precision(_: Precision) -> Self {
         f64::MIN_POSITIVE / f64::EPSILON
     }
-    fn sqrt(&self) -> Self {
-        f64::sqrt(*self)
-    }
-    fn cbrt(&self) -> Self {
-        f64::cbrt(*self)
-    }
-    fn ln(&self) -> Self {
-        f64::ln(*self)
-    }
-    fn ln_1p(&self) -> Self {
-        f64::ln_1p(*self)
-    }
-    fn exp(&self) -> Self {
-        f64::exp(*self)
-    }
-    fn exp_m1(&self) -> Self {
-        f64::exp_m1(*self)
-    }
     fn powr(&self, exponent: &Self) -> Self {
         f64::powf(*self, *exponent)
     }
     fn powi(&self, exponent: i32) -> Self {
         f64::powi(*self, exponent)
     }
-    fn sin(&self) -> Self {
-        f64::sin(*self)
-    }
     fn sin_cos(&self) -> (Self, Self) {
         f64::sin_cos(*self)
-    }
-    fn cos(&self) -> Self {
-        f64::cos(*self)
     }
     fn atan2(&self, x: &Self) -> Self {
         f64::atan2(*self, *x)
     }
     fn hypot(&self, other: &Self) -> Self {
         f64::hypot(*self, *other)
-    }
-    fn abs(&self) -> Self {
-        f64::abs(*self)
-    }
-    fn floor(&self) -> Self {
-        f64::floor(*self)
     }
     fn is_finite(&self) -> bool {
         f64::is_finite(*self)
@@ -239,6 +224,7 @@ impl Real for f64 {
 }
 
 impl Real for Float {
+    elementary_functions!(Float: sqrt, cbrt, ln, ln_1p, exp, exp_m1, sin, cos, abs, floor);
     fn precision(&self) -> Precision {
         Precision::bits(self.prec())
     }
@@ -275,50 +261,20 @@ impl Real for Float {
         // MPFR has no subnormals; its exponent range reaches far below anything physical.
         Float::with_val(precision.in_bits(), 1) >> (1u32 << 28)
     }
-    fn sqrt(&self) -> Self {
-        self.clone().sqrt()
-    }
-    fn cbrt(&self) -> Self {
-        self.clone().cbrt()
-    }
-    fn ln(&self) -> Self {
-        self.clone().ln()
-    }
-    fn ln_1p(&self) -> Self {
-        self.clone().ln_1p()
-    }
-    fn exp(&self) -> Self {
-        self.clone().exp()
-    }
-    fn exp_m1(&self) -> Self {
-        self.clone().exp_m1()
-    }
     fn powr(&self, exponent: &Self) -> Self {
         self.clone().pow(exponent)
     }
     fn powi(&self, exponent: i32) -> Self {
         self.clone().pow(exponent)
     }
-    fn sin(&self) -> Self {
-        self.clone().sin()
-    }
     fn sin_cos(&self) -> (Self, Self) {
         self.clone().sin_cos(Float::new(self.prec()))
-    }
-    fn cos(&self) -> Self {
-        self.clone().cos()
     }
     fn atan2(&self, x: &Self) -> Self {
         self.clone().atan2(x)
     }
     fn hypot(&self, other: &Self) -> Self {
         self.clone().hypot(other)
-    }
-    fn abs(&self) -> Self {
-        self.clone().abs()
-    }
-    fn floor(&self) -> Self {
-        self.clone().floor()
     }
     fn is_finite(&self) -> bool {
         Float::is_finite(self)

@@ -746,15 +746,12 @@ fn simulate_at(
 }
 
 /// The steady loop as CSV: a header `theta,P,Q,u`, then one line per sample.
-pub fn loop_csv(result: &SimulationResult) -> String {
-    let mut text = String::from("theta,P,Q,u\n");
-    for s in &result.steady_loop {
-        text.push_str(&format!(
-            "{},{},{},{}\n",
-            s.theta, s.normal_load, s.tangential_load, s.displacement
-        ));
-    }
-    text
+pub fn loop_csv(result: &SimulationResult) -> Result<String, csv::Error> {
+    let rows = result
+        .steady_loop
+        .iter()
+        .map(|s| [s.theta, s.normal_load, s.tangential_load, s.displacement].map(|value| value.to_string()));
+    crate::files::csv_text(&["theta", "P", "Q", "u"], rows)
 }
 
 #[cfg(test)]

@@ -169,3 +169,13 @@ pub struct PartialSumsReport<'a> {
     pub digits_verified: u32,
     pub inputs: &'a CaseText,
 }
+
+/// JSON lines: one object per record, each on a line of its own.
+pub fn lines<T: Serialize>(records: &[T]) -> Result<Vec<u8>, serde_json::Error> {
+    let mut out = Vec::new();
+    for record in records {
+        serde_json::to_writer(&mut out, record)?;
+        out.push(b'\n');
+    }
+    Ok(out)
+}

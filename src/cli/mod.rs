@@ -1,8 +1,21 @@
-//! Helpers of the command line: argument parsers shared by every subcommand, the
-//! typed JSON reports, progress bars, and how results and failures reach the terminal.
+//! The command line's subcommands, one file each (its flags and its run: parse, call
+//! the library, print), and their helpers: argument parsers and the shared flags, the
+//! typed JSON reports, the progress display, the time budget, and how results and
+//! failures reach the terminal.
 
+pub mod accuracy;
+pub mod batch;
 pub mod budget;
+pub mod case;
+pub mod dissipation;
+pub mod figures;
 pub mod json;
 pub mod parse;
 pub mod progress;
+pub mod reference;
 pub mod report;
+pub mod series;
+pub mod simulate;
+pub mod small_amplitude;
+pub mod table;
+pub mod verify;

@@ -1,5 +1,5 @@
-//! Progress of the long runs (verify, accuracy, reference) on standard error, drawn
-//! only when standard error is a terminal.
+//! Progress of the long runs (verify, accuracy, reference, figures, batch) on standard
+//! error, drawn only when standard error is a terminal: the one progress display.
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
@@ -19,6 +19,12 @@ impl Progress {
     pub fn at(&self, done: usize, message: &str) {
         self.0.set_position(done as u64);
         self.0.set_message(message.to_string());
+    }
+
+    /// Step `done` of `total` is now `message`, for work that learns its total as it goes.
+    pub fn at_of(&self, done: usize, total: usize, message: &str) {
+        self.0.set_length(total as u64);
+        self.at(done, message);
     }
 
     /// Removes the bar.

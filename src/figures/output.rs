@@ -6,12 +6,13 @@
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
-use serde_json::{json, Map, Value};
+use serde::Serialize;
 
 use super::draw::draw_figure;
 use super::evaluate::LimitSlope;
 use super::sweeps::{compute, step_count, Facts, Figures, SweepError, FIG8_PHASES};
 use super::{Figure, Progress};
+use crate::files::csv_text;
 use crate::plot::PlotError;
 
 /// Why the figures could not be written.
@@ -62,7 +63,7 @@ pub fn regenerate(directory: &Path, report: &(dyn Fn(usize, usize) + Sync)) -> R
     write_atomically(&slopes, &limit_slopes_csv(&figures.facts)?)?;
     files.push(slopes);
     let facts = directory.join("facts.json");
-    let text = serde_json::to_string_pretty(&facts_json(&figures.facts)).map_err(|e| write_error(&facts, e))?;
+    let text = serde_json::to_string_pretty(&FactsJson::of(&figures.facts)).map_err(|e| write_error(&facts, e))?;
     write_atomically(&facts, format!("{text}\n").as_bytes())?;
     files.push(facts);
     Ok(Summary { files, figures })
@@ -92,8 +93,6 @@ fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), FiguresError> {
 /// One row per sample: panel, curve, abscissa, Ŵ, the precision used, and on the end
 /// sample of a curve that stops at gross slip the abscissa of the limit.
 pub fn figure_csv(figure: &Figure) -> Result<Vec<u8>, FiguresError> {
-    let path = format!("fig{}.csv", figure.number);
-    let mut writer = csv::Writer::from_writer(Vec::new());
     let header = [
         "panel",
         figure.curve_column,
@@ -102,9 +101,7 @@ pub fn figure_csv(figure: &Figure) -> Result<Vec<u8>, FiguresError> {
         "precision_bits",
         "gross_slip_limit",
     ];
-    writer
-        .write_record(header)
-        .map_err(|e| write_error(Path::new(&path), e))?;
+    let mut rows = Vec::new();
     for panel in &figure.panels {
         for curve in &panel.curves {
             let last = curve.samples.len().saturating_sub(1);
@@ -121,38 +118,34 @@ pub fn figure_csv(figure: &Figure) -> Result<Vec<u8>, FiguresError> {
                 } else {
                     String::new()
                 };
-                let record = [
+                rows.push([
                     panel.name.clone(),
                     curve.key.clone(),
                     format!("{x:.10e}"),
                     format!("{w:.12e}"),
                     bits.to_string(),
                     limit,
-                ];
-                writer
-                    .write_record(&record)
-                    .map_err(|e| write_error(Path::new(&path), e))?;
+                ]);
             }
         }
     }
-    writer.into_inner().map_err(|e| write_error(Path::new(&path), e))
+    let path = format!("fig{}.csv", figure.number);
+    csv_text(&header, rows)
+        .map(String::into_bytes)
+        .map_err(|e| write_error(Path::new(&path), e))
 }
 
 /// Every local slope of every limit sequence, with where each settled.
 fn limit_slopes_csv(facts: &Facts) -> Result<Vec<u8>, FiguresError> {
-    let path = Path::new("limit_slopes.csv");
-    let mut writer = csv::Writer::from_writer(Vec::new());
-    writer
-        .write_record([
-            "figure",
-            "phi_over_pi",
-            "curve",
-            "Q1_hat",
-            "local_slope",
-            "precision_bits",
-            "settled",
-        ])
-        .map_err(|e| write_error(path, e))?;
+    let header = [
+        "figure",
+        "phi_over_pi",
+        "curve",
+        "Q1_hat",
+        "local_slope",
+        "precision_bits",
+        "settled",
+    ];
     let mut sequences: Vec<(&str, f64, &BTreeMap<String, LimitSlope>)> = vec![
         ("6 (P1_hat/Q1_hat)", 0.0, &facts.fig6_small_amplitude_slope),
         ("7 (P1_hat/Q1_hat)", 0.5, &facts.fig7_small_amplitude_slope),
@@ -160,6 +153,7 @@ fn limit_slopes_csv(facts: &Facts) -> Result<Vec<u8>, FiguresError> {
     for (phase, map) in FIG8_PHASES.iter().zip(&facts.fig8_limit_slope) {
         sequences.push(("8 (P1_hat)", *phase, map));
     }
+    let mut rows = Vec::new();
     for (figure, phase, map) in sequences {
         for (curve, limit) in map {
             for sample in &limit.samples {
@@ -168,62 +162,64 @@ fn limit_slopes_csv(facts: &Facts) -> Result<Vec<u8>, FiguresError> {
                 } else {
                     String::new()
                 };
-                writer
-                    .write_record([
-                        figure.to_string(),
-                        phase.to_string(),
-                        curve.clone(),
-                        format!("{:.6e}", sample.amplitude),
-                        format!("{:.9}", sample.slope),
-                        sample.precision_bits.to_string(),
-                        settled,
-                    ])
-                    .map_err(|e| write_error(path, e))?;
+                rows.push([
+                    figure.to_string(),
+                    phase.to_string(),
+                    curve.clone(),
+                    format!("{:.6e}", sample.amplitude),
+                    format!("{:.9}", sample.slope),
+                    sample.precision_bits.to_string(),
+                    settled,
+                ]);
             }
         }
     }
-    writer.into_inner().map_err(|e| write_error(path, e))
+    csv_text(&header, rows)
+        .map(String::into_bytes)
+        .map_err(|e| write_error(Path::new("limit_slopes.csv"), e))
 }
 
 /// facts.json: the keys and meanings of issue 15, every value a number (or null where
-/// a ratio is unbounded).
-pub fn facts_json(facts: &Facts) -> Value {
-    let numbers = |map: &BTreeMap<String, f64>| -> Value {
-        Value::Object(map.iter().map(|(k, v)| (k.clone(), json!(v))).collect::<Map<_, _>>())
-    };
-    let slopes = |map: &BTreeMap<String, LimitSlope>| -> Value {
-        Value::Object(
-            map.iter()
-                .map(|(k, v)| (k.clone(), json!(v.slope)))
-                .collect::<Map<_, _>>(),
-        )
-    };
-    let gains = Value::Object(
-        facts
-            .fig5_out_of_phase_gain
+/// a ratio is unbounded), the keys in alphabetical order.
+#[derive(Debug, Serialize)]
+pub struct FactsJson<'a> {
+    pub fig4_max_rel_diff: f64,
+    pub fig5_out_of_phase_gain: &'a BTreeMap<String, Option<f64>>,
+    pub fig5_phi_max_over_pi: &'a BTreeMap<String, f64>,
+    pub fig6_small_amplitude_slope: BTreeMap<&'a str, f64>,
+    pub fig7_small_amplitude_slope: BTreeMap<&'a str, f64>,
+    /// `fig8_limit_slope` and `fig8_range_slope` at φ = π/2, and with a suffix
+    /// `_phi_{φ/π}pi` at the other phases.
+    #[serde(flatten)]
+    pub fig8: BTreeMap<String, BTreeMap<&'a str, f64>>,
+}
+
+impl<'a> FactsJson<'a> {
+    /// The numbers of `facts` (the limit slopes without their sample sequences).
+    pub fn of(facts: &'a Facts) -> Self {
+        let slopes = |map: &'a BTreeMap<String, LimitSlope>| map.iter().map(|(k, v)| (k.as_str(), v.slope)).collect();
+        let numbers = |map: &'a BTreeMap<String, f64>| map.iter().map(|(k, v)| (k.as_str(), *v)).collect();
+        let mut fig8 = BTreeMap::new();
+        for ((phase, limit), range) in FIG8_PHASES
             .iter()
-            .map(|(k, v)| (k.clone(), json!(v)))
-            .collect::<Map<_, _>>(),
-    );
-    let mut object = json!({
-        "fig4_max_rel_diff": facts.fig4_max_rel_diff,
-        "fig5_phi_max_over_pi": numbers(&facts.fig5_phi_max_over_pi),
-        "fig5_out_of_phase_gain": gains,
-        "fig6_small_amplitude_slope": slopes(&facts.fig6_small_amplitude_slope),
-        "fig7_small_amplitude_slope": slopes(&facts.fig7_small_amplitude_slope),
-    });
-    for ((phase, limit), range) in FIG8_PHASES
-        .iter()
-        .zip(&facts.fig8_limit_slope)
-        .zip(&facts.fig8_range_slope)
-    {
-        let suffix = if *phase == 0.5 {
-            String::new()
-        } else {
-            format!("_phi_{phase}pi")
-        };
-        object[format!("fig8_limit_slope{suffix}")] = slopes(limit);
-        object[format!("fig8_range_slope{suffix}")] = numbers(range);
+            .zip(&facts.fig8_limit_slope)
+            .zip(&facts.fig8_range_slope)
+        {
+            let suffix = if *phase == 0.5 {
+                String::new()
+            } else {
+                format!("_phi_{phase}pi")
+            };
+            fig8.insert(format!("fig8_limit_slope{suffix}"), slopes(limit));
+            fig8.insert(format!("fig8_range_slope{suffix}"), numbers(range));
+        }
+        FactsJson {
+            fig4_max_rel_diff: facts.fig4_max_rel_diff,
+            fig5_out_of_phase_gain: &facts.fig5_out_of_phase_gain,
+            fig5_phi_max_over_pi: &facts.fig5_phi_max_over_pi,
+            fig6_small_amplitude_slope: slopes(&facts.fig6_small_amplitude_slope),
+            fig7_small_amplitude_slope: slopes(&facts.fig7_small_amplitude_slope),
+            fig8,
+        }
     }
-    object
 }

@@ -368,6 +368,30 @@ fn slope_of(figure: u32, curve: &str, at: &dyn Fn(f64) -> Point) -> Result<Limit
     })
 }
 
+/// The curve of Ŵ against Q̂1 from `low` up to the gross-slip `limit` (where it stops),
+/// with its small-amplitude limit slope.
+fn curve_to_gross_slip(
+    figure: u32,
+    key: &str,
+    label: String,
+    low: f64,
+    limit: f64,
+    at: &(dyn Fn(f64) -> Point + Sync),
+    progress: &Progress,
+) -> Result<(Curve, LimitSlope), SweepError> {
+    let samples = amplitude_curve(figure, low, limit, at, progress)?;
+    let slope = slope_of(figure, key, at)?;
+    progress.step();
+    let curve = Curve {
+        key: key.to_string(),
+        label,
+        style: Style::Line,
+        samples,
+        gross_slip_at: vec![limit],
+    };
+    Ok((curve, slope))
+}
+
 /// Figs. 6 and 7: Ŵ against Q̂1 at fixed ratios P̂1/Q̂1, and the small-amplitude slope of each.
 fn ratio_figure(
     number: u32,
@@ -385,16 +409,10 @@ fn ratio_figure(
             phase_over_pi,
         };
         let limit = gross_slip_amplitude_at_ratio(ratio, phase_over_pi);
-        let samples = amplitude_curve(number, RATIO_FIGURES_LOW, limit, &at, progress)?;
-        slopes.insert(key.to_string(), slope_of(number, key, &at)?);
-        progress.step();
-        curves.push(Curve {
-            key: key.to_string(),
-            label: format!("f P1/Q1 = {key}"),
-            style: Style::Line,
-            samples,
-            gross_slip_at: vec![limit],
-        });
+        let label = format!("f P1/Q1 = {key}");
+        let (curve, slope) = curve_to_gross_slip(number, key, label, RATIO_FIGURES_LOW, limit, &at, progress)?;
+        slopes.insert(key.to_string(), slope);
+        curves.push(curve);
     }
     let (caption, notes) = if phase_over_pi == 0.0 {
         (
@@ -437,9 +455,9 @@ fn figure8(progress: &Progress) -> Result<Fig8Facts, SweepError> {
                 phase_over_pi,
             };
             let limit = gross_slip_amplitude(normal, phase_over_pi);
-            let samples = amplitude_curve(8, FIG8_LOW, limit, &at, progress)?;
-            limit_slopes.insert(key.to_string(), slope_of(8, key, &at)?);
-            progress.step();
+            let label = format!("P1/P0 = {key}");
+            let (curve, slope) = curve_to_gross_slip(8, key, label, FIG8_LOW, limit, &at, progress)?;
+            limit_slopes.insert(key.to_string(), slope);
             let fit_points: Vec<(f64, Point)> = log_spaced(FIG8_RANGE.0, FIG8_RANGE.1, 21)
                 .into_iter()
                 .map(|q| (q, at(q)))
@@ -448,13 +466,7 @@ fn figure8(progress: &Progress) -> Result<Fig8Facts, SweepError> {
             let pairs: Vec<(f64, f64)> = fitted.iter().map(|(q, w, _)| (*q, *w)).collect();
             range_slopes.insert(key.to_string(), fitted_log_slope(&pairs));
             progress.step();
-            curves.push(Curve {
-                key: key.to_string(),
-                label: format!("P1/P0 = {key}"),
-                style: Style::Line,
-                samples,
-                gross_slip_at: vec![limit],
-            });
+            curves.push(curve);
         }
         panels.push(Panel {
             name: format!("phi={phase_over_pi}pi"),

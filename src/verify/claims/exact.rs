@@ -83,9 +83,16 @@ pub fn polynomial_dissipation_claim(seed: u64, cases: usize) -> ClaimReport {
 /// The truncation orders fitted.
 const ORDERS: [usize; 4] = [1, 2, 5, 10];
 
+/// P1 = P0/d at the two amplitudes the order is fitted from.
+const FIT_DIVISORS: (i64, i64) = (1000, 2000);
+
 /// 7c: the series holds term by term: at 256 bits, W minus the partial sum to order N
-/// falls as P1^(N+3) (fitted from P1 = 0.01 and 0.005, Q1/(fP1) fixed) within 0.1, for
+/// falls as P1^(N+3) (fitted from P1 = 0.001 and 0.0005, Q1/(fP1) fixed) within 0.1, for
 /// N = 1, 2, 5, 10, on random compliances of the analytic families taken in turn.
+///
+/// The order is asymptotic: the next omitted term shifts the fitted order by about its ratio
+/// to the first, and near φ = π (ρ < 1) the even-index coefficients are far smaller than the
+/// odd ones, so that ratio is P1 times a large factor (proofs/series.md).
 pub fn series_claim(seed: u64, cases: usize) -> ClaimReport {
     let precision = Precision::bits(256);
     let mut tally = Tally::new("7c series: W − W_N = O(P1^(N+3)), N = 1,2,5,10", precision, 0.1);
@@ -110,7 +117,7 @@ pub fn series_claim(seed: u64, cases: usize) -> ClaimReport {
                 continue;
             }
         };
-        let errors: Result<Vec<Vec<Float>>, String> = [100, 200]
+        let errors: Result<Vec<Vec<Float>>, String> = [FIT_DIVISORS.0, FIT_DIVISORS.1]
             .into_iter()
             .map(|divisor| {
                 let one: Float = number(1.0, precision);
@@ -134,8 +141,8 @@ pub fn series_claim(seed: u64, cases: usize) -> ClaimReport {
             Ok(errors) => {
                 let worst = ORDERS.iter().enumerate().fold(0.0f64, |worst, (i, &n)| {
                     let points = [
-                        (0.01f64.ln(), errors[0][i].clone().ln().to_f64()),
-                        (0.005f64.ln(), errors[1][i].clone().ln().to_f64()),
+                        (-(FIT_DIVISORS.0 as f64).ln(), errors[0][i].clone().ln().to_f64()),
+                        (-(FIT_DIVISORS.1 as f64).ln(), errors[1][i].clone().ln().to_f64()),
                     ];
                     let order = least_squares_slope(&points);
                     let excess = order - (n + 3) as f64;

@@ -1,0 +1,87 @@
+//! `microslip accuracy`: accuracy against cost of every rule, as CSV, pictures and a table.
+
+use std::path::PathBuf;
+
+use clap::Args;
+
+use microslip::accuracy;
+use microslip::files::{check_writable, write_text_atomically};
+use microslip::plot::plot_accuracy;
+
+use super::progress::Progress;
+use super::report::Failure;
+
+#[derive(Args)]
+pub struct AccuracyArgs {
+    /// Directory for accuracy.csv, accuracy.svg and accuracy.png (created if missing).
+    #[arg(long)]
+    pub out: PathBuf,
+    /// Fewer cases, precisions and repeats (well under a minute).
+    #[arg(long)]
+    pub quick: bool,
+}
+
+pub fn run(args: &AccuracyArgs) -> Result<String, Failure> {
+    // The directory and its three files are checked before the (long) measurement.
+    if args.out.exists() && !args.out.is_dir() {
+        return Err(Failure::refused(format!(
+            "--out {}: exists and is not a directory",
+            args.out.display()
+        )));
+    }
+    std::fs::create_dir_all(&args.out).map_err(|e| Failure::refused(format!("{}: {e}", args.out.display())))?;
+    let csv = args.out.join("accuracy.csv");
+    let (svg, png) = (args.out.join("accuracy.svg"), args.out.join("accuracy.png"));
+    for path in [&csv, &svg, &png] {
+        check_writable(path, &[])?;
+    }
+    let cases = accuracy::standard_cases(args.quick);
+    let progress = Progress::new(cases.len());
+    let mut measurements = Vec::new();
+    for (index, case) in cases.iter().enumerate() {
+        progress.at(index, &format!("{}: 100-digit reference", case.name));
+        let reference = accuracy::reference_value(&case.text);
+        let reference = match reference {
+            Ok(reference) => reference,
+            Err(error) => {
+                progress.finish();
+                return Err(error.into());
+            }
+        };
+        measurements.extend(accuracy::measure_case(case, &reference, args.quick, |stage| {
+            progress.at(index, &format!("{}: {stage}", case.name));
+        }));
+    }
+    progress.finish();
+    let written = accuracy::to_csv(&measurements)
+        .map_err(|e| e.to_string())
+        .and_then(|text| write_text_atomically(&csv, &text).map_err(|e| e.to_string()))
+        .and_then(|()| plot_accuracy(&svg, &measurements).map_err(|e| e.to_string()))
+        .and_then(|()| plot_accuracy(&png, &measurements).map_err(|e| e.to_string()));
+    written.map_err(Failure::failed)?;
+    let mut out = format!(
+        "{:>8}  {:<28} {:>9} {:>9}  {:>12}  {}\n",
+        "target", "cheapest rule", "bits", "parameter", "seconds", "case"
+    );
+    for case in &cases {
+        let of_case: Vec<_> = measurements.iter().filter(|m| m.case == case.name).cloned().collect();
+        for target in [1e-8, 1e-13, 1e-30, 1e-50, 1e-100] {
+            match accuracy::cheapest_for(&of_case, target) {
+                Some(m) => out.push_str(&format!(
+                    "{target:>8.0e}  {:<28} {:>9} {:>9} {:>12.3e}  {}\n",
+                    m.rule, m.precision_bits, m.parameter, m.seconds, m.case
+                )),
+                None => out.push_str(&format!(
+                    "{target:>8.0e}  {:<28} {:>9} {:>9} {:>12}  {}\n",
+                    "(none reached it)", "", "", "", case.name
+                )),
+            }
+        }
+    }
+    out.push_str(&format!(
+        "{} measurements written to {}",
+        measurements.len(),
+        args.out.display()
+    ));
+    Ok(out)
+}

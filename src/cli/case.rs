@@ -1,0 +1,80 @@
+//! The flags shared by subcommands: a load cycle on a contact, and how an answer is
+//! asked for (verified digits, a time budget, JSON).
+
+use std::time::Duration;
+
+use clap::Args;
+
+use microslip::inputs::CaseText;
+
+use super::parse;
+
+/// A load cycle P = P0 + P1 cos θ, Q = Q0 + Q1 cos(θ − φ) on a contact.
+#[derive(Args)]
+pub struct CaseArgs {
+    /// Mean normal load P0 (> 0).
+    #[arg(long, allow_hyphen_values = true)]
+    pub p0: String,
+    /// Normal load amplitude P1 (0 ≤ P1 < P0).
+    #[arg(long, allow_hyphen_values = true)]
+    pub p1: String,
+    /// Mean tangential load Q0.
+    #[arg(long, allow_hyphen_values = true, default_value = "0")]
+    pub q0: String,
+    /// Tangential load amplitude Q1 (≥ 0).
+    #[arg(long, allow_hyphen_values = true)]
+    pub q1: String,
+    /// Phase lag φ of Q behind P, in radians or as a multiple of π (`0.4pi`, `pi-1e-6`).
+    #[arg(long, allow_hyphen_values = true)]
+    pub phi: String,
+    /// Coulomb friction coefficient f (> 0).
+    #[arg(long, allow_hyphen_values = true)]
+    pub friction: String,
+    /// Tangential/normal compliance ratio λ, in [1, 2].
+    #[arg(
+        long,
+        allow_hyphen_values = true,
+        conflicts_with = "nu",
+        required_unless_present = "nu"
+    )]
+    pub lambda: Option<String>,
+    /// Poisson's ratio ν in [0, 2/3], giving λ = (2 − ν)/(2(1 − ν)) in [1, 2].
+    #[arg(long, allow_hyphen_values = true)]
+    pub nu: Option<String>,
+    /// Normal compliance SPEC, e.g. `persson:gamma=1,sigma=1`, `power:c=1,beta=-1`,
+    /// `hertz:r=1,estar=1`, `poly:p0=1,coeffs=2;-0.5;-0.1`, terms joined by `+`
+    /// (`persson:gamma=1,sigma=1+const:c=0.5`); v' > 0 and v'' ≤ 0 are needed.
+    #[arg(long, allow_hyphen_values = true)]
+    pub compliance: String,
+}
+
+impl CaseArgs {
+    pub fn text(&self) -> CaseText {
+        CaseText {
+            p0: self.p0.clone(),
+            p1: self.p1.clone(),
+            q0: self.q0.clone(),
+            q1: self.q1.clone(),
+            phi: self.phi.clone(),
+            friction: self.friction.clone(),
+            lambda: self.lambda.clone(),
+            nu: self.nu.clone(),
+            compliance: self.compliance.clone(),
+        }
+    }
+}
+
+/// How an answer is asked for: verified digits or f64, within a time budget, as text or JSON.
+/// (A command describes its `--digits` with `mut_arg`.)
+#[derive(Args)]
+pub struct Answer {
+    /// Significant digits to compute and verify (1–1000).
+    #[arg(long, allow_hyphen_values = true, value_parser = parse::digits)]
+    pub digits: Option<u32>,
+    /// Time budget, in seconds (up to 1e6).
+    #[arg(long, allow_hyphen_values = true, value_parser = parse::seconds, default_value = "60")]
+    pub max_seconds: Duration,
+    /// Print one JSON object.
+    #[arg(long)]
+    pub json: bool,
+}

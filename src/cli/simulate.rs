@@ -1,0 +1,149 @@
+//! `microslip simulate`: W by the independent history simulation, with the steady loop
+//! as CSV and its picture on request.
+
+use std::path::{Path, PathBuf};
+use std::time::{Duration, Instant};
+
+use clap::Args;
+
+use microslip::batch;
+use microslip::files::{check_writable, write_text_atomically};
+use microslip::inputs::{Case, CaseText};
+use microslip::plot::{plot_cycle, PLOT_EXTENSIONS};
+use microslip::real::{Precision, Real};
+use microslip::simulate::{loop_csv, simulate, SimulationError, SimulationOptions, SimulationResult};
+
+use super::case::CaseArgs;
+use super::json::{SimulationInputs, SimulationReport};
+use super::parse;
+use super::report::Failure;
+
+#[derive(Args)]
+pub struct SimulateArgs {
+    #[command(flatten)]
+    pub case: CaseArgs,
+    /// Elements of the coarsest spring bed, at least 20 (doubled twice for the extrapolation); default 400.
+    #[arg(long, allow_hyphen_values = true, value_parser = parse::elements)]
+    pub elements: Option<usize>,
+    /// Load steps per cycle of the coarsest run, at least 40 (doubled twice); default 1200.
+    #[arg(long, allow_hyphen_values = true, value_parser = parse::steps)]
+    pub steps: Option<usize>,
+    /// Fail (exit 1) when the estimated relative error of W exceeds this.
+    #[arg(long, allow_hyphen_values = true, value_parser = parse::tolerance, default_value = "1e-6")]
+    pub tolerance: f64,
+    /// Time budget, in seconds (up to 1e6).
+    #[arg(long, allow_hyphen_values = true, value_parser = parse::seconds, default_value = "60")]
+    pub max_seconds: Duration,
+    /// Write the steady loop (theta,P,Q,u) to this .csv file.
+    #[arg(long = "loop")]
+    pub loop_csv: Option<PathBuf>,
+    /// Draw the load ellipse and the hysteresis loop to this .svg or .png file.
+    #[arg(long)]
+    pub plot: Option<PathBuf>,
+    /// Print one JSON object.
+    #[arg(long)]
+    pub json: bool,
+}
+
+/// Whether two paths name the same file (as far as can be told before either exists).
+fn same_file(a: &Path, b: &Path) -> bool {
+    let resolve = |p: &Path| {
+        std::fs::canonicalize(p)
+            .or_else(|_| std::path::absolute(p))
+            .unwrap_or_else(|_| p.to_path_buf())
+    };
+    resolve(a) == resolve(b)
+}
+
+/// A simulation failure with the flags that may help.
+fn simulation_failure(error: SimulationError) -> Failure {
+    match error {
+        SimulationError::ToleranceNotReached { .. } => Failure::failed(format!(
+            "{error}; more --elements and --steps may reach it, or a larger --tolerance accepts it"
+        )),
+        SimulationError::TooLarge { .. } => Failure::refused(format!("{error}; use fewer --elements or --steps")),
+        SimulationError::OutOfTime { .. } => Failure::refused(format!(
+            "{error}; raise --max-seconds or use fewer --elements or --steps"
+        )),
+        other => Failure::refused(other.to_string()),
+    }
+}
+
+pub fn run(args: &SimulateArgs) -> Result<String, Failure> {
+    // Output files are checked before anything is computed.
+    if let Some(path) = &args.loop_csv {
+        check_writable(path, &["csv"])?;
+    }
+    if let Some(path) = &args.plot {
+        check_writable(path, &PLOT_EXTENSIONS)?;
+    }
+    if let (Some(csv), Some(plot)) = (&args.loop_csv, &args.plot) {
+        if same_file(csv, plot) {
+            return Err(Failure::refused(format!(
+                "--loop and --plot name the same file {}",
+                csv.display()
+            )));
+        }
+    }
+    let case = args.case.text();
+    let Case { cycle, compliance } = case.read::<f64>(Precision::DOUBLE)?;
+    batch::check_table_range(&args.case.compliance, &cycle)?;
+    let options = SimulationOptions {
+        elements: args.elements,
+        steps: args.steps,
+        deadline: Some(Instant::now() + args.max_seconds),
+        tolerance: Some(args.tolerance),
+        ..SimulationOptions::default()
+    };
+    let result = simulate(&cycle, compliance.as_ref(), &options).map_err(simulation_failure)?;
+    let digits = result.vouched_digits().max(1);
+    let w = result.w_work.to_scientific(digits as usize);
+    // A write that fails after the run still reports W.
+    let lost =
+        |error: &dyn std::fmt::Display| Failure::failed(format!("{error} (the simulation's W = {w} is not lost)"));
+    if let Some(path) = &args.loop_csv {
+        let text = loop_csv(&result).map_err(|e| lost(&e))?;
+        write_text_atomically(path, &text).map_err(|e| lost(&e))?;
+    }
+    if let Some(path) = &args.plot {
+        plot_cycle(path, &cycle, &result).map_err(|e| lost(&e))?;
+    }
+    if args.json {
+        return Ok(serde_json::to_string(&simulation_report(&result, digits, &case, args))?);
+    }
+    Ok(format!(
+        "W = {w} (work of the load) = {} (frictional work); estimated relative error {:.1e}, {digits} significant digits; {} elements, {} steps per cycle (finest run)",
+        result.w_friction.to_scientific(digits as usize),
+        result.estimated_rel_error,
+        result.elements,
+        result.steps
+    ))
+}
+
+fn simulation_report<'a>(
+    result: &SimulationResult,
+    digits: u32,
+    case: &'a CaseText,
+    args: &SimulateArgs,
+) -> SimulationReport<'a> {
+    let defaults = SimulationOptions::default();
+    SimulationReport {
+        w: result.w_work.to_scientific(digits as usize),
+        w_f64: result.w_work,
+        w_friction: result.w_friction.to_scientific(digits as usize),
+        w_friction_f64: result.w_friction,
+        digits,
+        digits_verified: None,
+        precision_bits: 53,
+        estimated_rel_error: result.estimated_rel_error,
+        method: "history simulation of a spring bed, Richardson-extrapolated from three resolutions",
+        elements: result.elements,
+        steps: result.steps,
+        inputs: SimulationInputs {
+            case,
+            elements: args.elements.or(defaults.elements).unwrap_or(result.elements / 4),
+            steps: args.steps.or(defaults.steps).unwrap_or(result.steps / 4),
+            tolerance: args.tolerance,
+        },
+    }
+}
