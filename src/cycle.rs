@@ -265,9 +265,8 @@ impl<R: Real> LoadCycle<R> {
     /// How much the four-segment integrands amplify relative rounding errors when Q1 is
     /// small against fP1: the slip terms f v'(P) P' and v'(P_Y) σ₋ sin(θ − θ_E) of CH (and
     /// their counterparts in EB and HE) are of size fP1·v' and cancel to a difference of
-    /// size Q1·v'. Measured in f64 against 200 bits over four compliance families, φ from
-    /// 0.1π to 0.9π and Q1/(fP1) = 1e−2 … 1e−4: relative error up to 7.9 ε·fP1/Q1; this
-    /// returns 16 fP1/Q1 (0 when Q1 = 0, which has no integrals).
+    /// size Q1·v'. Returns 16 fP1/Q1, twice the largest amplification measured
+    /// (proofs/stability.md, §1), and 0 when Q1 = 0, which has no integrals.
     pub fn cancellation_amplification(&self) -> R {
         let zero = self.tangential_amplitude.int(0);
         if self.tangential_amplitude == zero {

@@ -10,6 +10,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use crate::cycle::LoadCycle;
+use crate::dissipation::Segment;
 use crate::files::OutputError;
 use crate::simulate::SimulationResult;
 
@@ -86,7 +87,6 @@ const SEGMENT_COLOURS: [RGBColor; 4] = [
     RGBColor(214, 39, 40),
     RGBColor(255, 127, 14),
 ];
-const SEGMENT_NAMES: [&str; 4] = ["EB", "BC", "CH", "HE"];
 
 /// What is drawn, computed once for either backend.
 struct Scene {
@@ -222,7 +222,7 @@ where
             (q_min - pad(q_min, q_max))..(q_max + pad(q_min, q_max)),
         )?;
     hysteresis.configure_mesh().x_desc("u").y_desc("Q").draw()?;
-    for (index, colour) in SEGMENT_COLOURS.iter().enumerate() {
+    for ((index, colour), segment) in SEGMENT_COLOURS.iter().enumerate().zip(Segment::ALL) {
         let colour = *colour;
         hysteresis
             .draw_series(
@@ -230,7 +230,7 @@ where
                     .chunks(2)
                     .map(move |c| PathElement::new(c.to_vec(), colour.stroke_width(2))),
             )?
-            .label(SEGMENT_NAMES[index])
+            .label(segment.name())
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2)));
     }
     hysteresis
