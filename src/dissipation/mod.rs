@@ -22,6 +22,13 @@
 //! W only by rounding, and keeps small-amplitude results from cancelling away.
 //! The segment values reported are ∫ (Q − Q0) du with u from v' − v'(P0): so
 //! defined they depend neither on Q0 nor on a constant added to v'.
+//!
+//! A computation takes a [`ValidCycle`] (validated once) through `conditioning`
+//! (rounding amplification, magnitudes, admissibility), then one formula — the closed forms of
+//! `closed_forms`, or the integrands of `segments` summed per [`Segment`] by
+//! `four_segment` — whose pieces go to the quadrature engine ([`crate::quad::integrate`]);
+//! `assemble` scales the segment values by λ and adds what rounding can do to the
+//! error estimate. [`Options`] and [`DissipationError`] have files of their own.
 
 mod assemble;
 mod closed_forms;

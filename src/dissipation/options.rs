@@ -28,8 +28,8 @@ pub struct Options<R> {
     pub remove_constant_slope: bool,
     /// With `remove_constant_slope`, also take the linear part v''(P0)·(P − P0) out of
     /// v' and add its contribution v''(P0)·W[P − P0] from a separate integral
-    /// (four-segment path only). Exact by linearity; see proofs/stability.md for what
-    /// it changes (measured: nothing beyond rounding — off by default).
+    /// (four-segment path only). Exact by linearity; proofs/stability.md shows it
+    /// changes nothing beyond rounding, so it is off by default.
     pub remove_linear_slope: bool,
     /// Refuse cycles whose loads alone, rounded at the working precision, would move W
     /// by more than this relative amount (ε × `LoadCycle::rounding_amplification`):

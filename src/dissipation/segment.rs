@@ -103,3 +103,29 @@ impl<R: Real> Segments<R> {
         self.eb.clone() + &self.bc + &self.ch + &self.he
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn segments_are_named_and_visited_in_cycle_order() {
+        let names: Vec<String> = Segment::ALL.iter().map(|segment| segment.to_string()).collect();
+        assert_eq!(names, ["EB", "BC", "CH", "HE"]);
+        let mut values = Segments::from_fn(|segment| segment as usize as f64);
+        *values.get_mut(Segment::CH) += 10.0;
+        assert_eq!(*values.get(Segment::CH), 12.0);
+        let visited: Vec<(Segment, f64)> = values.iter().map(|(segment, value)| (segment, *value)).collect();
+        assert_eq!(
+            visited,
+            [
+                (Segment::EB, 0.0),
+                (Segment::BC, 1.0),
+                (Segment::CH, 12.0),
+                (Segment::HE, 3.0)
+            ]
+        );
+        assert_eq!(values.named()[3], ("HE", &3.0));
+        assert_eq!(values.total(), 16.0);
+    }
+}

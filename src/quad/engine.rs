@@ -347,10 +347,10 @@ fn converge<R: Real>(pieces: &[Piece<'_, R>], settings: &Settings<R>) -> Result<
 /// gained a factor d'/d. Gauss–Legendre on an analytic integrand squares the error per
 /// doubling once asymptotic (E(2n) ≈ d³/d'²), but while a nearby singularity still shapes
 /// the convergence the gains grow more slowly, which the earlier changes do not show
-/// (proofs/quadrature.md, "The convergence driver's early stop"). So the prediction assumes only that the
-/// next doubling gains as much as the last, E(2n) ≈ d²/d'. It is trusted only when the
-/// last doubling gained at least three digits (d < d'/1000) and 100× the prediction
-/// clears `allowed`; that is the error reported.
+/// (proofs/quadrature.md, "The convergence driver's early stop"). So the prediction
+/// assumes only that the next doubling gains as much as the last, E(2n) ≈ d²/d'. It is
+/// trusted only when the last doubling gained at least three digits (d < d'/1000) and
+/// 100× the prediction clears `allowed`; that is the error reported.
 fn predicted_error<R: Real>(change: &R, previous: Option<&R>, allowed: &R) -> Option<R> {
     let previous = previous?;
     if change.clone() * &change.int(1000) >= *previous {
