@@ -57,13 +57,21 @@ pub(crate) fn four_segment_integrals<R: Real>(
         (integrands.pieces(), None)
     };
     let integrated = integrate(&pieces.pieces, &options.settings(&zero))?;
-    let mut values: Vec<R> = integrated.values().cloned().collect();
-    if let Some((curvature, remainder_count)) = &curvature {
-        for value in values.iter_mut().skip(*remainder_count) {
-            *value *= curvature;
+    let segments = match &curvature {
+        None => pieces.sum_by_segment(integrated.values(), &zero),
+        Some((curvature, remainder_count)) => {
+            let weighted: Vec<R> = (integrated.values().enumerate())
+                .map(|(i, value)| {
+                    if i < *remainder_count {
+                        value.clone()
+                    } else {
+                        value.clone() * curvature
+                    }
+                })
+                .collect();
+            pieces.sum_by_segment(weighted.iter(), &zero)
         }
-    }
-    let segments = pieces.sum_by_segment(values.iter(), &zero);
+    };
     let mut parts = Parts::from_integrals(segments, integrated.error.clone(), &integrated);
     parts.piece_points = integrated.rules();
     assemble(cycle, parts, Method::FourSegment, options)

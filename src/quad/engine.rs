@@ -222,22 +222,30 @@ fn converge<R: Real>(pieces: &[Piece<'_, R>], settings: &Settings<R>) -> Result<
     let mut evaluations = 0;
     let mut largest_rule = first_points;
     // A first look at every piece sets the scale.
-    let mut values = Vec::with_capacity(pieces.len());
-    let mut magnitudes = Vec::with_capacity(pieces.len());
+    let mut results = Vec::with_capacity(pieces.len());
     for piece in pieces {
         let (value, magnitude) = gauss(piece, first_points)?;
-        values.push(value);
-        magnitudes.push(magnitude);
         evaluations += first_points;
+        results.push(PieceEstimate {
+            estimate: Estimate {
+                value,
+                error: zero.clone(),
+                evaluations: first_points,
+                converged: true,
+            },
+            magnitude,
+            rule: first_points,
+        });
     }
-    let mut piece_evaluations = vec![first_points; pieces.len()];
-    let mut converged = vec![true; pieces.len()];
-    let scale = |values: &[R]| values.iter().fold(zero.clone(), |acc, v| acc + &v.abs());
+    let scale = |results: &[PieceEstimate<R>]| {
+        results
+            .iter()
+            .fold(zero.clone(), |acc, piece| acc + &piece.estimate.value.abs())
+    };
     let count = zero.int(pieces.len().max(1) as i64);
-    let mut allowed = scale(&values) * relative_tolerance / &count;
-    let mut errors = vec![zero.clone(); pieces.len()];
-    // The rule each piece ends with; 0 for a piece tanh–sinh finished (the largest rule then stands in).
-    let mut piece_points = vec![first_points; pieces.len()];
+    let mut allowed = scale(&results) * relative_tolerance / &count;
+    // Whether tanh–sinh finished a piece (its rule is then the largest Gauss–Legendre rule used).
+    let mut by_tanh_sinh = vec![false; pieces.len()];
     for (i, piece) in pieces.iter().enumerate() {
         if piece.start == piece.end {
             continue;
@@ -250,7 +258,7 @@ fn converge<R: Real>(pieces: &[Piece<'_, R>], settings: &Settings<R>) -> Result<
             if points * 2 > max_points || stalled >= 2 {
                 // Gauss–Legendre stalled: a near-singularity at an end, or the rounding noise
                 // of the integrand. Tanh–sinh resolves the first and tells the second.
-                piece_points[i] = 0;
+                by_tanh_sinh[i] = true;
                 let estimate = tanh_sinh::integrate(
                     &piece.integrand,
                     &piece.start,
@@ -259,45 +267,49 @@ fn converge<R: Real>(pieces: &[Piece<'_, R>], settings: &Settings<R>) -> Result<
                     MAX_TANH_SINH_LEVEL,
                 );
                 evaluations += estimate.evaluations;
-                piece_evaluations[i] += estimate.evaluations;
+                results[i].estimate.evaluations += estimate.evaluations;
                 let value = finite(estimate.value, piece)?;
                 if estimate.converged {
-                    values[i] = value;
-                    errors[i] = estimate.error;
+                    results[i].estimate.value = value;
+                    results[i].estimate.error = estimate.error;
                     break;
                 }
                 // Neither rule got there. Where the two agree with each other and with
                 // themselves to within NOISE_MARGIN × `allowed`, the piece has reached
                 // the rounding noise of its integrand: that spread is its error.
                 let last_change = previous_change.clone().unwrap_or_else(|| estimate.error.clone());
-                let spread = (value - &values[i]).abs().max_of(&estimate.error).max_of(&last_change);
+                let spread = (value - &results[i].estimate.value)
+                    .abs()
+                    .max_of(&estimate.error)
+                    .max_of(&last_change);
                 if spread > allowed.clone() * &zero.int(NOISE_MARGIN) {
-                    return Err(not_converged(&values, &spread, relative_tolerance, points));
+                    return Err(not_converged(&results, &spread, relative_tolerance, points));
                 }
-                errors[i] = spread;
-                converged[i] = false;
+                results[i].estimate.error = spread;
+                results[i].estimate.converged = false;
                 break;
             }
             if settings.deadline.is_some_and(|deadline| Instant::now() >= deadline) {
                 return Err(QuadError::OutOfTime);
             }
             points *= 2;
-            piece_points[i] = points;
             largest_rule = largest_rule.max(points);
             let (refined, magnitude) = gauss(piece, points)?;
             evaluations += points;
-            piece_evaluations[i] += points;
-            let change = (refined.clone() - &values[i]).abs();
-            values[i] = refined;
+            let result = &mut results[i];
+            result.rule = points;
+            result.estimate.evaluations += points;
+            let change = (refined.clone() - &result.estimate.value).abs();
+            result.estimate.value = refined;
             // Converged to the tolerance, or to the rounding floor of a cancelling integrand.
             let floor = rounding_floor(&magnitude);
-            magnitudes[i] = magnitude;
+            result.magnitude = magnitude;
             if change <= allowed || change <= floor {
-                errors[i] = change.max_of(&floor);
+                result.estimate.error = change.max_of(&floor);
                 break;
             }
             if let Some(predicted) = predicted_error(&change, previous_change.as_ref(), &allowed) {
-                errors[i] = predicted;
+                result.estimate.error = predicted;
                 break;
             }
             let gained = smallest_change
@@ -310,28 +322,14 @@ fn converge<R: Real>(pieces: &[Piece<'_, R>], settings: &Settings<R>) -> Result<
             previous_change = Some(change);
         }
         // Later pieces are held to the scale as now known.
-        allowed = scale(&values) * relative_tolerance / &count;
+        allowed = scale(&results) * relative_tolerance / &count;
     }
-    let error = errors.iter().fold(zero.clone(), |acc, e| acc + e);
-    let results = values
-        .into_iter()
-        .zip(errors)
-        .zip(magnitudes)
-        .enumerate()
-        .map(|(i, ((value, error), magnitude))| PieceEstimate {
-            estimate: Estimate {
-                value,
-                error,
-                evaluations: piece_evaluations[i],
-                converged: converged[i],
-            },
-            magnitude,
-            rule: match piece_points[i] {
-                0 => largest_rule,
-                rule => rule,
-            },
-        })
-        .collect();
+    let error = results
+        .iter()
+        .fold(zero.clone(), |acc, piece| acc + &piece.estimate.error);
+    for (result, _) in results.iter_mut().zip(by_tanh_sinh).filter(|(_, tanh_sinh)| *tanh_sinh) {
+        result.rule = largest_rule;
+    }
     Ok(Integrated {
         pieces: results,
         error,
@@ -360,9 +358,12 @@ fn predicted_error<R: Real>(change: &R, previous: Option<&R>, allowed: &R) -> Op
     (reported <= *allowed).then_some(reported)
 }
 
-fn not_converged<R: Real>(values: &[R], error: &R, relative_tolerance: &R, points: usize) -> QuadError {
+fn not_converged<R: Real>(results: &[PieceEstimate<R>], error: &R, relative_tolerance: &R, points: usize) -> QuadError {
     let zero = relative_tolerance.int(0);
-    let total = values.iter().fold(zero.clone(), |acc, v| acc + v).abs();
+    let total = results
+        .iter()
+        .fold(zero.clone(), |acc, piece| acc + &piece.estimate.value)
+        .abs();
     let scale = total.max_of(&relative_tolerance.epsilon_like());
     QuadError::NotConverged {
         points,
