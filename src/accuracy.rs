@@ -13,10 +13,10 @@ use std::time::{Duration, Instant};
 use rug::Float;
 use serde::Serialize;
 
-use crate::dissipation::{Integral, SegmentIntegrands};
+use crate::dissipation::{Segment, SegmentIntegrands};
 use crate::files::csv_text;
 use crate::inputs::{Case, CaseText};
-use crate::quad::{gauss_legendre, tanh_sinh};
+use crate::quad::{gauss_legendre, tanh_sinh, Piece};
 use crate::real::{Precision, Real};
 use crate::reference::verified_dissipation;
 
@@ -111,7 +111,7 @@ fn median_seconds<T>(budget: Duration, mut run: impl FnMut() -> T) -> (f64, T) {
 }
 
 /// A rule applied once to a piece: the value and the integrand evaluations it took.
-type FixedRule<'r, R> = dyn Fn(&Integral<'_, R>, Precision) -> (R, usize) + 'r;
+type FixedRule<'r, R> = dyn Fn(&Piece<'_, R>, Precision) -> (R, usize) + 'r;
 
 /// W of `case` at `precision`, each piece integrated by `rule`, with the evaluations it took.
 fn fixed_rule_w<R: Real>(case: &CaseText, precision: Precision, rule: &FixedRule<'_, R>) -> Option<(R, usize)> {
@@ -124,7 +124,7 @@ fn fixed_rule_w<R: Real>(case: &CaseText, precision: Precision, rule: &FixedRule
     };
     let mut total = R::from_i64(0, precision);
     let mut evaluations = 0;
-    for piece in integrands.pieces() {
+    for piece in integrands.pieces().pieces {
         let (value, count) = rule(&piece, precision);
         total += value;
         evaluations += count;
@@ -146,8 +146,9 @@ fn naive_in_load(case: &CaseText, panels: usize) -> Option<(f64, usize)> {
     let pi = std::f64::consts::PI;
     let (mut total, mut evaluations) = (0.0, 0);
     let slope = integrands.prepared_slope();
-    for (index, (piece_start, piece_end)) in
-        (0..4).flat_map(|index| integrands.windows(index).into_iter().map(move |w| (index, w)))
+    for (index, (piece_start, piece_end)) in Segment::ALL
+        .into_iter()
+        .flat_map(|index| integrands.windows(index).into_iter().map(move |w| (index, w)))
     {
         let start = integrands.extent(index).0;
         let (theta_a, theta_b) = (start + piece_start, start + piece_end);
@@ -222,7 +223,7 @@ pub fn measure_case(
         (1..=8).map(|k| 1usize << k).collect()
     };
     for &n in &gauss_points {
-        let rule = |piece: &Integral<'_, f64>, p: Precision| {
+        let rule = |piece: &Piece<'_, f64>, p: Precision| {
             let value = gauss_legendre::node_table::<f64>(n, p).integrate(&piece.integrand, &piece.start, &piece.end);
             (value, n)
         };
@@ -231,7 +232,7 @@ pub fn measure_case(
     }
     let levels: Vec<u32> = if quick { vec![2, 4, 6] } else { (1..=10).collect() };
     for &level in &levels {
-        let rule = |piece: &Integral<'_, f64>, _: Precision| {
+        let rule = |piece: &Piece<'_, f64>, _: Precision| {
             let estimate = tanh_sinh::integrate(&piece.integrand, &piece.start, &piece.end, &0.0, level);
             (estimate.value, estimate.evaluations)
         };
@@ -242,7 +243,7 @@ pub fn measure_case(
     for &digits in &targets {
         let target = 10f64.powi(-digits);
         let crate_rule = |which: u8| {
-            move |piece: &Integral<'_, f64>, _: Precision| {
+            move |piece: &Piece<'_, f64>, _: Precision| {
                 let f = |x: f64| (piece.integrand)(&x);
                 let output = if which == 0 {
                     quadrature::double_exponential::integrate(f, piece.start, piece.end, target)
@@ -282,7 +283,7 @@ pub fn measure_case(
         };
         for &n in &points {
             gauss_legendre::node_table::<Float>(n, p);
-            let rule = |piece: &Integral<'_, Float>, p: Precision| {
+            let rule = |piece: &Piece<'_, Float>, p: Precision| {
                 let value =
                     gauss_legendre::node_table::<Float>(n, p).integrate(&piece.integrand, &piece.start, &piece.end);
                 (value, n)
@@ -293,7 +294,7 @@ pub fn measure_case(
         let levels: Vec<u32> = if quick { vec![4, 6] } else { (1..=10).collect() };
         for &level in &levels {
             let zero = Float::with_val(bits, 0);
-            let rule = |piece: &Integral<'_, Float>, _: Precision| {
+            let rule = |piece: &Piece<'_, Float>, _: Precision| {
                 let estimate = tanh_sinh::integrate(&piece.integrand, &piece.start, &piece.end, &zero, level);
                 (estimate.value, estimate.evaluations)
             };

@@ -1,5 +1,6 @@
 //! The load cycle P(θ) = P0 + P1 cos θ, Q(θ) = Q0 + Q1 cos(θ − φ): its validation
-//! and the geometry of its ellipse in the (P, Q) plane.
+//! (a [`ValidCycle`] is one the theory covers) and the geometry of its ellipse in the
+//! (P, Q) plane.
 //!
 //! The steady cycle splits into four segments at the points E, B, C, H (paper
 //! Section 3.4, located as in errata item 4), taken in the order the angle θ
@@ -12,6 +13,8 @@
 //!
 //! With σ₊ and σ₋ the amplitudes of Q + fP and Q − fP, and δ = θ_C − θ_B, the
 //! segments EB, BC, CH, HE have lengths π − δ, δ, δ, π − δ in θ.
+
+use std::ops::Deref;
 
 use crate::real::Real;
 
@@ -92,7 +95,7 @@ pub fn compliance_ratio_from_poisson<R: Real>(nu: &R) -> Result<R, CycleError> {
     Ok((nu.int(2) - nu) / (nu.int(2) * &(nu.int(1) - nu)))
 }
 
-/// Which of the two degenerate or general cases a valid cycle is.
+/// Which of the degenerate cases, or the general one, a valid cycle is.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum CycleKind {
     /// Q1 = 0: no tangential oscillation, no dissipation.
@@ -182,8 +185,8 @@ impl<R: Real> LoadCycle<R> {
         Ok(())
     }
 
-    /// Which case the cycle is (assumes it is valid).
-    pub fn kind(&self) -> CycleKind {
+    /// Which case the cycle is (for a valid one).
+    fn classify(&self) -> CycleKind {
         let zero = self.mean_normal_load.int(0);
         if self.tangential_amplitude == zero {
             CycleKind::NoTangentialOscillation
@@ -262,9 +265,8 @@ impl<R: Real> LoadCycle<R> {
     /// How much the four-segment integrands amplify relative rounding errors when Q1 is
     /// small against fP1: the slip terms f v'(P) P' and v'(P_Y) σ₋ sin(θ − θ_E) of CH (and
     /// their counterparts in EB and HE) are of size fP1·v' and cancel to a difference of
-    /// size Q1·v'. Measured in f64 against 200 bits over four compliance families, φ from
-    /// 0.1π to 0.9π and Q1/(fP1) = 1e−2 … 1e−4: relative error up to 7.9 ε·fP1/Q1; this
-    /// returns 16 fP1/Q1 (0 when Q1 = 0, which has no integrals).
+    /// size Q1·v'. Returns 16 fP1/Q1, twice the largest amplification measured
+    /// (proofs/stability.md, §1), and 0 when Q1 = 0, which has no integrals.
     pub fn cancellation_amplification(&self) -> R {
         let zero = self.tangential_amplitude.int(0);
         if self.tangential_amplitude == zero {
@@ -273,10 +275,10 @@ impl<R: Real> LoadCycle<R> {
         self.friction.clone() * &(self.normal_amplitude.clone() / &self.tangential_amplitude) * &zero.int(16)
     }
 
-    /// The ellipse geometry (for φ reduced to [0, π)); validates the cycle first.
+    /// The ellipse geometry (for φ reduced to [0, π)) of a cycle not yet validated:
+    /// validates a copy first ([`ValidCycle::geometry`] for one that is).
     pub fn geometry(&self) -> Result<EllipseGeometry<R>, CycleError> {
-        self.validate()?;
-        Ok(EllipseGeometry::new(self))
+        Ok(ValidCycle::new(self.clone())?.geometry())
     }
 
     /// P(θ).
@@ -290,6 +292,48 @@ impl<R: Real> LoadCycle<R> {
         let ((sin_theta, cos_theta), (sin_phi, cos_phi)) = (theta.sin_cos(), self.phase.sin_cos());
         let lag_cos = cos_theta * &cos_phi + &(sin_theta * &sin_phi);
         self.mean_tangential_load.clone() + &(self.tangential_amplitude.clone() * &lag_cos)
+    }
+}
+
+/// A load cycle the theory covers, checked once by [`ValidCycle::new`]; it reads as the
+/// [`LoadCycle`] it holds.
+#[derive(Clone, Debug)]
+pub struct ValidCycle<R> {
+    cycle: LoadCycle<R>,
+    kind: CycleKind,
+}
+
+impl<R: Real> ValidCycle<R> {
+    /// The cycle, if it is finite, compressive, within the friction cone throughout, with
+    /// physical f and λ ([`LoadCycle::validate`] says which condition fails).
+    pub fn new(cycle: LoadCycle<R>) -> Result<Self, CycleError> {
+        cycle.validate()?;
+        let kind = cycle.classify();
+        Ok(ValidCycle { cycle, kind })
+    }
+
+    /// Which case the cycle is.
+    pub fn kind(&self) -> CycleKind {
+        self.kind
+    }
+
+    /// The points E, B, C, H of its ellipse (for φ reduced to [0, π)). Defined for every
+    /// valid cycle: where P1 = 0 or Q1 = 0, BC and CH have length 0.
+    pub fn geometry(&self) -> EllipseGeometry<R> {
+        EllipseGeometry::new(&self.cycle)
+    }
+
+    /// The loads.
+    pub fn into_inner(self) -> LoadCycle<R> {
+        self.cycle
+    }
+}
+
+impl<R> Deref for ValidCycle<R> {
+    type Target = LoadCycle<R>;
+
+    fn deref(&self) -> &LoadCycle<R> {
+        &self.cycle
     }
 }
 
@@ -475,12 +519,24 @@ mod tests {
         }
     }
 
+    /// The cycle at `phase`, validated, with its geometry.
+    fn valid(phase: f64) -> (ValidCycle<f64>, EllipseGeometry<f64>) {
+        let valid = ValidCycle::new(cycle(phase)).expect("a valid cycle");
+        let geometry = valid.geometry();
+        (valid, geometry)
+    }
+
+    /// (Q − fP, Q + fP) at θ.
+    fn slip_lines(c: &LoadCycle<f64>, theta: f64) -> (f64, f64) {
+        let (q, fp) = (c.tangential_load(&theta), c.friction * c.normal_load(&theta));
+        (q - fp, q + fp)
+    }
+
     #[test]
     fn tangent_points_are_the_extremes_of_the_slip_line_functions() {
-        let c = cycle(0.4 * std::f64::consts::PI);
-        let g = c.geometry().unwrap();
-        let minus = |t: f64| c.tangential_load(&t) - c.friction * c.normal_load(&t);
-        let plus = |t: f64| c.tangential_load(&t) + c.friction * c.normal_load(&t);
+        let (c, g) = valid(0.4 * std::f64::consts::PI);
+        let minus = |t: f64| slip_lines(&c, t).0;
+        let plus = |t: f64| slip_lines(&c, t).1;
         let h = 1e-4;
         for (theta, func, is_max) in [
             (g.theta_e, &minus as &dyn Fn(f64) -> f64, true),
@@ -506,10 +562,9 @@ mod tests {
 
     #[test]
     fn mirror_point_and_slip_loads_satisfy_their_defining_equations() {
-        let c = cycle(0.3 * std::f64::consts::PI);
-        let g = c.geometry().unwrap();
-        let minus = |t: f64| c.tangential_load(&t) - c.friction * c.normal_load(&t);
-        let plus = |t: f64| c.tangential_load(&t) + c.friction * c.normal_load(&t);
+        let (c, g) = valid(0.3 * std::f64::consts::PI);
+        let minus = |t: f64| slip_lines(&c, t).0;
+        let plus = |t: f64| slip_lines(&c, t).1;
         let (p_e, q_e) = (c.normal_load(&g.theta_e), c.tangential_load(&g.theta_e));
         for t in [0.1, 0.5, 0.9] {
             // Y (Eq. 15) for a point of CH.

@@ -11,6 +11,7 @@ use plotters::coord::Shift;
 use plotters::prelude::*;
 
 use crate::cycle::LoadCycle;
+use crate::dissipation::{Segment, Segments};
 use crate::files::OutputError;
 use crate::simulate::SimulationResult;
 
@@ -88,7 +89,6 @@ const SEGMENT_COLOURS: [RGBColor; 4] = [
     RGBColor(214, 39, 40),
     RGBColor(255, 127, 14),
 ];
-const SEGMENT_NAMES: [&str; 4] = ["EB", "BC", "CH", "HE"];
 
 /// What is drawn, computed once for either backend.
 struct Scene {
@@ -96,7 +96,7 @@ struct Scene {
     points: Vec<(&'static str, f64, f64)>,
     top_load: f64,
     tangential_extent: f64,
-    segments: [Vec<(f64, f64)>; 4],
+    segments: Segments<Vec<(f64, f64)>>,
     dissipation: f64,
 }
 
@@ -107,22 +107,28 @@ pub fn plot_cycle(path: &Path, cycle: &LoadCycle<f64>, result: &SimulationResult
     let turns = (cycle.phase / std::f64::consts::PI).floor() as i64;
     let mirror = if turns.rem_euclid(2) == 1 { -1.0 } else { 1.0 };
     let two_pi = 2.0 * std::f64::consts::PI;
-    let starts = [geometry.theta_e, geometry.theta_b, geometry.theta_c, geometry.theta_h];
+    let starts = Segments {
+        eb: geometry.theta_e,
+        bc: geometry.theta_b,
+        ch: geometry.theta_c,
+        he: geometry.theta_h,
+    };
     // The segment an angle lies in: the one whose start it passed most recently.
     let segment_of = |theta: f64| {
-        (0..4)
+        Segment::ALL
+            .into_iter()
             .min_by(|&a, &b| {
-                (theta - starts[a])
+                (theta - starts.get(a))
                     .rem_euclid(two_pi)
-                    .total_cmp(&(theta - starts[b]).rem_euclid(two_pi))
+                    .total_cmp(&(theta - starts.get(b)).rem_euclid(two_pi))
             })
-            .unwrap_or(0)
+            .unwrap_or(Segment::EB)
     };
-    let mut segments: [Vec<(f64, f64)>; 4] = Default::default();
+    let mut segments = Segments::from_fn(|_| Vec::new());
     for pair in result.steady_loop.windows(2) {
-        let index = segment_of(0.5 * (pair[0].theta + pair[1].theta));
-        segments[index].push((pair[0].displacement, pair[0].tangential_load));
-        segments[index].push((pair[1].displacement, pair[1].tangential_load));
+        let points = segments.get_mut(segment_of(0.5 * (pair[0].theta + pair[1].theta)));
+        points.push((pair[0].displacement, pair[0].tangential_load));
+        points.push((pair[1].displacement, pair[1].tangential_load));
     }
     let top_load = cycle.mean_normal_load + cycle.normal_amplitude;
     let scene = Scene {
@@ -133,12 +139,12 @@ pub fn plot_cycle(path: &Path, cycle: &LoadCycle<f64>, result: &SimulationResult
             .collect(),
         points: ["E", "B", "C", "H"]
             .iter()
-            .zip(starts)
-            .map(|(name, theta)| {
+            .zip(starts.iter())
+            .map(|(name, (_, theta))| {
                 (
                     *name,
-                    cycle.mean_normal_load + geometry.normal_offset(&theta),
-                    cycle.mean_tangential_load + mirror * geometry.tangential_offset(&theta),
+                    cycle.mean_normal_load + geometry.normal_offset(theta),
+                    cycle.mean_tangential_load + mirror * geometry.tangential_offset(theta),
                 )
             })
             .collect(),
@@ -195,7 +201,7 @@ where
         .border_style(BLACK)
         .background_style(WHITE)
         .draw()?;
-    let all = scene.segments.iter().flatten();
+    let all = scene.segments.iter().flat_map(|(_, points)| points);
     let (u_min, u_max, q_min, q_max) = all.fold(
         (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY),
         |(a, b, c, d), (u, q)| (a.min(*u), b.max(*u), c.min(*q), d.max(*q)),
@@ -214,15 +220,16 @@ where
             (q_min - pad(q_min, q_max))..(q_max + pad(q_min, q_max)),
         )?;
     hysteresis.configure_mesh().x_desc("u").y_desc("Q").draw()?;
-    for (index, colour) in SEGMENT_COLOURS.iter().enumerate() {
-        let colour = *colour;
+    for (segment, colour) in Segment::ALL.into_iter().zip(SEGMENT_COLOURS) {
         hysteresis
             .draw_series(
-                scene.segments[index]
+                scene
+                    .segments
+                    .get(segment)
                     .chunks(2)
                     .map(move |c| PathElement::new(c.to_vec(), colour.stroke_width(2))),
             )?
-            .label(SEGMENT_NAMES[index])
+            .label(segment.name())
             .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2)));
     }
     hysteresis

@@ -1,7 +1,7 @@
 //! The dissipation per cycle: precision agreement, limits, closed forms and invariants.
 
 use microslip::compliance::{Compliance, Hertz, Polynomial, PowerLaw};
-use microslip::cycle::LoadCycle;
+use microslip::cycle::{LoadCycle, ValidCycle};
 use microslip::dissipation::{
     constant_normal_load, dissipation, four_segment, in_phase, HertzConfiguration, Method, MindlinDeresiewicz, Options,
 };
@@ -68,7 +68,7 @@ fn general_integrator_tends_linearly_to_the_in_phase_closed_form() {
     let compliance = inverse_load::<f64>(Precision::DOUBLE);
     let options = Options::default();
     for (phase, base) in [(0.0, 0.0), (std::f64::consts::PI, std::f64::consts::PI)] {
-        let closed = in_phase(&acceptance_cycle(base), &compliance, &options).unwrap();
+        let closed = in_phase(&ValidCycle::new(acceptance_cycle(base)).unwrap(), &compliance, &options).unwrap();
         assert_eq!(closed.method, Method::InPhase);
         let error_at = |offset: f64| {
             let phi = if phase == 0.0 { offset } else { phase - offset };
@@ -91,7 +91,12 @@ fn in_phase_dissipation_vanishes_when_the_load_line_is_inside_the_friction_cone(
     let mut cycle = acceptance_cycle(0.0);
     cycle.tangential_amplitude = 0.35; // < f·P1 = 0.4
     let compliance = inverse_load::<f64>(Precision::DOUBLE);
-    let closed = in_phase(&cycle, &compliance, &Options::default()).unwrap();
+    let closed = in_phase(
+        &ValidCycle::new(cycle.clone()).unwrap(),
+        &compliance,
+        &Options::default(),
+    )
+    .unwrap();
     assert_eq!(closed.total, 0.0);
     // The ellipse at small φ dissipates in proportion to φ.
     cycle.phase = 1e-6;
@@ -142,7 +147,9 @@ fn mindlin_deresiewicz_mismatch(configuration: HertzConfiguration, q: &str, p: P
         friction: f.clone(),
         compliance_ratio: lambda,
     };
-    let closed = constant_normal_load(&cycle, &hertz, &Options::default()).unwrap().total;
+    let closed = constant_normal_load(&ValidCycle::new(cycle.clone()).unwrap(), &hertz, &Options::default())
+        .unwrap()
+        .total;
     let formula = md.dissipation(&f, &p0, &q1, &hertz.contact_radius(&p0));
     ((closed - &formula) / formula).abs().to_f64()
 }

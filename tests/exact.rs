@@ -3,7 +3,7 @@
 
 use microslip::compliance::Polynomial;
 use microslip::compliance::{Compliance, Hertz};
-use microslip::cycle::LoadCycle;
+use microslip::cycle::{LoadCycle, ValidCycle};
 use microslip::dissipation::{four_segment, in_phase, HertzConfiguration, MindlinDeresiewicz, Options};
 use microslip::exact::{closed_form_coefficient, polynomial_dissipation};
 use microslip::real::{Precision, Real};
@@ -173,7 +173,9 @@ fn closed_form_limits_in_phase() {
             check_compliance: false,
             ..Options::default()
         };
-        let w = in_phase(&cycle, &linear, &options).unwrap().total;
+        let w = in_phase(&ValidCycle::new(cycle.clone()).unwrap(), &linear, &options)
+            .unwrap()
+            .total;
         let from_closed_form = closed(rho, "0", bits) * &amplitude * &amplitude * &amplitude;
         let difference = (w - &from_closed_form).abs().to_f64();
         assert!(difference < 1e-50, "ρ = {rho}: {difference:e}");

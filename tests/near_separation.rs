@@ -9,7 +9,7 @@
 
 use std::time::Duration;
 
-use microslip::dissipation::{dissipation, DissipationError, Options, SegmentIntegrands};
+use microslip::dissipation::{dissipation, DissipationError, Options, Segment, SegmentIntegrands};
 use microslip::inputs::{Case, CaseText};
 use microslip::quad::gauss_legendre::node_table;
 use microslip::real::Precision;
@@ -78,17 +78,17 @@ fn graded_reference(text: &CaseText) -> (Float, Float) {
         .fold(pi.clone(), |a, w| a.min(&w));
     let floor = smallest / 10u32;
     let (mut total, mut error) = (zero.clone(), zero.clone());
-    for index in 0..4 {
-        let (start, length) = integrands.extent(index);
+    for segment in Segment::ALL {
+        let (start, length) = integrands.extent(segment);
         let mut centers = Vec::new();
         for k in -2..=3i32 {
             let lowest = pi.clone() * (2 * k + 1);
             centers.push(lowest.clone() - start);
-            if index == 2 {
+            if segment == Segment::CH {
                 centers.push(g.theta_c.clone() - &lowest);
             }
         }
-        if index == 0 || index == 3 {
+        if matches!(segment, Segment::EB | Segment::HE) {
             centers.push(length.clone());
         }
         let mut stack = vec![(zero.clone(), length.clone())];
@@ -113,7 +113,7 @@ fn graded_reference(text: &CaseText) -> (Float, Float) {
                 stack.push((middle, b));
                 continue;
             }
-            let f = |s: &Float| integrands.integrand(index, s);
+            let f = |s: &Float| integrands.integrand(segment, s);
             let value = fine.integrate(f, &a, &b);
             let check = coarse.integrate(f, &a, &b);
             error += (value.clone() - &check).abs();

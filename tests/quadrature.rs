@@ -1,5 +1,8 @@
 //! The quadrature rules against exact values.
 
+use std::sync::Arc;
+
+use microslip::quad::engine::{self, FixedRule, Piece, QuadError, Settings};
 use microslip::quad::{gauss_legendre, tanh_sinh};
 use microslip::real::{Precision, Real};
 use rug::Float;
@@ -51,27 +54,136 @@ fn gauss_legendre_is_exact_on_polynomials_of_degree_2n_minus_1_at_200_bits() {
     check_polynomial_exactness::<Float>(Precision::bits(200), 1e-55);
 }
 
+/// One piece for the engine.
+fn piece<'a, R: Real>(label: &'static str, integrand: impl Fn(&R) -> R + 'a, start: R, end: R) -> Piece<'a, R> {
+    Piece {
+        label,
+        integrand: Box::new(integrand),
+        start,
+        end,
+    }
+}
+
 #[test]
 fn gauss_legendre_gives_pi_to_100_digits() {
     let p = Precision::bits(360);
     let (zero, one) = (Float::from_i64(0, p), Float::from_i64(1, p));
     let tolerance = Float::parse_decimal("1e-104", p).unwrap();
-    let estimate = gauss_legendre::integrate(
-        |x: &Float| x.int(4) / (x.int(1) + &x.square()),
-        &zero,
-        &one,
-        &tolerance,
-        8,
-        1024,
-    );
-    assert!(estimate.converged);
-    let error = (estimate.value - Float::pi(p)).abs();
+    let settings = Settings {
+        first_points: 8,
+        max_points: 1024,
+        ..Settings::new(tolerance.clone())
+    };
+    let pieces = [piece("π", |x: &Float| x.int(4) / (x.int(1) + &x.square()), zero, one)];
+    let integrated = engine::integrate(&pieces, &settings).unwrap();
+    let result = &integrated.pieces[0];
+    assert!(result.estimate.converged);
+    assert!(result.rule <= 1024 && result.rule == integrated.largest_rule);
+    let error = (result.estimate.value.clone() - Float::pi(p)).abs();
     assert!(
         error < Float::parse_decimal("1e-100", p).unwrap(),
         "error {}",
         error.to_f64()
     );
-    assert!(estimate.error < tolerance);
+    assert!(result.estimate.error < tolerance.clone() * 4u32);
+    // A positive integrand: ∫|f| is the integral itself.
+    let magnitude_error = (result.magnitude.clone() - Float::pi(p)).abs();
+    assert!(magnitude_error < Float::parse_decimal("1e-100", p).unwrap());
+}
+
+/// Where Gauss–Legendre converges only algebraically (an end-point singularity), the
+/// engine hands the piece to tanh–sinh and still reaches the tolerance; the error of a
+/// piece it adds to the others' is counted once in the total.
+#[test]
+fn engine_falls_back_to_tanh_sinh_on_an_end_point_singularity() {
+    let p = Precision::bits(200);
+    let reference = cos_over_sqrt_series(p);
+    let (zero, one) = (Float::from_i64(0, p), Float::from_i64(1, p));
+    let pieces = [
+        piece(
+            "smooth",
+            |x: &Float| x.int(4) / (x.int(1) + &x.square()),
+            zero.clone(),
+            one.clone(),
+        ),
+        piece("singular", |x: &Float| x.cos() / x.sqrt(), zero, one),
+    ];
+    let integrated = engine::integrate(&pieces, &Settings::new(Float::parse_decimal("1e-52", p).unwrap())).unwrap();
+    let singular = &integrated.pieces[1];
+    assert!(singular.estimate.converged);
+    let error = (singular.estimate.value.clone() - &reference).abs() / &reference;
+    assert!(error < 1e-50, "relative error {:e}", error.to_f64());
+    // Tanh–sinh finished it: the doubling sequence up to the largest rule costs less than
+    // twice that rule, and the piece took more.
+    assert!(singular.estimate.evaluations > 2 * integrated.largest_rule);
+    assert_eq!(singular.rule, integrated.largest_rule);
+    let summed = integrated.pieces[0].estimate.error.clone() + &singular.estimate.error;
+    assert_eq!(integrated.error, summed);
+    let evaluations: usize = integrated.pieces.iter().map(|piece| piece.estimate.evaluations).sum();
+    assert_eq!(integrated.evaluations, evaluations);
+}
+
+#[test]
+fn engine_names_the_piece_that_is_not_finite_and_stops_at_the_deadline() {
+    let pieces = [
+        piece("fine", |x: &f64| x.exp(), 0.0, 1.0),
+        piece("broken", |x: &f64| 1.0 / (x - 0.5).abs().min(0.0), 0.0, 1.0),
+    ];
+    let error = engine::integrate(&pieces, &Settings::new(1e-13)).unwrap_err();
+    assert_eq!(error, QuadError::NotFinite { piece: "broken" });
+    let settings = Settings {
+        deadline: Some(std::time::Instant::now()),
+        ..Settings::new(1e-13)
+    };
+    let error = engine::integrate(&pieces[..1], &settings).unwrap_err();
+    assert_eq!(error, QuadError::OutOfTime);
+}
+
+/// A fixed rule integrates each piece once with its own rule, the error from the rule of
+/// a quarter of the points.
+#[test]
+fn engine_fixed_rules_use_each_piece_s_own_rule() {
+    let pieces = [
+        piece("exp", |x: &f64| x.exp(), 0.0, 1.0),
+        piece("cos", |x: &f64| x.cos(), 0.0, 1.0),
+    ];
+    let settings = Settings {
+        fixed: Some(FixedRule {
+            points: 8,
+            per_piece: Some(vec![4, 16]),
+            quarter_rule_error: true,
+        }),
+        ..Settings::new(1e-13)
+    };
+    let integrated = engine::integrate(&pieces, &settings).unwrap();
+    assert_eq!(integrated.rules(), vec![4, 16]);
+    assert_eq!(integrated.evaluations, 4 + 1 + 16 + 4);
+    assert!((integrated.pieces[1].estimate.value - 1f64.sin()).abs() < 1e-15);
+    // Four points leave exp ~1e−9 off, which the single point of the coarse rule oversizes.
+    let exp = &integrated.pieces[0].estimate;
+    assert!((exp.value - (1f64.exp() - 1.0)).abs() < exp.error && exp.error < 0.1);
+}
+
+#[test]
+fn tanh_sinh_nodes_are_cached_per_level_and_precision() {
+    let first = tanh_sinh::nodes::<Float>(3, Precision::bits(150));
+    assert!(Arc::ptr_eq(&first, &tanh_sinh::nodes::<Float>(3, Precision::bits(150))));
+    assert!(!Arc::ptr_eq(
+        &first,
+        &tanh_sinh::nodes::<Float>(3, Precision::bits(151))
+    ));
+    assert!(!Arc::ptr_eq(
+        &first,
+        &tanh_sinh::nodes::<Float>(4, Precision::bits(150))
+    ));
+    // Level 3 adds the odd multiples of 1/8 up to u_max; level 0 has the midpoint.
+    let level = tanh_sinh::nodes::<f64>(3, Precision::DOUBLE);
+    assert!(!level.has_middle && tanh_sinh::nodes::<f64>(0, Precision::DOUBLE).has_middle);
+    let (complement, weight) = &level.nodes[0];
+    let s = std::f64::consts::FRAC_PI_2 * 0.125f64.sinh();
+    assert!((complement - (1.0 - s.tanh())).abs() < 1e-15);
+    let expected = std::f64::consts::FRAC_PI_2 * 0.125f64.cosh() / s.cosh().powi(2);
+    assert!((weight - expected).abs() < 1e-15);
 }
 
 /// ∫₀¹ x^(−1/2) cos x dx = Σₖ (−1)^k / ((2k)! (2k + 1/2)), summed until the terms vanish.

@@ -4,7 +4,7 @@
 use std::process::Command;
 
 use microslip::compliance::{parse_spec, AdmissibilityError};
-use microslip::cycle::{compliance_ratio_from_poisson, CycleError, LoadCycle};
+use microslip::cycle::{compliance_ratio_from_poisson, CycleError, CycleKind, LoadCycle, ValidCycle};
 use microslip::dissipation::{dissipation, DissipationError, Options};
 use microslip::real::Precision;
 
@@ -325,4 +325,39 @@ fn where_f64_cannot_resolve_w_the_default_run_computes_verified_digits_instead()
     // An ordinary cycle stays in f64, with its estimate.
     let ordinary = run("0.4", "0.5", "0.4pi", &[]);
     assert!(ordinary["f64_fallback"].is_null() && ordinary["error_estimate"].as_f64().unwrap() > 0.0);
+}
+
+/// A cycle is validated once, by `ValidCycle::new`, which refuses what `validate` refuses
+/// with the same error and classifies what it accepts.
+#[test]
+fn valid_cycle_is_built_only_from_a_cycle_the_theory_covers() {
+    for change in [
+        (|c: &mut LoadCycle<f64>| c.normal_amplitude = 1.5) as fn(&mut LoadCycle<f64>),
+        |c| c.tangential_amplitude = 5.0,
+        |c| c.friction = -1.0,
+    ] {
+        let mut cycle = base();
+        change(&mut cycle);
+        let expected = cycle.validate().expect_err("invalid");
+        assert_eq!(ValidCycle::new(cycle).expect_err("invalid"), expected);
+    }
+    let kind = |change: fn(&mut LoadCycle<f64>)| {
+        let mut cycle = base();
+        change(&mut cycle);
+        ValidCycle::new(cycle).expect("valid").kind()
+    };
+    assert_eq!(kind(|_| {}), CycleKind::Elliptic);
+    assert_eq!(
+        kind(|c| c.tangential_amplitude = 0.0),
+        CycleKind::NoTangentialOscillation
+    );
+    assert_eq!(kind(|c| c.normal_amplitude = 0.0), CycleKind::ConstantNormalLoad);
+    assert_eq!(kind(|c| c.phase = std::f64::consts::PI), CycleKind::InPhase);
+    // The geometry of a valid cycle is defined even where it degenerates: P1 = 0 leaves
+    // BC and CH of length 0.
+    let mut constant = base();
+    constant.normal_amplitude = 0.0;
+    let geometry = ValidCycle::new(constant).expect("valid").geometry();
+    assert_eq!(geometry.stick_angle, 0.0);
+    assert!((geometry.slip_angle - std::f64::consts::PI).abs() < 1e-15);
 }

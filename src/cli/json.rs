@@ -5,35 +5,33 @@
 //! digits checked by a second computation at higher precision (null where none were),
 //! `precision_bits` the working precision (53 for f64), `inputs` the inputs as given.
 
+use serde::ser::SerializeMap;
 use serde::Serialize;
 
+use microslip::dissipation;
 use microslip::inputs::CaseText;
 
-/// EB, BC, CH, HE.
-#[derive(Serialize)]
-pub struct Segments<T> {
-    #[serde(rename = "EB")]
-    pub eb: T,
-    #[serde(rename = "BC")]
-    pub bc: T,
-    #[serde(rename = "CH")]
-    pub ch: T,
-    #[serde(rename = "HE")]
-    pub he: T,
-}
+/// The four segment values as an object keyed by the segments' names, in cycle order.
+pub struct Segments<T>(dissipation::Segments<T>);
 
 impl<T: Clone> Segments<T> {
     /// From the four values in the order EB, BC, CH, HE.
     pub fn from_slice(values: &[T]) -> Option<Self> {
-        match values {
-            [eb, bc, ch, he] => Some(Segments {
-                eb: eb.clone(),
-                bc: bc.clone(),
-                ch: ch.clone(),
-                he: he.clone(),
-            }),
-            _ => None,
+        (values.len() == 4).then(|| {
+            Segments(dissipation::Segments::from_fn(|segment| {
+                values[segment as usize].clone()
+            }))
+        })
+    }
+}
+
+impl<T: Serialize> Serialize for Segments<T> {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        let mut map = serializer.serialize_map(Some(4))?;
+        for (segment, value) in self.0.iter() {
+            map.serialize_entry(segment.name(), value)?;
         }
+        map.end()
     }
 }
 

@@ -13,10 +13,15 @@
 
 use std::rc::Rc;
 
-use super::driver::{converge, Converged, Integral};
-use super::{prepare, scaled_result, slope_at, Dissipation, DissipationError, Method, Options};
+use super::assemble::{assemble, Dissipation, Method, Parts};
+use super::conditioning::check_case;
+use super::error::DissipationError;
+use super::options::Options;
+use super::segment::Segments;
+use super::slope::{knot_offsets, slope_at};
 use crate::compliance::Compliance;
-use crate::cycle::LoadCycle;
+use crate::cycle::ValidCycle;
+use crate::quad::{integrate, Integrated, Piece};
 use crate::real::Real;
 
 /// W for an in-phase cycle (φ ≡ 0 mod π), the paper's appendix. No slip occurs
@@ -30,124 +35,139 @@ use crate::real::Real;
 /// ```
 /// The phase is not checked: the formula is that of the line the ellipse collapses to.
 pub fn in_phase<R: Real>(
-    cycle: &LoadCycle<R>,
+    cycle: &ValidCycle<R>,
     compliance: &dyn Compliance<R>,
     options: &Options<R>,
 ) -> Result<Dissipation<R>, DissipationError> {
-    prepare(cycle, compliance, options)?;
+    check_case(cycle, compliance, options)?;
     let f = &cycle.friction;
     let p1 = &cycle.normal_amplitude;
     let q1 = &cycle.tangential_amplitude;
     let zero = p1.int(0);
     if q1.clone() <= f.clone() * p1 {
-        return scaled_result(cycle, Converged::combined(vec![], zero, 0, 0), Method::InPhase, options);
+        return assemble(cycle, Parts::nothing(&zero), Method::InPhase, options);
     }
     let q = q1.clone() / f;
-    let slope = slope_at(compliance, &cycle.mean_normal_load, options.remove_constant_slope);
-    let slope = &slope;
     let (q_ref, p1_ref) = (&q, p1);
-    let knots = knot_offsets(cycle, compliance);
     let (minus_p1, minus_q) = (-p1.clone(), -q.clone());
-    let terms: [(&'static str, usize, Weighted<'_, R>, &R, &R); 3] = [
-        ("W1", 3, Rc::new(move |x: &R| x.clone() * &slope(x)), &minus_p1, p1),
+    let terms: [Term<'_, R>; 3] = [
+        ("W1", Box::new(|x: &R| x.clone()), &minus_p1, p1),
         (
             "W2",
-            3,
-            Rc::new(move |x: &R| (x.clone() * &x.int(2) + p1_ref + q_ref) * &slope(x)),
+            Box::new(move |x: &R| x.clone() * &x.int(2) + p1_ref + q_ref),
             &minus_p1,
             &minus_q,
         ),
         (
             "W4",
-            0,
-            Rc::new(move |x: &R| (x.clone() * &x.int(2) - p1_ref + q_ref) * &slope(x)),
+            Box::new(move |x: &R| x.clone() * &x.int(2) - p1_ref + q_ref),
             p1,
             &minus_q,
         ),
     ];
-    // Each term's pieces, and which term each piece belongs to.
-    let mut pieces = Vec::new();
-    let mut term_of_piece = Vec::new();
-    for (term, (name, segment, integrand, start, end)) in terms.into_iter().enumerate() {
-        for piece in split_at_knots(name, segment, integrand, start, end, &knots) {
-            pieces.push(piece);
-            term_of_piece.push(term);
-        }
-    }
-    let converged = converge(&pieces, &options.tolerance_for(&zero), options)?;
-    let mut sums = [zero.clone(), zero.clone(), zero.clone()];
-    for (value, term) in converged.values.iter().zip(&term_of_piece) {
-        sums[*term] += value;
-    }
-    let [j1, j2, j4] = sums;
+    let ([j1, j2, j4], integrated) = integrate_terms(cycle, compliance, options, terms)?;
     let w1 = f.clone() * q1 / p1 * &j1;
     let w2 = f.clone() * q1 * &zero.int(2) / &(q.clone() - p1) * &j2;
     let w4 = f.clone() * q1 * &zero.int(2) / &(q.clone() + p1) * &j4;
     // Error: each piece's estimate carries at most the largest of the three prefactors.
     let prefactor = (f.clone() * q1 * &zero.int(2) / &(q.clone() - p1)).max_of(&(f.clone() * q1 / p1));
-    let error = converged.error * &prefactor;
-    // Segment order EB, BC, CH, HE: unloading, (empty), (empty), loading.
-    let values = vec![w1.clone() + &w4, zero.clone(), zero, w1 + &w2];
-    let combined = Converged::combined(values, error, converged.evaluations, converged.points);
-    scaled_result(cycle, combined, Method::InPhase, options)
+    let error = integrated.error.clone() * &prefactor;
+    // Unloading (EB) and loading (HE); BC and CH are empty.
+    let segments = Segments {
+        eb: w1.clone() + &w4,
+        bc: zero.clone(),
+        ch: zero,
+        he: w1 + &w2,
+    };
+    let parts = Parts::from_integrals(segments, error, &integrated);
+    assemble(cycle, parts, Method::InPhase, options)
 }
 
 /// W at constant normal load (P1 = 0; the phase is irrelevant):
 /// W = 4λf² ∫_{−Q1/f}^{0} (−Q1/f − 2x) v'(P0 + x) dx. By the symmetry Q → −Q the
 /// unloading (EB) and reloading (HE) halves carry W/2 each.
 pub fn constant_normal_load<R: Real>(
-    cycle: &LoadCycle<R>,
+    cycle: &ValidCycle<R>,
     compliance: &dyn Compliance<R>,
     options: &Options<R>,
 ) -> Result<Dissipation<R>, DissipationError> {
-    prepare(cycle, compliance, options)?;
+    check_case(cycle, compliance, options)?;
     let f = &cycle.friction;
     let zero = f.int(0);
     let q = cycle.tangential_amplitude.clone() / f;
-    let slope = slope_at(compliance, &cycle.mean_normal_load, options.remove_constant_slope);
-    let (q_ref, slope) = (&q, &slope);
-    let pieces = split_at_knots(
+    let q_ref = &q;
+    let minus_q = -q.clone();
+    let term: Term<'_, R> = (
         "Masing loop",
-        0,
-        Rc::new(move |x: &R| (-(x.clone() * &x.int(2)) - q_ref) * &slope(x)),
-        &-q.clone(),
+        Box::new(move |x: &R| -(x.clone() * &x.int(2)) - q_ref),
+        &minus_q,
         &zero,
-        &knot_offsets(cycle, compliance),
     );
-    let converged = converge(&pieces, &options.tolerance_for(&zero), options)?;
+    let ([loop_integral], integrated) = integrate_terms(cycle, compliance, options, [term])?;
     let factor = f.clone() * f * &zero.int(2);
-    let loop_integral = converged.values.iter().fold(zero.clone(), |acc, value| acc + value);
     let half = loop_integral * &factor;
-    let values = vec![half.clone(), zero.clone(), zero, half];
-    let error = converged.error * &factor * &f.int(2);
-    let combined = Converged::combined(values, error, converged.evaluations, converged.points);
-    scaled_result(cycle, combined, Method::ConstantNormalLoad, options)
+    let segments = Segments {
+        eb: half.clone(),
+        bc: zero.clone(),
+        ch: zero.clone(),
+        he: half,
+    };
+    let error = integrated.error.clone() * &factor * &f.int(2);
+    let parts = Parts::from_integrals(segments, error, &integrated);
+    assemble(cycle, parts, Method::ConstantNormalLoad, options)
+}
+
+/// A closed form's term: its name, the weight w(x) it integrates v'(P0 + x) against (in
+/// the offset x = P − P0), and the limits.
+type Term<'a, R> = (&'static str, Box<dyn Fn(&R) -> R + 'a>, &'a R, &'a R);
+
+/// ∫ w(x) v'(P0 + x) dx for each term, each split at the compliance's knots, integrated
+/// together; the values per term, in the order given.
+fn integrate_terms<'a, R: Real, const N: usize>(
+    cycle: &ValidCycle<R>,
+    compliance: &'a dyn Compliance<R>,
+    options: &Options<R>,
+    terms: [Term<'a, R>; N],
+) -> Result<([R; N], Integrated<R>), DissipationError> {
+    let zero = cycle.mean_normal_load.int(0);
+    let slope = Rc::new(slope_at(
+        compliance,
+        &cycle.mean_normal_load,
+        options.remove_constant_slope,
+    ));
+    let knots = knot_offsets(compliance, &cycle.mean_normal_load);
+    // Each term's pieces, and which term each piece belongs to.
+    let mut pieces = Vec::new();
+    let mut term_of_piece = Vec::new();
+    for (term, (label, weight, start, end)) in terms.into_iter().enumerate() {
+        let slope = Rc::clone(&slope);
+        let integrand: Weighted<'a, R> = Rc::new(move |x: &R| weight(x) * &slope(x));
+        for piece in split_at_knots(label, integrand, start, end, &knots) {
+            pieces.push(piece);
+            term_of_piece.push(term);
+        }
+    }
+    let integrated = integrate(&pieces, &options.settings(&zero))?;
+    let mut sums = std::array::from_fn(|_| zero.clone());
+    for (value, term) in integrated.values().zip(&term_of_piece) {
+        sums[*term] += value;
+    }
+    Ok((sums, integrated))
 }
 
 /// A closed form's integrand in the offset x = P − P0, shared by the pieces it is split into.
 type Weighted<'a, R> = Rc<dyn Fn(&R) -> R + 'a>;
 
-/// The compliance's breakpoints as offsets x = P − P0 (empty for an analytic v').
-fn knot_offsets<R: Real>(cycle: &LoadCycle<R>, compliance: &dyn Compliance<R>) -> Vec<R> {
-    let mean = &cycle.mean_normal_load;
-    compliance
-        .breakpoints(mean)
-        .into_iter()
-        .map(|knot| knot - mean)
-        .collect()
-}
-
 /// ∫ₛₜₐᵣₜ^ₑₙd of `integrand` as pieces split at the knots strictly between the limits
 /// (in either order), so that v' is one analytic piece on each: a quadrature rule
 /// converges only algebraically across a knot, where v'' or v''' jumps.
 fn split_at_knots<'a, R: Real>(
-    name: &'static str,
-    segment: usize,
+    label: &'static str,
     integrand: Weighted<'a, R>,
     start: &R,
     end: &R,
     knots: &[R],
-) -> Vec<Integral<'a, R>> {
+) -> Vec<Piece<'a, R>> {
     let (low, high) = if start <= end { (start, end) } else { (end, start) };
     let mut points = vec![start.clone()];
     let inside = knots.iter().filter(|x| *x > low && *x < high).cloned();
@@ -161,9 +181,8 @@ fn split_at_knots<'a, R: Real>(
         .windows(2)
         .map(|limits| {
             let integrand = Rc::clone(&integrand);
-            Integral {
-                name,
-                segment,
+            Piece {
+                label,
                 integrand: Box::new(move |x: &R| integrand(x)),
                 start: limits[0].clone(),
                 end: limits[1].clone(),

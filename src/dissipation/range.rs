@@ -14,7 +14,9 @@
 //! v'(P0 + x) − v'(P0) must agree with the plain difference wherever that difference
 //! is resolved, which it cannot if either overflowed or underflowed inside.
 
-use super::{slope_at, DissipationError, Options};
+use super::error::DissipationError;
+use super::options::Options;
+use super::slope::slope_at;
 use crate::compliance::Compliance;
 use crate::cycle::LoadCycle;
 use crate::real::Real;

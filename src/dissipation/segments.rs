@@ -10,17 +10,40 @@
 //! HE  ψ =  f v'(P) P' − v'(P_K) σ₋ sin(θ − θ_E)
 //! ```
 
-use super::driver::Integral;
 use std::rc::Rc;
 
-use super::slope_at;
+use super::segment::{Segment, Segments};
+use super::slope::{knot_offsets, slope_at};
 use crate::compliance::{Compliance, SlopeChange};
 use crate::cycle::{EllipseGeometry, LoadsAt};
 use crate::quad::sinh_map::{acosh_one_plus, asinh, resolve_peaks, Peak};
+use crate::quad::Piece;
 use crate::real::Real;
 
-/// The segment names in cycle order; a piece's `segment` indexes this.
-pub const SEGMENT_NAMES: [&str; 4] = ["EB", "BC", "CH", "HE"];
+/// The pieces of the four segment integrals, with the segment each belongs to.
+pub struct SegmentPieces<'a, R> {
+    /// The pieces, segment by segment in cycle order.
+    pub pieces: Vec<Piece<'a, R>>,
+    /// The segment of each piece.
+    pub segments: Vec<Segment>,
+}
+
+impl<'a, R: Real> SegmentPieces<'a, R> {
+    /// Appends `other`'s pieces.
+    pub fn extend(&mut self, other: SegmentPieces<'a, R>) {
+        self.pieces.extend(other.pieces);
+        self.segments.extend(other.segments);
+    }
+
+    /// The sum of the pieces' `values` per segment, starting from `zero`.
+    pub fn sum_by_segment<'v>(&self, values: impl Iterator<Item = &'v R>, zero: &R) -> Segments<R> {
+        let mut sums = Segments::from_fn(|_| zero.clone());
+        for (value, segment) in values.zip(&self.segments) {
+            *sums.get_mut(*segment) += value;
+        }
+        sums
+    }
+}
 
 /// The integrands of one cycle on one compliance.
 pub struct SegmentIntegrands<'a, R> {
@@ -73,24 +96,24 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
         }
     }
 
-    /// The integrand of segment `index` (0 EB, 1 BC, 2 CH, 3 HE) at angle `s` from its start.
+    /// The integrand of `segment` at angle `s` from its start.
     /// (For many evaluations use [`Self::pieces`], which prepares the slope once.)
-    pub fn integrand(&self, index: usize, s: &R) -> R {
-        self.integrand_with(index, s, &self.prepared_slope())
+    pub fn integrand(&self, segment: Segment, s: &R) -> R {
+        self.integrand_with(segment, s, &self.prepared_slope())
     }
 
-    pub(crate) fn integrand_with(&self, index: usize, s: &R, slope: &dyn Fn(&R) -> R) -> R {
+    pub(crate) fn integrand_with(&self, segment: Segment, s: &R, slope: &dyn Fn(&R) -> R) -> R {
         let g = self.geometry;
         let two = s.int(2);
-        match index {
-            0 | 3 => {
+        match segment {
+            Segment::EB | Segment::HE => {
                 // EB ends at B and HE at E (+2π): with h half the angle to that end,
                 // h = (s − (π − δ))/2, the slip load reads sin²h and sin 2h, and θ is that
                 // end plus 2h — one sin_cos serves both.
                 let (half_sin, half_cos) = ((s.clone() - &g.slip_angle) / &two).sin_cos();
                 let double_sin = half_sin.clone() * &half_cos * &two;
                 let double_cos = s.int(1) - &(half_sin.square() * &two);
-                let (end_sin, end_cos) = if index == 0 {
+                let (end_sin, end_cos) = if segment == Segment::EB {
                     &g.theta_b_sin_cos
                 } else {
                     &g.theta_e_sin_cos
@@ -100,7 +123,7 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
                     end_cos.clone() * &double_cos - &(end_sin.clone() * &double_sin),
                 );
                 let (loads, normal) = self.loads_and_normal_term(&theta_sin_cos, slope);
-                if index == 0 {
+                if segment == Segment::EB {
                     let reverse = slope(&g.reverse_slip_offset(&half_sin)) * &g.sum_amplitude * &double_sin;
                     loads.tangential_offset * &(reverse - &normal)
                 } else {
@@ -108,11 +131,11 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
                     loads.tangential_offset * &(normal - &forward)
                 }
             }
-            1 => {
+            Segment::BC => {
                 let loads = g.loads_at(&(g.theta_b.clone() + s).sin_cos());
                 loads.tangential_offset * &slope(&loads.normal_offset) * &loads.tangential_rate
             }
-            _ => {
+            Segment::CH => {
                 // θ = θ_C + s, the mirror point θ_C − s; sin(θ − θ_E) = sin(π + s) = −sin s.
                 let s_sin_cos = s.sin_cos();
                 let (loads, normal) = self.loads_and_normal_term(&self.around_c(&s_sin_cos, true), slope);
@@ -124,30 +147,30 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
         }
     }
 
-    /// Where segment `index` starts (in θ) and how long it is.
-    pub fn extent(&self, index: usize) -> (&'a R, &'a R) {
+    /// Where `segment` starts (in θ) and how long it is.
+    pub fn extent(&self, segment: Segment) -> (&'a R, &'a R) {
         let g = self.geometry;
-        match index {
-            0 => (&g.theta_e, &g.slip_angle),
-            1 => (&g.theta_b, &g.stick_angle),
-            2 => (&g.theta_c, &g.stick_angle),
-            _ => (&g.theta_h, &g.slip_angle),
+        match segment {
+            Segment::EB => (&g.theta_e, &g.slip_angle),
+            Segment::BC => (&g.theta_b, &g.stick_angle),
+            Segment::CH => (&g.theta_c, &g.stick_angle),
+            Segment::HE => (&g.theta_h, &g.slip_angle),
         }
     }
 
     /// The integrals whose sum times λ is W: each segment split at its lowest-load points.
-    pub fn pieces(&self) -> Vec<Integral<'a, R>> {
+    pub fn pieces(&self) -> SegmentPieces<'a, R> {
         self.pieces_with_slope(self.prepared_slope())
     }
 
-    /// The windows of segment `index` in s, between its break points (lowest loads and
+    /// The windows of `segment` in s, between its break points (lowest loads and
     /// knot crossings), before narrow peaks are mapped: for rules that integrate in s
     /// or in the load themselves.
-    pub fn windows(&self, index: usize) -> Vec<(R, R)> {
-        let mut breaks = self.lowest_load_points(index);
-        let knots = self.knot_offsets();
+    pub fn windows(&self, segment: Segment) -> Vec<(R, R)> {
+        let mut breaks = self.lowest_load_points(segment);
+        let knots = knot_offsets(self.compliance, &self.geometry.mean_normal_load);
         if !knots.is_empty() {
-            breaks.extend(self.knot_crossings(index, &knots));
+            breaks.extend(self.knot_crossings(segment, &knots));
             breaks.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
             breaks.dedup();
         }
@@ -156,32 +179,33 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
 
     /// The same pieces with the compliance's slope replaced by `slope` (a function of
     /// the offset x = P − P0): W is linear in v', so parts of v' can be integrated apart.
-    pub fn pieces_with_slope(&self, slope: SlopeChange<'a, R>) -> Vec<Integral<'a, R>> {
+    pub fn pieces_with_slope(&self, slope: SlopeChange<'a, R>) -> SegmentPieces<'a, R> {
         let slope = Rc::new(slope);
         let mut pieces = Vec::new();
-        for (index, name) in SEGMENT_NAMES.iter().enumerate() {
-            let peaks = self.low_load_peaks(index);
-            for (start, end) in self.windows(index) {
+        let mut segments = Vec::new();
+        for segment in Segment::ALL {
+            let peaks = self.low_load_peaks(segment);
+            for (start, end) in self.windows(segment) {
                 for part in resolve_peaks(&start, &end, &peaks) {
                     let (integrands, slope) = (*self, Rc::clone(&slope));
                     let integrand: Box<dyn Fn(&R) -> R + 'a> = match part.map {
-                        None => Box::new(move |s: &R| integrands.integrand_with(index, s, slope.as_ref())),
+                        None => Box::new(move |s: &R| integrands.integrand_with(segment, s, slope.as_ref())),
                         Some(map) => Box::new(move |u: &R| {
                             let (s, rate) = map.point_and_rate(u);
-                            integrands.integrand_with(index, &s, slope.as_ref()) * &rate
+                            integrands.integrand_with(segment, &s, slope.as_ref()) * &rate
                         }),
                     };
-                    pieces.push(Integral {
-                        name,
-                        segment: index,
+                    pieces.push(Piece {
+                        label: segment.name(),
                         integrand,
                         start: part.start,
                         end: part.end,
                     });
+                    segments.push(segment);
                 }
             }
         }
-        pieces
+        SegmentPieces { pieces, segments }
     }
 
     /// The narrow peaks of segment `index` (in s), where a load that v' is taken at is
@@ -190,9 +214,9 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
     /// for EB P_S = P_T + σ₊ sin²h/f at B, of half-width 2 asinh(√(fP_T/σ₊)), and for HE
     /// P_K likewise at E with σ₋. A compliance singular at P = 0 makes these peaks as
     /// narrow as √((P0 − P1)/P0) near separation and √(P_T/P0) near gross slip.
-    fn low_load_peaks(&self, index: usize) -> Vec<Peak<R>> {
+    fn low_load_peaks(&self, segment: Segment) -> Vec<Peak<R>> {
         let g = self.geometry;
-        let (start, length) = self.extent(index);
+        let (start, length) = self.extent(segment);
         let zero = length.int(0);
         let pi = length.pi_like();
         let mut peaks = Vec::new();
@@ -205,7 +229,7 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
                     center: lowest.clone() - start,
                     width: width.clone(),
                 });
-                if index == 2 {
+                if segment == Segment::CH {
                     peaks.push(Peak {
                         center: g.theta_c.clone() - &lowest,
                         width: width.clone(),
@@ -213,12 +237,7 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
                 }
             }
         }
-        let slip_amplitude = match index {
-            0 => Some(&g.sum_amplitude),
-            3 => Some(&g.difference_amplitude),
-            _ => None,
-        };
-        if let Some(amplitude) = slip_amplitude.filter(|a| **a > zero) {
+        if let Some(amplitude) = self.slip_amplitude(segment).filter(|a| **a > zero) {
             let ratio = g.permanent_stick_load() * &g.friction / amplitude;
             peaks.push(Peak {
                 center: length.clone(),
@@ -228,14 +247,14 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
         peaks
     }
 
-    /// The compliance's breakpoints as offsets x = P − P0 (empty for an analytic v').
-    fn knot_offsets(&self) -> Vec<R> {
-        let mean = &self.geometry.mean_normal_load;
-        self.compliance
-            .breakpoints(mean)
-            .into_iter()
-            .map(|knot| knot - mean)
-            .collect()
+    /// σ₊ for EB (P_S), σ₋ for HE (P_K): the amplitude of the slip load a slip segment
+    /// takes v' at besides P; none for BC and CH.
+    fn slip_amplitude(&self, segment: Segment) -> Option<&'a R> {
+        match segment {
+            Segment::EB => Some(&self.geometry.sum_amplitude),
+            Segment::HE => Some(&self.geometry.difference_amplitude),
+            Segment::BC | Segment::CH => None,
+        }
     }
 
     /// The angles s strictly inside segment `index` where a load that v' is taken at
@@ -248,18 +267,14 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
     /// P_S  = P_T + σ₊ sin²h/f, h = (s − L)/2 ∈ [−π/2, 0]:
     ///                                      s = L − 2 asin(√((P − P_T) f/σ₊))   (EB; HE with P_K, σ₋)
     /// ```
-    fn knot_crossings(&self, index: usize, knots: &[R]) -> Vec<R> {
+    fn knot_crossings(&self, segment: Segment, knots: &[R]) -> Vec<R> {
         let g = self.geometry;
-        let (start, length) = self.extent(index);
+        let (start, length) = self.extent(segment);
         let zero = length.int(0);
         let one = length.int(1);
         let two_pi = length.pi_like() * &length.int(2);
         let mut crossings = Vec::new();
-        let slip_amplitude = match index {
-            0 => Some(&g.sum_amplitude),
-            3 => Some(&g.difference_amplitude),
-            _ => None,
-        };
+        let slip_amplitude = self.slip_amplitude(segment);
         for knot in knots {
             if g.normal_amplitude > zero {
                 let cosine = knot.clone() / &g.normal_amplitude;
@@ -271,7 +286,7 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
                         let turn = two_pi.clone() * &length.int(m);
                         for theta in [turn.clone() + &angle, turn.clone() - &angle] {
                             crossings.push(theta.clone() - start);
-                            if index == 2 {
+                            if segment == Segment::CH {
                                 crossings.push(g.theta_c.clone() - &theta);
                             }
                         }
@@ -294,15 +309,15 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
     /// for CH, P at the mirror point θ_C − s) is least, θ ≡ π (mod 2π). A compliance
     /// singular at P → 0 is nearly singular there when the cycle nears separation,
     /// and a break puts the trouble at an end of a piece.
-    fn lowest_load_points(&self, index: usize) -> Vec<R> {
-        let (start, length) = self.extent(index);
+    fn lowest_load_points(&self, segment: Segment) -> Vec<R> {
+        let (start, length) = self.extent(segment);
         let zero = length.int(0);
         let pi = length.pi_like();
         let mut breaks = vec![zero.clone()];
         for k in -2..=3i64 {
             let lowest = pi.clone() * &pi.int(2 * k + 1);
             let mut candidates = vec![lowest.clone() - start];
-            if index == 2 {
+            if segment == Segment::CH {
                 candidates.push(self.geometry.theta_c.clone() - &lowest);
             }
             breaks.extend(candidates.into_iter().filter(|s| *s > zero && s < length));
@@ -367,22 +382,22 @@ mod tests {
                 compliance: &compliance,
                 remove_constant_slope: true,
             };
-            let offsets = integrands.knot_offsets();
+            let offsets = knot_offsets(integrands.compliance, &g.mean_normal_load);
             let on_knot = |offset: f64| offsets.iter().any(|x| (x - offset).abs() < 1e-12);
             let mut normal_crossings = 0;
-            for index in 0..4 {
-                let (start, length) = integrands.extent(index);
-                for s in integrands.knot_crossings(index, &offsets) {
+            for segment in Segment::ALL {
+                let (start, length) = integrands.extent(segment);
+                for s in integrands.knot_crossings(segment, &offsets) {
                     assert!(s > 0.0 && s < *length);
                     let half_sin = ((s - length) / 2.0).sin();
                     let normal = on_knot(g.normal_offset(&(start + s)));
-                    let other = match index {
-                        0 => on_knot(g.reverse_slip_offset(&half_sin)),
-                        2 => on_knot(g.normal_offset(&(g.theta_c - s))),
-                        3 => on_knot(g.forward_slip_offset(&half_sin)),
-                        _ => false,
+                    let other = match segment {
+                        Segment::EB => on_knot(g.reverse_slip_offset(&half_sin)),
+                        Segment::CH => on_knot(g.normal_offset(&(g.theta_c - s))),
+                        Segment::HE => on_knot(g.forward_slip_offset(&half_sin)),
+                        Segment::BC => false,
                     };
-                    assert!(normal || other, "segment {index}, s = {s}: no load on a knot");
+                    assert!(normal || other, "segment {segment}, s = {s}: no load on a knot");
                     normal_crossings += usize::from(normal);
                 }
             }
@@ -416,17 +431,19 @@ mod tests {
                 remove_constant_slope: true,
             }
             .pieces()
+            .pieces
             .len()
         };
         assert!(count(&knotted) > count(&plain));
-        let lowest: usize = (0..4)
-            .map(|index| {
+        let lowest: usize = Segment::ALL
+            .into_iter()
+            .map(|segment| {
                 let integrands = SegmentIntegrands {
                     geometry: &g,
                     compliance: &plain,
                     remove_constant_slope: true,
                 };
-                integrands.lowest_load_points(index).len() - 1
+                integrands.lowest_load_points(segment).len() - 1
             })
             .sum();
         assert!(count(&plain) >= lowest && count(&plain) <= 2 * lowest);

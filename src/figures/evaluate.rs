@@ -8,7 +8,7 @@
 use rug::Float;
 
 use crate::compliance::Persson;
-use crate::cycle::LoadCycle;
+use crate::cycle::{LoadCycle, ValidCycle};
 use crate::dissipation::{constant_normal_load, dissipation, four_segment, Dissipation, DissipationError, Options};
 use crate::real::{Precision, Real};
 
@@ -75,7 +75,7 @@ pub fn dimensionless_dissipation<R: Real>(
     match formula {
         Formula::Chosen => dissipation(&cycle, &persson, &options),
         Formula::FourSegment => four_segment(&cycle, &persson, &options),
-        Formula::ConstantNormalLoad => constant_normal_load(&cycle, &persson, &options),
+        Formula::ConstantNormalLoad => constant_normal_load(&ValidCycle::new(cycle)?, &persson, &options),
     }
 }
 

@@ -8,16 +8,13 @@
 //! in f64) and cached per (number type, n, precision): the first call at a new
 //! precision pays for the table, later calls reuse it.
 
-use std::any::{Any, TypeId};
-use std::collections::HashMap;
-use std::sync::{Arc, Mutex, OnceLock};
+use std::sync::Arc;
 
 mod fixed;
 mod stored;
 
 use fixed::Fixed;
 
-use super::Estimate;
 use crate::real::{Precision, Real};
 
 /// The nodes x_k in (−1, 1) and weights w_k of an n-point rule, ∫₋₁¹ g ≈ Σ w_k g(x_k).
@@ -29,35 +26,16 @@ pub struct NodeTable<R> {
     pub weights: Vec<R>,
 }
 
-type CacheKey = (TypeId, usize, u32);
-type CacheMap = HashMap<CacheKey, Arc<dyn Any + Send + Sync>>;
-
-fn cache() -> &'static Mutex<CacheMap> {
-    static CACHE: OnceLock<Mutex<CacheMap>> = OnceLock::new();
-    CACHE.get_or_init(|| Mutex::new(HashMap::new()))
-}
-
 /// The n-point node table at `precision`, computed once and then served from the cache.
 pub fn node_table<R: Real>(points: usize, precision: Precision) -> Arc<NodeTable<R>> {
-    let key = (TypeId::of::<R>(), points, precision.in_bits());
-    if let Some(table) = cache().lock().unwrap_or_else(|e| e.into_inner()).get(&key) {
-        if let Ok(table) = Arc::clone(table).downcast::<NodeTable<R>>() {
-            return table;
-        }
-    }
-    let table = Arc::new(
-        stored::stored_table::<R>(points, precision).unwrap_or_else(|| compute_node_table::<R>(points, precision)),
-    );
-    cache()
-        .lock()
-        .unwrap_or_else(|e| e.into_inner())
-        .insert(key, Arc::clone(&table) as Arc<dyn Any + Send + Sync>);
-    table
+    super::cache::cached(points, precision, || {
+        stored::stored_table::<R>(points, precision).unwrap_or_else(|| compute_node_table::<R>(points, precision))
+    })
 }
 
-/// Forget every cached node table (for measuring the cold cost).
+/// Forget every cached table, Gauss–Legendre and tanh–sinh (for measuring the cold cost).
 pub fn clear_node_cache() {
-    cache().lock().unwrap_or_else(|e| e.into_inner()).clear();
+    super::cache::clear();
 }
 
 /// P_n(x) and P_{n−1}(x) by the three-term recurrence, written as
@@ -276,39 +254,6 @@ impl<R: Real> NodeTable<R> {
     /// The number of points.
     pub fn points(&self) -> usize {
         self.nodes.len()
-    }
-}
-
-/// ∫ₐᵇ f to an absolute tolerance, doubling the number of points from `start_points`
-/// until two successive rules agree to `tolerance`, or `max_points` is passed
-/// (then `converged` is false and `error` says how far apart the last two were).
-pub fn integrate<R: Real, F: FnMut(&R) -> R>(
-    mut integrand: F,
-    a: &R,
-    b: &R,
-    tolerance: &R,
-    start_points: usize,
-    max_points: usize,
-) -> Estimate<R> {
-    let precision = a.precision();
-    let mut points = start_points.max(1);
-    let mut evaluations = points;
-    let mut previous = node_table::<R>(points, precision).integrate(&mut integrand, a, b);
-    loop {
-        points *= 2;
-        let current = node_table::<R>(points, precision).integrate(&mut integrand, a, b);
-        evaluations += points;
-        let error = (current.clone() - &previous).abs();
-        let converged = error <= *tolerance;
-        if converged || points * 2 > max_points {
-            return Estimate {
-                value: current,
-                error,
-                evaluations,
-                converged,
-            };
-        }
-        previous = current;
     }
 }
 

@@ -1,14 +1,17 @@
-//! Quadrature rules, generic over [`Real`](crate::real::Real).
+//! Quadrature, generic over [`Real`](crate::real::Real).
 //!
-//! One rule per file. Every rule returns an [`Estimate`]: the value together with
-//! an error estimate and the number of integrand evaluations it cost. `sinh_map` is
-//! the change of variable that lets the rules resolve a narrow peak.
+//! [`engine`] is the one way to integrate a list of pieces to a tolerance: Gauss–Legendre
+//! rules of doubling degree ([`gauss_legendre`]), with tanh–sinh ([`tanh_sinh`]) where
+//! they stall; both rules' nodes and weights are computed once per precision and cached.
+//! `sinh_map` is the change of variable that lets the rules resolve a narrow peak.
 
+mod cache;
+pub mod engine;
 pub mod gauss_legendre;
 pub mod sinh_map;
 pub mod tanh_sinh;
 
-use crate::real::Real;
+pub use engine::{integrate, FixedRule, Integrated, Piece, PieceEstimate, QuadError, Settings};
 
 /// An integral's value with an estimate of its absolute error.
 #[derive(Clone, Debug)]
@@ -22,19 +25,4 @@ pub struct Estimate<R> {
     pub evaluations: usize,
     /// Whether the requested tolerance was met.
     pub converged: bool,
-}
-
-impl<R: Real> Estimate<R> {
-    /// The error estimate relative to |value| (infinite when the value is 0 and the error is not).
-    pub fn relative_error(&self) -> f64 {
-        let value = self.value.abs().to_f64_lossy();
-        let error = self.error.to_f64_lossy();
-        if error == 0.0 {
-            0.0
-        } else if value == 0.0 {
-            f64::INFINITY
-        } else {
-            error / value
-        }
-    }
 }

@@ -22,7 +22,7 @@ const STORED_BITS: u32 = 640;
 /// that rounding the stored value is rounding the exact one.
 pub(super) const SERVED_BITS: u32 = STORED_BITS - 64;
 
-/// The rules stored: the sizes the convergence driver and its verification use.
+/// The rules stored: the sizes the quadrature engine and its verification use.
 const STORED_POINTS: [usize; 5] = [16, 32, 64, 128, 256];
 
 /// Lines `points node weight`, hexadecimal, for the nodes ≥ 0 of each rule in increasing order.

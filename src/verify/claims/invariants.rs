@@ -2,8 +2,8 @@
 //! φ, and the in-phase limit.
 
 use super::{describe, identity_tolerance, number, random_case, read, relative, Tally};
-use crate::cycle::LoadCycle;
-use crate::dissipation::{dissipation, four_segment, in_phase, Options};
+use crate::cycle::{LoadCycle, ValidCycle};
+use crate::dissipation::{dissipation, four_segment, in_phase, DissipationError, Options};
 use crate::real::{Precision, Real};
 use crate::verify::generators::Draw;
 use crate::verify::ClaimReport;
@@ -109,7 +109,9 @@ pub fn in_phase_limit(seed: u64, cases: usize) -> ClaimReport {
         };
         match (
             four_segment(&near, compliance.as_ref(), &Options::default()),
-            in_phase(&exact, compliance.as_ref(), &Options::default()),
+            ValidCycle::new(exact.clone())
+                .map_err(DissipationError::from)
+                .and_then(|exact| in_phase(&exact, compliance.as_ref(), &Options::default())),
         ) {
             (Ok(a), Ok(b)) => {
                 let no_slip = exact.tangential_amplitude <= exact.friction * exact.normal_amplitude;

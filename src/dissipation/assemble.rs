@@ -1,0 +1,154 @@
+//! The result: the segment integrals per unit λ, scaled by λ and given the error
+//! rounding adds.
+
+use super::error::DissipationError;
+use super::options::Options;
+use super::segment::Segments;
+use crate::cycle::ValidCycle;
+use crate::quad::Integrated;
+use crate::real::Real;
+
+/// How W was computed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Method {
+    /// The four-segment integrals in θ.
+    FourSegment,
+    /// The in-phase closed form (paper appendix, Eqs. 26–32).
+    InPhase,
+    /// The constant-normal-load closed form (Cattaneo–Mindlin with Masing's rule).
+    ConstantNormalLoad,
+    /// Q1 = 0: nothing oscillates tangentially, W = 0.
+    NoTangentialOscillation,
+}
+
+/// The dissipation per cycle and how it was obtained.
+#[derive(Clone, Debug)]
+pub struct Dissipation<R> {
+    /// W, the energy dissipated per cycle.
+    pub total: R,
+    /// Its split over the four segments.
+    pub segments: Segments<R>,
+    /// An estimate of the absolute quadrature error of `total`.
+    pub error_estimate: R,
+    /// Integrand evaluations spent.
+    pub evaluations: usize,
+    /// The largest Gauss–Legendre rule used on any one piece.
+    pub points: usize,
+    /// The Gauss–Legendre rule each piece of the four-segment integrals ended with (for a
+    /// piece tanh–sinh finished, the largest rule); empty for the closed forms.
+    pub piece_points: Vec<usize>,
+    /// Which formula produced it.
+    pub method: Method,
+}
+
+impl<R: Real> Dissipation<R> {
+    /// The significant digits of `value` that the error estimate vouches for, at most
+    /// `most`: where W is a small difference of large segments (near in phase with
+    /// Q1 < fP1, say) this is far fewer than the working precision carries. 0 when the
+    /// estimate is as large as the value.
+    pub fn resolved_digits(&self, value: &R, most: u32) -> u32 {
+        let (magnitude, error) = (value.abs().to_f64_lossy(), self.error_estimate.to_f64_lossy());
+        if error <= 0.0 {
+            return most;
+        }
+        if !magnitude.is_finite() || magnitude <= error {
+            return 0;
+        }
+        ((magnitude / error).log10().floor() as u32).min(most)
+    }
+}
+
+/// What a formula computed, per unit λ: the four segment values (zero where it has none),
+/// the quadrature's error estimate and its cost.
+pub(crate) struct Parts<R> {
+    pub segments: Segments<R>,
+    pub error: R,
+    pub evaluations: usize,
+    /// The largest Gauss–Legendre rule used on any one piece.
+    pub points: usize,
+    /// The rule each piece ended with (empty where the formula combined its pieces).
+    pub piece_points: Vec<usize>,
+}
+
+impl<R: Real> Parts<R> {
+    /// Segment values with the error and cost of the integrals they came from.
+    pub fn from_integrals(segments: Segments<R>, error: R, integrated: &Integrated<R>) -> Self {
+        Parts {
+            segments,
+            error,
+            evaluations: integrated.evaluations,
+            points: integrated.largest_rule,
+            piece_points: Vec::new(),
+        }
+    }
+
+    /// No integrals: W = 0 with no error (no tangential oscillation, or no slip).
+    pub fn nothing(zero: &R) -> Self {
+        Parts {
+            segments: Segments::from_fn(|_| zero.clone()),
+            error: zero.clone(),
+            evaluations: 0,
+            points: 0,
+            piece_points: Vec::new(),
+        }
+    }
+}
+
+/// Multiplies the per-unit-λ segment integrals by λ and assembles the result.
+///
+/// The error estimate adds to the quadrature's what rounding can do: of the loads
+/// (ε × `rounding_amplification` × |W|), inside the four-segment integrands
+/// (ε × `cancellation_amplification` × |W|) and of the segment sum (64ε × Σ|segment|).
+/// A W that overflowed, or whose segments fell below the full-precision range, is
+/// refused; for a physical compliance (`check_compliance`) a W below zero within ten
+/// times its error estimate is reported as 0 (with the estimate raised to cover it),
+/// and one below by more is refused.
+pub(crate) fn assemble<R: Real>(
+    cycle: &ValidCycle<R>,
+    parts: Parts<R>,
+    method: Method,
+    options: &Options<R>,
+) -> Result<Dissipation<R>, DissipationError> {
+    let lambda = &cycle.compliance_ratio;
+    let segments = Segments::from_fn(|segment| parts.segments.get(segment).clone() * lambda);
+    let mut total = segments.total();
+    let eps = total.epsilon_like();
+    let scale = segments.iter().fold(total.int(0), |acc, (_, v)| acc + &v.abs());
+    // The four-segment integrands also cancel internally when Q1 ≪ fP1.
+    let mut amplification = cycle.rounding_amplification();
+    if method == Method::FourSegment {
+        amplification += &cycle.cancellation_amplification();
+    }
+    let rounding = total.abs() * &(amplification * &eps) + &(scale.clone() * &eps * &eps.int(64));
+    let mut error_estimate = parts.error * lambda + &rounding;
+    if !total.is_finite() || !error_estimate.is_finite() {
+        return Err(DissipationError::NotFinite { segment: "total" });
+    }
+    let zero = total.int(0);
+    if scale > zero && scale < R::smallest_full_precision(total.precision()) {
+        return Err(DissipationError::OutOfRange {
+            scale: scale.to_f64_lossy(),
+        });
+    }
+    if options.check_compliance && total < zero {
+        // Rounding can leave a W that vanishes slightly negative; ten times the estimate
+        // is beyond rounding, and a sign that a compliance is not physical after all.
+        if -total.clone() > error_estimate.clone() * &zero.int(10) {
+            return Err(DissipationError::Negative {
+                total: total.to_f64_lossy(),
+                error: error_estimate.to_f64_lossy(),
+            });
+        }
+        error_estimate = error_estimate.max_of(&-total);
+        total = zero;
+    }
+    Ok(Dissipation {
+        total,
+        segments,
+        error_estimate,
+        evaluations: parts.evaluations,
+        points: parts.points,
+        piece_points: parts.piece_points,
+        method,
+    })
+}

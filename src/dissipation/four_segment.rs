@@ -1,0 +1,78 @@
+//! W by the four segment integrals in the cycle angle, for any valid cycle.
+
+use super::assemble::{assemble, Dissipation, Method, Parts};
+use super::conditioning::{check_case, check_conditioning};
+use super::error::DissipationError;
+use super::options::Options;
+use super::segments::SegmentIntegrands;
+use crate::compliance::Compliance;
+use crate::cycle::{LoadCycle, ValidCycle};
+use crate::quad::integrate;
+use crate::real::Real;
+
+/// W by the four-segment integrals whatever the cycle (also for P1 = 0 and for
+/// phases close to 0 or π, where it converges to the closed forms).
+pub fn four_segment<R: Real>(
+    cycle: &LoadCycle<R>,
+    compliance: &dyn Compliance<R>,
+    options: &Options<R>,
+) -> Result<Dissipation<R>, DissipationError> {
+    four_segment_integrals(&ValidCycle::new(cycle.clone())?, compliance, options)
+}
+
+/// W = λ Σ ∫ (Q − Q0) ψ ds over the segments (see [`SegmentIntegrands`]).
+pub(crate) fn four_segment_integrals<R: Real>(
+    cycle: &ValidCycle<R>,
+    compliance: &dyn Compliance<R>,
+    options: &Options<R>,
+) -> Result<Dissipation<R>, DissipationError> {
+    check_case(cycle, compliance, options)?;
+    let geometry = cycle.geometry();
+    let cancellation = cycle.cancellation_amplification();
+    check_conditioning(
+        &cancellation,
+        options,
+        format!(
+            "Q1/(fP1) = {:.3e}, and the slip terms of the segment integrands cancel to a difference that much smaller",
+            (cycle.tangential_amplitude.clone() / &cycle.normal_amplitude / &cycle.friction).to_f64_lossy()
+        ),
+    )?;
+    let integrands = SegmentIntegrands {
+        geometry: &geometry,
+        compliance,
+        remove_constant_slope: options.remove_constant_slope,
+    };
+    let zero = geometry.phase.int(0);
+    let (pieces, curvature) = if options.remove_linear_slope {
+        // W[v'] = W[v' − v'(P0) − v''(P0)·x] + v''(P0)·W[x]: the remainder and the
+        // linear part as two sets of pieces, the second weighted by v''(P0) below.
+        let curvature = compliance.curvature(&geometry.mean_normal_load);
+        let reduced = integrands.prepared_slope();
+        let linear = curvature.clone();
+        let mut pieces = integrands.pieces_with_slope(Box::new(move |x: &R| reduced(x) - &(linear.clone() * x)));
+        let remainder_count = pieces.pieces.len();
+        pieces.extend(integrands.pieces_with_slope(Box::new(|x: &R| x.clone())));
+        (pieces, Some((curvature, remainder_count)))
+    } else {
+        (integrands.pieces(), None)
+    };
+    let integrated = integrate(&pieces.pieces, &options.settings(&zero))?;
+    let segments = match &curvature {
+        None => pieces.sum_by_segment(integrated.values(), &zero),
+        Some((curvature, remainder_count)) => {
+            let weighted: Vec<R> = (integrated.values().enumerate())
+                .map(|(i, value)| {
+                    if i < *remainder_count {
+                        value.clone()
+                    } else {
+                        value.clone() * curvature
+                    }
+                })
+                .collect();
+            pieces.sum_by_segment(weighted.iter(), &zero)
+        }
+    };
+    let mut parts = Parts::from_integrals(segments, integrated.error.clone(), &integrated);
+    parts.piece_points = integrated.rules();
+    assemble(cycle, parts, Method::FourSegment, options)
+}
