@@ -41,23 +41,6 @@ pub struct Dissipation<R> {
     pub method: Method,
 }
 
-impl<R: Real> Dissipation<R> {
-    /// The significant digits of `value` that the error estimate vouches for, at most
-    /// `most`: where W is a small difference of large segments (near in phase with
-    /// Q1 < fP1, say) this is far fewer than the working precision carries. 0 when the
-    /// estimate is as large as the value.
-    pub fn resolved_digits(&self, value: &R, most: u32) -> u32 {
-        let (magnitude, error) = (value.abs().to_f64_lossy(), self.error_estimate.to_f64_lossy());
-        if error <= 0.0 {
-            return most;
-        }
-        if !magnitude.is_finite() || magnitude <= error {
-            return 0;
-        }
-        ((magnitude / error).log10().floor() as u32).min(most)
-    }
-}
-
 /// What a formula computed, per unit λ: the four segment values (zero where it has none),
 /// the quadrature's error estimate and its cost.
 pub(crate) struct Parts<R> {
