@@ -23,7 +23,8 @@ pub use linearity::{linearity, linearity_simulated};
 pub use roughness::{roughness, roughness_simulated};
 pub use simulation::{coefficient_against_simulation, simulation_agrees};
 
-use super::generators::{compliance_spec, Draw};
+pub use super::generators::gross_slip_amplitude;
+use super::generators::{compliance_spec, cycle_case, Draw, CYCLE};
 use super::ClaimReport;
 use crate::compliance::Compliance;
 use crate::cycle::LoadCycle;
@@ -171,37 +172,12 @@ fn number<R: Real>(value: f64, precision: Precision) -> R {
     R::parse_decimal(&value.to_string(), precision).unwrap_or_else(|_| R::from_f64(value, precision))
 }
 
-/// The largest Q1 that keeps the ellipse of (P0, P1, φ) inside the friction cone with
-/// Q0 = 0: σ± < fP0 ⇔ Q1 < f(√(P0² − P1² sin²φ) − P1|cos φ|).
-pub fn gross_slip_amplitude(p0: f64, p1: f64, phi: f64, friction: f64) -> f64 {
-    friction * ((p0 * p0 - (p1 * phi.sin()).powi(2)).sqrt() - p1 * phi.cos().abs())
-}
-
 /// A random cycle inside the theory: P0 = 1, P1/P0 ∈ (0.05, 0.9), φ ∈ (0, π), Q1 a
 /// random fraction of the largest amplitude the friction cone allows, and a
 /// compliance admissible over the loads the cycle reaches.
 pub fn random_case(draw: &mut Draw) -> CaseText {
-    let p1 = draw.uniform(0.05, 0.9);
-    let f = draw.uniform(0.2, 2.0);
-    let lambda = draw.uniform(1.0, 1.5);
-    let phase_fraction = draw.uniform(0.02, 0.98);
-    let phi = phase_fraction * std::f64::consts::PI;
-    let largest = gross_slip_amplitude(1.0, p1, phi, f);
-    let q1 = draw.uniform(0.1, 0.9) * largest;
-    let q1: f64 = format!("{q1:.6e}").parse().unwrap_or(q1);
-    // P_T ≥ P0 − (Q1 + fP1)/f: the compliance must be admissible from there.
-    let low = (1.0 - p1).min(1.0 - (q1 + f * p1) / f).max(1e-3);
-    CaseText {
-        p0: "1".into(),
-        p1: p1.to_string(),
-        q0: "0".into(),
-        q1: q1.to_string(),
-        phi: format!("{phase_fraction}pi"),
-        friction: f.to_string(),
-        lambda: Some(lambda.to_string()),
-        nu: None,
-        compliance: compliance_spec(draw, low * 0.9, 1.0 + p1, 1.0),
-    }
+    let values = draw.parameters(&CYCLE);
+    cycle_case(&values, |loads| compliance_spec(draw, loads.low, loads.high, loads.mean))
 }
 
 fn read<R: Real>(case: &CaseText, precision: Precision) -> Option<(LoadCycle<R>, Box<dyn Compliance<R>>)> {
