@@ -197,9 +197,11 @@ pub const SHAPE: [Range; 2] = [range(0.2, 3.0), range(0.02, 0.98)];
 
 /// A random ratio ρ = Q1/(fP1) and phase φ/π ∈ (0, 1), as numbers.
 pub fn shape(draw: &mut Draw) -> (f64, f64) {
-    (draw.uniform(SHAPE[0].low, SHAPE[0].high), draw.uniform(SHAPE[1].low, SHAPE[1].high))
+    (
+        draw.uniform(SHAPE[0].low, SHAPE[0].high),
+        draw.uniform(SHAPE[1].low, SHAPE[1].high),
+    )
 }
-
 
 /// The ranges of a random cycle's parameters, in the order [`cycle_case`] takes them:
 /// P1/P0, f, λ, φ/π, and Q1 as a fraction of the largest amplitude the friction cone

@@ -15,6 +15,7 @@ use rug::Float;
 use serde::Serialize;
 
 use crate::real::Precision;
+use claims::{Claim, FourSegment, Simulation};
 
 /// The outcome of one claim at one precision.
 #[derive(Clone, Debug, Serialize)]
@@ -68,31 +69,31 @@ pub fn gate(options: GateOptions) -> Vec<GateStep> {
         (
             "constant term",
             Box::new(move || {
-                vec![
-                    claims::constant_term::<f64>(seed + 2, n(40, 1000), Precision::DOUBLE),
-                    claims::constant_term::<Float>(seed + 3, n(3, 40), wide),
-                    claims::constant_term_simulated(seed + 13, n(2, 10)),
-                ]
+                twins(
+                    &claims::ConstantTerm,
+                    [seed + 2, seed + 3, seed + 13],
+                    [n(40, 1000), n(3, 40), n(2, 10)],
+                )
             }),
         ),
         (
             "linearity",
             Box::new(move || {
-                vec![
-                    claims::linearity::<f64>(seed + 4, n(40, 1000), Precision::DOUBLE),
-                    claims::linearity::<Float>(seed + 5, n(3, 40), wide),
-                    claims::linearity_simulated(seed + 14, n(2, 10)),
-                ]
+                twins(
+                    &claims::Linearity,
+                    [seed + 4, seed + 5, seed + 14],
+                    [n(40, 1000), n(3, 40), n(2, 10)],
+                )
             }),
         ),
         (
             "roughness",
             Box::new(move || {
-                vec![
-                    claims::roughness::<f64>(seed + 6, n(40, 1000), Precision::DOUBLE),
-                    claims::roughness::<Float>(seed + 7, n(2, 30), wide),
-                    claims::roughness_simulated(seed + 15, n(2, 10)),
-                ]
+                twins(
+                    &claims::Roughness,
+                    [seed + 6, seed + 7, seed + 15],
+                    [n(40, 1000), n(2, 30), n(2, 10)],
+                )
             }),
         ),
         (
@@ -122,6 +123,21 @@ pub fn gate(options: GateOptions) -> Vec<GateStep> {
                 ]
             }),
         ),
+    ]
+}
+
+/// A claim checked with each evaluator, `cases[i]` draws from `seeds[i]`: the segment
+/// formulas in f64 and at 256 bits, and the history simulation.
+fn twins<C: Claim>(claim: &C, seeds: [u64; 3], cases: [usize; 3]) -> Vec<ClaimReport> {
+    vec![
+        claims::check_claim(claim, &FourSegment::<f64>::new(Precision::DOUBLE), seeds[0], cases[0]),
+        claims::check_claim(
+            claim,
+            &FourSegment::<Float>::new(Precision::bits(256)),
+            seeds[1],
+            cases[1],
+        ),
+        claims::check_claim(claim, &Simulation, seeds[2], cases[2]),
     ]
 }
 

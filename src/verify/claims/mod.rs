@@ -8,6 +8,7 @@
 mod coefficient;
 mod constant_term;
 mod cubic_law;
+mod evaluator;
 mod exact;
 mod invariants;
 mod linearity;
@@ -15,12 +16,13 @@ mod roughness;
 mod simulation;
 
 pub use coefficient::small_amplitude_coefficient;
-pub use constant_term::{constant_term, constant_term_simulated};
+pub use constant_term::{ConstantTerm, ConstantTermCase};
 pub use cubic_law::{cubic_law, least_squares_slope};
+pub use evaluator::{check_claim, Claim, Evaluator, Failure, FourSegment, Measured, Outcome, Simulation, Value};
 pub use exact::{closed_form_coefficient_claim, polynomial_dissipation_claim, series_claim};
 pub use invariants::{in_phase_limit, invariants};
-pub use linearity::{linearity, linearity_simulated};
-pub use roughness::{roughness, roughness_simulated};
+pub use linearity::{Linearity, LinearityCase};
+pub use roughness::{Roughness, RoughnessCase};
 pub use simulation::{coefficient_against_simulation, simulation_agrees};
 
 pub use super::generators::gross_slip_amplitude;
@@ -177,14 +179,25 @@ fn number<R: Real>(value: f64, precision: Precision) -> R {
 /// compliance admissible over the loads the cycle reaches.
 pub fn random_case(draw: &mut Draw) -> CaseText {
     let values = draw.parameters(&CYCLE);
-    cycle_case(&values, |loads| compliance_spec(draw, loads.low, loads.high, loads.mean))
+    cycle_case(&values, |loads| {
+        compliance_spec(draw, loads.low, loads.high, loads.mean)
+    })
 }
 
 fn read<R: Real>(case: &CaseText, precision: Precision) -> Option<(LoadCycle<R>, Box<dyn Compliance<R>>)> {
     case.read::<R>(precision).ok().map(|c| (c.cycle, c.compliance))
 }
 
-fn describe(case: &CaseText) -> String {
+/// The case read at a precision, or a failure saying it did not read.
+fn read_case<R: Real>(
+    case: &CaseText,
+    precision: Precision,
+) -> Result<(LoadCycle<R>, Box<dyn Compliance<R>>), Failure> {
+    read(case, precision).ok_or_else(|| Failure::Failed("case did not read".into()))
+}
+
+/// A case as a report prints it: the loads, f, λ and the compliance SPEC.
+pub fn describe(case: &CaseText) -> String {
     format!(
         "P1={} Q0={} Q1={} φ={} f={} λ={} v'={}",
         case.p1,
