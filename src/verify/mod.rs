@@ -100,8 +100,18 @@ pub fn gate(options: GateOptions) -> Vec<GateStep> {
             "invariants",
             Box::new(move || {
                 vec![
-                    claims::invariants::<f64>(seed + 8, n(40, 1000), Precision::DOUBLE),
-                    claims::invariants::<Float>(seed + 10, n(2, 30), wide),
+                    claims::check_claim(
+                        &claims::Invariants,
+                        &FourSegment::<f64>::new(Precision::DOUBLE),
+                        seed + 8,
+                        n(40, 1000),
+                    ),
+                    claims::check_claim(
+                        &claims::Invariants,
+                        &FourSegment::<Float>::new(wide),
+                        seed + 10,
+                        n(2, 30),
+                    ),
                 ]
             }),
         ),

@@ -230,22 +230,44 @@ pub fn check_claim<C: Claim, E: Evaluator>(claim: &C, evaluator: &E, seed: u64, 
         evaluator.precision(),
         claim.tolerance(evaluator),
     );
+    let figures = tally_cases(
+        &mut tally,
+        seed,
+        cases,
+        |draw| claim.draw(draw, evaluator),
+        |case| claim.check(evaluator, case),
+    );
+    let largest = figures
+        .into_iter()
+        .fold(None, |worst: Option<(f64, f64)>, figure| match worst {
+            Some(worst) if figure.1.abs() <= worst.1.abs() => Some(worst),
+            _ => Some(figure),
+        });
+    tally.note(evaluator.note(claim.note(evaluator, largest)))
+}
+
+/// The one loop over random cases: `cases` cases drawn from `seed`, each checked and
+/// tallied (a failure fails the claim, an unresolvable case is left out). Returns the
+/// figures the checks measured, in order.
+pub(super) fn tally_cases<C: fmt::Display>(
+    tally: &mut Tally,
+    seed: u64,
+    cases: usize,
+    mut draw_case: impl FnMut(&mut Draw) -> C,
+    mut check: impl FnMut(&C) -> Outcome,
+) -> Vec<(f64, f64)> {
     let mut draw = Draw::new(seed);
-    let mut largest: Option<(f64, f64)> = None;
+    let mut figures = Vec::new();
     for _ in 0..cases {
-        let case = claim.draw(&mut draw, evaluator);
-        match claim.check(evaluator, &case) {
+        let case = draw_case(&mut draw);
+        match check(&case) {
             Ok(measured) => {
-                if let Some(figure) = measured.figure {
-                    if largest.map_or(true, |worst| figure.1.abs() > worst.1.abs()) {
-                        largest = Some(figure);
-                    }
-                }
+                figures.extend(measured.figure);
                 tally.record_resolved(measured.error, &[measured.rounding], &case.to_string());
             }
             Err(Failure::Unresolvable) => tally.unresolved(),
             Err(Failure::Failed(why)) => tally.fail(&case.to_string(), why),
         }
     }
-    tally.note(evaluator.note(claim.note(evaluator, largest)))
+    figures
 }
