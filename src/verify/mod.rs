@@ -15,7 +15,7 @@ use rug::Float;
 use serde::Serialize;
 
 use crate::real::Precision;
-use claims::{Claim, FourSegment, Simulation};
+use claims::{Claim, ConstantTerm, FourSegment, Invariants, Linearity, Roughness, Simulation};
 
 /// The outcome of one claim at one precision.
 #[derive(Clone, Debug, Serialize)]
@@ -52,7 +52,6 @@ pub type GateStep = (&'static str, Box<dyn Fn() -> Vec<ClaimReport> + Send + Syn
 pub fn gate(options: GateOptions) -> Vec<GateStep> {
     let GateOptions { seed, quick } = options;
     let n = move |quick_cases: usize, full_cases: usize| if quick { quick_cases } else { full_cases };
-    let wide = Precision::bits(256);
     vec![
         ("cubic law", Box::new(move || vec![claims::cubic_law(seed, n(3, 60))])),
         (
@@ -68,52 +67,31 @@ pub fn gate(options: GateOptions) -> Vec<GateStep> {
         ),
         (
             "constant term",
-            Box::new(move || {
-                twins(
-                    &claims::ConstantTerm,
-                    [seed + 2, seed + 3, seed + 13],
-                    [n(40, 1000), n(3, 40), n(2, 10)],
-                )
-            }),
+            evaluated(
+                ConstantTerm,
+                options,
+                &[(F64, 2, 40, 1000), (Wide, 3, 3, 40), (Simulated, 13, 2, 10)],
+            ),
         ),
         (
             "linearity",
-            Box::new(move || {
-                twins(
-                    &claims::Linearity,
-                    [seed + 4, seed + 5, seed + 14],
-                    [n(40, 1000), n(3, 40), n(2, 10)],
-                )
-            }),
+            evaluated(
+                Linearity,
+                options,
+                &[(F64, 4, 40, 1000), (Wide, 5, 3, 40), (Simulated, 14, 2, 10)],
+            ),
         ),
         (
             "roughness",
-            Box::new(move || {
-                twins(
-                    &claims::Roughness,
-                    [seed + 6, seed + 7, seed + 15],
-                    [n(40, 1000), n(2, 30), n(2, 10)],
-                )
-            }),
+            evaluated(
+                Roughness,
+                options,
+                &[(F64, 6, 40, 1000), (Wide, 7, 2, 30), (Simulated, 15, 2, 10)],
+            ),
         ),
         (
             "invariants",
-            Box::new(move || {
-                vec![
-                    claims::check_claim(
-                        &claims::Invariants,
-                        &FourSegment::<f64>::new(Precision::DOUBLE),
-                        seed + 8,
-                        n(40, 1000),
-                    ),
-                    claims::check_claim(
-                        &claims::Invariants,
-                        &FourSegment::<Float>::new(wide),
-                        seed + 10,
-                        n(2, 30),
-                    ),
-                ]
-            }),
+            evaluated(Invariants, options, &[(F64, 8, 40, 1000), (Wide, 10, 2, 30)]),
         ),
         (
             "in-phase limit",
@@ -136,19 +114,40 @@ pub fn gate(options: GateOptions) -> Vec<GateStep> {
     ]
 }
 
-/// A claim checked with each evaluator, `cases[i]` draws from `seeds[i]`: the segment
-/// formulas in f64 and at 256 bits, and the history simulation.
-fn twins<C: Claim>(claim: &C, seeds: [u64; 3], cases: [usize; 3]) -> Vec<ClaimReport> {
-    vec![
-        claims::check_claim(claim, &FourSegment::<f64>::new(Precision::DOUBLE), seeds[0], cases[0]),
-        claims::check_claim(
-            claim,
-            &FourSegment::<Float>::new(Precision::bits(256)),
-            seeds[1],
-            cases[1],
-        ),
-        claims::check_claim(claim, &Simulation, seeds[2], cases[2]),
-    ]
+/// The evaluators the gate runs a claim with.
+#[derive(Clone, Copy, Debug)]
+enum Method {
+    /// The segment formulas in f64.
+    F64,
+    /// The segment formulas at 256 bits.
+    Wide,
+    /// The history simulation.
+    Simulated,
+}
+use Method::{Simulated, Wide, F64};
+
+/// A step checking `claim` with each evaluator listed, as (evaluator, seed offset, quick
+/// cases, full cases).
+fn evaluated<C: Claim + Send + Sync + 'static>(
+    claim: C,
+    options: GateOptions,
+    rows: &'static [(Method, u64, usize, usize)],
+) -> Box<dyn Fn() -> Vec<ClaimReport> + Send + Sync> {
+    Box::new(move || {
+        rows.iter()
+            .map(|&(method, offset, quick_cases, full_cases)| {
+                let (seed, cases) = (
+                    options.seed + offset,
+                    if options.quick { quick_cases } else { full_cases },
+                );
+                match method {
+                    F64 => claims::check_claim(&claim, &FourSegment::<f64>::new(Precision::DOUBLE), seed, cases),
+                    Wide => claims::check_claim(&claim, &FourSegment::<Float>::new(Precision::bits(256)), seed, cases),
+                    Simulated => claims::check_claim(&claim, &Simulation, seed, cases),
+                }
+            })
+            .collect()
+    })
 }
 
 /// Runs the whole gate on every core, and returns the reports in claim order;

@@ -34,12 +34,6 @@ impl fmt::Display for ConstantTermCase {
     }
 }
 
-impl fmt::Debug for ConstantTermCase {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        fmt::Display::fmt(self, f)
-    }
-}
-
 /// The largest constant drawn: the coarse spring bed resolves W[v' + c] to its tolerance
 /// for c up to 3 (v' itself is at most a few).
 fn largest_constant<E: Evaluator>(evaluator: &E) -> f64 {
@@ -68,13 +62,8 @@ fn cancelling_terms<R: Real>(cycle: &LoadCycle<R>, shifted: &dyn Compliance<R>, 
 impl Claim for ConstantTerm {
     type Case = ConstantTermCase;
 
-    fn name(&self, simulated: bool) -> &'static str {
-        if simulated {
-            "3 constant term, simulated: W_sim[v' + c] = W_sim[v']"
-        } else {
-            "3 constant term: W[v' + c] = W[v'], W[c] = 0"
-        }
-    }
+    const NAME: &'static str = "3 constant term: W[v' + c] = W[v'], W[c] = 0";
+    const SIMULATED_NAME: &'static str = "3 constant term, simulated: W_sim[v' + c] = W_sim[v']";
 
     fn tolerance<E: Evaluator>(&self, evaluator: &E) -> f64 {
         match evaluator.precision() {

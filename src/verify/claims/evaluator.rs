@@ -206,7 +206,10 @@ pub trait Claim {
     type Case: fmt::Display;
 
     /// The claim as the gate's row names it.
-    fn name(&self, simulated: bool) -> &'static str;
+    const NAME: &'static str;
+
+    /// The row's name when W comes from the history simulation.
+    const SIMULATED_NAME: &'static str = Self::NAME;
 
     /// The largest error allowed with `evaluator`.
     fn tolerance<E: Evaluator>(&self, evaluator: &E) -> f64 {
@@ -226,7 +229,11 @@ pub trait Claim {
 /// `claim` over `cases` draws from `seed`, computed with `evaluator`.
 pub fn check_claim<C: Claim, E: Evaluator>(claim: &C, evaluator: &E, seed: u64, cases: usize) -> ClaimReport {
     let mut tally = Tally::new(
-        claim.name(evaluator.simulated()),
+        if evaluator.simulated() {
+            C::SIMULATED_NAME
+        } else {
+            C::NAME
+        },
         evaluator.precision(),
         claim.tolerance(evaluator),
     );

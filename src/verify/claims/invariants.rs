@@ -32,12 +32,6 @@ impl fmt::Display for InvariantsCase {
     }
 }
 
-impl fmt::Debug for InvariantsCase {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        fmt::Display::fmt(self, f)
-    }
-}
-
 /// The range of Q0 inside the gross-slip limit, −(fP0 − σ₊) < Q0 < fP0 − σ₋, less 1 %.
 pub fn mean_tangential_margin<R: Real>(cycle: &LoadCycle<R>) -> (f64, f64) {
     let (plus, minus) = cycle.slip_line_amplitudes();
@@ -51,9 +45,7 @@ pub fn mean_tangential_margin<R: Real>(cycle: &LoadCycle<R>) -> (f64, f64) {
 impl Claim for Invariants {
     type Case = InvariantsCase;
 
-    fn name(&self, _: bool) -> &'static str {
-        "6a invariants: W ≥ 0, W free of Q0, period π in φ"
-    }
+    const NAME: &'static str = "6a invariants: W ≥ 0, W free of Q0, period π in φ";
 
     fn draw<E: Evaluator>(&self, draw: &mut Draw, evaluator: &E) -> InvariantsCase {
         let case = random_case(draw);

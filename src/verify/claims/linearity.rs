@@ -41,22 +41,11 @@ impl fmt::Display for LinearityCase {
     }
 }
 
-impl fmt::Debug for LinearityCase {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        fmt::Display::fmt(self, f)
-    }
-}
-
 impl Claim for Linearity {
     type Case = LinearityCase;
 
-    fn name(&self, simulated: bool) -> &'static str {
-        if simulated {
-            "4 linearity, simulated: W_sim is linear in v'"
-        } else {
-            "4 linearity: W[a v1' + b v2'] = a W[v1'] + b W[v2']"
-        }
-    }
+    const NAME: &'static str = "4 linearity: W[a v1' + b v2'] = a W[v1'] + b W[v2']";
+    const SIMULATED_NAME: &'static str = "4 linearity, simulated: W_sim is linear in v'";
 
     fn draw<E: Evaluator>(&self, draw: &mut Draw, evaluator: &E) -> LinearityCase {
         let case = random_case(draw);

@@ -36,6 +36,26 @@ use crate::dissipation::{Dissipation, DissipationError};
 use crate::inputs::CaseText;
 use crate::real::{Precision, Real};
 
+/// Debug as Display: proptest prints a failing case as the gate reports it.
+macro_rules! debug_as_display {
+    ($($case:ty),+) => {$(
+        impl std::fmt::Debug for $case {
+            fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                std::fmt::Display::fmt(self, f)
+            }
+        }
+    )+};
+}
+
+debug_as_display!(
+    ConstantTermCase,
+    LinearityCase,
+    RoughnessCase,
+    InvariantsCase,
+    SimulatedHistoryCase,
+    Drawn
+);
+
 /// The tolerance on a relative identity at a precision: 1e−12 in f64, 1e−70 at 256 bits.
 fn identity_tolerance(precision: Precision) -> f64 {
     if precision <= Precision::DOUBLE {
@@ -195,12 +215,6 @@ pub struct Drawn(pub CaseText);
 impl std::fmt::Display for Drawn {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.write_str(&describe(&self.0))
-    }
-}
-
-impl std::fmt::Debug for Drawn {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        std::fmt::Display::fmt(self, f)
     }
 }
 

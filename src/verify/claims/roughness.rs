@@ -42,12 +42,6 @@ impl fmt::Display for RoughnessCase {
     }
 }
 
-impl fmt::Debug for RoughnessCase {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        fmt::Display::fmt(self, f)
-    }
-}
-
 /// The cycle with every load divided by `divisor`.
 fn scaled_cycle<R: Real>(cycle: &LoadCycle<R>, divisor: &R) -> LoadCycle<R> {
     LoadCycle {
@@ -62,13 +56,8 @@ fn scaled_cycle<R: Real>(cycle: &LoadCycle<R>, divisor: &R) -> LoadCycle<R> {
 impl Claim for Roughness {
     type Case = RoughnessCase;
 
-    fn name(&self, simulated: bool) -> &'static str {
-        if simulated {
-            "5 roughness, simulated: W_k = k²W(·/k); Persson W ∝ σ"
-        } else {
-            "5 roughness: W_k = k²W(·/k); Persson W ∝ σ; power law ∝ k^-β"
-        }
-    }
+    const NAME: &'static str = "5 roughness: W_k = k²W(·/k); Persson W ∝ σ; power law ∝ k^-β";
+    const SIMULATED_NAME: &'static str = "5 roughness, simulated: W_k = k²W(·/k); Persson W ∝ σ";
 
     fn draw<E: Evaluator>(&self, draw: &mut Draw, evaluator: &E) -> RoughnessCase {
         let case = random_case(draw);

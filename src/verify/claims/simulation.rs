@@ -87,12 +87,6 @@ impl fmt::Display for SimulatedHistoryCase {
     }
 }
 
-impl fmt::Debug for SimulatedHistoryCase {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        fmt::Display::fmt(self, f)
-    }
-}
-
 /// Claim 6c for one case: the simulated W against the four-segment W. The figure is
 /// (1 if the simulation had to be refined else 0, its own error estimate).
 pub fn simulated_history_error(case: &SimulatedHistoryCase) -> Outcome {
