@@ -7,7 +7,7 @@ use super::{describe, random_case, read_case, relative};
 use crate::compliance::{Compliance, Scaled, Sum};
 use crate::inputs::CaseText;
 use crate::real::Precision;
-use crate::verify::generators::{compliance_spec, Draw};
+use crate::verify::generators::{compliance_spec, Draw, Loads};
 
 /// Claim 4, linearity: W[a v1' + b v2'] = a W[v1'] + b W[v2']. In the simulated spring bed
 /// the stiffnesses 1/v' do not add, so there linearity in v' is a property of the physics,
@@ -41,6 +41,21 @@ impl fmt::Display for LinearityCase {
     }
 }
 
+/// The loads v2' is drawn admissible over: the simulated bed reaches down to 0.9 P_T, so
+/// there from 0.8 P_T to P0 + P1; the integrals do not check v2', drawn over a fixed range.
+pub fn second_compliance_loads(case: &CaseText, simulated: bool) -> Loads {
+    let bed = if simulated {
+        read_case::<f64>(case, Precision::DOUBLE).ok()
+    } else {
+        None
+    };
+    let (low, high) = match bed {
+        Some((cycle, _)) => (0.8 * cycle.permanent_stick_load(), 1.0 + cycle.normal_amplitude),
+        None => (0.05, 1.9),
+    };
+    Loads { low, high, mean: 1.0 }
+}
+
 impl Claim for Linearity {
     type Case = LinearityCase;
 
@@ -49,18 +64,8 @@ impl Claim for Linearity {
 
     fn draw<E: Evaluator>(&self, draw: &mut Draw, evaluator: &E) -> LinearityCase {
         let case = random_case(draw);
-        // The simulated bed reaches down to 0.9 P_T, so its v2' is admissible from 0.8 P_T;
-        // the integrals do not check v2', drawn over a fixed range.
-        let bed = if evaluator.simulated() {
-            read_case::<f64>(&case, Precision::DOUBLE).ok()
-        } else {
-            None
-        };
-        let (low, high) = match bed {
-            Some((cycle, _)) => (0.8 * cycle.permanent_stick_load(), 1.0 + cycle.normal_amplitude),
-            None => (0.05, 1.9),
-        };
-        let second = compliance_spec(draw, low, high, 1.0);
+        let loads = second_compliance_loads(&case, evaluator.simulated());
+        let second = compliance_spec(draw, loads.low, loads.high, loads.mean);
         let (a, b) = (draw.uniform(0.1, 3.0), draw.uniform(0.1, 3.0));
         LinearityCase { case, second, a, b }
     }

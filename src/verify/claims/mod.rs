@@ -21,10 +21,11 @@ pub use cubic_law::{cubic_law, least_squares_slope};
 pub use evaluator::{check_claim, Claim, Evaluator, Failure, FourSegment, Measured, Outcome, Simulation, Value};
 pub use exact::{closed_form_coefficient_claim, polynomial_dissipation_claim, series_claim};
 pub use invariants::{in_phase_limit, in_phase_limit_error, mean_tangential_margin, Invariants, InvariantsCase};
-pub use linearity::{Linearity, LinearityCase};
+pub use linearity::{second_compliance_loads, Linearity, LinearityCase};
 pub use roughness::{Roughness, RoughnessCase};
 pub use simulation::{
     coefficient_against_simulation, simulated_history_error, simulation_agrees, SimulatedHistoryCase,
+    SIMULATION_TOLERANCE,
 };
 
 pub use super::generators::gross_slip_amplitude;
