@@ -201,11 +201,11 @@ fn read<R: Real>(case: &CaseText, precision: Precision) -> Option<(LoadCycle<R>,
     case.read::<R>(precision).ok().map(|c| (c.cycle, c.compliance))
 }
 
+/// A case read at a precision: its cycle and compliance.
+type ReadCase<R> = (LoadCycle<R>, Box<dyn Compliance<R>>);
+
 /// The case read at a precision, or a failure saying it did not read.
-fn read_case<R: Real>(
-    case: &CaseText,
-    precision: Precision,
-) -> Result<(LoadCycle<R>, Box<dyn Compliance<R>>), Failure> {
+fn read_case<R: Real>(case: &CaseText, precision: Precision) -> Result<ReadCase<R>, Failure> {
     read(case, precision).ok_or_else(|| Failure::Failed("case did not read".into()))
 }
 
