@@ -124,8 +124,8 @@ fn nearly_valid_cycles_at_every_scale_give_a_finite_nonnegative_w_or_a_typed_err
 fn admissible_cycles_and_compliances_give_w_within_1e_10_or_say_f64_cannot_resolve_it() {
     // Every family the gate draws, and sums of them, on cycles inside the theory: W is
     // finite, positive and carries an error estimate within 1e-10 of it, or the library
-    // says f64 cannot resolve the case (the command line then computes in MPFR). Near in
-    // phase with Q1 ≪ fP1 the estimate reaches 3.3e-12 of W (the printed digits follow it).
+    // says f64 cannot resolve the case. Near in phase with Q1 ≪ fP1 the estimate reaches
+    // 3.3e-12 of W; the command line then prints MPFR digits and says why.
     runner(300, 43)
         .run(&strategies::drawn(), |case| {
             let read = case.0.read::<f64>(Precision::DOUBLE).unwrap();

@@ -2,7 +2,7 @@
 //! invariants of the construction, checked over seeded random draws of compliance
 //! functions and cycles, in f64 and at 256 bits. `microslip verify` runs it and
 //! fails when any claim fails; the property tests in `tests/theorems.rs` run the
-//! same checks with fixed seeds.
+//! same checks on shrinking cases drawn from the same families, with fixed seeds.
 
 pub mod claims;
 pub mod generators;

@@ -1,9 +1,13 @@
 //! The claims of the theorem gate, each checked over random draws.
 //!
-//! Every check draws its cases from a seed, computes, and returns a
+//! Every row draws its cases from a seed, computes, and returns a
 //! [`ClaimReport`]: how many cases, the worst error against the claim, the
 //! tolerance, and whether all passed. A computation that fails counts as a failure.
-//! One file per claim; what they share (the tally, the random cycle) is here.
+//! Claims 3–6 check one case at a time (a [`Claim`], or a function of the case), so the
+//! property tests can run the same check on shrinking cases; claims 3–5 compute W through
+//! an [`Evaluator`], the segment formulas or the history simulation. One file per claim;
+//! what they share (the tally, the random cycle) is here, the evaluators and the loop over
+//! cases in `evaluator.rs`.
 
 mod coefficient;
 mod constant_term;
