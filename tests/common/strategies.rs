@@ -11,8 +11,8 @@
 
 use microslip::inputs::CaseText;
 use microslip::verify::claims::{
-    mean_tangential_margin, second_compliance_loads, ConstantTermCase, Drawn, InvariantsCase, LinearityCase,
-    RoughnessCase, SimulatedHistoryCase,
+    mean_tangential_margin, second_compliance_loads, ConstantTermCase, CubicLawCase, Drawn, InvariantsCase,
+    LinearityCase, RoughnessCase, SimulatedHistoryCase,
 };
 use microslip::verify::generators::{cycle_case, significant, Family, Loads, Range, CYCLE};
 use proptest::prelude::*;
@@ -114,5 +114,14 @@ prop_compose! {
     /// margin, and half of the time the phase φ + π.
     pub fn simulated_history_case()(case in case(), q0_fraction in number(-0.9, 0.9), reverse in any::<bool>()) -> SimulatedHistoryCase {
         SimulatedHistoryCase { case, q0_fraction, reverse }
+    }
+}
+
+prop_compose! {
+    /// Claim 1's case: ρ ∈ [0.2, 3), φ/π ∈ [0.1, 0.9), f ∈ [0.3, 1), λ ∈ [1, 1.5) and a
+    /// compliance admissible on [0.5, 1.5].
+    pub fn cubic_law_case()(rho in number(0.2, 3.0), phase_fraction in number(0.1, 0.9), friction in number(0.3, 1.0), lambda in number(1.0, 1.5), terms in compliance()) -> CubicLawCase {
+        let compliance = spec(&terms, Loads { low: 0.5, high: 1.5, mean: 1.0 });
+        CubicLawCase { rho, phase_fraction, friction, lambda, compliance }
     }
 }

@@ -3,7 +3,7 @@
 //! Every row draws its cases from a seed, computes, and returns a
 //! [`ClaimReport`]: how many cases, the worst error against the claim, the
 //! tolerance, and whether all passed. A computation that fails counts as a failure.
-//! Claims 3–6 check one case at a time (a [`Claim`], or a function of the case), so the
+//! Claims 1 and 3–6 check one case at a time (a [`Claim`], or a function of the case), so the
 //! property tests can run the same check on shrinking cases; claims 3–5 compute W through
 //! an [`Evaluator`], the segment formulas or the history simulation. One file per claim;
 //! what they share (the tally, the random cycle) is here, the evaluators and the loop over
@@ -21,7 +21,7 @@ mod simulation;
 
 pub use coefficient::small_amplitude_coefficient;
 pub use constant_term::{ConstantTerm, ConstantTermCase};
-pub use cubic_law::{cubic_law, least_squares_slope};
+pub use cubic_law::{cubic_law, cubic_law_order, least_squares_slope, CubicLawCase};
 pub use evaluator::{check_claim, Claim, Evaluator, Failure, FourSegment, Measured, Outcome, Simulation, Value};
 pub use exact::{closed_form_coefficient_claim, polynomial_dissipation_claim, series_claim};
 pub use invariants::{in_phase_limit, in_phase_limit_error, mean_tangential_margin, Invariants, InvariantsCase};
@@ -53,6 +53,7 @@ macro_rules! debug_as_display {
 }
 
 debug_as_display!(
+    CubicLawCase,
     ConstantTermCase,
     LinearityCase,
     RoughnessCase,
