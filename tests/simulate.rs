@@ -9,8 +9,6 @@ use microslip::dissipation::{dissipation, Method, Options};
 use microslip::inputs::Case;
 use microslip::real::Precision;
 use microslip::simulate::{simulate, InitialPath, SimulationOptions};
-use microslip::verify::claims::random_case;
-use microslip::verify::generators::Draw;
 use proptest::prelude::*;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
 
@@ -26,13 +24,13 @@ fn runner(cases: u32, seed: u8) -> TestRunner {
 #[test]
 fn simulation_agrees_with_the_four_segment_integrals_on_random_compliances_and_cycles() {
     // Random families (power laws and their sums, Persson, rational, exponential,
-    // admissible polynomials), P1/P0 in (0.05, 0.9), Q1 inside the gross-slip limit, φ in (0, π).
+    // admissible polynomials, and sums of them), P1/P0 in (0.05, 0.9), Q1 inside the
+    // gross-slip limit, φ in (0, π); a failure shrinks to a small case.
     // The issue asks 1e-5; the default resolution reaches 1e-6 (worst of 140 random cases
     // 8e-8, proofs/independent-simulation.md), and its own estimate bounds its error.
     runner(10, 41)
-        .run(&any::<u64>(), |seed| {
-            let case = random_case(&mut Draw::new(seed));
-            let Case { cycle, compliance } = case.read::<f64>(Precision::DOUBLE).unwrap();
+        .run(&strategies::drawn(false), |case| {
+            let Case { cycle, compliance } = case.0.read::<f64>(Precision::DOUBLE).unwrap();
             let exact = dissipation(&cycle, compliance.as_ref(), &Options::default())
                 .unwrap()
                 .total;
@@ -157,6 +155,8 @@ fn simulation_reproduces_the_closed_forms() {
 }
 
 mod common;
+#[path = "common/strategies.rs"]
+mod strategies;
 
 fn acceptance() -> LoadCycle<f64> {
     common::acceptance_cycle(0.4 * std::f64::consts::PI)

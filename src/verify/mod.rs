@@ -2,7 +2,7 @@
 //! invariants of the construction, checked over seeded random draws of compliance
 //! functions and cycles, in f64 and at 256 bits. `microslip verify` runs it and
 //! fails when any claim fails; the property tests in `tests/theorems.rs` run the
-//! same checks with fixed seeds.
+//! same checks on shrinking cases drawn from the same families, with fixed seeds.
 
 pub mod claims;
 pub mod generators;
@@ -15,6 +15,7 @@ use rug::Float;
 use serde::Serialize;
 
 use crate::real::Precision;
+use claims::{Claim, ConstantTerm, FourSegment, Invariants, Linearity, Roughness, Simulation};
 
 /// The outcome of one claim at one precision.
 #[derive(Clone, Debug, Serialize)]
@@ -51,7 +52,6 @@ pub type GateStep = (&'static str, Box<dyn Fn() -> Vec<ClaimReport> + Send + Syn
 pub fn gate(options: GateOptions) -> Vec<GateStep> {
     let GateOptions { seed, quick } = options;
     let n = move |quick_cases: usize, full_cases: usize| if quick { quick_cases } else { full_cases };
-    let wide = Precision::bits(256);
     vec![
         ("cubic law", Box::new(move || vec![claims::cubic_law(seed, n(3, 60))])),
         (
@@ -67,42 +67,31 @@ pub fn gate(options: GateOptions) -> Vec<GateStep> {
         ),
         (
             "constant term",
-            Box::new(move || {
-                vec![
-                    claims::constant_term::<f64>(seed + 2, n(40, 1000), Precision::DOUBLE),
-                    claims::constant_term::<Float>(seed + 3, n(3, 40), wide),
-                    claims::constant_term_simulated(seed + 13, n(2, 10)),
-                ]
-            }),
+            evaluated(
+                ConstantTerm,
+                options,
+                &[(F64, 2, 40, 1000), (Wide, 3, 3, 40), (Simulated, 13, 2, 10)],
+            ),
         ),
         (
             "linearity",
-            Box::new(move || {
-                vec![
-                    claims::linearity::<f64>(seed + 4, n(40, 1000), Precision::DOUBLE),
-                    claims::linearity::<Float>(seed + 5, n(3, 40), wide),
-                    claims::linearity_simulated(seed + 14, n(2, 10)),
-                ]
-            }),
+            evaluated(
+                Linearity,
+                options,
+                &[(F64, 4, 40, 1000), (Wide, 5, 3, 40), (Simulated, 14, 2, 10)],
+            ),
         ),
         (
             "roughness",
-            Box::new(move || {
-                vec![
-                    claims::roughness::<f64>(seed + 6, n(40, 1000), Precision::DOUBLE),
-                    claims::roughness::<Float>(seed + 7, n(2, 30), wide),
-                    claims::roughness_simulated(seed + 15, n(2, 10)),
-                ]
-            }),
+            evaluated(
+                Roughness,
+                options,
+                &[(F64, 6, 40, 1000), (Wide, 7, 2, 30), (Simulated, 15, 2, 10)],
+            ),
         ),
         (
             "invariants",
-            Box::new(move || {
-                vec![
-                    claims::invariants::<f64>(seed + 8, n(40, 1000), Precision::DOUBLE),
-                    claims::invariants::<Float>(seed + 10, n(2, 30), wide),
-                ]
-            }),
+            evaluated(Invariants, options, &[(F64, 8, 40, 1000), (Wide, 10, 2, 30)]),
         ),
         (
             "in-phase limit",
@@ -123,6 +112,42 @@ pub fn gate(options: GateOptions) -> Vec<GateStep> {
             }),
         ),
     ]
+}
+
+/// The evaluators the gate runs a claim with.
+#[derive(Clone, Copy, Debug)]
+enum Method {
+    /// The segment formulas in f64.
+    F64,
+    /// The segment formulas at 256 bits.
+    Wide,
+    /// The history simulation.
+    Simulated,
+}
+use Method::{Simulated, Wide, F64};
+
+/// A step checking `claim` with each evaluator listed, as (evaluator, seed offset, quick
+/// cases, full cases).
+fn evaluated<C: Claim + Send + Sync + 'static>(
+    claim: C,
+    options: GateOptions,
+    rows: &'static [(Method, u64, usize, usize)],
+) -> Box<dyn Fn() -> Vec<ClaimReport> + Send + Sync> {
+    Box::new(move || {
+        rows.iter()
+            .map(|&(method, offset, quick_cases, full_cases)| {
+                let (seed, cases) = (
+                    options.seed + offset,
+                    if options.quick { quick_cases } else { full_cases },
+                );
+                match method {
+                    F64 => claims::check_claim(&claim, &FourSegment::<f64>::new(Precision::DOUBLE), seed, cases),
+                    Wide => claims::check_claim(&claim, &FourSegment::<Float>::new(Precision::bits(256)), seed, cases),
+                    Simulated => claims::check_claim(&claim, &Simulation, seed, cases),
+                }
+            })
+            .collect()
+    })
 }
 
 /// Runs the whole gate on every core, and returns the reports in claim order;

@@ -1,13 +1,18 @@
 //! The claims of the theorem gate, each checked over random draws.
 //!
-//! Every check draws its cases from a seed, computes, and returns a
+//! Every row draws its cases from a seed, computes, and returns a
 //! [`ClaimReport`]: how many cases, the worst error against the claim, the
 //! tolerance, and whether all passed. A computation that fails counts as a failure.
-//! One file per claim; what they share (the tally, the random cycle) is here.
+//! Claims 1 and 3–6 check one case at a time (a [`Claim`], or a function of the case), so the
+//! property tests can run the same check on shrinking cases; claims 3–5 compute W through
+//! an [`Evaluator`], the segment formulas or the history simulation. One file per claim;
+//! what they share (the tally, the random cycle) is here, the evaluators and the loop over
+//! cases in `evaluator.rs`.
 
 mod coefficient;
 mod constant_term;
 mod cubic_law;
+mod evaluator;
 mod exact;
 mod invariants;
 mod linearity;
@@ -15,21 +20,47 @@ mod roughness;
 mod simulation;
 
 pub use coefficient::small_amplitude_coefficient;
-pub use constant_term::{constant_term, constant_term_simulated};
-pub use cubic_law::{cubic_law, least_squares_slope};
+pub use constant_term::{ConstantTerm, ConstantTermCase};
+pub use cubic_law::{cubic_law, cubic_law_order, least_squares_slope, CubicLawCase};
+pub use evaluator::{check_claim, Claim, Evaluator, Failure, FourSegment, Measured, Outcome, Simulation, Value};
 pub use exact::{closed_form_coefficient_claim, polynomial_dissipation_claim, series_claim};
-pub use invariants::{in_phase_limit, invariants};
-pub use linearity::{linearity, linearity_simulated};
-pub use roughness::{roughness, roughness_simulated};
-pub use simulation::{coefficient_against_simulation, simulation_agrees};
+pub use invariants::{in_phase_limit, in_phase_limit_error, mean_tangential_margin, Invariants, InvariantsCase};
+pub use linearity::{second_compliance_loads, Linearity, LinearityCase};
+pub use roughness::{Roughness, RoughnessCase};
+pub use simulation::{
+    coefficient_against_simulation, simulated_history_error, simulation_agrees, SimulatedHistoryCase,
+    SIMULATION_TOLERANCE,
+};
 
-use super::generators::{compliance_spec, Draw};
+pub use super::generators::gross_slip_amplitude;
+use super::generators::{compliance_spec, cycle_case, Draw, CYCLE};
 use super::ClaimReport;
 use crate::compliance::Compliance;
 use crate::cycle::LoadCycle;
 use crate::dissipation::{Dissipation, DissipationError};
 use crate::inputs::CaseText;
 use crate::real::{Precision, Real};
+
+/// Debug as Display: proptest prints a failing case as the gate reports it.
+macro_rules! debug_as_display {
+    ($($case:ty),+) => {$(
+        impl std::fmt::Debug for $case {
+            fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+                std::fmt::Display::fmt(self, f)
+            }
+        }
+    )+};
+}
+
+debug_as_display!(
+    CubicLawCase,
+    ConstantTermCase,
+    LinearityCase,
+    RoughnessCase,
+    InvariantsCase,
+    SimulatedHistoryCase,
+    Drawn
+);
 
 /// The tolerance on a relative identity at a precision: 1e−12 in f64, 1e−70 at 256 bits.
 fn identity_tolerance(precision: Precision) -> f64 {
@@ -105,16 +136,6 @@ impl Tally {
         self.unresolved += 1;
     }
 
-    /// A case whose computation failed: unresolved if it only says the precision cannot
-    /// resolve the case (`IllConditioned`), a failure otherwise.
-    fn fail_unless_unresolvable(&mut self, case: &str, error: DissipationError) {
-        if unresolvable(&error) {
-            self.unresolved();
-        } else {
-            self.fail(case, error);
-        }
-    }
-
     /// One case whose computation failed.
     fn fail(&mut self, case: &str, why: impl std::fmt::Display) {
         self.report.cases += 1;
@@ -171,44 +192,40 @@ fn number<R: Real>(value: f64, precision: Precision) -> R {
     R::parse_decimal(&value.to_string(), precision).unwrap_or_else(|_| R::from_f64(value, precision))
 }
 
-/// The largest Q1 that keeps the ellipse of (P0, P1, φ) inside the friction cone with
-/// Q0 = 0: σ± < fP0 ⇔ Q1 < f(√(P0² − P1² sin²φ) − P1|cos φ|).
-pub fn gross_slip_amplitude(p0: f64, p1: f64, phi: f64, friction: f64) -> f64 {
-    friction * ((p0 * p0 - (p1 * phi.sin()).powi(2)).sqrt() - p1 * phi.cos().abs())
-}
-
 /// A random cycle inside the theory: P0 = 1, P1/P0 ∈ (0.05, 0.9), φ ∈ (0, π), Q1 a
 /// random fraction of the largest amplitude the friction cone allows, and a
 /// compliance admissible over the loads the cycle reaches.
 pub fn random_case(draw: &mut Draw) -> CaseText {
-    let p1 = draw.uniform(0.05, 0.9);
-    let f = draw.uniform(0.2, 2.0);
-    let lambda = draw.uniform(1.0, 1.5);
-    let phase_fraction = draw.uniform(0.02, 0.98);
-    let phi = phase_fraction * std::f64::consts::PI;
-    let largest = gross_slip_amplitude(1.0, p1, phi, f);
-    let q1 = draw.uniform(0.1, 0.9) * largest;
-    let q1: f64 = format!("{q1:.6e}").parse().unwrap_or(q1);
-    // P_T ≥ P0 − (Q1 + fP1)/f: the compliance must be admissible from there.
-    let low = (1.0 - p1).min(1.0 - (q1 + f * p1) / f).max(1e-3);
-    CaseText {
-        p0: "1".into(),
-        p1: p1.to_string(),
-        q0: "0".into(),
-        q1: q1.to_string(),
-        phi: format!("{phase_fraction}pi"),
-        friction: f.to_string(),
-        lambda: Some(lambda.to_string()),
-        nu: None,
-        compliance: compliance_spec(draw, low * 0.9, 1.0 + p1, 1.0),
-    }
+    let values = draw.parameters(&CYCLE);
+    cycle_case(&values, |loads| {
+        compliance_spec(draw, loads.low, loads.high, loads.mean)
+    })
 }
 
 fn read<R: Real>(case: &CaseText, precision: Precision) -> Option<(LoadCycle<R>, Box<dyn Compliance<R>>)> {
     case.read::<R>(precision).ok().map(|c| (c.cycle, c.compliance))
 }
 
-fn describe(case: &CaseText) -> String {
+/// A case read at a precision: its cycle and compliance.
+type ReadCase<R> = (LoadCycle<R>, Box<dyn Compliance<R>>);
+
+/// The case read at a precision, or a failure saying it did not read.
+fn read_case<R: Real>(case: &CaseText, precision: Precision) -> Result<ReadCase<R>, Failure> {
+    read(case, precision).ok_or_else(|| Failure::Failed("case did not read".into()))
+}
+
+/// A drawn cycle and compliance, printed as a report prints them ([`describe`]).
+#[derive(Clone, PartialEq)]
+pub struct Drawn(pub CaseText);
+
+impl std::fmt::Display for Drawn {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&describe(&self.0))
+    }
+}
+
+/// A case as a report prints it: the loads, f, λ and the compliance SPEC.
+pub fn describe(case: &CaseText) -> String {
     format!(
         "P1={} Q0={} Q1={} φ={} f={} λ={} v'={}",
         case.p1,
@@ -254,7 +271,8 @@ mod tests {
             expected: 3e-11,
             limit: 1e-12,
         };
-        tally.fail_unless_unresolvable("ill-conditioned", ill);
+        assert!(unresolvable(&ill));
+        tally.unresolved();
         let report = tally.note("measured");
         assert!(
             report.passed && report.cases == 1 && report.worst_error == 1e-13,
@@ -269,7 +287,8 @@ mod tests {
             relative_error: 1e-9,
             requested: 1e-14,
         };
-        tally.fail_unless_unresolvable("stalled", stalled);
+        assert!(!unresolvable(&stalled));
+        tally.fail("stalled", stalled);
         assert!(!tally.report.passed && tally.report.note.contains("wrong"));
     }
 }

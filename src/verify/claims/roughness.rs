@@ -1,14 +1,48 @@
 //! Claim 5: how W scales with the roughness (errata item 7).
 
-use super::simulation::{refinement_note, simulate_within_tolerance, SIMULATED_IDENTITY_TOLERANCE};
-use super::{describe, identity_tolerance, random_case, read, relative, relative_estimate, unresolvable, Tally};
+use std::fmt;
+
+use super::evaluator::{all_of, Claim, Evaluator, Measured, Outcome, Value};
+use super::{describe, random_case, read_case, relative};
 use crate::compliance::{LoadScaled, Persson, PowerLaw};
 use crate::cycle::LoadCycle;
-use crate::dissipation::{dissipation, Options};
-use crate::real::{Precision, Real};
+use crate::inputs::CaseText;
+use crate::real::Real;
 use crate::verify::generators::Draw;
-use crate::verify::ClaimReport;
 
+/// Claim 5, roughness: scaling the roughness heights by k (v_k'(P) = v'(P/k)) gives
+/// W_k(P0, P1, Q1) = k² W(P0/k, P1/k, Q1/k) for any compliance; for Persson's
+/// v' = γσ/P that makes W ∝ σ exactly, and for v' = C P^β, W_k = k^(−β) W — linear
+/// in the roughness only for β = −1 (checked through the segment formulas, whose note
+/// reports how far from linear).
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Roughness;
+
+/// A cycle and compliance, the height scale k, Persson's σ, and the exponent β of the
+/// power law (drawn for the segment formulas only).
+#[derive(Clone, PartialEq)]
+pub struct RoughnessCase {
+    /// The cycle and v'.
+    pub case: CaseText,
+    /// k.
+    pub k: f64,
+    /// β, if the power law is checked.
+    pub beta: Option<f64>,
+    /// σ.
+    pub sigma: f64,
+}
+
+impl fmt::Display for RoughnessCase {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{} k={} σ={}", describe(&self.case), self.k, self.sigma)?;
+        match self.beta {
+            Some(beta) => write!(f, " β={beta}"),
+            None => Ok(()),
+        }
+    }
+}
+
+/// The cycle with every load divided by `divisor`.
 fn scaled_cycle<R: Real>(cycle: &LoadCycle<R>, divisor: &R) -> LoadCycle<R> {
     LoadCycle {
         mean_normal_load: cycle.mean_normal_load.clone() / divisor,
@@ -19,143 +53,100 @@ fn scaled_cycle<R: Real>(cycle: &LoadCycle<R>, divisor: &R) -> LoadCycle<R> {
     }
 }
 
-/// Claim 5, roughness: scaling the roughness heights by k (v_k'(P) = v'(P/k)) gives
-/// W_k(P0, P1, Q1) = k² W(P0/k, P1/k, Q1/k) for any compliance; for Persson's
-/// v' = γσ/P that makes W ∝ σ exactly, and for v' = C P^β, W_k = k^(−β) W — linear
-/// in the roughness only for β = −1. The note reports how far from linear.
-pub fn roughness<R: Real>(seed: u64, cases: usize, precision: Precision) -> ClaimReport {
-    let tolerance = identity_tolerance(precision);
-    let mut tally = Tally::new(
-        "5 roughness: W_k = k²W(·/k); Persson W ∝ σ; power law ∝ k^-β",
-        precision,
-        tolerance,
-    );
-    let mut draw = Draw::new(seed);
-    let mut worst_departure: (f64, f64) = (0.0, 0.0);
-    for _ in 0..cases {
-        let case = random_case(&mut draw);
+impl Claim for Roughness {
+    type Case = RoughnessCase;
+
+    const NAME: &'static str = "5 roughness: W_k = k²W(·/k); Persson W ∝ σ; power law ∝ k^-β";
+    const SIMULATED_NAME: &'static str = "5 roughness, simulated: W_k = k²W(·/k); Persson W ∝ σ";
+
+    fn draw<E: Evaluator>(&self, draw: &mut Draw, evaluator: &E) -> RoughnessCase {
+        let case = random_case(draw);
         let k = draw.uniform(0.2, 5.0);
-        let beta = draw.uniform(-2.0, -0.05);
-        let label = format!("{} k={k} β={beta}", describe(&case));
-        let Some((cycle, compliance)) = read::<R>(&case, precision) else {
-            tally.fail(&label, "case did not read");
-            continue;
+        let beta = (!evaluator.simulated()).then(|| draw.uniform(-2.0, -0.05));
+        let sigma = draw.uniform(0.01, 1.0);
+        RoughnessCase { case, k, beta, sigma }
+    }
+
+    fn check<E: Evaluator>(&self, evaluator: &E, case: &RoughnessCase) -> Outcome {
+        let (cycle, compliance) = read_case::<E::Number>(&case.case, evaluator.precision())?;
+        let number = |x: f64| evaluator.number(x);
+        let k = number(case.k);
+        let w = |cycle: &LoadCycle<E::Number>, compliance: &dyn crate::compliance::Compliance<E::Number>| {
+            evaluator.w(cycle, compliance, false)
         };
-        let number = |x: f64| R::parse_decimal(&x.to_string(), precision).unwrap_or_else(|_| R::from_i64(1, precision));
-        let k_r = number(k);
-        let options = Options {
-            check_compliance: false,
-            ..Options::default()
-        };
-        // The general identity, on the drawn compliance.
+        // The general identity W[v'(·/k)](L) = k² W[v'](L/k), on the drawn compliance. The
+        // integrals, which do not need v' admissible, take L = the drawn loads; the simulated
+        // bed, which does, takes L = k × the drawn loads, so that L/k is where v' was drawn.
         let scaled = LoadScaled {
-            factor: k_r.clone(),
+            factor: k.clone(),
             inner: compliance,
         };
-        let general = (
-            dissipation(&cycle, &scaled, &options),
-            dissipation(&scaled_cycle(&cycle, &k_r), scaled.inner.as_ref(), &options),
-        );
+        let (loads, reduced) = if evaluator.simulated() {
+            (scaled_cycle(&cycle, &(k.int(1) / &k)), cycle.clone())
+        } else {
+            (cycle.clone(), scaled_cycle(&cycle, &k))
+        };
+        let general = [w(&loads, &scaled), w(&reduced, scaled.inner.as_ref())];
         // Persson at σ and kσ, and a power law with loads scaled by k.
-        let persson = |sigma: R| Persson {
+        let persson = |sigma: E::Number| Persson {
             gamma: number(1.0),
             sigma,
         };
-        let sigma = number(draw.uniform(0.01, 1.0));
-        let persson_pair = (
-            dissipation(&cycle, &persson(sigma.clone()), &options),
-            dissipation(&cycle, &persson(sigma * &k_r), &options),
-        );
-        let power = PowerLaw {
-            coefficient: number(1.0),
-            exponent: number(beta),
-        };
-        let power_scaled = LoadScaled {
-            factor: k_r.clone(),
-            inner: Box::new(power.clone()),
-        };
-        let power_pair = (
-            dissipation(&cycle, &power, &options),
-            dissipation(&cycle, &power_scaled, &options),
-        );
-        match (general, persson_pair, power_pair) {
-            ((Ok(wk), Ok(w)), (Ok(p1), Ok(pk)), (Ok(q1), Ok(qk))) => {
-                // The identities' errors against the sums of their sides' own estimates.
-                let pairs = [(&wk, &w), (&p1, &pk), (&q1, &qk)];
-                let estimates = pairs.map(|(x, y)| relative_estimate(x) + relative_estimate(y));
-                let largest = estimates.iter().fold(0.0f64, |acc, &e| acc.max(e));
-                let identity = relative(&wk.total, &(w.total * &k_r * &k_r));
-                let linear_sigma = relative(&pk.total, &(p1.total * &k_r));
-                let power_law = relative(&qk.total, &(q1.total.clone() * &k_r.powr(&(-number(beta)))));
-                tally.record_resolved(identity.max(linear_sigma).max(power_law), &[largest], &label);
-                let departure = (qk.total / q1.total / &k_r).to_f64_lossy() - 1.0;
-                if departure.abs() > worst_departure.1.abs() {
-                    worst_departure = (beta, departure);
-                }
+        let sigma = number(case.sigma);
+        let persson_pair = [w(&cycle, &persson(sigma.clone())), w(&cycle, &persson(sigma * &k))];
+        let power_pair = match case.beta {
+            Some(beta) => {
+                let power = PowerLaw {
+                    coefficient: number(1.0),
+                    exponent: number(beta),
+                };
+                let power_scaled = LoadScaled {
+                    factor: k.clone(),
+                    inner: Box::new(power.clone()),
+                };
+                [w(&cycle, &power), w(&cycle, &power_scaled)]
             }
-            ((Err(e), _), _, _)
-            | ((_, Err(e)), _, _)
-            | (_, (Err(e), _), _)
-            | (_, (_, Err(e)), _)
-            | (_, _, (Err(e), _))
-            | (_, _, (_, Err(e)))
-                if unresolvable(&e) =>
-            {
-                tally.unresolved()
+            None => [(); 2].map(|_| {
+                Ok(Value {
+                    w: k.int(1),
+                    rounding: 0.0,
+                })
+            }),
+        };
+        let [general_k, general_1] = general;
+        let [persson_1, persson_k] = persson_pair;
+        let [power_1, power_k] = power_pair;
+        let [wk, w1, p1, pk, q1, qk] = all_of([general_k, general_1, persson_1, persson_k, power_1, power_k])?;
+        // The identities' errors against the sums of their sides' own rounding estimates.
+        let pairs = [(&wk, &w1), (&p1, &pk), (&q1, &qk)];
+        let rounding = pairs
+            .iter()
+            .map(|(x, y)| x.rounding + y.rounding)
+            .fold(0.0f64, f64::max);
+        let identity = relative(&wk.w, &(w1.w.clone() * &k * &k));
+        let linear_sigma = relative(&pk.w, &(p1.w.clone() * &k));
+        let (power_law, figure) = match case.beta {
+            Some(beta) => {
+                let power_law = relative(&qk.w, &(q1.w.clone() * &k.powr(&(-number(beta)))));
+                let departure = (qk.w / q1.w / &k).to_f64_lossy() - 1.0;
+                (power_law, Some((beta, departure)))
             }
-            _ => tally.fail(&label, "a computation failed"),
-        }
+            None => (0.0, None),
+        };
+        Ok(Measured {
+            error: identity.max(linear_sigma).max(power_law),
+            rounding,
+            figure,
+        })
     }
-    tally.note(format!(
-        "linearity in roughness fails for β ≠ −1: at β = {:.3}, W(kσ)/(k W(σ)) − 1 = {:.3e}",
-        worst_departure.0, worst_departure.1
-    ))
-}
 
-/// Claim 5 by the history simulation: W_k = k² W(·/k) on the drawn compliance (as
-/// W_k(k·loads) = k² W(loads), so that both beds see their compliance where it is
-/// physical), and Persson's W ∝ σ, each side simulated.
-pub fn roughness_simulated(seed: u64, cases: usize) -> ClaimReport {
-    let mut tally = Tally::new(
-        "5 roughness, simulated: W_k = k²W(·/k); Persson W ∝ σ",
-        Precision::DOUBLE,
-        SIMULATED_IDENTITY_TOLERANCE,
-    );
-    let mut draw = Draw::new(seed);
-    for _ in 0..cases {
-        let case = random_case(&mut draw);
-        let k = draw.uniform(0.2, 5.0);
-        let sigma = draw.uniform(0.01, 1.0);
-        let label = format!("{} k={k} σ={sigma}", describe(&case));
-        let Some((cycle, compliance)) = read::<f64>(&case, Precision::DOUBLE) else {
-            tally.fail(&label, "case did not read");
-            continue;
-        };
-        // The loads scaled up with the heights, so that each simulated bed sees its
-        // compliance where that is physical: W[v'(·/k)](k·loads) = k² W[v'](loads).
-        let scaled = LoadScaled {
-            factor: k,
-            inner: compliance,
-        };
-        let general = (
-            simulate_within_tolerance(&scaled_cycle(&cycle, &(1.0 / k)), &scaled),
-            simulate_within_tolerance(&cycle, scaled.inner.as_ref()),
-        );
-        let persson = |sigma: f64| Persson { gamma: 1.0, sigma };
-        let persson_pair = (
-            simulate_within_tolerance(&cycle, &persson(sigma)),
-            simulate_within_tolerance(&cycle, &persson(k * sigma)),
-        );
-        match (general, persson_pair) {
-            ((Ok(wk), Ok(w)), (Ok(p1), Ok(pk))) => {
-                let identity = relative(&wk.w_work, &(k * k * w.w_work));
-                let linear_sigma = relative(&pk.w_work, &(k * p1.w_work));
-                tally.record(identity.max(linear_sigma), &label);
-            }
-            _ => tally.fail(&label, "a simulation failed"),
+    fn note<E: Evaluator>(&self, evaluator: &E, figure: Option<(f64, f64)>) -> String {
+        if evaluator.simulated() {
+            // The bed is dimensionless: scaling loads or stiffnesses maps it onto itself,
+            // element for element, so these hold to rounding even at the coarse resolution.
+            return "the bed scales exactly".into();
         }
+        let (beta, departure) = figure.unwrap_or((0.0, 0.0));
+        format!("linearity in roughness fails for β ≠ −1: at β = {beta:.3}, W(kσ)/(k W(σ)) − 1 = {departure:.3e}")
     }
-    // The bed is dimensionless: scaling loads or stiffnesses maps it onto itself, element
-    // for element, so these hold to rounding even at the coarse resolution.
-    tally.note(refinement_note() + "; the bed scales exactly")
 }

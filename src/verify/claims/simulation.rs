@@ -2,11 +2,15 @@
 //! four-segment W (claim 6c) and the coefficient I(ρ, φ) (claim 2c), computed by a
 //! method that uses none of the segment formulas.
 
-use super::{describe, gross_slip_amplitude, random_case, read, Tally};
+use std::fmt;
+
+use super::evaluator::{tally_cases, Failure, Measured, Outcome};
+use super::{describe, gross_slip_amplitude, random_case, read_case, Tally};
 use crate::compliance::Compliance;
 use crate::compliance::Polynomial;
 use crate::cycle::LoadCycle;
-use crate::dissipation::{dissipation, Options};
+use crate::dissipation::{dissipation, DissipationError, Options};
+use crate::inputs::CaseText;
 use crate::real::Precision;
 use crate::simulate::{simulate, SimulationError, SimulationOptions, SimulationResult};
 use crate::verify::generators::{shape, Draw};
@@ -59,60 +63,94 @@ pub(super) fn simulate_within_tolerance(
     result.ok_or(SimulationError::Resolution { elements: 0, steps: 0 })
 }
 
+/// A cycle and compliance for claim 6c, and how the simulated cycle departs from it: Q0
+/// as a fraction of its margin (negative towards −fP0), and whether Q is reversed (φ + π).
+#[derive(Clone, PartialEq)]
+pub struct SimulatedHistoryCase {
+    /// The cycle (Q0 = 0) and v' the four-segment W is computed for.
+    pub case: CaseText,
+    /// Q0 of the simulated cycle as a fraction of the gross-slip margin, in (−1, 1).
+    pub q0_fraction: f64,
+    /// Whether the simulated cycle has the phase φ + π.
+    pub reverse: bool,
+}
+
+impl fmt::Display for SimulatedHistoryCase {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "{} simulated with Q0 at {} of its margin{}",
+            describe(&self.case),
+            self.q0_fraction,
+            if self.reverse { ", φ+π" } else { "" }
+        )
+    }
+}
+
+/// Claim 6c for one case: the simulated W against the four-segment W. The figure is
+/// (1 if the simulation had to be refined else 0, its own error estimate).
+pub fn simulated_history_error(case: &SimulatedHistoryCase) -> Outcome {
+    let (cycle, compliance) = read_case::<f64>(&case.case, Precision::DOUBLE)?;
+    // Q0 inside the margins of the simulated cycle: −(fP0 − σ₊) < Q0 < fP0 − σ₋, with
+    // σ₊ and σ₋ trading places when Q is reversed (φ + π).
+    let (plus, minus) = cycle.slip_line_amplitudes();
+    let (plus, minus) = if case.reverse { (minus, plus) } else { (plus, minus) };
+    let room = cycle.friction * cycle.mean_normal_load;
+    let fraction = case.q0_fraction;
+    let q0 = if fraction >= 0.0 {
+        fraction * (room - minus)
+    } else {
+        fraction * (room - plus)
+    };
+    let simulated_cycle = LoadCycle {
+        mean_tangential_load: q0,
+        phase: cycle.phase + if case.reverse { std::f64::consts::PI } else { 0.0 },
+        ..cycle.clone()
+    };
+    let exact = match dissipation(&cycle, compliance.as_ref(), &Options::default()) {
+        Ok(exact) => exact,
+        Err(DissipationError::IllConditioned { .. }) => return Err(Failure::Unresolvable),
+        Err(error) => return Err(Failure::Failed(error.to_string())),
+    };
+    let simulated = simulate_within_tolerance(&simulated_cycle, compliance.as_ref())
+        .map_err(|error| Failure::Failed(format!("Q0={q0:.4e}: {error}")))?;
+    Ok(Measured {
+        error: (simulated.w_work - exact.total).abs() / exact.total.abs(),
+        rounding: 0.0,
+        figure: Some((
+            f64::from(u8::from(simulated.elements > 400)),
+            simulated.estimated_rel_error,
+        )),
+    })
+}
+
 /// Claim 6c: the simulation of the loading history agrees with the four-segment W, with
 /// the simulated cycle given a random Q0 inside the gross-slip margin and, half of the
 /// time, the phase φ + π — so that it also checks, independently of the segment code,
 /// that W depends on neither.
 pub fn simulation_agrees(seed: u64, cases: usize) -> ClaimReport {
-    let precision = Precision::DOUBLE;
     let mut tally = Tally::new(
         "6c simulated history (any Q0, φ or φ+π) gives the same W",
-        precision,
+        Precision::DOUBLE,
         SIMULATION_TOLERANCE,
     );
-    let mut draw = Draw::new(seed);
-    let mut estimates = Vec::new();
-    let mut refined = 0;
-    for _ in 0..cases {
-        let case = random_case(&mut draw);
-        let (fraction, reverse) = (draw.uniform(-0.9, 0.9), draw.below(2) == 1);
-        let Some((cycle, compliance)) = read::<f64>(&case, precision) else {
-            tally.fail(&describe(&case), "case did not read");
-            continue;
-        };
-        // Q0 inside the margins of the simulated cycle: −(fP0 − σ₊) < Q0 < fP0 − σ₋, with
-        // σ₊ and σ₋ trading places when Q is reversed (φ + π).
-        let (plus, minus) = cycle.slip_line_amplitudes();
-        let (plus, minus) = if reverse { (minus, plus) } else { (plus, minus) };
-        let room = cycle.friction * cycle.mean_normal_load;
-        let q0 = if fraction >= 0.0 {
-            fraction * (room - minus)
-        } else {
-            fraction * (room - plus)
-        };
-        let simulated_cycle = LoadCycle {
-            mean_tangential_load: q0,
-            phase: cycle.phase + if reverse { std::f64::consts::PI } else { 0.0 },
-            ..cycle.clone()
-        };
-        let label = format!(
-            "{} simulated with Q0={q0:.4e}{}",
-            describe(&case),
-            if reverse { ", φ+π" } else { "" }
-        );
-        match (
-            dissipation(&cycle, compliance.as_ref(), &Options::default()),
-            simulate_within_tolerance(&simulated_cycle, compliance.as_ref()),
-        ) {
-            (Ok(exact), Ok(simulated)) => {
-                estimates.push(simulated.estimated_rel_error);
-                refined += usize::from(simulated.elements > 400);
-                tally.record((simulated.w_work - exact.total).abs() / exact.total.abs(), &label);
+    let figures = tally_cases(
+        &mut tally,
+        seed,
+        cases,
+        |draw| {
+            let case = random_case(draw);
+            let (q0_fraction, reverse) = (draw.uniform(-0.9, 0.9), draw.below(2) == 1);
+            SimulatedHistoryCase {
+                case,
+                q0_fraction,
+                reverse,
             }
-            (Err(e), _) => tally.fail_unless_unresolvable(&label, e),
-            (_, Err(e)) => tally.fail(&label, e),
-        }
-    }
+        },
+        simulated_history_error,
+    );
+    let refined = figures.iter().filter(|figure| figure.0 > 0.0).count();
+    let mut estimates: Vec<f64> = figures.iter().map(|figure| figure.1).collect();
     let median = median(&mut estimates);
     tally.note(format!(
         "100 elements, 300 steps, extrapolated ({refined} refined to meet the tolerance); P1 ≤ {LARGEST_SIMULATED_AMPLITUDE} P0; median self-estimate of the simulation's error {median:.1e}"
