@@ -269,7 +269,7 @@ pub fn measure_case(
     };
     for &m in &panels {
         let (seconds, result) = median_seconds(budget, || naive_in_load(text, m));
-        record("naive-trapezoid-in-P", 53, m as f64, seconds, as_float(result));
+        record("naive-midpoint-in-P", 53, m as f64, seconds, as_float(result));
     }
     // Multiple precision: our two rules.
     let precisions: Vec<u32> = if quick { vec![256] } else { vec![128, 256, 512, 1024] };

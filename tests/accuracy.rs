@@ -53,8 +53,8 @@ fn gauss_legendre_in_theta_converges_geometrically_where_the_load_integral_does_
     assert!(error_of("gauss-legendre", 53, 32.0) < 1e-14);
     assert!(error_of("gauss-legendre", 256, 64.0) < 1e-50);
     // The naive integral in P with square-root end points: slow algebraic convergence.
-    assert!(error_of("naive-trapezoid-in-P", 53, 256.0) > 1e-8);
-    assert!(error_of("naive-trapezoid-in-P", 53, 4096.0) < error_of("naive-trapezoid-in-P", 53, 256.0));
+    assert!(error_of("naive-midpoint-in-P", 53, 256.0) > 1e-8);
+    assert!(error_of("naive-midpoint-in-P", 53, 4096.0) < error_of("naive-midpoint-in-P", 53, 256.0));
     let csv = to_csv(&measured).unwrap();
     assert!(csv.starts_with("rule,precision_bits,parameter,evaluations,seconds,rel_error,case\n"));
     assert_eq!(csv.lines().count(), measured.len() + 1);
