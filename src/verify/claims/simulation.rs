@@ -20,10 +20,9 @@ use crate::verify::ClaimReport;
 /// The agreement asked of the simulation at the gate's resolution (an identity between
 /// two simulated values is held to [`SIMULATED_IDENTITY_TOLERANCE`]).
 ///
-/// At 100 elements and 300 steps per cycle (extrapolated from 100/300, 200/600 and
-/// 400/1200, 20–40 ms a case) the simulated W was within 4.5e−5 of the four-segment W on
-/// 140 random cycles (P1 up to 0.9 P0, random Q0, φ and φ + π;
-/// proofs/independent-simulation.md); a wrong segment formula moves W by percents.
+/// Above the simulation's error at the gate's resolution (100 elements and 300 steps per
+/// cycle, extrapolated; measured in proofs/independent-simulation.md), and far below
+/// what a wrong segment formula does to W (percents).
 pub const SIMULATION_TOLERANCE: f64 = 1e-4;
 
 /// An identity between simulated values, each within [`SIMULATION_TOLERANCE`] of its own.
