@@ -11,8 +11,8 @@
 
 use microslip::inputs::CaseText;
 use microslip::verify::claims::{
-    mean_tangential_margin, second_compliance_loads, ConstantTermCase, CubicLawCase, Drawn, InvariantsCase,
-    LinearityCase, RoughnessCase, SimulatedHistoryCase,
+    mean_tangential_margin, second_compliance_loads, CaseWith, CubicLawCase, Drawn, LinearityCase, RoughnessCase,
+    SimulatedHistoryCase,
 };
 use microslip::verify::generators::{cycle_case, significant, Family, Loads, Range, CYCLE};
 use proptest::prelude::*;
@@ -83,8 +83,8 @@ prop_compose! {
 
 prop_compose! {
     /// Claim 3's case: c ∈ [0.1, largest) added to v'.
-    pub fn constant_term_case(largest: f64, sums: bool)(case in case(sums), constant in number(0.1, largest)) -> ConstantTermCase {
-        ConstantTermCase { case, constant }
+    pub fn constant_term_case(largest: f64, sums: bool)(case in case(sums), constant in number(0.1, largest)) -> CaseWith {
+        CaseWith { case, symbol: "c", value: constant }
     }
 }
 
@@ -107,10 +107,10 @@ prop_compose! {
 
 prop_compose! {
     /// Claim 6a's case: another Q0 anywhere inside the gross-slip margin.
-    pub fn invariants_case(sums: bool)(case in case(sums), fraction in number(0.0, 1.0)) -> InvariantsCase {
+    pub fn invariants_case(sums: bool)(case in case(sums), fraction in number(0.0, 1.0)) -> CaseWith {
         let cycle = case.read::<f64>(microslip::real::Precision::DOUBLE).expect("a drawn case reads").cycle;
         let (low, high) = mean_tangential_margin(&cycle);
-        InvariantsCase { case, q0: significant(low + (high - low) * fraction) }
+        CaseWith { case, symbol: "Q0", value: significant(low + (high - low) * fraction) }
     }
 }
 

@@ -1,12 +1,9 @@
 //! Claim 3: the constant term of v' contributes nothing.
 
-use std::fmt;
-
 use super::evaluator::{all_of, Claim, Evaluator, Measured, Outcome, Value};
-use super::{describe, random_case, read_case};
+use super::{random_case, read_case, CaseWith};
 use crate::compliance::{Compliance, Polynomial, Shifted};
 use crate::cycle::LoadCycle;
-use crate::inputs::CaseText;
 use crate::real::{Precision, Real};
 use crate::verify::generators::Draw;
 
@@ -18,21 +15,6 @@ use crate::verify::generators::Draw;
 /// segment formulas.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct ConstantTerm;
-
-/// A cycle and compliance, and the constant c added to v'.
-#[derive(Clone, PartialEq)]
-pub struct ConstantTermCase {
-    /// The cycle and v'.
-    pub case: CaseText,
-    /// c.
-    pub constant: f64,
-}
-
-impl fmt::Display for ConstantTermCase {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{} c={}", describe(&self.case), self.constant)
-    }
-}
 
 /// The largest constant drawn: the coarse spring bed resolves W[v' + c] to its tolerance
 /// for c up to 3 (v' itself is at most a few).
@@ -60,7 +42,7 @@ fn cancelling_terms<R: Real>(cycle: &LoadCycle<R>, shifted: &dyn Compliance<R>, 
 }
 
 impl Claim for ConstantTerm {
-    type Case = ConstantTermCase;
+    type Case = CaseWith;
 
     const NAME: &'static str = "3 constant term: W[v' + c] = W[v'], W[c] = 0";
     const SIMULATED_NAME: &'static str = "3 constant term, simulated: W_sim[v' + c] = W_sim[v']";
@@ -73,16 +55,20 @@ impl Claim for ConstantTerm {
         }
     }
 
-    fn draw<E: Evaluator>(&self, draw: &mut Draw, evaluator: &E) -> ConstantTermCase {
+    fn draw<E: Evaluator>(&self, draw: &mut Draw, evaluator: &E) -> CaseWith {
         let case = random_case(draw);
         let constant = draw.uniform(0.1, largest_constant(evaluator));
-        ConstantTermCase { case, constant }
+        CaseWith {
+            case,
+            symbol: "c",
+            value: constant,
+        }
     }
 
-    fn check<E: Evaluator>(&self, evaluator: &E, case: &ConstantTermCase) -> Outcome {
+    fn check<E: Evaluator>(&self, evaluator: &E, case: &CaseWith) -> Outcome {
         let precision = evaluator.precision();
         let (cycle, compliance) = read_case::<E::Number>(&case.case, precision)?;
-        let shift = evaluator.number(case.constant);
+        let shift = evaluator.number(case.value);
         let shifted = Shifted {
             extra_slope: shift.clone(),
             inner: compliance,

@@ -1,10 +1,8 @@
 //! Claim 6: invariants of the construction — W ≥ 0, no dependence on Q0, period π in
 //! φ, and the in-phase limit.
 
-use std::fmt;
-
 use super::evaluator::{all_of, tally_cases, Claim, Evaluator, Failure, Measured, Outcome};
-use super::{describe, random_case, read_case, relative, Drawn, Tally};
+use super::{random_case, read_case, relative, CaseWith, Drawn, Tally};
 use crate::cycle::{LoadCycle, ValidCycle};
 use crate::dissipation::{dissipation, four_segment, in_phase, DissipationError, Options};
 use crate::inputs::CaseText;
@@ -17,21 +15,6 @@ use crate::verify::ClaimReport;
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Invariants;
 
-/// A cycle and compliance, and the Q0 it is also computed with.
-#[derive(Clone, PartialEq)]
-pub struct InvariantsCase {
-    /// The cycle (Q0 = 0) and v'.
-    pub case: CaseText,
-    /// The other Q0, inside the gross-slip margin.
-    pub q0: f64,
-}
-
-impl fmt::Display for InvariantsCase {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{} and Q0={}", describe(&self.case), self.q0)
-    }
-}
-
 /// The range of Q0 inside the gross-slip limit, −(fP0 − σ₊) < Q0 < fP0 − σ₋, less 1 %.
 pub fn mean_tangential_margin<R: Real>(cycle: &LoadCycle<R>) -> (f64, f64) {
     let (plus, minus) = cycle.slip_line_amplitudes();
@@ -43,11 +26,11 @@ pub fn mean_tangential_margin<R: Real>(cycle: &LoadCycle<R>) -> (f64, f64) {
 }
 
 impl Claim for Invariants {
-    type Case = InvariantsCase;
+    type Case = CaseWith;
 
     const NAME: &'static str = "6a invariants: W ≥ 0, W free of Q0, period π in φ";
 
-    fn draw<E: Evaluator>(&self, draw: &mut Draw, evaluator: &E) -> InvariantsCase {
+    fn draw<E: Evaluator>(&self, draw: &mut Draw, evaluator: &E) -> CaseWith {
         let case = random_case(draw);
         let q0 = match read_case::<E::Number>(&case, evaluator.precision()) {
             Ok((cycle, _)) => {
@@ -56,10 +39,14 @@ impl Claim for Invariants {
             }
             Err(_) => 0.0,
         };
-        InvariantsCase { case, q0 }
+        CaseWith {
+            case,
+            symbol: "Q0",
+            value: q0,
+        }
     }
 
-    fn check<E: Evaluator>(&self, evaluator: &E, case: &InvariantsCase) -> Outcome {
+    fn check<E: Evaluator>(&self, evaluator: &E, case: &CaseWith) -> Outcome {
         let (cycle, compliance) = read_case::<E::Number>(&case.case, evaluator.precision())?;
         let w = |change: &dyn Fn(&mut LoadCycle<E::Number>)| {
             let mut changed = cycle.clone();
@@ -67,7 +54,7 @@ impl Claim for Invariants {
             evaluator.w(&changed, compliance.as_ref(), false)
         };
         let pi = E::Number::pi(evaluator.precision());
-        let q0 = evaluator.number(case.q0);
+        let q0 = evaluator.number(case.value);
         let [base, moved, turned, turned_back] = all_of([
             w(&|_| ()),
             w(&|c| c.mean_tangential_load = q0.clone()),

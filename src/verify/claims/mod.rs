@@ -20,11 +20,11 @@ mod roughness;
 mod simulation;
 
 pub use coefficient::small_amplitude_coefficient;
-pub use constant_term::{ConstantTerm, ConstantTermCase};
+pub use constant_term::ConstantTerm;
 pub use cubic_law::{cubic_law, cubic_law_order, least_squares_slope, CubicLawCase};
 pub use evaluator::{check_claim, Claim, Evaluator, Failure, FourSegment, Measured, Outcome, Simulation, Value};
 pub use exact::{closed_form_coefficient_claim, polynomial_dissipation_claim, series_claim};
-pub use invariants::{in_phase_limit, in_phase_limit_error, mean_tangential_margin, Invariants, InvariantsCase};
+pub use invariants::{in_phase_limit, in_phase_limit_error, mean_tangential_margin, Invariants};
 pub use linearity::{second_compliance_loads, Linearity, LinearityCase};
 pub use roughness::{Roughness, RoughnessCase};
 pub use simulation::{
@@ -54,10 +54,9 @@ macro_rules! debug_as_display {
 
 debug_as_display!(
     CubicLawCase,
-    ConstantTermCase,
+    CaseWith,
     LinearityCase,
     RoughnessCase,
-    InvariantsCase,
     SimulatedHistoryCase,
     Drawn
 );
@@ -216,6 +215,24 @@ fn read_case<R: Real>(case: &CaseText, precision: Precision) -> Result<ReadCase<
 /// A drawn cycle and compliance, printed as a report prints them ([`describe`]).
 #[derive(Clone, PartialEq)]
 pub struct Drawn(pub CaseText);
+
+/// A drawn case and one more drawn number its claim needs (the constant c added to v' in
+/// claim 3, another Q0 in claim 6a).
+#[derive(Clone, PartialEq)]
+pub struct CaseWith {
+    /// The cycle and v'.
+    pub case: CaseText,
+    /// The number's symbol, as the report prints it.
+    pub symbol: &'static str,
+    /// The number.
+    pub value: f64,
+}
+
+impl std::fmt::Display for CaseWith {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        write!(f, "{} {}={}", describe(&self.case), self.symbol, self.value)
+    }
+}
 
 impl std::fmt::Display for Drawn {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
