@@ -7,44 +7,16 @@ use std::io::Read;
 use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
-/// Runs `microslip` with `args`: exit code, stdout, stderr.
-fn microslip(args: &[&str]) -> (i32, String, String) {
-    let output = Command::new(env!("CARGO_BIN_EXE_microslip"))
-        .args(args)
-        .output()
-        .expect("the binary runs");
-    (
-        output.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&output.stdout).into_owned(),
-        String::from_utf8_lossy(&output.stderr).into_owned(),
-    )
-}
-
-/// The acceptance case's flags.
-const CASE: [&str; 14] = [
-    "--p0",
-    "1",
-    "--p1",
-    "0.4",
-    "--q1",
-    "0.5",
-    "--phi",
-    "0.4pi",
-    "--friction",
-    "1",
-    "--lambda",
-    "1",
-    "--compliance",
-    "persson:gamma=1,sigma=1",
-];
+mod common;
+use common::{microslip, CASE_FLAGS};
 
 /// `microslip <command>` on the acceptance case with `extra` flags (a flag given again
 /// in `extra` replaces the case's).
 fn on_case(command: &str, extra: &[&str]) -> (i32, String, String) {
     let mut args = vec![command];
-    for pair in CASE.chunks(2) {
-        if !extra.contains(&pair[0]) {
-            args.extend(pair);
+    for (flag, value) in CASE_FLAGS {
+        if !extra.contains(&flag) {
+            args.extend([flag, value]);
         }
     }
     args.extend(extra);
@@ -76,7 +48,7 @@ fn json(stdout: &str) -> serde_json::Value {
 
 #[test]
 fn bare_microslip_prints_usage_and_the_subcommands_on_stderr() {
-    let (code, stdout, stderr) = microslip(&[]);
+    let (code, stdout, stderr) = microslip::<&str>(&[]);
     assert_eq!(code, 2);
     assert!(stdout.is_empty());
     assert!(stderr.contains("Usage: microslip <COMMAND>"), "{stderr}");
@@ -111,7 +83,12 @@ fn missing_arguments_are_all_named_on_one_line() {
     assert!(stderr.is_empty());
     // Neither --lambda nor --nu.
     let args: Vec<&str> = std::iter::once("dissipation")
-        .chain(CASE.chunks(2).filter(|p| p[0] != "--lambda").flatten().copied())
+        .chain(
+            CASE_FLAGS
+                .iter()
+                .filter(|(flag, _)| *flag != "--lambda")
+                .flat_map(|(flag, value)| [*flag, *value]),
+        )
         .collect();
     assert_one_line_failure(microslip(&args), 2, "missing required arguments: --lambda (or --nu)");
 }

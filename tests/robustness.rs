@@ -188,25 +188,9 @@ fn command_line_never_panics_on_arbitrary_specs_and_numbers() {
     );
     runner(60, 31)
         .run(&inputs, |(spec, number, precise)| {
-            let mut args = vec![
-                "dissipation",
-                "--p0",
-                "1",
-                "--p1",
-                &number,
-                "--q1",
-                "0.5",
-                "--phi",
-                "0.4pi",
-                "--friction",
-                "1",
-                "--lambda",
-                "1",
-                "--compliance",
-                &spec,
-            ];
+            let mut args = common::case_args("dissipation", &[("--p1", &number), ("--compliance", &spec)]);
             if precise {
-                args.extend(["--digits", "20"]);
+                args.extend(["--digits".to_string(), "20".to_string()]);
             }
             let output = Command::new(env!("CARGO_BIN_EXE_microslip"))
                 .args(&args)

@@ -1,8 +1,6 @@
 //! The small-amplitude series W = λ f² Σ v⁽ⁿ⁺¹⁾(P0)/n! · P1ⁿ⁺² Iₙ(ρ, φ): its coefficients,
 //! its truncation orders, its convergence and radius, and the `series` command.
 
-use std::process::Command;
-
 use microslip::compliance::{parse_spec, Polynomial};
 use microslip::cycle::LoadCycle;
 use microslip::dissipation::{dissipation, four_segment, Options};
@@ -10,17 +8,8 @@ use microslip::exact::{closed_form_coefficient, partial_sums, series_coefficient
 use microslip::real::{Precision, Real};
 use rug::Float;
 
-fn microslip(args: &[&str]) -> (i32, String, String) {
-    let output = Command::new(env!("CARGO_BIN_EXE_microslip"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        output.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&output.stdout).into_owned(),
-        String::from_utf8_lossy(&output.stderr).into_owned(),
-    )
-}
+mod common;
+use common::microslip;
 
 fn float(text: &str, bits: u32) -> Float {
     Float::parse_decimal(text, Precision::bits(bits)).unwrap()
@@ -100,26 +89,9 @@ fn series_command_refuses_in_its_own_terms() {
 
 #[test]
 fn case_partial_sums_approach_the_four_segment_w() {
-    let (code, stdout, stderr) = microslip(&[
-        "series",
-        "--p0",
-        "1",
-        "--p1",
-        "0.2",
-        "--q1",
-        "0.15",
-        "--phi",
-        "0.4pi",
-        "--friction",
-        "1",
-        "--lambda",
-        "1",
-        "--compliance",
-        "persson:gamma=1,sigma=1",
-        "--order",
-        "12",
-        "--json",
-    ]);
+    let mut args = common::case_args("series", &[("--p1", "0.2"), ("--q1", "0.15"), ("--order", "12")]);
+    args.push("--json".to_string());
+    let (code, stdout, stderr) = microslip(&args);
     assert_eq!(code, 0, "{stderr}");
     let value: serde_json::Value = serde_json::from_str(stdout.trim()).unwrap();
     let w: f64 = value["W"].as_str().unwrap().parse().unwrap();

@@ -238,25 +238,8 @@ fn simulate_command_prints_json_and_writes_the_loop() {
     std::fs::create_dir_all(&dir).unwrap();
     let csv = dir.join("loop.csv");
     let output = Command::new(env!("CARGO_BIN_EXE_microslip"))
-        .args([
-            "simulate",
-            "--p0",
-            "1",
-            "--p1",
-            "0.4",
-            "--q1",
-            "0.5",
-            "--phi",
-            "0.4pi",
-            "--friction",
-            "1",
-            "--lambda",
-            "1",
-            "--compliance",
-            "persson:gamma=1,sigma=1",
-            "--json",
-            "--loop",
-        ])
+        .args(common::case_args("simulate", &[]))
+        .args(["--json", "--loop"])
         .arg(&csv)
         .output()
         .unwrap();
@@ -273,30 +256,8 @@ fn simulate_command_prints_json_and_writes_the_loop() {
     for name in ["cycle.svg", "cycle.png"] {
         let picture = dir.join(name);
         let drawn = Command::new(env!("CARGO_BIN_EXE_microslip"))
-            .args([
-                "simulate",
-                "--p0",
-                "1",
-                "--p1",
-                "0.4",
-                "--q1",
-                "0.5",
-                "--phi",
-                "1.4pi",
-                "--friction",
-                "1",
-                "--lambda",
-                "1",
-                "--compliance",
-                "persson:gamma=1,sigma=1",
-                "--elements",
-                "100",
-                "--steps",
-                "200",
-                "--tolerance",
-                "1e-3",
-                "--plot",
-            ])
+            .args(common::case_args("simulate", &[("--phi", "1.4pi")]))
+            .args(["--elements", "100", "--steps", "200", "--tolerance", "1e-3", "--plot"])
             .arg(&picture)
             .output()
             .unwrap();
@@ -316,23 +277,7 @@ fn simulate_command_prints_json_and_writes_the_loop() {
     assert!(text.starts_with("theta,P,Q,u\n"));
     assert_eq!(text.lines().count(), 2 + 4800);
     let bad = Command::new(env!("CARGO_BIN_EXE_microslip"))
-        .args([
-            "simulate",
-            "--p0",
-            "1",
-            "--p1",
-            "1.2",
-            "--q1",
-            "0.5",
-            "--phi",
-            "1",
-            "--friction",
-            "1",
-            "--lambda",
-            "1",
-            "--compliance",
-            "persson:gamma=1,sigma=1",
-        ])
+        .args(common::case_args("simulate", &[("--p1", "1.2"), ("--phi", "1")]))
         .output()
         .unwrap();
     assert_eq!(bad.status.code(), Some(2));

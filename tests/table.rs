@@ -118,24 +118,8 @@ fn table_w_converges_to_the_analytic_w_at_a_measured_order() {
 
 /// Runs `microslip dissipation` on the acceptance cycle (with `p1` given) and a compliance.
 fn run_cli(p1: &str, compliance: &str, extra: &[&str]) -> std::process::Output {
-    let mut args = vec![
-        "dissipation",
-        "--p0",
-        "1",
-        "--p1",
-        p1,
-        "--q1",
-        "0.5",
-        "--phi",
-        "0.4pi",
-        "--friction",
-        "1",
-        "--lambda",
-        "1",
-        "--compliance",
-        compliance,
-    ];
-    args.extend_from_slice(extra);
+    let mut args = common::case_args("dissipation", &[("--p1", p1), ("--compliance", compliance)]);
+    args.extend(extra.iter().map(|s| s.to_string()));
     std::process::Command::new(env!("CARGO_BIN_EXE_microslip"))
         .args(&args)
         .output()
@@ -257,23 +241,10 @@ fn a_cycle_leaving_the_table_is_refused_with_the_range() {
         "{message}"
     );
     let output = std::process::Command::new(env!("CARGO_BIN_EXE_microslip"))
-        .args([
+        .args(common::case_args(
             "simulate",
-            "--p0",
-            "1",
-            "--p1",
-            "0.6",
-            "--q1",
-            "0.5",
-            "--phi",
-            "0.4pi",
-            "--friction",
-            "1",
-            "--lambda",
-            "1",
-            "--compliance",
-        ])
-        .arg(format!("table:{path}"))
+            &[("--p1", "0.6"), ("--compliance", &format!("table:{path}"))],
+        ))
         .output()
         .expect("run");
     let message = refusal(&output);

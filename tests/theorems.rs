@@ -7,7 +7,6 @@
 
 use std::cell::Cell;
 use std::fmt::Debug;
-use std::process::Command;
 
 use microslip::compliance::{LoadScaled, Persson, PowerLaw};
 use microslip::dissipation::{dissipation, Options};
@@ -21,6 +20,7 @@ use microslip::verify::ClaimReport;
 use proptest::prelude::*;
 
 mod common;
+use common::microslip;
 #[path = "common/strategies.rs"]
 mod strategies;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
@@ -300,18 +300,6 @@ fn small_amplitude_coefficient_known_values_and_homogeneity_at_200_bits() {
 fn least_squares_slope_recovers_a_line() {
     let points: Vec<(f64, f64)> = (0..8).map(|k| (k as f64, 3.0 - 1.5 * k as f64)).collect();
     assert!((least_squares_slope(&points) + 1.5).abs() < 1e-14);
-}
-
-fn microslip(args: &[&str]) -> (i32, String, String) {
-    let output = Command::new(env!("CARGO_BIN_EXE_microslip"))
-        .args(args)
-        .output()
-        .unwrap();
-    (
-        output.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&output.stdout).into_owned(),
-        String::from_utf8_lossy(&output.stderr).into_owned(),
-    )
 }
 
 #[test]

@@ -1,14 +1,13 @@
 //! Every validation error, through the library and through the command line
 //! (exit code 2, one line on stderr naming the problem, nothing on stdout).
 
-use std::process::Command;
-
 use microslip::compliance::{parse_spec, AdmissibilityError};
 use microslip::cycle::{compliance_ratio_from_poisson, CycleError, CycleKind, LoadCycle, ValidCycle};
 use microslip::dissipation::{dissipation, DissipationError, Options};
 use microslip::real::Precision;
 
 mod common;
+use common::microslip;
 
 fn base() -> LoadCycle<f64> {
     common::acceptance_cycle(1.0)
@@ -108,18 +107,6 @@ fn library_rejects_non_physical_compliance() {
     ));
 }
 
-fn microslip(args: &[&str]) -> (i32, String, String) {
-    let output = Command::new(env!("CARGO_BIN_EXE_microslip"))
-        .args(args)
-        .output()
-        .expect("the binary runs");
-    (
-        output.status.code().unwrap_or(-1),
-        String::from_utf8_lossy(&output.stdout).into_owned(),
-        String::from_utf8_lossy(&output.stderr).into_owned(),
-    )
-}
-
 /// `microslip dissipation` on the base case with one flag replaced (or added).
 fn dissipation_with(flag: &str, value: &str, extra: &[&str]) -> (i32, String, String) {
     dissipation_overriding(&[(flag, value)], extra)
@@ -127,32 +114,7 @@ fn dissipation_with(flag: &str, value: &str, extra: &[&str]) -> (i32, String, St
 
 /// `microslip dissipation` on the base case with flags replaced (or added).
 fn dissipation_overriding(overrides: &[(&str, &str)], extra: &[&str]) -> (i32, String, String) {
-    let mut args = vec!["dissipation".to_string()];
-    let defaults = [
-        ("--compliance", "persson:gamma=1,sigma=1"),
-        ("--p0", "1"),
-        ("--p1", "0.4"),
-        ("--q1", "0.5"),
-        ("--phi", "0.4pi"),
-        ("--friction", "1"),
-        ("--lambda", "1"),
-    ];
-    let replaced = |name: &str| {
-        overrides
-            .iter()
-            .find(|(flag, _)| *flag == name)
-            .map(|(_, value)| *value)
-    };
-    for (name, default) in defaults {
-        args.push(name.to_string());
-        args.push(replaced(name).unwrap_or(default).to_string());
-    }
-    for (flag, value) in overrides {
-        if !flag.is_empty() && !defaults.iter().any(|(name, _)| name == flag) {
-            args.push(flag.to_string());
-            args.push(value.to_string());
-        }
-    }
+    let mut args = common::case_args("dissipation", overrides);
     args.extend(extra.iter().map(|s| s.to_string()));
     let refs: Vec<&str> = args.iter().map(String::as_str).collect();
     microslip(&refs)
