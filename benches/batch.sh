@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Throughput of `microslip batch` against the targets of issue 14:
+# Throughput of `microslip batch` against the project's targets:
 #   10 000 ordinary f64 rows in ≤ 0.3 s on 2 cores, 1000 rows at 30 verified digits in ≤ 10 s.
 # Usage: benches/batch.sh [threads] [repeats]   (default 2 threads, 5 repeats)
 # Prints the wall and CPU (user + sys) time of each run and the best wall time; on a

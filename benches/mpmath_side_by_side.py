@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""W by mpmath's tanh-sinh beside microslip's verified digits (issue 14, part 3).
+"""W by mpmath's tanh-sinh beside microslip's verified digits.
 
 The same four segment integrals in the cycle angle (src/dissipation/segments.rs,
 proofs/four-segment.md) are integrated by mpmath.quad (tanh-sinh, split at the same

@@ -42,7 +42,7 @@ fn half_table_divisor() -> f64 {
 /// What a table compliance adds to a result.
 #[derive(Clone, Debug, PartialEq)]
 pub struct TableEstimate {
-    /// Estimated absolute error of W due to the table: |W[half table] − W[table]| (plus
+    /// Estimated absolute error of W due to the table: |W\[half table\] − W\[table\]| (plus
     /// the quadrature error of that difference) over 2^(p−1) − 1, p = [`TABLE_ORDER`].
     pub error: f64,
     /// The largest relative change the smoothing fit made to the data (0 when none).

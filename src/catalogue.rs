@@ -44,7 +44,9 @@ pub enum CatalogueError {
     /// The file could not be read.
     #[error("{path}: {source}")]
     Io {
+        /// The catalogue file.
         path: String,
+        /// The system's error.
         #[source]
         source: std::io::Error,
     },
@@ -54,14 +56,18 @@ pub enum CatalogueError {
     /// The file is not a catalogue.
     #[error("{path}: not a catalogue ({source})")]
     Format {
+        /// The catalogue file.
         path: String,
+        /// Where and why the JSON does not read as a catalogue.
         #[source]
         source: serde_json::Error,
     },
     /// A case could not be computed.
     #[error("case '{name}': {source}")]
     Case {
+        /// The case's name in the catalogue.
         name: String,
+        /// Why it could not be computed.
         #[source]
         source: ReferenceError,
     },

@@ -43,34 +43,70 @@ pub struct LoadCycle<R> {
 pub enum CycleError {
     /// An input is NaN or infinite.
     #[error("{quantity} is not a finite number (got {value})")]
-    NotFinite { quantity: &'static str, value: f64 },
+    NotFinite {
+        /// The input's name, as the message shows it.
+        quantity: &'static str,
+        /// Its value.
+        value: f64,
+    },
     /// P0 ≤ 0.
     #[error("the mean normal load P0 = {p0:e} must be positive (the contact is compressed)")]
-    NonPositiveMeanLoad { p0: f64 },
+    NonPositiveMeanLoad {
+        /// The mean normal load given.
+        p0: f64,
+    },
     /// P1 < 0 or Q1 < 0.
     #[error("the amplitude {quantity} = {value:e} must not be negative (a phase of π reverses a load)")]
-    NegativeAmplitude { quantity: &'static str, value: f64 },
+    NegativeAmplitude {
+        /// The amplitude's name (`P1` or `Q1`).
+        quantity: &'static str,
+        /// Its value.
+        value: f64,
+    },
     /// P0 − P1 ≤ 0.
     #[error("the contact separates: P0 − P1 = {margin:e} ≤ 0 (P0 = {p0:e}, P1 = {p1:e}); the normal amplitude must stay below the mean load")]
-    Separation { p0: f64, p1: f64, margin: f64 },
+    Separation {
+        /// The mean normal load.
+        p0: f64,
+        /// The normal load amplitude.
+        p1: f64,
+        /// P0 − P1, the lowest normal load of the cycle.
+        margin: f64,
+    },
     /// f ≤ 0.
     #[error("the friction coefficient f = {f:e} must be positive")]
-    NonPositiveFriction { f: f64 },
+    NonPositiveFriction {
+        /// The friction coefficient given.
+        f: f64,
+    },
     /// λ outside [1, 2].
     #[error("the compliance ratio λ = {lambda} lies outside [1, 2] (λ = (2 − ν)/(2(1 − ν)) is 1 for ν = 0 and 1.5 for ν = 0.5)")]
-    ComplianceRatioOutOfRange { lambda: f64 },
+    ComplianceRatioOutOfRange {
+        /// The compliance ratio given.
+        lambda: f64,
+    },
     /// Poisson's ratio that gives λ outside [1, 2].
     #[error("Poisson's ratio ν = {nu} gives λ outside [1, 2]; ν must lie in [0, 2/3]")]
-    PoissonRatioOutOfRange { nu: f64 },
+    PoissonRatioOutOfRange {
+        /// Poisson's ratio given.
+        nu: f64,
+    },
     /// |φ| beyond [`MAX_PHASE`]: reducing it exactly costs working bits in proportion to its exponent.
     #[error("the phase φ = {phi:e} rad is too large: |φ| must be at most 1e100 rad (reducing it modulo 2π exactly needs as many extra bits as its binary exponent)")]
-    PhaseTooLarge { phi: f64 },
+    PhaseTooLarge {
+        /// The phase given, in radians.
+        phi: f64,
+    },
     /// The ellipse reaches |Q| = fP: periods of gross slip (sliding).
     #[error("gross slip: the load ellipse reaches the line Q = {sign}fP (max({sign_word}Q − fP) = {excess:e} ≥ 0, i.e. {relative:.3e} of fP0 beyond it); the theory needs |Q| < fP throughout the cycle: reduce Q1 or |Q0|, or raise P0")]
     GrossSlip {
+        /// The side of the friction wedge reached: `+` or `−`.
         sign: &'static str,
+        /// The same side in the expression max(±Q − fP): empty or `−`.
         sign_word: &'static str,
+        /// max(±Q − fP) over the cycle, ≥ 0.
         excess: f64,
+        /// `excess` over fP0.
         relative: f64,
     },
 }

@@ -9,31 +9,54 @@ use std::path::{Path, PathBuf};
 pub enum OutputError {
     /// The name does not end in one of the extensions the content can be written as.
     #[error("{path}: the file name must end in {expected}")]
-    Extension { path: String, expected: String },
+    Extension {
+        /// The file asked for.
+        path: String,
+        /// The extensions admitted.
+        expected: String,
+    },
     /// The directory the file would go in does not exist or is not a directory.
     #[error("{path}: the directory {directory} does not exist")]
-    NoDirectory { path: String, directory: String },
+    NoDirectory {
+        /// The file asked for.
+        path: String,
+        /// Its directory.
+        directory: String,
+    },
     /// No file can be created in the directory.
     #[error("{path}: cannot create a file in {directory}: {source}")]
     NotWritable {
+        /// The file asked for.
         path: String,
+        /// Its directory.
         directory: String,
+        /// Why the trial file could not be created.
         #[source]
         source: std::io::Error,
     },
     /// The target exists and is a directory.
     #[error("{path}: is a directory")]
-    IsDirectory { path: String },
+    IsDirectory {
+        /// The file asked for.
+        path: String,
+    },
     /// Writing failed (permissions, a full disk, ...).
     #[error("{path}: {source}")]
     Io {
+        /// The file being written.
         path: String,
+        /// The system's error.
         #[source]
         source: std::io::Error,
     },
     /// The content could not be produced (e.g. the drawing library failed).
     #[error("{path}: {message}")]
-    Content { path: String, message: String },
+    Content {
+        /// The file being written.
+        path: String,
+        /// What went wrong.
+        message: String,
+    },
 }
 
 /// The CSV text of a header and rows, quoted where a cell needs it (by the csv crate).

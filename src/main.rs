@@ -6,14 +6,15 @@ mod cli;
 
 use std::process::ExitCode;
 
-use clap::{Parser, Subcommand};
+use clap::{CommandFactory, Parser, Subcommand};
 
 use cli::budget::within;
+use cli::case::Jobs;
 use cli::report::{emit, fail, parse_error};
 use cli::{
-    accuracy::AccuracyArgs, batch::BatchArgs, dissipation::DissipationArgs, figures::FiguresArgs,
-    reference::ReferenceArgs, series::SeriesArgs, simulate::SimulateArgs, small_amplitude::SmallAmplitudeArgs,
-    verify::VerifyArgs,
+    accuracy::AccuracyArgs, batch::BatchArgs, completions::CompletionsArgs, dissipation::DissipationArgs,
+    figures::FiguresArgs, man::ManArgs, reference::ReferenceArgs, series::SeriesArgs, simulate::SimulateArgs,
+    small_amplitude::SmallAmplitudeArgs, verify::VerifyArgs,
 };
 
 #[derive(Parser)]
@@ -52,6 +53,22 @@ enum Command {
     Figures(FiguresArgs),
     /// W for every load cycle (row) of a CSV file, on all cores, in input order.
     Batch(BatchArgs),
+    /// A shell completion script (bash, zsh, fish, elvish, powershell) on standard output.
+    Completions(CompletionsArgs),
+    /// The manual page (roff) on standard output, e.g. `microslip man > microslip.1`.
+    Man(ManArgs),
+}
+
+impl Command {
+    /// The thread count of a command that runs on all cores.
+    fn jobs(&self) -> Option<&Jobs> {
+        match self {
+            Command::Batch(args) => Some(&args.jobs),
+            Command::Verify(args) => Some(&args.jobs),
+            Command::Figures(args) => Some(&args.jobs),
+            _ => None,
+        }
+    }
 }
 
 fn main() -> ExitCode {
@@ -59,6 +76,9 @@ fn main() -> ExitCode {
         Ok(cli) => cli,
         Err(error) => return parse_error(&error),
     };
+    if let Some(Err(failure)) = cli.command.jobs().map(Jobs::install) {
+        return fail(&failure);
+    }
     let outcome = match &cli.command {
         Command::Dissipation(args) => within(args.answer.max_seconds, || cli::dissipation::run(args)),
         Command::Verify(args) => match cli::verify::run(args) {
@@ -74,6 +94,8 @@ fn main() -> ExitCode {
         Command::Reference(args) => cli::reference::run(args),
         Command::Table => cli::table::run(),
         Command::Figures(args) => cli::figures::run(args),
+        Command::Completions(args) => cli::completions::run(args, Cli::command()),
+        Command::Man(args) => cli::man::run(args, Cli::command()),
         Command::Batch(args) => match cli::batch::run(args) {
             Ok(0) => return ExitCode::SUCCESS,
             Ok(_) => return ExitCode::from(cli::report::FAILED),

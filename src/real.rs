@@ -89,11 +89,15 @@ pub trait Real:
     /// subnormals) results lose digits silently.
     fn smallest_full_precision(precision: Precision) -> Self;
 
+    /// The square root, correctly rounded.
     fn sqrt(&self) -> Self;
+    /// The real cube root (negative for a negative argument).
     fn cbrt(&self) -> Self;
+    /// The natural logarithm.
     fn ln(&self) -> Self;
     /// ln(1 + x), accurate for small x.
     fn ln_1p(&self) -> Self;
+    /// eˣ.
     fn exp(&self) -> Self;
     /// eˣ − 1, accurate for small x.
     fn exp_m1(&self) -> Self;
@@ -101,7 +105,9 @@ pub trait Real:
     fn powr(&self, exponent: &Self) -> Self;
     /// `self` raised to an integer power.
     fn powi(&self, exponent: i32) -> Self;
+    /// The sine (argument in radians).
     fn sin(&self) -> Self;
+    /// The cosine (argument in radians).
     fn cos(&self) -> Self;
     /// (sin, cos) together, for about the price of one.
     fn sin_cos(&self) -> (Self, Self);
@@ -109,9 +115,11 @@ pub trait Real:
     fn hypot(&self, other: &Self) -> Self;
     /// The angle of the point (x, y) = (`x`, `self`), in (−π, π].
     fn atan2(&self, x: &Self) -> Self;
+    /// The magnitude.
     fn abs(&self) -> Self;
     /// The largest integer not above `self`.
     fn floor(&self) -> Self;
+    /// Neither infinite nor NaN.
     fn is_finite(&self) -> bool;
     /// Scientific notation with `digits` significant digits, e.g. `1.2345e-3`.
     fn to_scientific(&self, digits: usize) -> String;

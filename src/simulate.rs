@@ -128,40 +128,66 @@ pub enum SimulationError {
     Compliance(#[from] AdmissibilityError),
     /// Too few elements or steps to mean anything.
     #[error("the simulation needs at least 20 elements and 40 steps per cycle (got {elements} and {steps})")]
-    Resolution { elements: usize, steps: usize },
+    Resolution {
+        /// Elements of the coarsest bed asked for.
+        elements: usize,
+        /// Load steps per cycle asked for.
+        steps: usize,
+    },
     /// The runs would need more memory than allowed.
     #[error(
         "{elements} elements and {steps} steps per cycle (times 4 in the finest of the three runs) need about {bytes:.1e} bytes of memory, more than the {limit:.1e} allowed"
     )]
     TooLarge {
+        /// Elements of the coarsest bed asked for.
         elements: usize,
+        /// Load steps per cycle asked for.
         steps: usize,
+        /// The memory the three runs would need, estimated before allocating.
         bytes: f64,
+        /// The memory allowed.
         limit: f64,
     },
     /// The deadline passed before the simulation finished.
     #[error("the time budget ran out during the run with {elements} elements and {steps} steps per cycle")]
-    OutOfTime { elements: usize, steps: usize },
+    OutOfTime {
+        /// Elements of the run that was under way.
+        elements: usize,
+        /// Load steps per cycle of that run.
+        steps: usize,
+    },
     /// The estimated error exceeds the tolerance asked for.
     #[error(
         "the simulation's estimated relative error {estimated:.1e} exceeds the tolerance {tolerance:.0e} (W = {w_work:.3e} as the work of the load, {w_friction:.3e} as frictional work)"
     )]
     ToleranceNotReached {
+        /// The estimated relative error of W.
         estimated: f64,
+        /// The relative tolerance asked for.
         tolerance: f64,
+        /// W as the work of the load (extrapolated).
         w_work: f64,
+        /// W as the frictional work (extrapolated).
         w_friction: f64,
     },
     /// Elements below the load P_T that the grid takes as the lowest to slip did slip.
     #[error(
         "elements below the predicted lowest slipping load P_T = {load:.6e} slipped ({share:.1e} of the frictional work): the simulation's grid premise failed"
     )]
-    SlipBelowLowestSlip { load: f64, share: f64 },
+    SlipBelowLowestSlip {
+        /// The predicted lowest slipping load P_T.
+        load: f64,
+        /// The share of the frictional work done below it.
+        share: f64,
+    },
     /// The force balance had no solution (every element slipping) or a number went bad.
     #[error(
         "the simulated contact lost equilibrium at θ = {theta:.4}: the tangential load exceeds what friction holds"
     )]
-    Equilibrium { theta: f64 },
+    Equilibrium {
+        /// The cycle angle where it was lost.
+        theta: f64,
+    },
 }
 
 /// The bed of elements: entry loads, stiffnesses, and v at each entry load; element 0

@@ -75,6 +75,29 @@ fn missing_arguments_are_all_named_on_one_line() {
         "missing required arguments: --rho, --phi",
     );
     assert_one_line_failure(
+        microslip(&["series"]),
+        2,
+        "missing required arguments: --phi, --order, --rho or --p0",
+    );
+    assert_one_line_failure(
+        microslip(&["series", "--phi", "1", "--order", "2", "--p0", "1"]),
+        2,
+        "missing required arguments: --p1, --q1, --friction, --compliance, --lambda or --nu",
+    );
+    for (command, missing) in [
+        ("batch", "--input, --output"),
+        ("reference", "--catalogue"),
+        ("figures", "--out"),
+        ("accuracy", "--out"),
+        ("completions", "<SHELL> (one of bash, elvish, fish, powershell, zsh)"),
+    ] {
+        assert_one_line_failure(
+            microslip(&[command]),
+            2,
+            &format!("missing required arguments: {missing}"),
+        );
+    }
+    assert_one_line_failure(
         microslip(&["dissipation", "--p0", "1", "--p1", "0.4", "--nu", "0.3"]),
         2,
         "missing required arguments: --q1, --phi, --friction, --compliance",
@@ -278,21 +301,15 @@ fn readme_examples() -> (Vec<Vec<String>>, Vec<String>) {
             }
         }
     }
+    // A redirection (`> FILE`) is the reader's: the test reads standard output instead.
     let split = |command: String| {
         command
             .split_whitespace()
+            .take_while(|w| *w != ">")
             .map(|w| w.trim_matches('\'').to_string())
             .collect()
     };
-    let specs = readme
-        .lines()
-        .filter(|line| line.starts_with("| `") && line.matches('|').count() == 4)
-        .filter_map(|line| {
-            line.split('|')
-                .nth(3)
-                .map(|cell| cell.trim().trim_matches('`').to_string())
-        })
-        .collect();
+    let specs = readme_spec_rows().into_iter().map(|row| row.example).collect();
     (commands.into_iter().map(split).collect(), specs)
 }
 
@@ -322,20 +339,120 @@ fn every_example_in_the_readme_runs() {
         let (code, stdout, stderr) = microslip(&refs);
         if args[0] == "batch" {
             // The README's batch example has a row in gross slip on purpose: exit 1, the
-            // other rows computed and written.
+            // other rows computed and written, exactly as the README shows them.
             assert_eq!(code, 1, "{command:?}: {stderr}");
             assert!(stderr.contains("1 failed"), "{command:?}: {stderr}");
             let output = args.iter().skip_while(|a| *a != "--output").nth(1).expect("--output");
-            assert!(std::fs::read_to_string(output).is_ok_and(|text| text.lines().count() == 9));
+            let written = std::fs::read_to_string(output).unwrap_or_default();
+            assert_eq!(written.lines().count(), 9, "{written}");
+            assert_eq!(
+                readme_block_after("$ cat sweep.csv"),
+                written,
+                "the README's batch output"
+            );
             continue;
         }
         assert_eq!(code, 0, "{command:?}: {stderr}");
         assert!(!stdout.is_empty(), "{command:?}");
     }
     for spec in &specs {
-        let (code, _, stderr) = on_case("dissipation", &["--compliance", spec]);
+        let spec = match spec.strip_prefix("table:tests/") {
+            Some(file) => format!("table:{root}/tests/{file}"),
+            None => spec.clone(),
+        };
+        let (code, _, stderr) = on_case("dissipation", &["--compliance", &spec]);
         assert_eq!(code, 0, "{spec}: {stderr}");
     }
+}
+
+/// The lines of the README's console block after the line `prompt`, up to the block's end.
+fn readme_block_after(prompt: &str) -> String {
+    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+    let start = readme.find(&format!("{prompt}\n")).expect("the prompt in the README") + prompt.len() + 1;
+    let length = readme[start..].find("```").expect("the end of the block");
+    readme[start..start + length].to_string()
+}
+
+/// A row of the README's SPEC table.
+struct SpecRow {
+    template: String,
+    slope: String,
+    example: String,
+}
+
+/// The README's SPEC table (checked to be the only one, set apart by a blank line).
+fn readme_spec_rows() -> Vec<SpecRow> {
+    let readme = std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+    let lines: Vec<&str> = readme.lines().collect();
+    let headers: Vec<usize> = (0..lines.len()).filter(|&i| lines[i].starts_with("| SPEC |")).collect();
+    assert_eq!(headers.len(), 1, "one SPEC table");
+    assert!(
+        headers[0] > 0 && lines[headers[0] - 1].trim().is_empty(),
+        "a blank line before the table"
+    );
+    lines[headers[0] + 2..]
+        .iter()
+        .take_while(|line| line.starts_with('|'))
+        .map(|line| {
+            let cells: Vec<&str> = line.split('|').map(|cell| cell.trim().trim_matches('`')).collect();
+            assert_eq!(cells.len(), 5, "three columns: {line}");
+            SpecRow {
+                template: cells[1].to_string(),
+                slope: cells[2].to_string(),
+                example: cells[3].to_string(),
+            }
+        })
+        .collect()
+}
+
+#[test]
+fn the_readme_has_one_spec_table_naming_every_family_the_parser_knows() {
+    let rows = readme_spec_rows();
+    // The families as the SPEC parser lists them when it meets an unknown one.
+    let (code, _, stderr) = on_case("dissipation", &["--compliance", "nosuchfamily:x=1"]);
+    assert_eq!(code, 2, "{stderr}");
+    let known = stderr
+        .split("(known: ")
+        .nth(1)
+        .and_then(|rest| rest.split(')').next())
+        .unwrap_or_else(|| panic!("the parser's list of families: {stderr}"));
+    let mut parser_families: Vec<&str> = known.split(", ").collect();
+    let mut readme_families: Vec<&str> = rows
+        .iter()
+        .map(|row| row.template.split(':').next().unwrap_or(""))
+        .collect();
+    parser_families.sort_unstable();
+    readme_families.sort_unstable();
+    assert_eq!(readme_families, parser_families);
+    // Each example fills in the template's parameters, named as the template names them.
+    let keys = |spec: &str| -> Vec<String> {
+        let (family, parameters) = spec.split_once(':').unwrap_or((spec, ""));
+        let mut keys: Vec<String> = parameters
+            .split(',')
+            .filter_map(|p| p.split_once('=').map(|(k, _)| format!("{family}.{k}")))
+            .collect();
+        keys.sort();
+        keys
+    };
+    for row in &rows {
+        if row.template.starts_with("table:") {
+            assert!(row.example.starts_with("table:"), "{}", row.example);
+        } else {
+            assert_eq!(
+                keys(&row.template),
+                keys(&row.example),
+                "{} against {}",
+                row.template,
+                row.example
+            );
+        }
+    }
+    let poly = rows.iter().find(|row| row.template.starts_with("poly:")).expect("poly");
+    assert!(
+        poly.template.contains("p0=p0") && poly.slope.contains("(P − p0)"),
+        "{}",
+        poly.slope
+    );
 }
 
 #[test]
@@ -578,4 +695,191 @@ fn library_error_texts_name_no_command_line_flags() {
     for text in errors {
         assert!(!text.contains("--"), "{text}");
     }
+}
+
+#[test]
+fn a_misspelt_command_flag_or_choice_keeps_clap_suggestion_and_usage() {
+    for (args, expected) in [
+        (
+            &["disipation"][..],
+            &[
+                "microslip: unrecognized subcommand 'disipation'",
+                "a similar subcommand exists: 'dissipation'",
+                "Usage: microslip <COMMAND>",
+                "--help",
+            ][..],
+        ),
+        (
+            &["dissipation", "--frictoin", "1"][..],
+            &[
+                "microslip: unexpected argument '--frictoin'",
+                "a similar argument exists: '--friction'",
+                "Usage: microslip dissipation",
+            ][..],
+        ),
+        (
+            &["batch", "--input", "in.csv", "--output", "out.csv", "--format", "xml"][..],
+            &["invalid value 'xml' for '--format", "[possible values: csv, jsonl]"][..],
+        ),
+        (
+            &["completions", "tcsh"][..],
+            &[
+                "possible values: bash, elvish, fish, powershell, zsh",
+                "a similar value exists: 'zsh'",
+            ][..],
+        ),
+    ] {
+        let (code, stdout, stderr) = microslip(args);
+        assert_eq!(code, 2, "{args:?}: {stderr}");
+        assert!(stdout.is_empty(), "{args:?}: {stdout}");
+        for text in expected {
+            assert!(stderr.contains(text), "{args:?}: '{text}' in {stderr}");
+        }
+        assert!(!stderr.contains("error:"), "{args:?}: {stderr}");
+    }
+}
+
+#[test]
+fn completions_for_each_shell_know_the_commands_and_their_flags() {
+    for shell in ["bash", "zsh", "fish", "elvish", "powershell"] {
+        let (code, script, stderr) = microslip(&["completions", shell]);
+        assert_eq!(code, 0, "{shell}: {stderr}");
+        assert!(stderr.is_empty(), "{shell}: {stderr}");
+        for word in [
+            "dissipation",
+            "small-amplitude",
+            "batch",
+            "friction",
+            "compliance",
+            "jobs",
+        ] {
+            assert!(script.contains(word), "{shell}: no '{word}'");
+        }
+    }
+    // bash reads its script without complaint, where bash is installed.
+    let (_, script, _) = microslip(&["completions", "bash"]);
+    if let Ok(mut bash) = Command::new("bash")
+        .args(["-n", "/dev/stdin"])
+        .stdin(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+    {
+        use std::io::Write;
+        bash.stdin.take().expect("stdin").write_all(script.as_bytes()).unwrap();
+        let output = bash.wait_with_output().unwrap();
+        assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
+    }
+}
+
+#[test]
+fn the_manual_pages_are_roff_for_the_program_and_each_command() {
+    let (code, page, stderr) = microslip(&["man"]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(page.contains(".TH microslip 1"), "{page}");
+    assert!(
+        page.contains(".SH SYNOPSIS") && page.contains(".SH SUBCOMMANDS"),
+        "{page}"
+    );
+    assert!(page.contains(env!("CARGO_PKG_VERSION")), "{page}");
+    for command in ["dissipation", "batch", "small-amplitude"] {
+        let roff_name = command.replace('-', "\\-");
+        assert!(
+            page.contains(&format!("microslip\\-{roff_name}(1)")),
+            "{command}: {page}"
+        );
+        let (code, page, stderr) = microslip(&["man", command]);
+        assert_eq!(code, 0, "{command}: {stderr}");
+        assert!(page.contains(&format!(".TH microslip-{command} 1")), "{page}");
+        assert!(page.contains(env!("CARGO_PKG_VERSION")), "{page}");
+    }
+    let (_, page, _) = microslip(&["man", "dissipation"]);
+    assert!(
+        page.contains("\\-\\-friction") && page.contains("\\-\\-compliance"),
+        "{page}"
+    );
+    assert_one_line_failure(
+        microslip(&["man", "dissipasion"]),
+        2,
+        "no command 'dissipasion' to print a manual page for; the commands are dissipation,",
+    );
+}
+
+#[test]
+fn jobs_sets_the_worker_threads_and_refuses_what_is_not_a_thread_count() {
+    let directory = scratch("jobs");
+    let input = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/batch-example.csv");
+    let mut outputs = Vec::new();
+    for jobs in [None, Some("1"), Some("3")] {
+        let output = directory.join(format!("out-{}.csv", jobs.unwrap_or("default")));
+        let output_text = output.display().to_string();
+        let mut args = vec!["batch", "--input", input, "--output", &output_text];
+        args.extend(jobs.iter().flat_map(|jobs| ["--jobs", *jobs]));
+        let (code, _, stderr) = microslip(&args);
+        assert_eq!(code, 1, "{jobs:?}: {stderr}"); // the example's gross-slip row
+        outputs.push(std::fs::read_to_string(output).unwrap());
+    }
+    assert!(outputs.iter().all(|output| *output == outputs[0]));
+    let out = directory.join("figures").display().to_string();
+    let (code, _, stderr) = microslip(&["figures", "--out", &out, "-j", "1"]);
+    assert_eq!(code, 0, "{stderr}");
+    for command in [
+        &["batch", "--input", input, "--output", "-"][..],
+        &["verify", "--quick"][..],
+        &["figures", "--out", &out][..],
+    ] {
+        for jobs in ["0", "-2", "x", "1025"] {
+            let mut args = command.to_vec();
+            args.extend(["--jobs", jobs]);
+            assert_one_line_failure(
+                microslip(&args),
+                2,
+                &format!("--jobs must be a whole number of threads from 1 to 1024 (got '{jobs}')"),
+            );
+        }
+    }
+    for command in ["batch", "verify", "figures"] {
+        let (_, help, _) = microslip(&[command, "--help"]);
+        assert!(
+            help.contains("-j, --jobs <JOBS>") && help.contains("RAYON_NUM_THREADS"),
+            "{help}"
+        );
+    }
+}
+
+/// The files of `directory` (recursively) whose names end in one of `extensions`.
+fn source_files(directory: &Path, extensions: &[&str], found: &mut Vec<PathBuf>) {
+    for entry in std::fs::read_dir(directory).unwrap().flatten() {
+        let path = entry.path();
+        if path.is_dir() {
+            source_files(&path, extensions, found);
+        } else if extensions.iter().any(|e| path.extension().is_some_and(|x| x == *e)) {
+            found.push(path);
+        }
+    }
+}
+
+#[test]
+fn comments_cite_no_tracker_numbers() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
+    let mut files = Vec::new();
+    for directory in ["src", "tests", "benches"] {
+        source_files(&root.join(directory), &["rs", "sh", "py"], &mut files);
+    }
+    assert!(files.len() > 20, "{files:?}");
+    let word = ["iss", "ue"].concat();
+    let mut citations = Vec::new();
+    for file in &files {
+        let text = std::fs::read_to_string(file).unwrap();
+        for (number, line) in text.lines().enumerate() {
+            let lower = line.to_lowercase();
+            let cites = lower.match_indices(&word).any(|(at, _)| {
+                let rest = lower[at + word.len()..].trim_start_matches(['s', ' ', '#']);
+                rest.starts_with(|c: char| c.is_ascii_digit())
+            });
+            if cites {
+                citations.push(format!("{}:{}: {line}", file.display(), number + 1));
+            }
+        }
+    }
+    assert!(citations.is_empty(), "{}", citations.join("\n"));
 }

@@ -135,8 +135,8 @@ fn check_outcome(args: &[String], outcome: &Outcome) -> Result<(), TestCaseError
 
 /// How far the draws reach: loads 1e−300 … 1e300, φ up to 1e6 rad, within 1e−15 of
 /// separation and of gross slip, ρ in 1e−300 … 1e300, the exponential's scale free of the
-/// load, and the printed f64 digits of I to one unit of the last digit. (Until the fixes
-/// of issue 11 these were narrowed: large phases, extreme scales and near separation
+/// load, and the printed f64 digits of I to one unit of the last digit. (Until the range
+/// and stability fixes these were narrowed: large phases, extreme scales and near separation
 /// printed wrong digits, and `small-amplitude` printed −inf; proofs/stability.md.)
 #[derive(Clone, Copy, Debug)]
 struct Ranges {

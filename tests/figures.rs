@@ -1,4 +1,4 @@
-//! The paper's Figures 4–8 (issue 15): the facts each figure is read for, checked on the
+//! The paper's Figures 4–8: the facts each figure is read for, checked on the
 //! computed values, and the `microslip figures` command (proofs/figures.md).
 
 use std::process::Command;

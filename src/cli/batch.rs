@@ -8,6 +8,7 @@ use clap::Args;
 use microslip::batch;
 use microslip::files::{check_writable, write_atomically};
 
+use super::case::Jobs;
 use super::parse;
 use super::progress::Progress;
 use super::report::{warn, Failure};
@@ -26,9 +27,11 @@ pub struct BatchArgs {
     /// Output format.
     #[arg(long, value_parser = ["csv", "jsonl"], default_value = "csv")]
     pub format: String,
-    /// Time budget per row for --digits, in seconds (up to 1e6).
+    /// Time budget per row computed in MPFR (--digits, or where f64 does not suffice), in seconds (up to 1e6).
     #[arg(long, allow_hyphen_values = true, value_parser = parse::seconds, default_value = "60")]
     pub max_seconds: Duration,
+    #[command(flatten)]
+    pub jobs: Jobs,
 }
 
 /// Runs a batch; Ok(failed rows). Nothing is written when the input cannot be read.

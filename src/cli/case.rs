@@ -1,6 +1,7 @@
-//! The flags shared by subcommands: a load cycle on a contact, and how an answer is
-//! asked for (verified digits, a time budget, JSON).
+//! The flags shared by subcommands: a load cycle on a contact, how an answer is asked
+//! for (verified digits, a time budget, JSON), and how many threads do the work.
 
+use std::num::NonZeroUsize;
 use std::time::Duration;
 
 use clap::Args;
@@ -8,6 +9,7 @@ use clap::Args;
 use microslip::inputs::CaseText;
 
 use super::parse;
+use super::report::Failure;
 
 /// A load cycle P = P0 + P1 cos θ, Q = Q0 + Q1 cos(θ − φ) on a contact.
 #[derive(Args)]
@@ -77,4 +79,26 @@ pub struct Answer {
     /// Print one JSON object.
     #[arg(long)]
     pub json: bool,
+}
+
+/// How many worker threads a command that runs on all cores (batch, verify, figures) uses.
+#[derive(Args)]
+pub struct Jobs {
+    /// Worker threads (1–1024); default: RAYON_NUM_THREADS if set, else one per core.
+    #[arg(long, short = 'j', allow_hyphen_values = true, value_parser = parse::jobs)]
+    pub jobs: Option<NonZeroUsize>,
+}
+
+impl Jobs {
+    /// Sizes the one pool of worker threads (rayon's global pool) that the command's
+    /// parallel work runs on; call once, before any of that work starts.
+    pub fn install(&self) -> Result<(), Failure> {
+        let Some(jobs) = self.jobs else {
+            return Ok(());
+        };
+        rayon::ThreadPoolBuilder::new()
+            .num_threads(jobs.get())
+            .build_global()
+            .map_err(|error| Failure::failed(format!("cannot start {jobs} worker threads: {error}")))
+    }
 }

@@ -4,6 +4,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 
+use super::case::Jobs;
 use super::progress::Progress;
 use super::report::Failure;
 
@@ -12,6 +13,8 @@ pub struct FiguresArgs {
     /// Directory for fig4…fig8 (.csv, .svg, .png), limit_slopes.csv and facts.json.
     #[arg(long)]
     pub out: PathBuf,
+    #[command(flatten)]
+    pub jobs: Jobs,
 }
 
 pub fn run(args: &FiguresArgs) -> Result<String, Failure> {

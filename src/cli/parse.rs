@@ -1,6 +1,7 @@
 //! Value parsers shared by every subcommand: each admits a stated range and says so
 //! when a value is outside it (the message completes "--flag must ...").
 
+use std::num::NonZeroUsize;
 use std::time::Duration;
 
 use microslip::reference::MAX_DIGITS;
@@ -39,6 +40,19 @@ fn count_at_least(text: &str, min: usize) -> Result<usize, String> {
             Err(format!("{range} and at most {}", usize::MAX))
         }
         Err(_) => Err(range),
+    }
+}
+
+/// The most worker threads accepted: far beyond any core count, short of what would
+/// exhaust the system's threads before any work began.
+pub const MAX_JOBS: usize = 1024;
+
+/// A number of worker threads, 1 to [`MAX_JOBS`].
+pub fn jobs(text: &str) -> Result<NonZeroUsize, String> {
+    let range = format!("must be a whole number of threads from 1 to {MAX_JOBS}");
+    match text.trim().parse::<usize>() {
+        Ok(value) if value <= MAX_JOBS => NonZeroUsize::new(value).ok_or(range),
+        _ => Err(range),
     }
 }
 
@@ -92,5 +106,10 @@ mod tests {
         assert!(elements("99999999999999999999999").unwrap_err().contains("at most"));
         assert!(tolerance("1e-6").is_ok() && tolerance("0").is_err() && tolerance("1").is_err());
         assert!(seed("18446744073709551615").is_ok() && seed("-1").is_err());
+        assert_eq!(jobs("3").unwrap().get(), 3);
+        assert_eq!(jobs("1024").unwrap().get(), MAX_JOBS);
+        for bad in ["0", "-1", "1025", "99999999999999999999999", "x", ""] {
+            assert!(jobs(bad).unwrap_err().contains("from 1 to 1024"), "{bad}");
+        }
     }
 }

@@ -81,7 +81,10 @@ pub fn fail(failure: &Failure) -> ExitCode {
 
 /// A command-line parsing error as what to print and where: help and version go to
 /// standard output with exit 0; a bare `microslip` prints usage and the subcommands
-/// to standard error with exit 2; every other error is one line naming what is wrong.
+/// to standard error with exit 2. A missing argument, a conflict or a value outside its
+/// range is one line naming what is wrong; a misspelt command or flag, or a value not
+/// among the choices, keeps clap's suggestion ("a similar subcommand exists"), the
+/// possible values and the usage line, since those are what a user needs to correct it.
 pub fn parse_error(error: &clap::Error) -> ExitCode {
     match error.kind() {
         ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => emit(error.to_string().trim_end(), ExitCode::SUCCESS),
@@ -89,7 +92,15 @@ pub fn parse_error(error: &clap::Error) -> ExitCode {
             let _ = write!(std::io::stderr().lock(), "{}", error.render());
             ExitCode::from(REFUSED)
         }
-        _ => fail(&Failure::refused(parse_error_line(error))),
+        _ => match parse_error_line(error) {
+            Some(line) => fail(&Failure::refused(line)),
+            None => {
+                let rendered = error.render().to_string();
+                let message = rendered.strip_prefix("error: ").unwrap_or(&rendered);
+                let _ = write!(std::io::stderr().lock(), "microslip: {message}");
+                ExitCode::from(REFUSED)
+            }
+        },
     }
 }
 
@@ -101,30 +112,37 @@ fn context_string(error: &clap::Error, kind: ContextKind) -> Option<String> {
     }
 }
 
-/// The flag of an argument as clap names it (`--digits <DIGITS>` → `--digits`).
-fn flag_of(argument: &str) -> &str {
-    argument.split_whitespace().next().unwrap_or(argument)
+/// The flag of an argument as clap names it (`--digits <DIGITS>` → `--digits`), and a
+/// group of alternatives as such (`<--lambda <LAMBDA>|--nu <NU>>` → `--lambda or --nu`).
+fn flag_of(argument: &str) -> String {
+    let inner = match argument.strip_prefix('<').and_then(|rest| rest.strip_suffix('>')) {
+        Some(group) if group.starts_with('-') => group,
+        _ => argument,
+    };
+    inner
+        .split('|')
+        .map(|alternative| alternative.split_whitespace().next().unwrap_or(alternative))
+        .collect::<Vec<_>>()
+        .join(" or ")
 }
 
-/// One line for a parsing error.
-fn parse_error_line(error: &clap::Error) -> String {
+/// One line for a parsing error whose message is complete on its own; None where
+/// clap's suggestion, possible values or usage line should be shown as well.
+fn parse_error_line(error: &clap::Error) -> Option<String> {
     match error.kind() {
         ErrorKind::MissingRequiredArgument => {
             let missing: Vec<String> = match error.get(ContextKind::InvalidArg) {
                 Some(ContextValue::Strings(list)) => list
                     .iter()
-                    .map(|argument| match flag_of(argument) {
+                    .map(|argument| match flag_of(argument).as_str() {
                         "--lambda" => "--lambda (or --nu)".to_string(),
+                        "<SHELL>" => format!("<SHELL> (one of {})", shells()),
                         flag => flag.to_string(),
                     })
                     .collect(),
                 _ => Vec::new(),
             };
-            if missing.is_empty() {
-                first_line(error)
-            } else {
-                format!("missing required arguments: {}", missing.join(", "))
-            }
+            (!missing.is_empty()).then(|| format!("missing required arguments: {}", missing.join(", ")))
         }
         ErrorKind::ValueValidation | ErrorKind::InvalidValue => {
             let argument = context_string(error, ContextKind::InvalidArg).unwrap_or_default();
@@ -132,14 +150,26 @@ fn parse_error_line(error: &clap::Error) -> String {
             let source = std::error::Error::source(error).map(|s| s.to_string());
             match source {
                 Some(reason) if reason.starts_with("must") => {
-                    format!("{} {reason} (got '{value}')", flag_of(&argument))
+                    Some(format!("{} {reason} (got '{value}')", flag_of(&argument)))
                 }
-                Some(reason) => format!("invalid value '{value}' for {}: {reason}", flag_of(&argument)),
-                None => first_line(error),
+                Some(reason) => Some(format!("invalid value '{value}' for {}: {reason}", flag_of(&argument))),
+                None => None,
             }
         }
-        _ => first_line(error),
+        ErrorKind::ArgumentConflict => Some(first_line(error)),
+        _ => None,
     }
+}
+
+/// The shells `microslip completions` writes for, as typed on the command line.
+fn shells() -> String {
+    use clap::ValueEnum;
+    clap_complete::Shell::value_variants()
+        .iter()
+        .filter_map(|shell| shell.to_possible_value())
+        .map(|value| value.get_name().to_string())
+        .collect::<Vec<_>>()
+        .join(", ")
 }
 
 fn first_line(error: &clap::Error) -> String {
@@ -150,4 +180,17 @@ fn first_line(error: &clap::Error) -> String {
         .unwrap_or("invalid arguments")
         .trim_start_matches("error: ")
         .to_string()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::flag_of;
+
+    #[test]
+    fn flags_and_groups_of_flags_read_as_typed() {
+        assert_eq!(flag_of("--digits <DIGITS>"), "--digits");
+        assert_eq!(flag_of("--json"), "--json");
+        assert_eq!(flag_of("<--rho <RHO>|--p0 <P0>>"), "--rho or --p0");
+        assert_eq!(flag_of("<SHELL>"), "<SHELL>");
+    }
 }

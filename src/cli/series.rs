@@ -1,6 +1,6 @@
 //! `microslip series`: the coefficients Iₙ, or a case's partial sums beside W.
 
-use clap::Args;
+use clap::{ArgGroup, Args};
 
 use microslip::exact::printing::{printed_coefficients, printed_partial_sums};
 use microslip::inputs::CaseText;
@@ -14,6 +14,8 @@ use super::report::Failure;
 #[command(mut_arg("digits", |digits| digits.help(
     "Verified significant digits (1–1000); without it, f64 (Iₙ) or 15 verified digits (a case)"
 )))]
+#[command(group(ArgGroup::new("source").args(["rho", "p0"]).required(true)))]
+#[command(group(ArgGroup::new("ratio").args(["lambda", "nu"])))]
 pub struct SeriesArgs {
     /// ρ = Q1/(f P1) (> 0): print I₀ … I_N.
     #[arg(long, allow_hyphen_values = true, conflicts_with_all = ["p0", "compliance"])]
@@ -25,7 +27,7 @@ pub struct SeriesArgs {
     #[arg(long)]
     pub order: usize,
     /// Mean normal load P0 (with a case).
-    #[arg(long, allow_hyphen_values = true, requires_all = ["p1", "q1", "friction", "compliance"])]
+    #[arg(long, allow_hyphen_values = true, requires_all = ["p1", "q1", "friction", "ratio", "compliance"])]
     pub p0: Option<String>,
     /// Normal load amplitude P1.
     #[arg(long, allow_hyphen_values = true)]

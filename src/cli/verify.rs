@@ -6,6 +6,7 @@ use clap::Args;
 
 use microslip::verify::{self, GateOptions};
 
+use super::case::Jobs;
 use super::json::{ClaimRow, GateReport};
 use super::parse;
 use super::progress::Progress;
@@ -22,6 +23,8 @@ pub struct VerifyArgs {
     /// Print one JSON object.
     #[arg(long)]
     pub json: bool,
+    #[command(flatten)]
+    pub jobs: Jobs,
 }
 
 /// The working precision of a gate row (`f64` or `N bits`) in bits.

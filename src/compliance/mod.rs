@@ -88,22 +88,40 @@ pub(crate) fn merged_breakpoints<R: Real>(lists: impl IntoIterator<Item = Vec<R>
 pub enum AdmissibilityError {
     /// v' ≤ 0 somewhere: the contact would not resist the load.
     #[error("the compliance has v'(P) = {slope:.4e} ≤ 0 at P = {load:.4e}: the contact would not resist the load; v' > 0 is needed on [{low:.4e}, {high:.4e}]")]
-    NonPositiveSlope { load: f64, slope: f64, low: f64, high: f64 },
+    NonPositiveSlope {
+        /// The load where it happens.
+        load: f64,
+        /// v' there.
+        slope: f64,
+        /// The lower end of the load range that needs it.
+        low: f64,
+        /// The upper end of that range.
+        high: f64,
+    },
     /// v'' > 0 somewhere: the contact would soften as it is pressed.
     #[error("the compliance has v''(P) = {curvature:.4e} > 0 at P = {load:.4e}: the contact would soften as it is pressed; v'' ≤ 0 is needed on [{low:.4e}, {high:.4e}]")]
     PositiveCurvature {
+        /// The load where it happens.
         load: f64,
+        /// v'' there.
         curvature: f64,
+        /// The lower end of the load range that needs it.
         low: f64,
+        /// The upper end of that range.
         high: f64,
     },
     /// v' or v'' is not a finite number somewhere.
     #[error("the compliance is not finite at P = {load:.4e} (v' = {slope:e}, v'' = {curvature:e}); finite v' and v'' are needed on [{low:.4e}, {high:.4e}]")]
     NotFinite {
+        /// The load where it happens.
         load: f64,
+        /// v' there.
         slope: f64,
+        /// v'' there.
         curvature: f64,
+        /// The lower end of the load range that needs it.
         low: f64,
+        /// The upper end of that range.
         high: f64,
     },
 }

@@ -677,7 +677,7 @@ impl<R: Real> Compliance<R> for TableCompliance {
     }
 }
 
-/// v'_a − v'_b: the compliance whose W is W[a] − W[b] (W is linear in v'), computed
+/// v'_a − v'_b: the compliance whose W is W\[a\] − W\[b\] (W is linear in v'), computed
 /// without the cancellation of subtracting two W values.
 #[derive(Debug)]
 pub struct Difference<R> {

@@ -100,7 +100,7 @@ fn segment_terms<R: Real>(g: &EllipseGeometry<R>) -> [(Vec<Term<R>>, R, R); 4] {
 }
 
 /// W[v' = (P − P0)ⁿ] per unit λ for n = 0 … `order`, segment by segment (index n).
-/// W[1] vanishes by the constant-term theorem; its computed value is rounding.
+/// W\[1\] vanishes by the constant-term theorem; its computed value is rounding.
 pub fn monomial_dissipations<R: Real>(geometry: &EllipseGeometry<R>, order: usize) -> Vec<Segments<R>> {
     monomials_with_scale(geometry, order).0
 }

@@ -15,7 +15,10 @@ use super::polynomial_w::monomials_with_scale;
 pub enum SeriesError {
     /// ρ ≤ 0 or not finite.
     #[error("the amplitude ratio ρ = Q1/(fP1) must be a positive finite number (got {rho:e})")]
-    NonPositiveRatio { rho: f64 },
+    NonPositiveRatio {
+        /// The ratio given.
+        rho: f64,
+    },
     /// The cycle is outside the theory.
     #[error(transparent)]
     Cycle(#[from] CycleError),
@@ -24,10 +27,16 @@ pub enum SeriesError {
     NoNormalAmplitude,
     /// The compliance cannot give its derivatives of every order.
     #[error("the compliance {describe} does not provide its derivatives of every order at P0")]
-    NoDerivatives { describe: String },
+    NoDerivatives {
+        /// The compliance, described.
+        describe: String,
+    },
     /// A derivative is not finite at P0.
     #[error("the derivative of order {order} of the compliance is not finite at P0")]
-    NotFinite { order: usize },
+    NotFinite {
+        /// The order of the derivative.
+        order: usize,
+    },
 }
 
 /// I₀ … I_`order` at (ρ, φ), each with a bound on the magnitudes of the terms it is

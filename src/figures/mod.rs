@@ -1,5 +1,5 @@
 //! The paper's Figures 4–8 regenerated, and the facts its Section 4 states in words
-//! checked (issue 15): Persson's compliance v' = C/P (β = −1), in the variables
+//! checked: Persson's compliance v' = C/P (β = −1), in the variables
 //! P̂1 = P1/P0, Q̂1 = Q1/(fP0), Ŵ = W/(Cλf²P0^(β+2)) and φ/π.
 //!
 //! - [`evaluate`]: Ŵ at a point to the accuracy a figure needs (f64, or MPFR where f64

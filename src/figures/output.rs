@@ -179,7 +179,7 @@ fn limit_slopes_csv(facts: &Facts) -> Result<Vec<u8>, FiguresError> {
         .map_err(|e| write_error(Path::new("limit_slopes.csv"), e))
 }
 
-/// facts.json: the keys and meanings of issue 15, every value a number (or null where
+/// facts.json: one key per number the paper states in words, every value a number (or null where
 /// a ratio is unbounded), the keys in alphabetical order.
 #[derive(Debug, Serialize)]
 pub struct FactsJson<'a> {

@@ -49,7 +49,7 @@ pub struct Figures {
     pub facts: Facts,
 }
 
-/// The numbers the paper states in words (facts.json; keys as in issue 15).
+/// The numbers the paper states in words (the keys of facts.json).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Facts {
     /// Worst relative difference of the four-segment points from the closed form (Fig. 4).

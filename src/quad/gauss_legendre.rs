@@ -96,8 +96,8 @@ const MAX_THREADS: usize = 4;
 /// Computes the table from scratch (no cache).
 ///
 /// Each node comes from Tricomi's asymptotic guess polished in f64; above f64, Newton
-/// steps follow at precisions that double up to the working one ([`newton_schedule`]),
-/// each evaluating the recurrence in fixed point ([`fixed`]) with guard bits, so that only
+/// steps follow at precisions that double up to the working one (`newton_schedule`),
+/// each evaluating the recurrence in fixed point (`fixed`) with guard bits, so that only
 /// the last runs at the working precision. That last evaluation also gives the weight:
 /// P_n' at the corrected node follows from P_n' and the Legendre equation at the
 /// evaluated point by Taylor's theorem, to second order in the (half-precision) step.

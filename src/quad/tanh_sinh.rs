@@ -28,7 +28,7 @@ pub struct Level<R> {
 const MAX_CACHED_LEVEL: u32 = 12;
 
 /// The nodes of `level` at `precision`, computed once per (number type, level, precision)
-/// for the levels up to [`MAX_CACHED_LEVEL`].
+/// for the levels up to `MAX_CACHED_LEVEL`.
 pub fn nodes<R: Real>(level: u32, precision: Precision) -> Arc<Level<R>> {
     if level > MAX_CACHED_LEVEL {
         return Arc::new(compute_level(level, precision));

@@ -150,12 +150,13 @@ fn evaluated<C: Claim + Send + Sync + 'static>(
     })
 }
 
-/// Runs the whole gate on every core, and returns the reports in claim order;
+/// Runs the whole gate on as many threads as rayon's pool has (one per core unless
+/// the pool was sized otherwise), and returns the reports in claim order;
 /// `progress(done, total, name)` is told each step's name as it finishes.
 pub fn run(options: GateOptions, mut progress: impl FnMut(usize, usize, &str)) -> Vec<ClaimReport> {
     let steps = gate(options);
     let total = steps.len();
-    let workers = std::thread::available_parallelism().map_or(1, usize::from).min(total);
+    let workers = rayon::current_num_threads().min(total);
     let next = AtomicUsize::new(0);
     let (sender, receiver) = mpsc::channel();
     let mut results: Vec<Option<Vec<ClaimReport>>> = vec![None; total];

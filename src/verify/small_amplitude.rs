@@ -97,7 +97,9 @@ pub enum CoefficientError {
     /// ρ or φ is not a number.
     #[error("{quantity}: {source}")]
     Number {
+        /// Which input (`ρ` or `φ`).
         quantity: &'static str,
+        /// Why it does not read as a number.
         #[source]
         source: ParseRealError,
     },

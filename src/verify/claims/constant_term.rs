@@ -7,7 +7,7 @@ use crate::cycle::LoadCycle;
 use crate::real::{Precision, Real};
 use crate::verify::generators::Draw;
 
-/// Claim 3, the constant term: W[v' + c] = W[v'] for any c, and W[c] = 0, through the
+/// Claim 3, the constant term: W[v' + c] = W[v'] for any c, and W\[c\] = 0, through the
 /// raw segment formulas (v' itself integrated, not v' − v'(P0)). In f64 the identity holds
 /// to 1e−13 of the terms that cancel; at 256 bits to 1e−70 of W. In the simulated spring
 /// bed a constant added to v' changes every element's stiffness (K = 1/v' is not linear

@@ -147,7 +147,7 @@ impl<R: Real> Evaluator for FourSegment<R> {
     }
 }
 
-/// W by the history simulation ([`simulate_within_tolerance`]), in f64.
+/// W by the history simulation (`simulate_within_tolerance`), in f64.
 #[derive(Clone, Copy, Debug, Default)]
 pub struct Simulation;
 

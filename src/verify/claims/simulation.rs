@@ -18,7 +18,7 @@ use crate::verify::small_amplitude::coefficient;
 use crate::verify::ClaimReport;
 
 /// The agreement asked of the simulation at the gate's resolution (an identity between
-/// two simulated values is held to [`SIMULATED_IDENTITY_TOLERANCE`]).
+/// two simulated values is held to `SIMULATED_IDENTITY_TOLERANCE`).
 ///
 /// Above the simulation's error at the gate's resolution (100 elements and 300 steps per
 /// cycle, extrapolated; measured in proofs/independent-simulation.md), and far below
