@@ -2,7 +2,7 @@
 
 use std::sync::Arc;
 
-use microslip::quad::engine::{self, FixedRule, Piece, QuadError, Settings};
+use microslip::quad::engine::{self, FixedRule, Piece, QuadError, Rule, RuleError, Settings, Stop};
 use microslip::quad::{gauss_legendre, tanh_sinh};
 use microslip::real::{Precision, Real};
 use rug::Float;
@@ -78,7 +78,12 @@ fn gauss_legendre_gives_pi_to_100_digits() {
     let integrated = engine::integrate(&pieces, &settings).unwrap();
     let result = &integrated.pieces[0];
     assert!(result.estimate.converged);
-    assert!(result.rule <= 1024 && result.rule == integrated.largest_rule);
+    assert!(matches!(
+        result.stop,
+        Stop::Converged | Stop::Predicted | Stop::RoundingFloor
+    ));
+    let points = result.rule.gauss_legendre_points();
+    assert!(points <= 1024 && points == integrated.largest_rule);
     let error = (result.estimate.value.clone() - Float::pi(p)).abs();
     assert!(
         error < Float::parse_decimal("1e-100", p).unwrap(),
@@ -116,7 +121,10 @@ fn engine_falls_back_to_tanh_sinh_on_an_end_point_singularity() {
     // Tanh–sinh finished it: the doubling sequence up to the largest rule costs less than
     // twice that rule, and the piece took more.
     assert!(singular.estimate.evaluations > 2 * integrated.largest_rule);
-    assert_eq!(singular.rule, integrated.largest_rule);
+    assert_eq!(singular.stop, Stop::TanhSinh);
+    assert!(matches!(singular.rule, Rule::TanhSinh { after } if after <= integrated.largest_rule));
+    // A check by a finer fixed rule starts from the largest rule on the piece tanh–sinh finished.
+    assert_eq!(integrated.check_rules()[1], integrated.largest_rule);
     let summed = integrated.pieces[0].estimate.error.clone() + &singular.estimate.error;
     assert_eq!(integrated.error, summed);
     let evaluations: usize = integrated.pieces.iter().map(|piece| piece.estimate.evaluations).sum();
@@ -151,12 +159,13 @@ fn engine_fixed_rules_use_each_piece_s_own_rule() {
         fixed: Some(FixedRule {
             points: 8,
             per_piece: Some(vec![4, 16]),
-            quarter_rule_error: true,
+            error: RuleError::QuarterRule,
         }),
         ..Settings::new(1e-13)
     };
     let integrated = engine::integrate(&pieces, &settings).unwrap();
-    assert_eq!(integrated.rules(), vec![4, 16]);
+    assert_eq!(integrated.check_rules(), vec![4, 16]);
+    assert_eq!(integrated.stops(), vec![Stop::Fixed, Stop::Fixed]);
     assert_eq!(integrated.evaluations, 4 + 1 + 16 + 4);
     assert!((integrated.pieces[1].estimate.value - 1f64.sin()).abs() < 1e-15);
     // Four points leave exp ~1e−9 off, which the single point of the coarse rule oversizes.
