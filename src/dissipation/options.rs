@@ -199,3 +199,81 @@ impl<R: Real> Options<R> {
         settings
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_default_converges_from_16_points_to_512_at_256_ulps() {
+        let settings = Options::<f64>::default().settings(&1.0);
+        assert_eq!((settings.first_points, settings.max_points), (16, 512));
+        assert_eq!(settings.relative_tolerance, 256.0 * f64::EPSILON);
+        assert!(settings.fixed.is_none() && settings.deadline.is_none());
+    }
+
+    #[test]
+    fn adaptive_rules_keep_a_sensible_order_of_first_and_largest() {
+        let options = Options::<f64>::default().with_max_points(64).with_first_points(128);
+        assert_eq!(
+            options.rules,
+            Rules::Adaptive {
+                first_points: Some(128),
+                max_points: 64
+            }
+        );
+        // The largest rule is never below the first, and the first is at least 2 points.
+        let settings = options.settings(&1.0);
+        assert_eq!((settings.first_points, settings.max_points), (128, 128));
+        let settings = Options::<f64>::default().with_first_points(0).settings(&1.0);
+        assert_eq!(settings.first_points, 2);
+    }
+
+    #[test]
+    fn a_fixed_rule_replaces_the_adaptive_one_and_back() {
+        let deadline = Instant::now();
+        let options = Options::<f64>::default()
+            .with_tolerance(1e-9)
+            .with_deadline(deadline)
+            .with_fixed_rule(64, RuleError::RoundingFloor);
+        let settings = options.settings(&1.0);
+        let fixed = settings.fixed.expect("a fixed rule");
+        assert_eq!(
+            (fixed.points, fixed.per_piece, fixed.error),
+            (64, None, RuleError::RoundingFloor)
+        );
+        assert_eq!((settings.relative_tolerance, settings.deadline), (1e-9, Some(deadline)));
+        // Asking for adaptive rules again starts from the automatic first rule.
+        let adaptive = options.with_max_points(1024);
+        assert_eq!(
+            adaptive.rules,
+            Rules::Adaptive {
+                first_points: None,
+                max_points: 1024
+            }
+        );
+        let per_piece = Options::<f64>::default().with_fixed_rules(FixedRule {
+            points: 32,
+            per_piece: Some(vec![16, 256]),
+            error: RuleError::QuarterRule,
+        });
+        // Switching from per-piece fixed rules keeps the largest of them as the cap.
+        assert_eq!(
+            per_piece.with_first_points(8).rules,
+            Rules::Adaptive {
+                first_points: Some(8),
+                max_points: 256
+            }
+        );
+    }
+
+    #[test]
+    fn the_checks_can_be_relaxed_one_by_one() {
+        let options = Options::<f64>::default()
+            .keeping_constant_slope()
+            .without_compliance_check()
+            .with_rounding_limit(1.0);
+        assert!(!options.remove_constant_slope && !options.check_compliance);
+        assert_eq!(options.rounding_limit, 1.0);
+    }
+}

@@ -196,7 +196,7 @@ fn compute_node_table_before<R: Real>(
             return legendre_pair(&low_ratios, x);
         }
         let scale = scales[step];
-        let (value, below) = scale.legendre_pair(&step_ratios[step], &scale.from_real(x));
+        let (value, below) = scale.legendre_pair(&step_ratios[step], &scale.scaled(x));
         let working = Precision::bits(scale.bits.max(x.precision().in_bits()));
         (scale.to_real(&value, working), scale.to_real(&below, working))
     };

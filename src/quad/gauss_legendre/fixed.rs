@@ -36,7 +36,7 @@ impl FixedPoint {
     }
 
     /// `x` (|x| < 1), truncated toward −∞.
-    pub(super) fn from_real<R: Real>(self, x: &R) -> Integer {
+    pub(super) fn scaled<R: Real>(self, x: &R) -> Integer {
         // 32 bits at a time: the chunks are exact in any `Real`, whatever its precision.
         let chunk_scale = x.int(1 << 32);
         let mut rest = x.clone();
@@ -93,7 +93,7 @@ mod tests {
         let precision = Precision::bits(300);
         let scale = FixedPoint { bits: 320 };
         let x = Float::with_val(300, -0.3) / 7u32;
-        let fixed = scale.from_real(&x);
+        let fixed = scale.scaled(&x);
         let back: Float = scale.to_real(&fixed, precision);
         assert!((back - &x).abs() < Float::with_val(300, 1) >> 310u32);
         let ratios = scale.ratios(40);
