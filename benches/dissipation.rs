@@ -29,10 +29,7 @@ fn bench_dissipation(c: &mut Criterion) {
         });
         // Near gross slip at 1024 bits the pieces need more than the default 512-point cap
         // (the library refuses with NotConverged there; verified digits raise the cap).
-        let wide = Options::<Float> {
-            max_points: 4096,
-            ..Options::default()
-        };
+        let wide = Options::<Float>::default().with_max_points(4096);
         for bits in [128u32, 256, 512, 1024] {
             let Case { cycle, compliance } = case.text.read::<Float>(Precision::bits(bits)).unwrap();
             group.bench_with_input(BenchmarkId::new("bits", bits), &bits, |b, _| {

@@ -111,10 +111,10 @@ fn median_seconds<T>(budget: Duration, mut run: impl FnMut() -> T) -> (f64, T) {
 }
 
 /// A rule applied once to a piece: the value and the integrand evaluations it took.
-type FixedRule<'r, R> = dyn Fn(&Piece<'_, R>, Precision) -> (R, usize) + 'r;
+type RuleOnce<'r, R> = dyn Fn(&Piece<'_, R>, Precision) -> (R, usize) + 'r;
 
 /// W of `case` at `precision`, each piece integrated by `rule`, with the evaluations it took.
-fn fixed_rule_w<R: Real>(case: &CaseText, precision: Precision, rule: &FixedRule<'_, R>) -> Option<(R, usize)> {
+fn fixed_rule_w<R: Real>(case: &CaseText, precision: Precision, rule: &RuleOnce<'_, R>) -> Option<(R, usize)> {
     let Case { cycle, compliance } = case.read::<R>(precision).ok()?;
     let geometry = cycle.geometry().ok()?;
     let integrands = SegmentIntegrands {

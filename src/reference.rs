@@ -13,8 +13,9 @@ use rug::Float;
 
 use crate::compliance::Compliance;
 use crate::cycle::LoadCycle;
-use crate::dissipation::{dissipation, Dissipation, DissipationError, Method, Options};
+use crate::dissipation::{dissipation, Dissipation, DissipationError, Method, Options, Rules};
 use crate::inputs::{Case, CaseText, InputError};
+use crate::quad::{FixedRule, RuleError};
 use crate::real::{Precision, Real};
 use crate::verified::{
     agreeing_digits, f64_printed_digits, resolved_digits, verify, OutOfBudget, TwoPrecisions, Verified,
@@ -302,7 +303,10 @@ impl TwoPrecisions for FourSegmentW<'_> {
     fn first(&mut self, precision: Precision, attempt_number: u32) -> Result<Self::Output, ReferenceError> {
         let options = Options {
             relative_tolerance: self.tolerance(precision, 0),
-            max_points: Self::max_points(attempt_number),
+            rules: Rules::Adaptive {
+                first_points: None,
+                max_points: Self::max_points(attempt_number),
+            },
             deadline: Some(self.deadline),
             ..Options::default()
         };
@@ -319,9 +323,11 @@ impl TwoPrecisions for FourSegmentW<'_> {
         // first run: it only has to agree (a check that missed something disagrees, and the
         // full run below decides).
         let fixed = Options {
-            fixed_points: Some((2 * first.points).max(32)),
-            fixed_points_per_piece: Some(first.piece_points.iter().map(|&n| (2 * n).max(32)).collect()),
-            fixed_rule_error: false,
+            rules: Rules::Fixed(FixedRule {
+                points: (2 * first.points).max(32),
+                per_piece: Some(first.piece_points.iter().map(|&n| (2 * n).max(32)).collect()),
+                error: RuleError::RoundingFloor,
+            }),
             check_compliance: false,
             deadline: Some(self.deadline),
             ..Options::default()
@@ -332,8 +338,10 @@ impl TwoPrecisions for FourSegmentW<'_> {
         }
         let converged = Options {
             relative_tolerance: self.tolerance(higher, 4),
-            min_points: (2 * first.points).max(16),
-            max_points: Self::max_points(attempt_number).max(4 * first.points),
+            rules: Rules::Adaptive {
+                first_points: Some((2 * first.points).max(16)),
+                max_points: Self::max_points(attempt_number).max(4 * first.points),
+            },
             deadline: Some(self.deadline),
             ..Options::default()
         };

@@ -12,6 +12,7 @@ use std::time::Duration;
 use microslip::dissipation::{dissipation, DissipationError, Options, Segment, SegmentIntegrands};
 use microslip::inputs::{Case, CaseText};
 use microslip::quad::gauss_legendre::node_table;
+use microslip::quad::RuleError;
 use microslip::real::Precision;
 use microslip::reference::{printable_dissipation, verified_dissipation};
 use microslip::simulate::{simulate, SimulationOptions};
@@ -269,10 +270,7 @@ fn a_fixed_rule_reports_the_error_its_nodes_leave() {
     let precision = Precision::bits(200);
     let Case { cycle, compliance } = text.read::<Float>(precision).unwrap();
     for points in [16usize, 64, 2048] {
-        let options = Options {
-            fixed_points: Some(points),
-            ..Options::default()
-        };
+        let options = Options::default().with_fixed_rule(points, RuleError::QuarterRule);
         let result = dissipation(&cycle, compliance.as_ref(), &options).unwrap();
         let off = (result.total.clone() - &reference.0).abs();
         assert!(
@@ -293,14 +291,8 @@ fn a_fixed_rule_without_its_error_estimate_spends_only_its_own_points() {
     let text = case("0.4", "0", "0.5", "0.4pi", "persson:gamma=1,sigma=1");
     let precision = Precision::bits(200);
     let Case { cycle, compliance } = text.read::<Float>(precision).unwrap();
-    let with = Options {
-        fixed_points: Some(64),
-        ..Options::default()
-    };
-    let without = Options {
-        fixed_rule_error: false,
-        ..with.clone()
-    };
+    let with = Options::default().with_fixed_rule(64, RuleError::QuarterRule);
+    let without = Options::default().with_fixed_rule(64, RuleError::RoundingFloor);
     let estimated = dissipation(&cycle, compliance.as_ref(), &with).unwrap();
     let bare = dissipation(&cycle, compliance.as_ref(), &without).unwrap();
     assert_eq!(bare.total, estimated.total);

@@ -2,7 +2,7 @@
 
 use std::sync::Arc;
 
-use microslip::quad::engine::{self, FixedRule, Piece, QuadError, Settings};
+use microslip::quad::engine::{self, FixedRule, Piece, QuadError, Rule, RuleError, Settings, Stop};
 use microslip::quad::{gauss_legendre, tanh_sinh};
 use microslip::real::{Precision, Real};
 use rug::Float;
@@ -78,7 +78,12 @@ fn gauss_legendre_gives_pi_to_100_digits() {
     let integrated = engine::integrate(&pieces, &settings).unwrap();
     let result = &integrated.pieces[0];
     assert!(result.estimate.converged);
-    assert!(result.rule <= 1024 && result.rule == integrated.largest_rule);
+    assert!(matches!(
+        result.stop,
+        Stop::Converged | Stop::Predicted | Stop::RoundingFloor
+    ));
+    let points = result.rule.gauss_legendre_points();
+    assert!(points <= 1024 && points == integrated.largest_rule);
     let error = (result.estimate.value.clone() - Float::pi(p)).abs();
     assert!(
         error < Float::parse_decimal("1e-100", p).unwrap(),
@@ -116,7 +121,10 @@ fn engine_falls_back_to_tanh_sinh_on_an_end_point_singularity() {
     // Tanh–sinh finished it: the doubling sequence up to the largest rule costs less than
     // twice that rule, and the piece took more.
     assert!(singular.estimate.evaluations > 2 * integrated.largest_rule);
-    assert_eq!(singular.rule, integrated.largest_rule);
+    assert_eq!(singular.stop, Stop::TanhSinh);
+    assert!(matches!(singular.rule, Rule::TanhSinh { after } if after <= integrated.largest_rule));
+    // A check by a finer fixed rule starts from the largest rule on the piece tanh–sinh finished.
+    assert_eq!(integrated.check_rules()[1], integrated.largest_rule);
     let summed = integrated.pieces[0].estimate.error.clone() + &singular.estimate.error;
     assert_eq!(integrated.error, summed);
     let evaluations: usize = integrated.pieces.iter().map(|piece| piece.estimate.evaluations).sum();
@@ -151,12 +159,13 @@ fn engine_fixed_rules_use_each_piece_s_own_rule() {
         fixed: Some(FixedRule {
             points: 8,
             per_piece: Some(vec![4, 16]),
-            quarter_rule_error: true,
+            error: RuleError::QuarterRule,
         }),
         ..Settings::new(1e-13)
     };
     let integrated = engine::integrate(&pieces, &settings).unwrap();
-    assert_eq!(integrated.rules(), vec![4, 16]);
+    assert_eq!(integrated.check_rules(), vec![4, 16]);
+    assert_eq!(integrated.stops(), vec![Stop::Fixed, Stop::Fixed]);
     assert_eq!(integrated.evaluations, 4 + 1 + 16 + 4);
     assert!((integrated.pieces[1].estimate.value - 1f64.sin()).abs() < 1e-15);
     // Four points leave exp ~1e−9 off, which the single point of the coarse rule oversizes.
@@ -253,4 +262,103 @@ fn tanh_sinh_integrates_a_reversed_interval_to_minus_the_integral() {
     assert!((forward.value - exact).abs() < 1e-15, "{}", forward.value);
     assert!((reversed.value + exact).abs() < 1e-15, "{}", reversed.value);
     assert!(reversed.converged);
+}
+
+/// The stop of a single piece integrated alone, with its value.
+fn stop_of(piece: Piece<'_, f64>, settings: &Settings<f64>) -> (Stop, f64, f64) {
+    let integrated = engine::integrate(&[piece], settings).unwrap();
+    let result = &integrated.pieces[0];
+    (result.stop, result.estimate.value, result.estimate.error)
+}
+
+#[test]
+fn engine_reports_an_empty_piece_a_converged_one_and_one_at_its_rounding_floor() {
+    let settings = Settings::new(1e-13);
+    let (stop, value, _) = stop_of(piece("empty", |x: &f64| x.exp(), 0.5, 0.5), &settings);
+    assert_eq!((stop, value), (Stop::Empty, 0.0));
+    // A quadratic is exact at 16 points: the first doubling changes nothing.
+    let (stop, value, _) = stop_of(piece("x²", |x: &f64| x * x, 0.0, 3.0), &settings);
+    assert_eq!(stop, Stop::Converged);
+    assert!((value - 9.0).abs() < 1e-14, "{value}");
+    // ∫₀¹ (cos x − sin 1) dx = 0: the rules' values are rounding, far above a share
+    // of the tolerance relative to a sum that is itself zero, and below 64ε∫|f|.
+    let sin_one = 1f64.sin();
+    let (stop, value, error) = stop_of(
+        piece("cos − sin 1", move |x: &f64| x.cos() - sin_one, 0.0, 1.0),
+        &settings,
+    );
+    assert_eq!(stop, Stop::RoundingFloor, "value {value:e}");
+    assert!(value.abs() <= error && error < 1e-14, "{value:e} ± {error:e}");
+}
+
+#[test]
+fn engine_stops_a_doubling_early_on_a_predicted_error() {
+    // 4/(1 + x²) converges geometrically; at 200 bits the last doubling before the
+    // tolerance gains several digits, and the predicted error clears it one doubling early.
+    let p = Precision::bits(200);
+    let (zero, one) = (Float::from_i64(0, p), Float::from_i64(1, p));
+    let tolerance = Float::parse_decimal("1e-50", p).unwrap();
+    let settings = Settings {
+        first_points: 8,
+        ..Settings::new(tolerance.clone())
+    };
+    let pieces = [piece("π", |x: &Float| x.int(4) / (x.int(1) + &x.square()), zero, one)];
+    let integrated = engine::integrate(&pieces, &settings).unwrap();
+    let result = &integrated.pieces[0];
+    assert_eq!(result.stop, Stop::Predicted);
+    let error = (result.estimate.value.clone() - Float::pi(p)).abs();
+    assert!(error <= result.estimate.error && result.estimate.error <= tolerance.clone() * 4u32);
+}
+
+/// A smooth integrand with a deterministic pseudo-random perturbation of relative size
+/// `amplitude` at every point: rounding noise far above the rounding floor.
+fn noisy(amplitude: f64) -> impl Fn(&f64) -> f64 {
+    move |x: &f64| {
+        let mut bits = x.to_bits().wrapping_mul(0x9e37_79b9_7f4a_7c15);
+        bits ^= bits >> 29;
+        bits = bits.wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        bits ^= bits >> 32;
+        let unit = (bits >> 11) as f64 / (1u64 << 53) as f64 * 2.0 - 1.0;
+        x.exp() * (1.0 + amplitude * unit)
+    }
+}
+
+#[test]
+fn engine_accepts_noise_near_the_tolerance_and_refuses_it_far_above() {
+    let exact = 1f64.exp() - 1.0;
+    // Noise of 1e−10 against a tolerance of 1e−12: both rules stall, within a small
+    // multiple of the tolerance.
+    let (stop, value, error) = stop_of(piece("noisy", noisy(1e-10), 0.0, 1.0), &Settings::new(1e-12));
+    assert_eq!(stop, Stop::Noise, "{value} ± {error:e}");
+    assert!(
+        (value - exact).abs() <= error + 1e-10 && error < 1e-9,
+        "{value} ± {error:e}"
+    );
+    // A thousandfold tighter tolerance: the working precision cannot give it.
+    let pieces = [piece("noisy", noisy(1e-10), 0.0, 1.0)];
+    let error = engine::integrate(&pieces, &Settings::new(1e-15)).unwrap_err();
+    assert!(matches!(error, QuadError::NotConverged { .. }), "{error:?}");
+}
+
+/// The engine does not start a rule it predicts to end past the deadline. Each evaluation
+/// takes at least a millisecond and the integrand never converges (noise), so with 100 ms
+/// the 16- and 32-point rules may run (48 ms at least) but not the 64-point one (64 ms
+/// more): the engine stops having spent at most 48 evaluations, with `OutOfTime`.
+#[test]
+fn engine_does_not_start_a_rule_predicted_to_end_past_the_deadline() {
+    let count = std::sync::atomic::AtomicUsize::new(0);
+    let noise = noisy(1e-6);
+    let slow = |x: &f64| {
+        count.fetch_add(1, std::sync::atomic::Ordering::SeqCst);
+        std::thread::sleep(std::time::Duration::from_millis(1));
+        noise(x)
+    };
+    let settings = Settings {
+        deadline: Some(std::time::Instant::now() + std::time::Duration::from_millis(100)),
+        ..Settings::new(1e-12)
+    };
+    let error = engine::integrate(&[piece("slow", slow, 0.0, 1.0)], &settings).unwrap_err();
+    assert_eq!(error, QuadError::OutOfTime);
+    let spent = count.load(std::sync::atomic::Ordering::SeqCst);
+    assert!(spent <= 16 + 32, "{spent} evaluations");
 }

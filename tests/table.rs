@@ -341,6 +341,7 @@ fn the_interpolant_keeps_the_physics_between_the_rows() {
 fn the_quadrature_estimate_holds_on_the_piecewise_cubic() {
     use microslip::compliance::{cached_table, TableCompliance, TableInterpolant};
     use microslip::dissipation::{dissipation, Options};
+    use microslip::quad::RuleError;
     let dir = scratch("quadrature");
     let path = write_table(&dir, "persson", "slope", 40, FAMILIES[0].slope);
     let compliance = TableCompliance {
@@ -356,10 +357,7 @@ fn the_quadrature_estimate_holds_on_the_piecewise_cubic() {
     let fine = dissipation(
         &cycle,
         &compliance,
-        &Options {
-            fixed_points: Some(4096),
-            ..Options::default()
-        },
+        &Options::default().with_fixed_rule(4096, RuleError::QuarterRule),
     )
     .expect("W at 4096 points");
     let difference = (result.total - fine.total).abs();
@@ -433,6 +431,7 @@ fn table_w_converges_with_an_estimate_that_bounds_a_dense_rule_between_knots() {
     use microslip::compliance::{cached_table, TableCompliance, TableInterpolant};
     use microslip::cycle::LoadCycle;
     use microslip::dissipation::{dissipation, Options};
+    use microslip::quad::RuleError;
     let path = format!("{}/tests/data/rough-surface.csv", env!("CARGO_MANIFEST_DIR"));
     let pi = std::f64::consts::PI;
     // (P1, Q1, φ, f): ordinary phases, in phase, constant normal load, near separation
@@ -463,10 +462,7 @@ fn table_w_converges_with_an_estimate_that_bounds_a_dense_rule_between_knots() {
             let dense = dissipation(
                 &cycle,
                 &compliance,
-                &Options {
-                    fixed_points: Some(4096),
-                    ..Options::default()
-                },
+                &Options::default().with_fixed_rule(4096, RuleError::QuarterRule),
             )
             .expect("W at 4096 points");
             let difference = (result.total - dense.total).abs();

@@ -49,21 +49,14 @@ pub fn in_phase<R: Real>(
     }
     let q = q1.clone() / f;
     let (q_ref, p1_ref) = (&q, p1);
-    let (minus_p1, minus_q) = (-p1.clone(), -q.clone());
-    let terms: [Term<'_, R>; 3] = [
-        ("W1", Box::new(|x: &R| x.clone()), &minus_p1, p1),
-        (
-            "W2",
-            Box::new(move |x: &R| x.clone() * &x.int(2) + p1_ref + q_ref),
-            &minus_p1,
-            &minus_q,
-        ),
-        (
-            "W4",
-            Box::new(move |x: &R| x.clone() * &x.int(2) - p1_ref + q_ref),
-            p1,
-            &minus_q,
-        ),
+    let terms = [
+        Piece::new("W1", -p1.clone(), p1.clone(), |x: &R| x.clone()),
+        Piece::new("W2", -p1.clone(), -q.clone(), move |x: &R| {
+            x.clone() * &x.int(2) + p1_ref + q_ref
+        }),
+        Piece::new("W4", p1.clone(), -q.clone(), move |x: &R| {
+            x.clone() * &x.int(2) - p1_ref + q_ref
+        }),
     ];
     let ([j1, j2, j4], integrated) = integrate_terms(cycle, compliance, options, terms)?;
     let w1 = f.clone() * q1 / p1 * &j1;
@@ -96,13 +89,9 @@ pub fn constant_normal_load<R: Real>(
     let zero = f.int(0);
     let q = cycle.tangential_amplitude.clone() / f;
     let q_ref = &q;
-    let minus_q = -q.clone();
-    let term: Term<'_, R> = (
-        "Masing loop",
-        Box::new(move |x: &R| -(x.clone() * &x.int(2)) - q_ref),
-        &minus_q,
-        &zero,
-    );
+    let term = Piece::new("Masing loop", -q.clone(), zero.clone(), move |x: &R| {
+        -(x.clone() * &x.int(2)) - q_ref
+    });
     let ([loop_integral], integrated) = integrate_terms(cycle, compliance, options, [term])?;
     let factor = f.clone() * f * &zero.int(2);
     let half = loop_integral * &factor;
@@ -117,17 +106,14 @@ pub fn constant_normal_load<R: Real>(
     assemble(cycle, parts, Method::ConstantNormalLoad, options)
 }
 
-/// A closed form's term: its name, the weight w(x) it integrates v'(P0 + x) against (in
-/// the offset x = P − P0), and the limits.
-type Term<'a, R> = (&'static str, Box<dyn Fn(&R) -> R + 'a>, &'a R, &'a R);
-
 /// ∫ w(x) v'(P0 + x) dx for each term, each split at the compliance's knots, integrated
-/// together; the values per term, in the order given.
+/// together; the values per term, in the order given. A term is the piece of its weight
+/// w(x), in the offset x = P − P0.
 fn integrate_terms<'a, R: Real, const N: usize>(
     cycle: &ValidCycle<R>,
     compliance: &'a dyn Compliance<R>,
     options: &Options<R>,
-    terms: [Term<'a, R>; N],
+    terms: [Piece<'a, R>; N],
 ) -> Result<([R; N], Integrated<R>), DissipationError> {
     let zero = cycle.mean_normal_load.int(0);
     let slope = Rc::new(slope_at(
@@ -139,10 +125,10 @@ fn integrate_terms<'a, R: Real, const N: usize>(
     // Each term's pieces, and which term each piece belongs to.
     let mut pieces = Vec::new();
     let mut term_of_piece = Vec::new();
-    for (term, (label, weight, start, end)) in terms.into_iter().enumerate() {
-        let slope = Rc::clone(&slope);
+    for (term, weighted) in terms.into_iter().enumerate() {
+        let (slope, weight) = (Rc::clone(&slope), weighted.integrand);
         let integrand: Weighted<'a, R> = Rc::new(move |x: &R| weight(x) * &slope(x));
-        for piece in split_at_knots(label, integrand, start, end, &knots) {
+        for piece in split_at_knots(weighted.label, integrand, &weighted.start, &weighted.end, &knots) {
             pieces.push(piece);
             term_of_piece.push(term);
         }

@@ -43,36 +43,10 @@ pub(crate) fn four_segment_integrals<R: Real>(
         remove_constant_slope: options.remove_constant_slope,
     };
     let zero = geometry.phase.int(0);
-    let (pieces, curvature) = if options.remove_linear_slope {
-        // W[v'] = W[v' − v'(P0) − v''(P0)·x] + v''(P0)·W[x]: the remainder and the
-        // linear part as two sets of pieces, the second weighted by v''(P0) below.
-        let curvature = compliance.curvature(&geometry.mean_normal_load);
-        let reduced = integrands.prepared_slope();
-        let linear = curvature.clone();
-        let mut pieces = integrands.pieces_with_slope(Box::new(move |x: &R| reduced(x) - &(linear.clone() * x)));
-        let remainder_count = pieces.pieces.len();
-        pieces.extend(integrands.pieces_with_slope(Box::new(|x: &R| x.clone())));
-        (pieces, Some((curvature, remainder_count)))
-    } else {
-        (integrands.pieces(), None)
-    };
+    let pieces = integrands.pieces();
     let integrated = integrate(&pieces.pieces, &options.settings(&zero))?;
-    let segments = match &curvature {
-        None => pieces.sum_by_segment(integrated.values(), &zero),
-        Some((curvature, remainder_count)) => {
-            let weighted: Vec<R> = (integrated.values().enumerate())
-                .map(|(i, value)| {
-                    if i < *remainder_count {
-                        value.clone()
-                    } else {
-                        value.clone() * curvature
-                    }
-                })
-                .collect();
-            pieces.sum_by_segment(weighted.iter(), &zero)
-        }
-    };
+    let segments = pieces.sum_by_segment(integrated.values(), &zero);
     let mut parts = Parts::from_integrals(segments, integrated.error.clone(), &integrated);
-    parts.piece_points = integrated.rules();
+    parts.piece_points = integrated.check_rules();
     assemble(cycle, parts, Method::FourSegment, options)
 }

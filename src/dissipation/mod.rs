@@ -45,7 +45,7 @@ pub use assemble::{Dissipation, Method};
 pub use closed_forms::{constant_normal_load, in_phase, HertzConfiguration, MindlinDeresiewicz};
 pub use error::DissipationError;
 pub use four_segment::four_segment;
-pub use options::Options;
+pub use options::{Options, Rules};
 pub use segment::{Segment, Segments};
 pub use segments::{SegmentIntegrands, SegmentPieces};
 

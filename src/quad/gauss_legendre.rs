@@ -5,16 +5,20 @@
 //! segment integrand of the dissipation is when written in the cycle angle θ.
 //! Nodes and weights are computed at the working precision (Newton's method on
 //! the three-term Legendre recurrence, started from an asymptotic guess polished
-//! in f64) and cached per (number type, n, precision): the first call at a new
-//! precision pays for the table, later calls reuse it.
+//! in f64) and cached per (number type, n) at the highest precision asked for; a lower
+//! precision is served by rounding (see [`super::cache`]).
 
 use std::sync::Arc;
+use std::time::Instant;
+
+use rayon::prelude::*;
 
 mod fixed;
 mod stored;
 
-use fixed::Fixed;
+use fixed::FixedPoint;
 
+use super::cache::{self, Table};
 use crate::real::{Precision, Real};
 
 /// The nodes x_k in (−1, 1) and weights w_k of an n-point rule, ∫₋₁¹ g ≈ Σ w_k g(x_k).
@@ -26,16 +30,62 @@ pub struct NodeTable<R> {
     pub weights: Vec<R>,
 }
 
+impl<R: Real> Table for NodeTable<R> {
+    fn precision(&self) -> Precision {
+        self.nodes.first().map_or(Precision::DOUBLE, Real::precision)
+    }
+
+    fn rounded(&self, precision: Precision) -> Self {
+        let round = |values: &[R]| values.iter().map(|x| R::from_f64(0.0, precision) + x).collect();
+        NodeTable {
+            nodes: round(&self.nodes),
+            weights: round(&self.weights),
+        }
+    }
+
+    fn bytes(&self) -> usize {
+        let per_value = std::mem::size_of::<R>() + self.precision().in_bits().div_ceil(8) as usize;
+        2 * self.nodes.len() * per_value
+    }
+}
+
 /// The n-point node table at `precision`, computed once and then served from the cache.
 pub fn node_table<R: Real>(points: usize, precision: Precision) -> Arc<NodeTable<R>> {
-    super::cache::cached(points, precision, || {
-        stored::stored_table::<R>(points, precision).unwrap_or_else(|| compute_node_table::<R>(points, precision))
-    })
+    match node_table_before(points, precision, None) {
+        Some(table) => table,
+        // Without a deadline the computation always completes.
+        None => Arc::new(compute_node_table(points, precision)),
+    }
+}
+
+/// The n-point node table at `precision`, or `None` when computing it would run past
+/// `deadline` (the computation then stops, and nothing is cached).
+pub fn node_table_before<R: Real>(
+    points: usize,
+    precision: Precision,
+    deadline: Option<Instant>,
+) -> Option<Arc<NodeTable<R>>> {
+    // Where the rule is stored, the cache holds it at the highest precision storage serves,
+    // so that every lower precision is rounded from the same values, whatever came first.
+    let stored = stored::serves(points, precision);
+    let held = if stored {
+        Precision::bits(stored::SERVED_BITS)
+    } else {
+        precision
+    };
+    let table = cache::cached(points, held, || match stored::stored_table::<R>(points, held) {
+        Some(table) => Some(table),
+        None => compute_node_table_before(points, held, deadline),
+    })?;
+    if table.precision() == precision {
+        return Some(table);
+    }
+    cache::cached(points, precision, || Some(table.rounded(precision)))
 }
 
 /// Forget every cached table, Gauss–Legendre and tanh–sinh (for measuring the cold cost).
 pub fn clear_node_cache() {
-    super::cache::clear();
+    cache::clear();
 }
 
 /// P_n(x) and P_{n−1}(x) by the three-term recurrence, written as
@@ -87,11 +137,9 @@ fn newton_schedule(precision: u32, guard: u32) -> Vec<u32> {
     schedule
 }
 
-/// Tables of at least this many points above f64 precision are computed on several threads.
+/// Tables of at least this many points above f64 precision are computed in parallel, on
+/// the caller's rayon pool.
 const PARALLEL_POINTS: usize = 96;
-
-/// The most threads a table is computed on.
-const MAX_THREADS: usize = 4;
 
 /// Computes the table from scratch (no cache).
 ///
@@ -102,7 +150,20 @@ const MAX_THREADS: usize = 4;
 /// P_n' at the corrected node follows from P_n' and the Legendre equation at the
 /// evaluated point by Taylor's theorem, to second order in the (half-precision) step.
 pub fn compute_node_table<R: Real>(points: usize, precision: Precision) -> NodeTable<R> {
-    assert!(points >= 1, "a Gauss–Legendre rule needs at least one point");
+    match compute_node_table_before(points, precision, None) {
+        Some(table) => table,
+        None => unreachable!("a computation without a deadline completes"),
+    }
+}
+
+/// [`compute_node_table`], giving up with `None` once `deadline` has passed (checked
+/// before each node, each costing O(n) operations at the working precision).
+fn compute_node_table_before<R: Real>(
+    points: usize,
+    precision: Precision,
+    deadline: Option<Instant>,
+) -> Option<NodeTable<R>> {
+    let points = points.max(1);
     let half = points / 2;
     let double_ratios = recurrence_ratios::<f64>(points, Precision::DOUBLE);
     let log_points = usize::BITS - points.leading_zeros();
@@ -110,32 +171,34 @@ pub fn compute_node_table<R: Real>(points: usize, precision: Precision) -> NodeT
     // Guard bits: the linear growth of the recurrence's rounding, and the cancellation
     // in P_n' = n (x P_n − P_{n−1})/(x² − 1) at nodes within ~1/n² of ±1.
     let guarded = |bits: u32| bits + 2 * log_points + 16;
-    let limbs = |bits: u32| guarded(bits).div_ceil(64) as usize;
+    let scales: Vec<FixedPoint> = schedule
+        .iter()
+        .map(|&bits| FixedPoint { bits: guarded(bits) })
+        .collect();
     let low_ratios = if precision > Precision::DOUBLE {
         Vec::new()
     } else {
         recurrence_ratios::<R>(points, precision)
     };
-    let fixed_ratios: Vec<Fixed> = if precision > Precision::DOUBLE {
-        let length = limbs(precision.in_bits());
-        (0..points as u64).map(|j| Fixed::ratio(j, j + 1, length)).collect()
-    } else {
-        Vec::new()
+    let step_ratios: Vec<Vec<rug::Integer>> = match scales.last() {
+        Some(&finest) if precision > Precision::DOUBLE => {
+            let ratios = finest.ratios(points);
+            scales
+                .iter()
+                .map(|scale| ratios.iter().map(|ratio| scale.rescaled(ratio, finest)).collect())
+                .collect()
+        }
+        _ => Vec::new(),
     };
-    let step_ratios: Vec<Vec<Fixed>> = schedule
-        .iter()
-        .map(|&bits| fixed_ratios.iter().map(|ratio| ratio.resized(limbs(bits))).collect())
-        .collect();
-    // P_n(x) and P_{n−1}(x) with the guard bits of a step at `bits`, at x's precision or more.
+    // P_n(x) and P_{n−1}(x) with the guard bits of a step, at x's precision or more.
     let evaluate = |x: &R, step: usize| -> (R, R) {
         if precision <= Precision::DOUBLE {
             return legendre_pair(&low_ratios, x);
         }
-        let bits = schedule[step];
-        let (value, below) = fixed::legendre_quarters(&step_ratios[step], &Fixed::from_real(x, limbs(bits)));
-        let working = Precision::bits(guarded(bits).max(x.precision().in_bits()));
-        let four = R::from_i64(4, working);
-        (value.to_real::<R>(working) * &four, below.to_real::<R>(working) * &four)
+        let scale = scales[step];
+        let (value, below) = scale.legendre_pair(&step_ratios[step], &scale.scaled(x));
+        let working = Precision::bits(scale.bits.max(x.precision().in_bits()));
+        (scale.to_real(&value, working), scale.to_real(&below, working))
     };
     let n = points as f64;
     // The k-th node from the right, with its weight.
@@ -185,35 +248,16 @@ pub fn compute_node_table<R: Real>(points: usize, precision: Precision) -> NodeT
         let weight = x.int(2) / ((x.int(1) - x.square()) * corrected_derivative.square());
         (R::from_f64(0.0, precision) + x, R::from_f64(0.0, precision) + &weight)
     };
-    // Large tables at high precision are shared among the cores, in contiguous runs of roots.
+    // Large tables at high precision are shared among the cores of the caller's pool.
     let roots = points.div_ceil(2);
-    let threads = if precision > Precision::DOUBLE && points >= PARALLEL_POINTS {
-        std::thread::available_parallelism()
-            .map_or(1, |n| n.get())
-            .min(MAX_THREADS)
-    } else {
-        1
+    let in_time = |k: usize| {
+        let late = deadline.is_some_and(|deadline| Instant::now() >= deadline);
+        (!late).then(|| node_and_weight(k))
     };
-    let pairs: Vec<(R, R)> = if threads <= 1 {
-        (1..=roots).map(node_and_weight).collect()
+    let pairs: Vec<(R, R)> = if precision > Precision::DOUBLE && points >= PARALLEL_POINTS {
+        (1..=roots).into_par_iter().map(in_time).collect::<Option<_>>()?
     } else {
-        let run = roots.div_ceil(threads);
-        std::thread::scope(|scope| {
-            let handles: Vec<_> = (0..threads)
-                .map(|t| {
-                    let node_and_weight = &node_and_weight;
-                    scope.spawn(move || {
-                        (1 + t * run..=((t + 1) * run).min(roots))
-                            .map(node_and_weight)
-                            .collect::<Vec<_>>()
-                    })
-                })
-                .collect();
-            handles
-                .into_iter()
-                .flat_map(|handle| handle.join().unwrap_or_else(|panic| std::panic::resume_unwind(panic)))
-                .collect()
-        })
+        (1..=roots).map(in_time).collect::<Option<_>>()?
     };
     let (positive_nodes, positive_weights): (Vec<R>, Vec<R>) = pairs.into_iter().unzip();
     // positive_nodes run from the largest node down; mirror them into increasing order.
@@ -227,7 +271,7 @@ pub fn compute_node_table<R: Real>(points: usize, precision: Precision) -> NodeT
         nodes.push(x.clone());
         weights.push(w.clone());
     }
-    NodeTable { nodes, weights }
+    Some(NodeTable { nodes, weights })
 }
 
 impl<R: Real> NodeTable<R> {
@@ -308,11 +352,69 @@ mod tests {
     }
 
     #[test]
-    fn cached_table_is_reused() {
+    fn cached_table_is_reused_and_replaced_by_a_higher_precision() {
         let first = node_table::<Float>(24, Precision::bits(200));
         let second = node_table::<Float>(24, Precision::bits(200));
         assert!(Arc::ptr_eq(&first, &second));
-        let other = node_table::<Float>(24, Precision::bits(201));
-        assert!(!Arc::ptr_eq(&first, &other));
+        let higher = node_table::<Float>(24, Precision::bits(201));
+        assert!(!Arc::ptr_eq(&first, &higher));
+        assert_eq!(higher.nodes[0].prec(), 201);
+    }
+
+    /// A table served by rounding a higher-precision one is within one unit in the last
+    /// place of the exact values (a computation 64 bits above the higher one, rounded),
+    /// and within the direct computation's own few hundred units (those of
+    /// `stored_tables_equal_computed_ones`) of a direct computation at the lower precision.
+    #[test]
+    fn rounded_down_tables_are_within_one_ulp_of_the_exact_values() {
+        for (points, high, low) in [(37usize, 900u32, 300u32), (130, 1200, 700), (33, 160, 100)] {
+            let held = node_table::<Float>(points, Precision::bits(high));
+            let served = node_table::<Float>(points, Precision::bits(low));
+            assert_eq!(held.nodes[0].prec(), high, "the entry keeps the highest precision");
+            let exact = compute_node_table::<Float>(points, Precision::bits(high + 64)).rounded(Precision::bits(low));
+            let direct = compute_node_table::<Float>(points, Precision::bits(low));
+            let pairs = served.nodes.iter().zip(&exact.nodes).zip(&direct.nodes);
+            let weights = served.weights.iter().zip(&exact.weights).zip(&direct.weights);
+            for (what, ((a, b), c)) in pairs.map(|x| ("node", x)).chain(weights.map(|x| ("weight", x))) {
+                assert_eq!(a.prec(), low);
+                let ulp =
+                    |units: i32| Float::with_val(low, Float::i_exp(1, b.get_exp().unwrap_or(0) - low as i32 + units));
+                let off = |x: &Float| Float::with_val(low, a - x).abs();
+                assert!(
+                    off(b) <= ulp(0),
+                    "{points} points, {low} bits from {high}: {what} {a} against {b}"
+                );
+                assert!(
+                    off(c) <= ulp(8),
+                    "{points} points, {low} bits: {what} {a} against direct {c}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn a_node_table_past_its_deadline_stops_and_is_not_cached() {
+        let precision = Precision::bits(3000);
+        let past = Some(Instant::now());
+        assert!(node_table_before::<Float>(1500, precision, past).is_none());
+        assert!(compute_node_table_before::<Float>(150, precision, past).is_none());
+        // Nothing was cached: a later request without a deadline computes it.
+        let table = node_table_before::<Float>(23, Precision::bits(3001), None).unwrap();
+        assert_eq!(table.points(), 23);
+    }
+
+    /// Large tables are computed on the caller's rayon pool; requests from many of its
+    /// jobs at once finish (no thread waits for itself) and agree.
+    #[test]
+    fn tables_requested_from_many_rayon_jobs_agree() {
+        let precision = Precision::bits(700);
+        let tables: Vec<Arc<NodeTable<Float>>> = (0..16)
+            .into_par_iter()
+            .map(|_| node_table::<Float>(161, precision))
+            .collect();
+        for table in &tables {
+            assert_eq!(table.nodes, tables[0].nodes);
+            assert_eq!(table.weights, tables[0].weights);
+        }
     }
 }

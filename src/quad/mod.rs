@@ -2,7 +2,8 @@
 //!
 //! [`engine`] is the one way to integrate a list of pieces to a tolerance: Gauss–Legendre
 //! rules of doubling degree ([`gauss_legendre`]), with tanh–sinh ([`tanh_sinh`]) where
-//! they stall; both rules' nodes and weights are computed once per precision and cached.
+//! they stall; both rules' nodes and weights are computed once and cached at the highest precision
+//! asked for, lower precisions being rounded from them.
 //! `sinh_map` is the change of variable that lets the rules resolve a narrow peak.
 
 mod cache;
@@ -11,7 +12,7 @@ pub mod gauss_legendre;
 pub mod sinh_map;
 pub mod tanh_sinh;
 
-pub use engine::{integrate, FixedRule, Integrated, Piece, PieceEstimate, QuadError, Settings};
+pub use engine::{integrate, FixedRule, Integrated, Piece, PieceEstimate, QuadError, Rule, RuleError, Settings, Stop};
 
 /// An integral's value with an estimate of its absolute error.
 #[derive(Clone, Debug)]

@@ -8,7 +8,9 @@
 //! no digits are lost there.
 
 use std::sync::Arc;
+use std::time::Instant;
 
+use super::cache::{self, Table};
 use super::Estimate;
 use crate::real::{Precision, Real};
 
@@ -21,19 +23,53 @@ pub struct Level<R> {
     pub has_middle: bool,
     /// (1 − tanh s, w(u)) with s = π/2 · sinh u, for u increasing.
     pub nodes: Vec<(R, R)>,
+    /// The level.
+    level: u32,
 }
 
 /// Levels up to this one are cached; the rarely reached finer ones (each twice the
 /// nodes of the one before) are computed per call rather than held.
 const MAX_CACHED_LEVEL: u32 = 12;
 
-/// The nodes of `level` at `precision`, computed once per (number type, level, precision)
-/// for the levels up to `MAX_CACHED_LEVEL`.
-pub fn nodes<R: Real>(level: u32, precision: Precision) -> Arc<Level<R>> {
-    if level > MAX_CACHED_LEVEL {
-        return Arc::new(compute_level(level, precision));
+impl<R: Real> Table for Level<R> {
+    fn precision(&self) -> Precision {
+        self.nodes
+            .first()
+            .map_or(Precision::DOUBLE, |(complement, _)| complement.precision())
     }
-    super::cache::cached(level as usize, precision, || compute_level(level, precision))
+
+    /// The nodes up to the lower precision's u_max, each rounded once.
+    fn rounded(&self, precision: Precision) -> Self {
+        let round = |x: &R| R::from_f64(0.0, precision) + x;
+        let (start, spacing) = level_grid(self.level);
+        let u_max = u_max(precision);
+        Level {
+            has_middle: self.has_middle,
+            nodes: self
+                .nodes
+                .iter()
+                .enumerate()
+                .take_while(|(index, _)| start + spacing * *index as f64 <= u_max)
+                .map(|(_, (complement, weight))| (round(complement), round(weight)))
+                .collect(),
+            level: self.level,
+        }
+    }
+
+    fn bytes(&self) -> usize {
+        let per_value = std::mem::size_of::<R>() + self.precision().in_bits().div_ceil(8) as usize;
+        2 * self.nodes.len() * per_value
+    }
+}
+
+/// The nodes of `level` at `precision`, computed once per (number type, level) for the
+/// levels up to [`MAX_CACHED_LEVEL`] and served by rounding at lower precisions.
+pub fn nodes<R: Real>(level: u32, precision: Precision) -> Arc<Level<R>> {
+    let compute = || Some(compute_level(level, precision));
+    let cached = (level <= MAX_CACHED_LEVEL)
+        .then(|| cache::cached(level as usize, precision, compute))
+        .flatten();
+    cached.unwrap_or_else(|| Arc::new(compute_level(level, precision)))
 }
 
 /// The largest u at `precision`: where the weight falls below 2^(−2·bits), the tails
@@ -43,13 +79,18 @@ fn u_max(precision: Precision) -> f64 {
     (2.0 * s_max / std::f64::consts::PI).asinh()
 }
 
-fn compute_level<R: Real>(level: u32, precision: Precision) -> Level<R> {
-    let (start, spacing) = if level == 0 {
+/// The first u of a level's nodes and their spacing.
+fn level_grid(level: u32) -> (f64, f64) {
+    if level == 0 {
         (0.0, 1.0)
     } else {
         let spacing = 0.5f64.powi(level as i32);
         (spacing, 2.0 * spacing)
-    };
+    }
+}
+
+fn compute_level<R: Real>(level: u32, precision: Precision) -> Level<R> {
+    let (start, spacing) = level_grid(level);
     let half_pi = R::pi(precision) / R::from_i64(2, precision);
     let u_max = u_max(precision);
     let mut nodes = Vec::new();
@@ -73,6 +114,7 @@ fn compute_level<R: Real>(level: u32, precision: Precision) -> Level<R> {
     Level {
         has_middle: level == 0,
         nodes,
+        level,
     }
 }
 
@@ -135,18 +177,46 @@ impl<R: Real> Transform<R> {
 /// converges gains digits with every level by then, and one that stops gaining has
 /// reached the rounding noise of the integrand, which further levels, each twice as
 /// costly, cannot get below. A reversed interval (b < a) gives −∫_b^a f.
-pub fn integrate<R: Real, F: FnMut(&R) -> R>(
+pub fn integrate<R: Real, F: FnMut(&R) -> R>(integrand: F, a: &R, b: &R, tolerance: &R, max_level: u32) -> Estimate<R> {
+    levels(integrand, a, b, tolerance, max_level, None).estimate
+}
+
+/// [`integrate`], stopping before a level whose predicted cost (twice the last level's
+/// time: each level doubles the nodes) would end past `deadline`; `None` then.
+pub fn integrate_before<R: Real, F: FnMut(&R) -> R>(
+    integrand: F,
+    a: &R,
+    b: &R,
+    tolerance: &R,
+    max_level: u32,
+    deadline: Instant,
+) -> Option<Estimate<R>> {
+    let outcome = levels(integrand, a, b, tolerance, max_level, Some(deadline));
+    (!outcome.out_of_time).then_some(outcome.estimate)
+}
+
+/// The levels' estimate, and whether they stopped for the deadline.
+struct Outcome<R> {
+    estimate: Estimate<R>,
+    out_of_time: bool,
+}
+
+fn levels<R: Real, F: FnMut(&R) -> R>(
     mut integrand: F,
     a: &R,
     b: &R,
     tolerance: &R,
     max_level: u32,
-) -> Estimate<R> {
+    deadline: Option<Instant>,
+) -> Outcome<R> {
     if b < a {
         // The node placement below assumes a < b (nodes inside (a, b)).
-        let reversed = integrate(integrand, b, a, tolerance, max_level);
-        return Estimate {
-            value: -reversed.value,
+        let reversed = levels(integrand, b, a, tolerance, max_level, deadline);
+        return Outcome {
+            estimate: Estimate {
+                value: -reversed.estimate.value,
+                ..reversed.estimate
+            },
             ..reversed
         };
     }
@@ -154,11 +224,26 @@ pub fn integrate<R: Real, F: FnMut(&R) -> R>(
     let precision = a.precision();
     let mut evaluations = 0;
     let mut spacing = 1.0f64;
+    let mut started = Instant::now();
     let mut sum = transform.sum(&mut integrand, &nodes(0, precision), &mut evaluations);
     let mut previous = sum.clone() * &transform.half_width;
     let mut level = 0;
     let (mut smallest, mut stalled): (Option<R>, u32) = (None, 0);
     loop {
+        let now = Instant::now();
+        if deadline.is_some_and(|deadline| now + (now - started) * 2 > deadline) {
+            let error = previous.abs();
+            return Outcome {
+                estimate: Estimate {
+                    value: previous,
+                    error,
+                    evaluations,
+                    converged: false,
+                },
+                out_of_time: true,
+            };
+        }
+        started = now;
         level += 1;
         // The new level's nodes are the odd multiples of the new spacing.
         spacing /= 2.0;
@@ -174,13 +259,52 @@ pub fn integrate<R: Real, F: FnMut(&R) -> R>(
             smallest = Some(error.clone());
         }
         if converged || level >= max_level || stalled >= 2 {
-            return Estimate {
-                value: current,
-                error,
-                evaluations,
-                converged,
+            return Outcome {
+                estimate: Estimate {
+                    value: current,
+                    error,
+                    evaluations,
+                    converged,
+                },
+                out_of_time: false,
             };
         }
         previous = current;
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rug::Float;
+
+    /// A level rounded from a higher precision has the nodes a direct computation at the
+    /// lower precision has (those up to its own u_max), each within one unit in the last
+    /// place of the exact value (a computation at 64 bits more, rounded) and within a few
+    /// hundred units of the direct one (which rounds at every operation).
+    #[test]
+    fn rounded_levels_match_direct_computation() {
+        for level in [0, 1, 4] {
+            let (high, low) = (Precision::bits(600), Precision::bits(200));
+            let rounded = compute_level::<Float>(level, high).rounded(low);
+            let direct = compute_level::<Float>(level, low);
+            let exact = compute_level::<Float>(level, Precision::bits(664));
+            assert_eq!(rounded.nodes.len(), direct.nodes.len(), "level {level}");
+            assert!(rounded.nodes.len() < compute_level::<Float>(level, high).nodes.len());
+            for (((a, w), (b, v)), (c, u)) in rounded.nodes.iter().zip(&exact.nodes).zip(&direct.nodes) {
+                for (x, y, z) in [(a, b, c), (w, v, u)] {
+                    let ulp =
+                        |units: i32| Float::with_val(200, Float::i_exp(1, y.get_exp().unwrap_or(0) - 200 + units));
+                    assert!(
+                        Float::with_val(200, x - y).abs() <= ulp(0),
+                        "level {level}: {x} against {y}"
+                    );
+                    assert!(
+                        Float::with_val(200, x - z).abs() <= ulp(8),
+                        "level {level}: {x} against direct {z}"
+                    );
+                }
+            }
+        }
     }
 }

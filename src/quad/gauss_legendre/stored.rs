@@ -61,10 +61,16 @@ fn stored_half(points: usize) -> Option<&'static Half> {
         .as_ref()
 }
 
+/// Whether the `points`-point rule at `precision` is served from storage: stored, and the
+/// precision above f64 and at most [`SERVED_BITS`].
+pub(super) fn serves(points: usize, precision: Precision) -> bool {
+    precision > Precision::DOUBLE && precision.in_bits() <= SERVED_BITS && STORED_POINTS.contains(&points)
+}
+
 /// The stored `points`-point rule rounded to `precision`, when it is stored and the
 /// precision is above f64 and at most [`SERVED_BITS`].
 pub(super) fn stored_table<R: Real>(points: usize, precision: Precision) -> Option<NodeTable<R>> {
-    if precision <= Precision::DOUBLE || precision.in_bits() > SERVED_BITS {
+    if !serves(points, precision) {
         return None;
     }
     let half = stored_half(points)?;
