@@ -63,7 +63,7 @@ impl<R: Real> Table for Level<R> {
 }
 
 /// The nodes of `level` at `precision`, computed once per (number type, level) for the
-/// levels up to [`MAX_CACHED_LEVEL`] and served by rounding at lower precisions.
+/// levels up to `MAX_CACHED_LEVEL` and served by rounding at lower precisions.
 pub fn nodes<R: Real>(level: u32, precision: Precision) -> Arc<Level<R>> {
     let compute = || Some(compute_level(level, precision));
     let cached = (level <= MAX_CACHED_LEVEL)
