@@ -104,14 +104,17 @@ fn table_w_converges_to_the_analytic_w_at_a_measured_order() {
                 errors.push(error);
             }
             assert!(
-                errors[2] < 1e-5,
+                errors[2] < 1e-7,
                 "{} {column}: 80 rows give {:.1e}",
                 family.name,
                 errors[2]
             );
-            let order = (errors[1] / errors[3]).log2() / 2.0;
-            eprintln!("{:<12} {column:<9} order from 40 to 160 rows: {order:.2}", family.name);
-            assert!(order > 2.5, "{} {column}: order {order:.2}", family.name);
+            // A power law (v' = 1/P, Hertz) is a line in log–log: exact at any row count.
+            if errors[1] > 1e-12 {
+                let order = (errors[1] / errors[3]).log2() / 2.0;
+                eprintln!("{:<12} {column:<9} order from 40 to 160 rows: {order:.2}", family.name);
+                assert!(order > 3.5, "{} {column}: order {order:.2}", family.name);
+            }
         }
     }
 }
@@ -487,17 +490,25 @@ fn table_w_converges_with_an_estimate_that_bounds_a_dense_rule_between_knots() {
     }
 }
 
-/// A table of a quadratic v' is reproduced exactly by the cubic interpolant (its node
-/// derivatives are exact for quadratics), so its W is the analytic W of the polynomial,
-/// across every knot crossing.
+/// A table that reaches load 0 is interpolated in the load itself (log–log needs loads
+/// > 0), where a quadratic v' is reproduced exactly (its node derivatives are exact for
+/// quadratics), so its W is the analytic W of the polynomial, across every knot crossing.
 #[test]
 fn a_table_of_a_quadratic_slope_gives_the_analytic_w() {
     use microslip::compliance::{cached_table, Polynomial, TableCompliance, TableInterpolant};
     use microslip::dissipation::{dissipation, Options};
     let dir = scratch("quadratic");
-    let path = write_table(&dir, "quadratic", "slope", 30, |p| 3.0 - p - 0.5 * p * p);
+    let rows: String = (0..30)
+        .map(|i| {
+            let load = 1.5 * f64::from(i) / 29.0;
+            format!("{load:e},{:e}\n", 3.0 - load - 0.5 * load * load)
+        })
+        .collect();
+    let path = persson_table(&dir, "quadratic.csv", &format!("load,slope\n{rows}"));
+    let data = cached_table(&path, 0.0).expect("table");
+    assert_eq!(data.coordinates, microslip::compliance::Coordinates::Linear);
     let table = TableCompliance {
-        table: cached_table(&path, 0.0).expect("table"),
+        table: data,
         interpolant: TableInterpolant::Cubic,
     };
     let polynomial = Polynomial {

@@ -38,8 +38,9 @@ impl<T: Serialize> Serialize for Segments<T> {
 /// `microslip dissipation --json`.
 #[derive(Serialize)]
 pub struct DissipationReport<'a> {
+    /// W as printed; null where no digit of it is known (a table too coarse for it).
     #[serde(rename = "W")]
-    pub w: String,
+    pub w: Option<String>,
     #[serde(rename = "W_f64")]
     pub w_f64: Option<f64>,
     pub digits: u32,
