@@ -76,7 +76,7 @@ pub enum CaseError {
     #[error("verified digits are not computed for a table compliance: the table is measured data, known only to its error estimate, and the interpolant between its loads is one choice of many, so digits beyond the table error would not be digits of W (the f64 run reports W with that error)")]
     DigitsForTable,
     /// f64 cannot compute this cycle, and a table is not computed at other precisions.
-    #[error("{source}; a table compliance is computed in f64 only, so this cycle cannot be computed from a table")]
+    #[error("{source} — but a table compliance is computed in f64 only, so this cycle cannot be computed from a table (where its loads are extreme, rescale the cycle and the table's loads together: W scales with the load scale)")]
     TableInF64 { source: DissipationError },
 }
 
@@ -107,7 +107,8 @@ pub fn case_dissipation(case: &CaseText, digits: Option<u32>, budget: Duration) 
     let in_f64 = |error: DissipationError| match error {
         DissipationError::IllConditioned { .. }
         | DissipationError::NotConverged { .. }
-        | DissipationError::OutOfRange { .. } => CaseError::TableInF64 { source: error },
+        | DissipationError::OutOfRange { .. }
+        | DissipationError::OutsideRange { .. } => CaseError::TableInF64 { source: error },
         other => other.into(),
     };
     let options = Options {

@@ -231,7 +231,7 @@ mod tests {
         let loads: Vec<f64> = (0..6).map(|i| 0.1 * 3f64.powi(i)).collect();
         let slopes: Vec<f64> = loads.iter().map(|p| 2.0 * p.powf(-0.4)).collect();
         let piecewise = Piecewise::new(Coordinates::LogLog, loads.clone(), &slopes);
-        for load in [0.1, 0.13, 0.77, 5.0, 24.3] {
+        for load in [0.1f64, 0.13, 0.77, 5.0, 24.3] {
             let exact_slope = 2.0 * load.powf(-0.4);
             let exact_curvature = -0.8 * load.powf(-1.4);
             let exact_integral = 2.0 / 0.6 * (load.powf(0.6) - 0.1f64.powf(0.6));

@@ -217,13 +217,25 @@ impl ComplianceTable {
                 }))
                 .collect(),
         };
-        let coordinates = Coordinates::for_loads(&raw.loads);
-        let mut table = Self::build(path, raw.column, coordinates, &raw.loads, &values);
-        for parity in [0, 1] {
-            let rows: Vec<usize> = (0..n).filter(|&i| i % 2 == parity || i == 0 || i == n - 1).collect();
-            let pick = |data: &[f64]| rows.iter().map(|&i| data[i]).collect::<Vec<f64>>();
-            let half = Self::build(path, raw.column, coordinates, &pick(&raw.loads), &pick(&values));
-            table.halves.push(half);
+        let with_halves = |coordinates: Coordinates| {
+            let mut table = Self::build(path, raw.column, coordinates, &raw.loads, &values);
+            for parity in [0, 1] {
+                let rows: Vec<usize> = (0..n).filter(|&i| i % 2 == parity || i == 0 || i == n - 1).collect();
+                let pick = |data: &[f64]| rows.iter().map(|&i| data[i]).collect::<Vec<f64>>();
+                let half = Self::build(path, raw.column, coordinates, &pick(&raw.loads), &pick(&values));
+                table.halves.push(half);
+            }
+            table
+        };
+        // Log–log where the loads allow it, unless the data are better predicted in the
+        // load itself (linear or quadratic v', say): the coordinates whose half tables
+        // predict the rows they leave out more closely.
+        let mut table = with_halves(Coordinates::for_loads(&raw.loads));
+        if table.coordinates == Coordinates::LogLog {
+            let linear = with_halves(Coordinates::Linear);
+            if linear.half_table_discrepancy() < table.half_table_discrepancy() {
+                table = linear;
+            }
         }
         table.smoothing_residual = if residual > ROUNDING_TOLERANCE { residual } else { 0.0 };
         Ok(table)
@@ -240,6 +252,13 @@ impl ComplianceTable {
         for i in 1..slopes.len() {
             slopes[i] = slopes[i].min(slopes[i - 1]);
         }
+        // Slopes that differ by rounding only are a constant v' (a linear approach), whose
+        // W is exactly 0: rounding noise would otherwise be all there is to integrate.
+        let (largest, smallest) = (slopes[0], slopes[slopes.len() - 1]);
+        if largest - smallest <= ROUNDING_TOLERANCE * largest {
+            let mean = slopes.iter().sum::<f64>() / slopes.len() as f64;
+            slopes.iter_mut().for_each(|s| *s = mean);
+        }
         ComplianceTable {
             path: path.to_string(),
             column,
@@ -251,6 +270,18 @@ impl ComplianceTable {
             first_approach,
             smoothing_residual: 0.0,
         }
+    }
+
+    /// The largest relative difference between a half table's v' and the table's own at
+    /// the rows that half leaves out.
+    fn half_table_discrepancy(&self) -> f64 {
+        let mut largest: f64 = 0.0;
+        for half in &self.halves {
+            for (load, slope) in self.loads.iter().zip(&self.slopes) {
+                largest = largest.max((half.interpolant.slope(load) - slope).abs() / slope);
+            }
+        }
+        largest
     }
 
     /// [first load, last load].
