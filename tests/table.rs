@@ -585,6 +585,15 @@ fn sampled_table(
     persson_table(dir, name, &format!("{header}\n{text}"))
 }
 
+/// The flags of a cycle: P0, P1, Q1, φ, f, λ.
+fn cycle_flags(values: [&'static str; 6]) -> Vec<&'static str> {
+    ["--p0", "--p1", "--q1", "--phi", "--friction", "--lambda"]
+        .into_iter()
+        .zip(values)
+        .flat_map(|(flag, value)| [flag, value])
+        .collect()
+}
+
 /// W from `microslip dissipation … --json` on a cycle given as flags.
 fn json_w(flags: &[&str]) -> Result<serde_json::Value, String> {
     let mut args = vec!["dissipation", "--json"];
@@ -609,20 +618,7 @@ fn a_cycle_below_a_wide_table_is_refused_not_extrapolated() {
     // Loads 1e-2 … 1e12: a slack proportional to the largest load let P_T = 2.8e-3 through.
     let dir = scratch("wide");
     let path = sampled_table(&dir, "wide.csv", "load,slope", (1e-2, 1e12, 60), |p| p.powf(-0.5));
-    let flags = [
-        "--p0",
-        "5e-3",
-        "--p1",
-        "2e-3",
-        "--q1",
-        "1e-3",
-        "--phi",
-        "0.4pi",
-        "--friction",
-        "1",
-        "--lambda",
-        "1",
-    ];
+    let flags = cycle_flags(["5e-3", "2e-3", "1e-3", "0.4pi", "1", "1"]);
     let mut args = vec!["dissipation"];
     args.extend_from_slice(&flags);
     let compliance = format!("table:{path}");
@@ -631,20 +627,7 @@ fn a_cycle_below_a_wide_table_is_refused_not_extrapolated() {
     assert_eq!(code, 2, "{stdout}{stderr}");
     assert!(stdout.is_empty() && stderr.contains("never extrapolated"), "{stderr}");
     // The same table and a cycle inside it: W of the power law.
-    let inside = [
-        "--p0",
-        "5e-1",
-        "--p1",
-        "2e-1",
-        "--q1",
-        "1e-1",
-        "--phi",
-        "0.4pi",
-        "--friction",
-        "1",
-        "--lambda",
-        "1",
-    ];
+    let inside = cycle_flags(["5e-1", "2e-1", "1e-1", "0.4pi", "1", "1"]);
     let mut args = inside.to_vec();
     args.extend(["--compliance", &compliance]);
     let json = json_w(&args).expect("W inside the table");
@@ -656,20 +639,7 @@ fn a_cycle_below_a_wide_table_is_refused_not_extrapolated() {
 #[test]
 fn exact_tables_of_linear_data_are_accepted() {
     let dir = scratch("exact");
-    let flags = [
-        "--p0",
-        "1",
-        "--p1",
-        "0.4",
-        "--q1",
-        "0.3",
-        "--phi",
-        "1",
-        "--friction",
-        "1",
-        "--lambda",
-        "1",
-    ];
+    let flags = cycle_flags(["1", "0.4", "0.3", "1", "1", "1"]);
     // v = 3P (v' = 3, v'' = 0): rounding of the secants is not a violation of v'' ≤ 0.
     let loads: Vec<f64> = (0..12).map(|i| 0.1 + 1.9 * f64::from(i) / 11.0).collect();
     let approach: String = loads.iter().map(|p| format!("{p:e},{:e}\n", 3.0 * p)).collect();
@@ -714,20 +684,7 @@ fn a_table_too_coarse_for_any_digit_prints_none() {
         (-p / 0.5).exp() + 0.2
     });
     let compliance = format!("table:{path}");
-    let args = [
-        "--p0",
-        "0.5",
-        "--p1",
-        "0.2",
-        "--q1",
-        "0.3",
-        "--phi",
-        "2.5",
-        "--friction",
-        "1",
-        "--lambda",
-        "1.2",
-    ];
+    let args = cycle_flags(["0.5", "0.2", "0.3", "2.5", "1", "1.2"]);
     let mut with = args.to_vec();
     with.extend(["--compliance", &compliance]);
     let json = json_w(&with).expect("W");
@@ -752,20 +709,7 @@ fn a_table_too_coarse_for_any_digit_prints_none() {
 #[test]
 fn column_names_may_carry_units_in_any_case() {
     let dir = scratch("units");
-    let flags = [
-        "--p0",
-        "1",
-        "--p1",
-        "0.4",
-        "--q1",
-        "0.5",
-        "--phi",
-        "0.4pi",
-        "--friction",
-        "1",
-        "--lambda",
-        "1",
-    ];
+    let flags = cycle_flags(["1", "0.4", "0.5", "0.4pi", "1", "1"]);
     let exact = analytic_w(&flags, "hertz:r=1,estar=1");
     let approach = |p: f64| (9.0 * p * p / 16.0).cbrt();
     let slope = |p: f64| (2.0 / 3.0) * (9.0f64 / 16.0).cbrt() * p.powf(-1.0 / 3.0);
@@ -797,21 +741,8 @@ fn column_names_may_carry_units_in_any_case() {
 fn a_cycle_too_close_to_zero_load_for_f64_does_not_suggest_digits() {
     let dir = scratch("tiny");
     let path = sampled_table(&dir, "tiny.csv", "load,slope", (1e-201, 1e-199, 20), |p| p.powf(-0.5));
-    let args = [
-        "dissipation",
-        "--p0",
-        "1e-200",
-        "--p1",
-        "4e-201",
-        "--q1",
-        "5e-201",
-        "--phi",
-        "0.4pi",
-        "--friction",
-        "1",
-        "--lambda",
-        "1",
-    ];
+    let mut args = vec!["dissipation"];
+    args.extend(cycle_flags(["1e-200", "4e-201", "5e-201", "0.4pi", "1", "1"]));
     let compliance = format!("table:{path}");
     let mut with = args.to_vec();
     with.extend(["--compliance", &compliance]);

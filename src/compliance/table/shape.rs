@@ -154,7 +154,7 @@ mod tests {
         assert_eq!(m[1], 0.0);
         assert_eq!(m[2], 0.0);
         assert_eq!(m[3], 0.0);
-        assert!(m.iter().all(|&d| d <= 0.0 && d >= -3.0));
+        assert!(m.iter().all(|d| (-3.0..=0.0).contains(d)));
     }
 
     #[test]
