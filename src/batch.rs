@@ -117,7 +117,7 @@ pub fn case_dissipation(case: &CaseText, digits: Option<u32>, budget: Duration) 
     };
     let result = dissipation(&cycle, compliance.as_ref(), &options).map_err(in_f64)?;
     let segments = result.segments.named().map(|(_, value)| *value);
-    // The table error: how far W moves when the table loses every other row, either way.
+    // The table error: how far W moves when the table loses its odd rows, or its even rows.
     let divisor = half_table_divisor(tables.iter().map(|t| t.loads.len()).min().unwrap_or(0));
     let (mut table_error, mut segment_shifts) = (0.0f64, [0.0f64; 4]);
     for interpolant in [TableInterpolant::HalfTable, TableInterpolant::OtherHalfTable] {

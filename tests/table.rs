@@ -752,3 +752,55 @@ fn a_cycle_too_close_to_zero_load_for_f64_does_not_suggest_digits() {
     assert!(!stderr.contains("--digits"), "{stderr}");
     assert!(stderr.contains("table compliance is computed in f64 only"), "{stderr}");
 }
+
+/// 80 log-spaced rows over three decades (loads 0.005 … 5) give W within 1e−7 relative for
+/// power-law, Persson, Hertz and exponential tables (slope and approach), and W converges
+/// at fourth order where the interpolant is not exact (proofs/table-compliance.md).
+#[test]
+fn eighty_rows_over_three_decades_give_w_to_a_tenth_of_a_millionth() {
+    let dir = scratch("decades");
+    let args = cycle_flags(["1", "0.4", "0.3", "1.9", "0.5", "1.2"]);
+    let mut flags = args.clone();
+    flags.extend(["--q0", "0.05"]);
+    let power = Family {
+        name: "power",
+        spec: "power:c=1,beta=-0.5",
+        slope: |p| p.powf(-0.5),
+        approach: |p| 2.0 * p.sqrt(),
+    };
+    for family in FAMILIES.iter().chain([&power]) {
+        let exact = analytic_w(&flags, family.spec);
+        for (column, f) in [("slope", family.slope), ("approach", family.approach)] {
+            let mut errors = Vec::new();
+            for rows in [20, 40, 80, 160] {
+                let name = format!("{}-{column}-{rows}.csv", family.name);
+                let path = sampled_table(&dir, &name, &format!("load,{column}"), (0.005, 5.0, rows), f);
+                let compliance = format!("table:{path}");
+                let mut with = flags.clone();
+                with.extend(["--compliance", &compliance]);
+                let json = json_w(&with).unwrap_or_else(|e| panic!("{name}: {e}"));
+                let w = json["W_f64"].as_f64().expect("W");
+                let estimate = json["table_error"].as_f64().expect("table error");
+                let error = (w - exact).abs() / exact;
+                eprintln!(
+                    "{:<12} {column:<9} {rows:>4} rows: relative error {error:.2e}, estimate {:.2e}",
+                    family.name,
+                    estimate / exact
+                );
+                assert!(error <= estimate / exact + 1e-14, "{name}: error {error:e}");
+                errors.push(error);
+            }
+            assert!(
+                errors[2] <= 1e-7,
+                "{} {column}: 80 rows give {:.1e}",
+                family.name,
+                errors[2]
+            );
+            if errors[1] > 1e-12 {
+                let order = (errors[1] / errors[3]).log2() / 2.0;
+                eprintln!("{:<12} {column:<9} order from 40 to 160 rows: {order:.2}", family.name);
+                assert!(order > 3.0, "{} {column}: order {order:.2}", family.name);
+            }
+        }
+    }
+}

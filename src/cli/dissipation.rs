@@ -103,7 +103,7 @@ pub fn run(args: &DissipationArgs) -> Result<String, Failure> {
     }
     if let Some(table) = table {
         out.push_str(&format!(
-            "  error estimates: table {:.1e} (from the table and its every other row), quadrature {:.1e}{}\n",
+            "  error estimates: table {:.1e} (from the table without its odd rows, and without its even rows), quadrature {:.1e}{}\n",
             table.error,
             printed.error_estimate.unwrap_or(0.0),
             match table.smoothing_residual {

@@ -84,7 +84,8 @@ pub enum TableError {
 }
 
 /// A validated table and its interpolant, in f64 (the precision measured data carry),
-/// with the same construction from every other row for the error estimate.
+/// with the same construction from its even rows and from its odd rows for the error
+/// estimate.
 #[derive(Debug)]
 pub struct ComplianceTable {
     /// The file it came from.
