@@ -55,7 +55,12 @@ pub fn run(args: &DissipationArgs) -> Result<String, Failure> {
     })?;
     let (printed, table) = (result.printed, result.table);
     if args.answer.json {
-        let segments: Vec<String> = printed.segments.iter().map(|(_, value)| value.clone()).collect();
+        // A segment with no known digit is printed empty (a coarse table): null here.
+        let segments: Vec<Option<String>> = printed
+            .segments
+            .iter()
+            .map(|(_, value)| (!value.is_empty()).then(|| value.clone()))
+            .collect();
         let report = DissipationReport {
             w: (printed.digits > 0).then(|| printed.total.clone()),
             w_f64: printed.binary64.map(|values| values[0]),

@@ -51,7 +51,8 @@ pub struct DissipationReport<'a> {
     /// Why a run without --digits computed verified digits in MPFR instead of f64.
     pub f64_fallback: Option<String>,
     pub method: &'static str,
-    pub segments: Option<Segments<String>>,
+    /// EB, BC, CH, HE as printed; a segment with no known digit is null.
+    pub segments: Option<Segments<Option<String>>>,
     pub segments_f64: Option<Segments<f64>>,
     pub inputs: &'a CaseText,
     /// For a table compliance: the error of W due to the table (null otherwise).
