@@ -14,13 +14,11 @@ use std::sync::Arc;
 use rayon::prelude::*;
 use serde::Serialize;
 
-use crate::compliance::{
-    parse_spec_with, tables_in_spec, ComplianceTable, Difference, TableError, TableInterpolant, TABLE_ORDER,
-};
+use crate::compliance::{parse_spec_with, tables_in_spec, ComplianceTable, TableError, TableInterpolant};
 use crate::cycle::LoadCycle;
 use crate::dissipation::{dissipation, DissipationError, Method, Options};
 use crate::inputs::{Case, CaseText};
-use crate::real::{Precision, Real};
+use crate::real::Precision;
 use crate::reference::{printable_dissipation, PrintedDissipation, ReferenceError};
 use crate::verified::resolved_digits;
 
@@ -28,22 +26,27 @@ use crate::verified::resolved_digits;
 /// and reachable on the interpolant's piecewise-cubic v' in f64.
 pub const TABLE_QUADRATURE_TOLERANCE: f64 = 1e-12;
 
-/// Relative quadrature tolerance of the table-error integral (only its size matters).
-const TABLE_ERROR_TOLERANCE: f64 = 1e-3;
-
-/// W[half table] − W[table] ≈ (2^p − 1)·(error of W[table]) for a construction of order
-/// p. The divisor takes one order less than the construction has (2^(p−1) − 1 = 3 for
-/// p = 3): where the data are not yet asymptotic (a cycle on a few rows, say) the ratio
-/// falls below 2^p − 1, and a short estimate would print a wrong digit.
-fn half_table_divisor() -> f64 {
-    f64::from((1u32 << (TABLE_ORDER - 1)) - 1)
+/// What |W[half table] − W[table]| is divided by to estimate the error of W[table], for
+/// a table of `rows` rows. For a construction of order p = [`TABLE_ORDER`] the quotient
+/// tends to 2^p − 1 = 15, but before the data are asymptotic it is smaller: over the
+/// scan of proofs/table-compliance.md it fell to 6 at 16 to 24 rows, to 1 at 9 rows,
+/// and below 1 for tables of up to 5 rows (halves of three rows, one parabola of node
+/// values, can be as close to the full table as its own error). The divisor keeps a
+/// factor of about two below the least quotient measured at each size.
+fn half_table_divisor(rows: usize) -> f64 {
+    match rows {
+        0..=5 => 0.25,
+        6..=12 => 0.5,
+        _ => 3.0,
+    }
 }
 
 /// What a table compliance adds to a result.
 #[derive(Clone, Debug, PartialEq)]
 pub struct TableEstimate {
-    /// Estimated absolute error of W due to the table: |W\[half table\] − W\[table\]| (plus
-    /// the quadrature error of that difference) over 2^(p−1) − 1, p = [`TABLE_ORDER`].
+    /// Estimated absolute error of W due to the table: the larger |W\[half table\] − W\[table\]|
+    /// of the two half tables (plus the quadrature errors of the difference), scaled by
+    /// the order of the construction.
     pub error: f64,
     /// The largest relative change the smoothing fit made to the data (0 when none).
     pub smoothing_residual: f64,
@@ -73,7 +76,7 @@ pub enum CaseError {
     #[error("verified digits are not computed for a table compliance: the table is measured data, known only to its error estimate, and the interpolant between its loads is one choice of many, so digits beyond the table error would not be digits of W (the f64 run reports W with that error)")]
     DigitsForTable,
     /// f64 cannot compute this cycle, and a table is not computed at other precisions.
-    #[error("{source}; a table compliance is computed in f64 only, so this cycle cannot be computed from a table")]
+    #[error("{source} — but a table compliance is computed in f64 only, so this cycle cannot be computed from a table (where its loads are extreme, rescale the cycle and the table's loads together: W scales with the load scale)")]
     TableInF64 { source: DissipationError },
 }
 
@@ -84,8 +87,9 @@ impl From<DissipationError> for CaseError {
 }
 
 /// W for one case: [`printable_dissipation`], or for a compliance with a table term, W
-/// in f64 from the table's cubic interpolant, rounded to the digits that its quadrature
-/// error plus the table's error leave.
+/// in f64 from the table's interpolant, rounded to the digits that its quadrature
+/// error plus the table's error leave. Where they leave none, W (and a segment likewise)
+/// is the empty text and its digits 0: no digit of it is known.
 pub fn case_dissipation(case: &CaseText, digits: Option<u32>, budget: Duration) -> Result<CaseDissipation, CaseError> {
     let tables = tables_in_spec(&case.compliance)?;
     if tables.is_empty() {
@@ -101,9 +105,10 @@ pub fn case_dissipation(case: &CaseText, digits: Option<u32>, budget: Duration) 
     cycle.validate().map_err(DissipationError::from)?;
     tables_cover(&tables, &cycle)?;
     let in_f64 = |error: DissipationError| match error {
-        DissipationError::IllConditioned { .. } | DissipationError::NotConverged { .. } => {
-            CaseError::TableInF64 { source: error }
-        }
+        DissipationError::IllConditioned { .. }
+        | DissipationError::NotConverged { .. }
+        | DissipationError::OutOfRange { .. }
+        | DissipationError::OutsideRange { .. } => CaseError::TableInF64 { source: error },
         other => other.into(),
     };
     let options = Options {
@@ -111,26 +116,38 @@ pub fn case_dissipation(case: &CaseText, digits: Option<u32>, budget: Duration) 
         ..Options::default()
     };
     let result = dissipation(&cycle, compliance.as_ref(), &options).map_err(in_f64)?;
-    let half = parse_spec_with::<f64>(&case.compliance, Precision::DOUBLE, TableInterpolant::HalfTable)
-        .map_err(|e| ReferenceError::Input(e.into()))?;
-    let difference = Difference {
-        minuend: half,
-        subtrahend: compliance,
-    };
-    let error_options = Options {
-        relative_tolerance: Some(TABLE_ERROR_TOLERANCE),
-        check_compliance: false,
-        ..Options::default()
-    };
-    let change = dissipation(&cycle, &difference, &error_options).map_err(in_f64)?;
-    let table_error = (change.total.abs() + change.error_estimate) / half_table_divisor();
-    // At least one digit: a table is f64 only, and its W is printed whatever it resolves.
-    let digits = resolved_digits(result.total, result.error_estimate + table_error).max(1);
-    let shifts = change.segments.named().map(|(_, shift)| shift.abs());
-    let segment_errors =
-        shifts.map(|shift| result.error_estimate + (change.error_estimate + shift) / half_table_divisor());
+    let segments = result.segments.named().map(|(_, value)| *value);
+    // The table error: how far W moves when the table loses its odd rows, or its even rows.
+    let divisor = half_table_divisor(tables.iter().map(|t| t.loads.len()).min().unwrap_or(0));
+    let (mut table_error, mut segment_shifts) = (0.0f64, [0.0f64; 4]);
+    for interpolant in [TableInterpolant::HalfTable, TableInterpolant::OtherHalfTable] {
+        let half = parse_spec_with::<f64>(&case.compliance, Precision::DOUBLE, interpolant)
+            .map_err(|e| ReferenceError::Input(e.into()))?;
+        let moved = dissipation(&cycle, half.as_ref(), &options).map_err(in_f64)?;
+        let uncertainty = moved.error_estimate + result.error_estimate;
+        table_error = table_error.max(((moved.total - result.total).abs() + uncertainty) / divisor);
+        for ((shift, value), half_value) in segment_shifts.iter_mut().zip(segments).zip(moved.segments.named()) {
+            *shift = shift.max(((half_value.1 - value).abs() + uncertainty) / divisor);
+        }
+    }
+    let digits = resolved_digits(result.total, result.error_estimate + table_error);
+    let segment_errors = segment_shifts.map(|shift| result.error_estimate + shift);
+    let mut printed = PrintedDissipation::from_f64(&result, digits.max(1), segment_errors);
+    if digits == 0 {
+        printed.total = String::new();
+        printed.digits = 0;
+    }
+    for ((_, text), (value, error)) in printed
+        .segments
+        .iter_mut()
+        .zip(segments.into_iter().zip(segment_errors))
+    {
+        if resolved_digits(value, error) == 0 {
+            text.clear();
+        }
+    }
     Ok(CaseDissipation {
-        printed: PrintedDissipation::from_f64(&result, digits, segment_errors),
+        printed,
         table: Some(TableEstimate {
             error: table_error,
             smoothing_residual: tables.iter().map(|t| t.smoothing_residual).fold(0.0, f64::max),

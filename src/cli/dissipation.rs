@@ -55,9 +55,14 @@ pub fn run(args: &DissipationArgs) -> Result<String, Failure> {
     })?;
     let (printed, table) = (result.printed, result.table);
     if args.answer.json {
-        let segments: Vec<String> = printed.segments.iter().map(|(_, value)| value.clone()).collect();
+        // A segment with no known digit is printed empty (a coarse table): null here.
+        let segments: Vec<Option<String>> = printed
+            .segments
+            .iter()
+            .map(|(_, value)| (!value.is_empty()).then(|| value.clone()))
+            .collect();
         let report = DissipationReport {
-            w: printed.total.clone(),
+            w: (printed.digits > 0).then(|| printed.total.clone()),
             w_f64: printed.binary64.map(|values| values[0]),
             digits: printed.digits,
             digits_verified: printed.error_estimate.is_none().then_some(printed.digits),
@@ -73,7 +78,15 @@ pub fn run(args: &DissipationArgs) -> Result<String, Failure> {
         };
         return Ok(serde_json::to_string(&report)?);
     }
-    let mut out = format!(
+    let mut out = match &table {
+        Some(table) if printed.digits == 0 => format!(
+            "W: no digit determined ({}; its error, table {:.1e} + quadrature {:.1e}, is as large as W itself: |W| ≤ {:.1e}; a denser table resolves it)\n",
+            method_name(printed.method),
+            table.error,
+            printed.error_estimate.unwrap_or(0.0),
+            table.unrounded.abs() + table.error + printed.error_estimate.unwrap_or(0.0),
+        ),
+        _ => format!(
         "W = {}   ({}; {} significant digits{})\n",
         printed.total,
         method_name(printed.method),
@@ -87,13 +100,15 @@ pub fn run(args: &DissipationArgs) -> Result<String, Failure> {
             (None, Some(_)) => ", f64".to_string(),
             (None, None) => ", verified".to_string(),
         }
-    );
+    ),
+    };
     for (name, value) in &printed.segments {
+        let value = if value.is_empty() { "no digit determined" } else { value };
         out.push_str(&format!("  {name}  {value}\n"));
     }
     if let Some(table) = table {
         out.push_str(&format!(
-            "  error estimates: table {:.1e} (from the table and its every other row), quadrature {:.1e}{}\n",
+            "  error estimates: table {:.1e} (from the table without its odd rows, and without its even rows), quadrature {:.1e}{}\n",
             table.error,
             printed.error_estimate.unwrap_or(0.0),
             match table.smoothing_residual {

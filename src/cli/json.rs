@@ -38,8 +38,9 @@ impl<T: Serialize> Serialize for Segments<T> {
 /// `microslip dissipation --json`.
 #[derive(Serialize)]
 pub struct DissipationReport<'a> {
+    /// W as printed; null where no digit of it is known (a table too coarse for it).
     #[serde(rename = "W")]
-    pub w: String,
+    pub w: Option<String>,
     #[serde(rename = "W_f64")]
     pub w_f64: Option<f64>,
     pub digits: u32,
@@ -50,7 +51,8 @@ pub struct DissipationReport<'a> {
     /// Why a run without --digits computed verified digits in MPFR instead of f64.
     pub f64_fallback: Option<String>,
     pub method: &'static str,
-    pub segments: Option<Segments<String>>,
+    /// EB, BC, CH, HE as printed; a segment with no known digit is null.
+    pub segments: Option<Segments<Option<String>>>,
     pub segments_f64: Option<Segments<f64>>,
     pub inputs: &'a CaseText,
     /// For a table compliance: the error of W due to the table (null otherwise).

@@ -16,7 +16,7 @@ pub use combinators::{LoadScaled, Scaled, Shifted, Sum};
 pub use families::{Exponential, Hertz, Persson, Polynomial, PowerLaw, Rational};
 pub use spec::{parse_spec, parse_spec_with, tables_in_spec, SpecError};
 pub use table::{
-    cached_table, ComplianceTable, Difference, TableColumn, TableCompliance, TableError, TableInterpolant, TABLE_ORDER,
+    cached_table, ComplianceTable, Coordinates, TableColumn, TableCompliance, TableError, TableInterpolant, TABLE_ORDER,
 };
 
 use std::fmt::Debug;

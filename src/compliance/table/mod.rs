@@ -1,0 +1,449 @@
+//! A compliance from measured data: a CSV table of load against approach v(P), or
+//! of load against slope v'(P), as a rig or a boundary-element contact solver writes it.
+//!
+//! The dissipation needs v' (and the small-amplitude law v''), with v' > 0 and
+//! v'' ≤ 0. The table gives v' at its loads (from the slope column, or by
+//! differentiating the approach column); between them v' is a monotone cubic Hermite
+//! interpolant of ln v' in ln P (of v' in P where a load is ≤ 0), which is positive and
+//! non-increasing wherever its node values are, has a continuous v'', and is exact for
+//! power laws. The same construction from the even rows and from the odd rows gives an
+//! estimate of the error the table introduces (proofs/table-compliance.md).
+//! Loads outside the table are never extrapolated: v' is not finite there.
+
+mod interpolant;
+mod read;
+mod shape;
+
+use std::collections::HashMap;
+use std::path::{Path, PathBuf};
+use std::sync::{Arc, Mutex, OnceLock};
+use std::time::SystemTime;
+
+use super::Compliance;
+use crate::real::Real;
+pub use interpolant::Coordinates;
+use interpolant::Piecewise;
+use read::read_raw;
+use shape::{approach_node_slopes, non_increasing_fit};
+
+/// The fewest rows a table may have: a cubic needs four.
+pub const MIN_ROWS: usize = 4;
+
+/// Relative size of a shape violation that counts as rounding in the data, not as a
+/// violation: the default smoothing tolerance (raised, for the secants of an approach,
+/// to the rounding of the difference of two values).
+pub const ROUNDING_TOLERANCE: f64 = 1e-12;
+
+/// Which column of the table carries the compliance.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum TableColumn {
+    /// v(P), the approach.
+    Approach,
+    /// v'(P), the slope.
+    Slope,
+}
+
+/// Which interpolant of the table a compliance evaluates.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Default)]
+pub enum TableInterpolant {
+    /// The monotone cubic through all rows (the one W is computed with).
+    #[default]
+    Cubic,
+    /// The same construction from the even rows (first and last kept), for the error
+    /// estimate: its W differs from the full table's by about (2^p − 1) times the full
+    /// table's error, p the order of the construction.
+    HalfTable,
+    /// The same from the odd rows (first and last kept): a second such estimate, which
+    /// does not share the first one's accidental cancellations.
+    OtherHalfTable,
+}
+
+/// The order in the load spacing that the table's construction has (cubic Hermite
+/// pieces with fourth-order node derivatives), used to scale the half-table
+/// differences into an error estimate.
+pub const TABLE_ORDER: i32 = 4;
+
+/// A table that cannot be used, with the line of the file at fault where there is one.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum TableError {
+    /// The file cannot be read or is not CSV.
+    #[error("table '{path}': {problem}")]
+    File { path: String, problem: String },
+    /// One row (line of the file) is wrong.
+    #[error("table '{path}' line {line}: {problem}")]
+    Row { path: String, line: u64, problem: String },
+    /// The cycle reaches loads the table does not cover.
+    #[error("table '{path}' covers loads [{first:e}, {last:e}], but the cycle reaches [{low:e}, {high:e}] (from the permanent-stick load P_T or P0 − P1 up to P0 + P1); a table compliance is never extrapolated: extend the table")]
+    OutOfRange {
+        path: String,
+        first: f64,
+        last: f64,
+        low: f64,
+        high: f64,
+    },
+}
+
+/// A validated table and its interpolant, in f64 (the precision measured data carry),
+/// with the same construction from its even rows and from its odd rows for the error
+/// estimate.
+#[derive(Debug)]
+pub struct ComplianceTable {
+    /// The file it came from.
+    pub path: String,
+    /// Which column gave the compliance.
+    pub column: TableColumn,
+    /// The loads, strictly increasing.
+    pub loads: Vec<f64>,
+    /// v' at the loads (after smoothing), the interpolant's node values.
+    pub slopes: Vec<f64>,
+    /// The coordinates of the cubic pieces (log–log unless a load is ≤ 0).
+    pub coordinates: Coordinates,
+    /// The cubic v'.
+    interpolant: Piecewise,
+    /// The construction from the even rows and from the odd rows, first and last row
+    /// kept in both (empty for those tables themselves).
+    halves: Vec<ComplianceTable>,
+    /// v at the first load.
+    first_approach: f64,
+    /// The largest relative change smoothing made to the data (0 when none was needed).
+    pub smoothing_residual: f64,
+}
+
+impl ComplianceTable {
+    /// Reads and validates the table at `path`; violations of v'' ≤ 0 up to `smoothing`
+    /// (relative) are removed by a least-squares non-increasing fit of the slopes.
+    pub fn read(path: &str, smoothing: f64) -> Result<Self, TableError> {
+        let raw = read_raw(path)?;
+        let row = |index: usize, problem: String| TableError::Row {
+            path: path.to_string(),
+            line: raw.lines[index],
+            problem,
+        };
+        let n = raw.loads.len();
+        if n < MIN_ROWS {
+            return Err(TableError::File {
+                path: path.to_string(),
+                problem: format!(
+                    "has {n} data rows; at least {MIN_ROWS} are needed (a cubic interpolant, and a second one for its error)"
+                ),
+            });
+        }
+        for i in 1..n {
+            if raw.loads[i] <= raw.loads[i - 1] {
+                let word = if raw.loads[i] == raw.loads[i - 1] {
+                    "repeats"
+                } else {
+                    "is below"
+                };
+                return Err(row(
+                    i,
+                    format!(
+                        "load {} {word} the previous row's {}; loads must increase strictly",
+                        raw.loads[i],
+                        raw.loads[i - 1]
+                    ),
+                ));
+            }
+        }
+        let h: Vec<f64> = raw.loads.windows(2).map(|w| w[1] - w[0]).collect();
+        // The slopes the shape is checked on: v' itself, or the secants of v; and the
+        // relative size of their rounding errors.
+        let (checked, weights, rounding, name) = match raw.column {
+            TableColumn::Slope => {
+                if let Some(i) = raw.values.iter().position(|&s| s <= 0.0) {
+                    return Err(row(
+                        i,
+                        format!("slope {} is not positive; a contact needs v' > 0", raw.values[i]),
+                    ));
+                }
+                (raw.values.clone(), vec![1.0; n], vec![0.0; n], "slope")
+            }
+            TableColumn::Approach => {
+                for i in 1..n {
+                    if raw.values[i] <= raw.values[i - 1] {
+                        return Err(row(
+                            i,
+                            format!(
+                                "approach {} does not increase over the previous row's {}; a contact needs v' > 0",
+                                raw.values[i],
+                                raw.values[i - 1]
+                            ),
+                        ));
+                    }
+                }
+                let secants: Vec<f64> = (0..n - 1).map(|k| (raw.values[k + 1] - raw.values[k]) / h[k]).collect();
+                // A difference of two values carries their rounding relative to the difference.
+                let relative = |a: f64, b: f64| (a.abs() + b.abs()) / (b - a);
+                let rounding: Vec<f64> = (0..n - 1)
+                    .map(|k| {
+                        8.0 * f64::EPSILON
+                            * (relative(raw.values[k], raw.values[k + 1]) + relative(raw.loads[k], raw.loads[k + 1]))
+                    })
+                    .collect();
+                (secants, h.clone(), rounding, "secant slope of the approach")
+            }
+        };
+        let fitted = non_increasing_fit(&checked, &weights);
+        let tolerance = smoothing.max(ROUNDING_TOLERANCE);
+        let mut residual: f64 = 0.0;
+        for (k, (&data, &fit)) in checked.iter().zip(&fitted).enumerate() {
+            let relative = (data - fit).abs() / data.abs();
+            if relative > tolerance.max(rounding[k]) {
+                // The rise nearest the value the fit moved most: where the fit had to pool.
+                let rise = (1..checked.len())
+                    .filter(|&j| checked[j] > checked[j - 1])
+                    .min_by_key(|&j| j.abs_diff(k))
+                    .unwrap_or(k.max(1));
+                // A rise of the slopes at row j; of the secants, at the row between secants j − 1 and j.
+                return Err(row(
+                    rise,
+                    format!(
+                        "the {name} rises from {:.4e} to {:.4e}: the data are not concave (v'' ≤ 0) here; the nearest concave fit moves them by {relative:.1e} relative, beyond the smoothing tolerance {tolerance:.0e} (raise smoothing= to fit noisy data)",
+                        checked[rise - 1],
+                        checked[rise]
+                    ),
+                ));
+            }
+            if relative > rounding[k] {
+                residual = residual.max(relative);
+            }
+        }
+        let values = match raw.column {
+            TableColumn::Slope => fitted,
+            // The approach whose secants are the fitted ones, from the first row on.
+            TableColumn::Approach => std::iter::once(raw.values[0])
+                .chain((0..n - 1).scan(raw.values[0], |v, k| {
+                    *v += fitted[k] * h[k];
+                    Some(*v)
+                }))
+                .collect(),
+        };
+        let with_halves = |coordinates: Coordinates| {
+            let mut table = Self::build(path, raw.column, coordinates, &raw.loads, &values);
+            for parity in [0, 1] {
+                let rows: Vec<usize> = (0..n).filter(|&i| i % 2 == parity || i == 0 || i == n - 1).collect();
+                let pick = |data: &[f64]| rows.iter().map(|&i| data[i]).collect::<Vec<f64>>();
+                let half = Self::build(path, raw.column, coordinates, &pick(&raw.loads), &pick(&values));
+                table.halves.push(half);
+            }
+            table
+        };
+        // Log–log where the loads allow it, unless the data are better predicted in the
+        // load itself (linear or quadratic v', say): the coordinates whose half tables
+        // predict the rows they leave out more closely.
+        let mut table = with_halves(Coordinates::for_loads(&raw.loads));
+        if table.coordinates == Coordinates::LogLog {
+            let linear = with_halves(Coordinates::Linear);
+            if linear.half_table_discrepancy() < table.half_table_discrepancy() {
+                table = linear;
+            }
+        }
+        table.smoothing_residual = if residual > ROUNDING_TOLERANCE { residual } else { 0.0 };
+        Ok(table)
+    }
+
+    /// The interpolant of validated, shape-fitted data: `values` are the slopes, or the
+    /// approach, at `loads`.
+    fn build(path: &str, column: TableColumn, coordinates: Coordinates, loads: &[f64], values: &[f64]) -> Self {
+        let (mut slopes, first_approach) = match column {
+            TableColumn::Slope => (values.to_vec(), 0.0),
+            TableColumn::Approach => (approach_slopes(coordinates, loads, values), values[0]),
+        };
+        // Non-increasing to the last bit, whatever rounding did on the way.
+        for i in 1..slopes.len() {
+            slopes[i] = slopes[i].min(slopes[i - 1]);
+        }
+        // Slopes that differ by rounding only are a constant v' (a linear approach), whose
+        // W is exactly 0: rounding noise would otherwise be all there is to integrate.
+        let (largest, smallest) = (slopes[0], slopes[slopes.len() - 1]);
+        if largest - smallest <= ROUNDING_TOLERANCE * largest {
+            let mean = slopes.iter().sum::<f64>() / slopes.len() as f64;
+            slopes.iter_mut().for_each(|s| *s = mean);
+        }
+        ComplianceTable {
+            path: path.to_string(),
+            column,
+            loads: loads.to_vec(),
+            interpolant: Piecewise::new(coordinates, loads.to_vec(), &slopes),
+            slopes,
+            coordinates,
+            halves: Vec::new(),
+            first_approach,
+            smoothing_residual: 0.0,
+        }
+    }
+
+    /// The largest relative difference between a half table's v' and the table's own at
+    /// the rows that half leaves out.
+    fn half_table_discrepancy(&self) -> f64 {
+        let mut largest: f64 = 0.0;
+        for half in &self.halves {
+            for (load, slope) in self.loads.iter().zip(&self.slopes) {
+                largest = largest.max((half.interpolant.slope(load) - slope).abs() / slope);
+            }
+        }
+        largest
+    }
+
+    /// [first load, last load].
+    pub fn range(&self) -> (f64, f64) {
+        self.interpolant.range()
+    }
+
+    /// Refuses loads [low, high] that leave the table (by more than rounding of the load).
+    pub fn check_covers(&self, low: f64, high: f64) -> Result<(), TableError> {
+        let (first, last) = self.range();
+        let inside = |load: f64| load.is_finite() && self.interpolant.piece(load).is_some();
+        if !(inside(low) && inside(high)) {
+            return Err(TableError::OutOfRange {
+                path: self.path.clone(),
+                first,
+                last,
+                low,
+                high,
+            });
+        }
+        Ok(())
+    }
+}
+
+/// The node slopes v'(P_i) of (concave, fitted) approach data, differentiated where the
+/// data are smoothest: ln v against ln P where both are positive (a power law is then a
+/// line), v against ln P for other positive loads, v against P otherwise.
+fn approach_slopes(coordinates: Coordinates, loads: &[f64], approach: &[f64]) -> Vec<f64> {
+    let secants: Vec<f64> = loads
+        .windows(2)
+        .zip(approach.windows(2))
+        .map(|(p, v)| (v[1] - v[0]) / (p[1] - p[0]))
+        .collect();
+    let logs = |data: &[f64]| data.iter().map(|x| x.ln()).collect::<Vec<f64>>();
+    match coordinates {
+        Coordinates::LogLog if approach.iter().all(|&v| v > 0.0) => {
+            let to_slope = |i: usize, d: f64| d * approach[i] / loads[i];
+            approach_node_slopes(loads, approach, &secants, &logs(loads), &logs(approach), to_slope)
+        }
+        Coordinates::LogLog => {
+            approach_node_slopes(loads, approach, &secants, &logs(loads), approach, |i, d| d / loads[i])
+        }
+        Coordinates::Linear => approach_node_slopes(loads, approach, &secants, loads, approach, |_, d| d),
+    }
+}
+
+/// The text after `table:`: the file, then optionally `smoothing=TOL` (relative, ≥ 0).
+/// `file=PATH` names the file explicitly.
+pub fn parse_table_term(text: &str) -> Result<(String, f64), String> {
+    let mut path: Option<String> = None;
+    let mut smoothing = 0.0;
+    for item in text.split(',').map(str::trim).filter(|s| !s.is_empty()) {
+        match item.split_once('=').map(|(k, v)| (k.trim(), v.trim())) {
+            Some(("smoothing", value)) => {
+                smoothing = value
+                    .parse::<f64>()
+                    .ok()
+                    .filter(|s| s.is_finite() && *s >= 0.0)
+                    .ok_or_else(|| format!("table smoothing='{value}' is not a number ≥ 0"))?;
+            }
+            Some(("file", value)) if path.is_none() => path = Some(value.to_string()),
+            None if path.is_none() => path = Some(item.to_string()),
+            _ => {
+                return Err(format!(
+                    "table takes a file and optionally smoothing=TOL (table:FILE,smoothing=1e-3), not '{item}'"
+                ))
+            }
+        }
+    }
+    let path = path.ok_or_else(|| "table needs a file: table:FILE".to_string())?;
+    Ok((path, smoothing))
+}
+
+/// The table at `path` read once per process (and again when the file changes).
+pub fn cached_table(path: &str, smoothing: f64) -> Result<Arc<ComplianceTable>, TableError> {
+    type Key = (PathBuf, u64, Option<SystemTime>, u64);
+    static CACHE: OnceLock<Mutex<HashMap<Key, Arc<ComplianceTable>>>> = OnceLock::new();
+    let stamp = std::fs::metadata(Path::new(path)).ok();
+    let key: Key = (
+        PathBuf::from(path),
+        smoothing.to_bits(),
+        stamp.as_ref().and_then(|m| m.modified().ok()),
+        stamp.as_ref().map_or(0, |m| m.len()),
+    );
+    let cache = CACHE.get_or_init(|| Mutex::new(HashMap::new()));
+    if let Some(table) = cache.lock().unwrap_or_else(|e| e.into_inner()).get(&key) {
+        return Ok(Arc::clone(table));
+    }
+    let table = Arc::new(ComplianceTable::read(path, smoothing)?);
+    cache
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .insert(key, Arc::clone(&table));
+    Ok(table)
+}
+
+/// A compliance given by a table: one of its interpolants, evaluated at any precision
+/// (the node data are f64, exact at every precision).
+#[derive(Clone, Debug)]
+pub struct TableCompliance {
+    /// The data.
+    pub table: Arc<ComplianceTable>,
+    /// Which interpolant.
+    pub interpolant: TableInterpolant,
+}
+
+impl TableCompliance {
+    /// The data this interpolant runs on.
+    fn data(&self) -> &ComplianceTable {
+        let half = |index: usize| self.table.halves.get(index).unwrap_or(&self.table);
+        match self.interpolant {
+            TableInterpolant::Cubic => &self.table,
+            TableInterpolant::HalfTable => half(0),
+            TableInterpolant::OtherHalfTable => half(1),
+        }
+    }
+}
+
+impl<R: Real> Compliance<R> for TableCompliance {
+    fn approach(&self, load: &R) -> R {
+        let data = self.data();
+        data.interpolant.integral(load) + &R::from_f64(data.first_approach, load.precision())
+    }
+
+    fn slope(&self, load: &R) -> R {
+        self.data().interpolant.slope(load)
+    }
+
+    fn curvature(&self, load: &R) -> R {
+        self.data().interpolant.curvature(load)
+    }
+
+    fn breakpoints(&self, like: &R) -> Vec<R> {
+        // The interior loads: the first and last bound the table, beyond which v' is not finite.
+        let loads = &self.data().loads;
+        loads[1..loads.len() - 1]
+            .iter()
+            .map(|&load| R::from_f64(load, like.precision()))
+            .collect()
+    }
+
+    fn describe(&self) -> String {
+        let data = self.data();
+        let (first, last) = data.range();
+        format!(
+            "table '{}' ({} rows of {}, loads {first:e} to {last:e}; monotone cubic {}{})",
+            data.path,
+            data.loads.len(),
+            match data.column {
+                TableColumn::Approach => "approach",
+                TableColumn::Slope => "slope",
+            },
+            match data.coordinates {
+                Coordinates::LogLog => "ln v' in ln P",
+                Coordinates::Linear => "v' in P",
+            },
+            match self.interpolant {
+                TableInterpolant::Cubic => "",
+                TableInterpolant::HalfTable => " from the even rows",
+                TableInterpolant::OtherHalfTable => " from the odd rows",
+            }
+        )
+    }
+}

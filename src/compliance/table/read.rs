@@ -1,0 +1,145 @@
+//! Reading a table file: the CSV, its header (names matched with their units set
+//! aside) and its rows, each number checked, with the line of the file for every refusal.
+
+use super::{TableColumn, TableError};
+
+/// A table as read: which column gives the compliance, and per data row its file line,
+/// load and value.
+pub(super) struct RawTable {
+    pub column: TableColumn,
+    pub lines: Vec<u64>,
+    pub loads: Vec<f64>,
+    pub values: Vec<f64>,
+}
+
+/// The name a header cell gives its column: the text before a unit in brackets or
+/// parentheses (`Load [N]`, `approach (um)`), trimmed, in lower case.
+pub(super) fn column_name(header: &str) -> String {
+    let name = header.split(['[', '(']).next().unwrap_or(header);
+    name.trim().to_lowercase()
+}
+
+pub(super) fn read_raw(path: &str) -> Result<RawTable, TableError> {
+    let file_error = |problem: String| TableError::File {
+        path: path.to_string(),
+        problem,
+    };
+    // A device or a pipe could be endless: only files are tables.
+    if std::fs::metadata(path).is_ok_and(|m| !m.is_file()) {
+        return Err(file_error("is not a regular file".to_string()));
+    }
+    let mut reader = csv::ReaderBuilder::new()
+        .comment(Some(b'#'))
+        .trim(csv::Trim::All)
+        .flexible(true)
+        .from_path(path)
+        .map_err(|e| file_error(format!("cannot be read: {}", io_message(&e))))?;
+    let headers = reader
+        .headers()
+        .map_err(|e| file_error(format!("has no readable header: {}", io_message(&e))))?
+        .clone();
+    let found: Vec<&str> = headers.iter().collect();
+    let find = |name: &str| -> Result<Option<usize>, TableError> {
+        let mut matches = headers.iter().enumerate().filter(|(_, h)| column_name(h) == name);
+        match (matches.next(), matches.next()) {
+            (Some((_, first)), Some((_, second))) => Err(file_error(format!(
+                "has two '{name}' columns ('{first}' and '{second}'); keep one, so that each value is given once"
+            ))),
+            (first, _) => Ok(first.map(|(index, _)| index)),
+        }
+    };
+    let needs = "a table needs the columns load and approach, or load and slope (units in brackets or parentheses are allowed: 'Load [N]')";
+    let load_column = find("load")?.ok_or_else(|| {
+        file_error(format!(
+            "has no 'load' column (its header is '{}'); {needs}",
+            found.join(",")
+        ))
+    })?;
+    let (column, value_column) = match (find("approach")?, find("slope")?) {
+        (Some(a), None) => (TableColumn::Approach, a),
+        (None, Some(s)) => (TableColumn::Slope, s),
+        (Some(_), Some(_)) => {
+            return Err(file_error(
+                "has both an 'approach' and a 'slope' column; keep one, so that the compliance is given once"
+                    .to_string(),
+            ))
+        }
+        (None, None) => {
+            return Err(file_error(format!(
+                "has neither an 'approach' nor a 'slope' column (its header is '{}'); {needs}",
+                found.join(",")
+            )))
+        }
+    };
+    let value_name = headers.get(value_column).unwrap_or("value").to_string();
+    let load_name = headers.get(load_column).unwrap_or("load").to_string();
+    let mut raw = RawTable {
+        column,
+        lines: Vec::new(),
+        loads: Vec::new(),
+        values: Vec::new(),
+    };
+    for record in reader.records() {
+        let record = record.map_err(|e| match e.position() {
+            Some(position) => TableError::Row {
+                path: path.to_string(),
+                line: position.line(),
+                problem: io_message(&e),
+            },
+            None => file_error(io_message(&e)),
+        })?;
+        let line = record.position().map_or(0, |p| p.line());
+        if record.iter().all(str::is_empty) {
+            continue;
+        }
+        let row_error = |problem: String| TableError::Row {
+            path: path.to_string(),
+            line,
+            problem,
+        };
+        let cell = |index: usize, name: &str| -> Result<f64, TableError> {
+            let text = record
+                .get(index)
+                .ok_or_else(|| row_error(format!("has no {name} value (fewer fields than the header)")))?;
+            let value: f64 = text
+                .parse()
+                .map_err(|_| row_error(format!("{name} '{text}' is not a number")))?;
+            if !value.is_finite() {
+                return Err(row_error(format!("{name} '{text}' is not finite")));
+            }
+            Ok(value)
+        };
+        raw.loads.push(cell(load_column, &load_name)?);
+        raw.values.push(cell(value_column, &value_name)?);
+        raw.lines.push(line);
+    }
+    Ok(raw)
+}
+
+fn io_message(error: &csv::Error) -> String {
+    match error.kind() {
+        csv::ErrorKind::Io(io) => io.to_string(),
+        csv::ErrorKind::Utf8 { .. } => "is not UTF-8 text".to_string(),
+        _ => error.to_string(),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::column_name;
+
+    #[test]
+    fn column_names_set_units_and_case_aside() {
+        for (header, name) in [
+            ("Load [N]", "load"),
+            ("load (N)", "load"),
+            ("SLOPE", "slope"),
+            ("Approach [um]", "approach"),
+            ("approach(mm)", "approach"),
+            ("  Slope  [mm/N] ", "slope"),
+            ("loads", "loads"),
+        ] {
+            assert_eq!(column_name(header), name, "{header}");
+        }
+    }
+}
