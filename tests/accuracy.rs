@@ -85,3 +85,36 @@ fn accuracy_command_writes_the_csv_and_both_plots() {
     assert!(svg.contains("Pareto front") && svg.contains("tanh-sinh"));
     std::fs::remove_dir_all(&dir).ok();
 }
+
+#[test]
+fn accuracy_writes_all_three_files_or_none() {
+    let dir = std::env::temp_dir().join(format!("microslip-accuracy-full-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    // File size limited to 64 KiB, as a full disk would stop it: the CSV and the SVG fit,
+    // the PNG does not (a write beyond the limit fails with "File too large").
+    let output = Command::new("bash")
+        .arg("-c")
+        .arg("trap '' XFSZ; ulimit -f 64; exec \"$0\" \"$@\"")
+        .arg(env!("CARGO_BIN_EXE_microslip"))
+        .args(["accuracy", "--quick", "--out"])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert_eq!(
+        output.status.code(),
+        Some(1),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    assert!(output.stdout.is_empty());
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(
+        stderr.contains("accuracy.png") && stderr.contains("no file of this run was kept"),
+        "{stderr}"
+    );
+    let left: Vec<_> = std::fs::read_dir(&dir).unwrap().collect();
+    assert!(left.is_empty(), "{left:?}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
