@@ -128,6 +128,7 @@ fn draw(
             overlay.polyline(&pixels, Stroke::solid(colour, width));
         }
     }
+    overlay.end_clip();
     for m in pareto_front(measurements) {
         overlay.circle(
             frame.pixel(point(m)),
@@ -136,7 +137,6 @@ fn draw(
             None,
         );
     }
-    overlay.end_clip();
     let (w, h) = legend_size(entries);
     let legend = Rect::at(frame.area.right + 24.0, frame.area.top, (w, h));
     draw_legend(overlay, &legend, entries);
