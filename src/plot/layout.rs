@@ -340,6 +340,12 @@ mod tests {
         obstacles.line(&frame, [(0.0, 1.0), (0.3, 0.0)]);
         obstacles.line(&frame, [(0.5, 1.0), (0.5, 0.0)]);
         obstacles.line(&frame, [(0.0, 0.1), (1.0, 0.1)]);
+        assert_eq!(
+            free_place(&frame.area, (100.0, 60.0), &obstacles).map(|r| (r.left, r.top)),
+            Some((292.0, 120.0)),
+            "the middle of the right edge"
+        );
+        obstacles.line(&frame, [(0.0, 0.5), (1.0, 0.5)]);
         assert_eq!(free_place(&frame.area, (100.0, 60.0), &obstacles), None);
     }
 }
