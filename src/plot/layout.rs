@@ -176,7 +176,7 @@ impl Obstacles {
 pub enum Swatch {
     /// A solid line of the given width.
     Line(RGBAColor, f64),
-    /// A dashed line of the given width ([`Stroke::dashed`]).
+    /// A dashed line of the given width (dashes of 6 pixels, gaps of 4, as in the chart).
     Dashed(RGBAColor, f64),
     /// An open circle of the given radius.
     Circle(RGBAColor, f64),
