@@ -1,22 +1,40 @@
 //! Pictures of a simulated cycle: the load ellipse in the (P, Q) plane with the
 //! friction wedge |Q| = fP and the points B, C, H, E, beside the Q–u hysteresis
 //! loop with its four segments coloured. SVG or PNG by the file name's extension
-//! (others are refused); files are written atomically. Text is laid out with the
-//! DejaVu Sans font built into the program (assets/, with its license), so plots do
-//! not depend on the fonts installed.
+//! (others are refused).
+//!
+//! Every chart is drawn once, as SVG; a PNG is that SVG rendered anti-aliased at
+//! [`RASTER_SCALE`] times its size. Text is laid out and rendered with the DejaVu
+//! Sans font built into the program (assets/, with its license), so pictures do not
+//! depend on the fonts installed. Legends and labels are placed from the data where
+//! they cover none of it, and each picture comes with that geometry ([`ChartLayout`]).
 
-use std::path::Path;
+pub mod accuracy;
+pub mod layout;
+pub(crate) mod overlay;
+mod raster;
+pub mod ticks;
 
+use std::ops::Range;
+use std::path::{Path, PathBuf};
+
+use plotters::coord::types::RangedCoordf64;
 use plotters::coord::Shift;
 use plotters::prelude::*;
 
+pub use self::accuracy::{accuracy_picture, plot_accuracy};
+use self::layout::{
+    beside, draw_legend, free_place, legend_size, text_size, Frame, Label, LegendEntry, Obstacles, Rect, Swatch,
+};
+use self::overlay::{Overlay, Stroke};
+pub use self::raster::RASTER_SCALE;
 use crate::cycle::LoadCycle;
 use crate::dissipation::{Segment, Segments};
 use crate::files::OutputError;
 use crate::simulate::SimulationResult;
 
-/// The font text is drawn and measured with (plotters lays out text only with a
-/// registered font); an SVG names its family, `sans-serif`.
+/// The font text is drawn, measured and rendered with; an SVG names its family,
+/// `sans-serif`.
 const FONT: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
 
 /// Why a picture could not be drawn.
@@ -28,6 +46,9 @@ pub enum PlotError {
     /// The built-in font was not accepted by the drawing library.
     #[error("the built-in plot font cannot be read")]
     Font,
+    /// The drawing or rendering library failed.
+    #[error("drawing the picture: {0}")]
+    Draw(String),
     /// The file could not be written, or has an extension other than .svg or .png.
     #[error(transparent)]
     Output(#[from] OutputError),
@@ -36,51 +57,140 @@ pub enum PlotError {
 /// The extensions a plot can be written as.
 pub const PLOT_EXTENSIONS: [&str; 2] = ["svg", "png"];
 
-/// Draws into `path` atomically, as PNG or SVG by its extension (any other refused, the
-/// font registered first): `$draw(root, args…)` with `$draw` generic over the plotters backend,
-/// so that one expansion serves both. Evaluates to `Result<(), PlotError>`.
-macro_rules! write_picture {
-    ($path:expr, $size:expr, $draw:ident($($arg:expr),*)) => {{
-        let path: &::std::path::Path = $path;
-        let png = $crate::plot::is_png(path)?;
-        $crate::plot::register_font()?;
-        let size: (u32, u32) = $size;
-        Ok($crate::files::write_atomically(path, |file: &::std::path::Path| {
-            if png {
-                $draw(::plotters::prelude::BitMapBackend::new(file, size).into_drawing_area(), $($arg),*)
-                    .map_err($crate::plot::describe)
-            } else {
-                $draw(::plotters::prelude::SVGBackend::new(file, size).into_drawing_area(), $($arg),*)
-                    .map_err($crate::plot::describe)
+/// What a picture is written as.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    Svg,
+    Png,
+}
+
+impl Format {
+    /// The format `path` names by its extension (.svg or .png, any case); others are refused.
+    pub fn of(path: &Path) -> Result<Format, PlotError> {
+        match path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()) {
+            Some(e) if e == "png" => Ok(Format::Png),
+            Some(e) if e == "svg" => Ok(Format::Svg),
+            _ => Err(OutputError::Extension {
+                path: path.display().to_string(),
+                expected: ".svg or .png".to_string(),
             }
-        })?)
-    }};
-}
-pub(crate) use write_picture;
-
-/// Whether `path` names a PNG (otherwise an SVG); any other extension is refused.
-pub(crate) fn is_png(path: &Path) -> Result<bool, PlotError> {
-    match path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()) {
-        Some(e) if e == "png" => Ok(true),
-        Some(e) if e == "svg" => Ok(false),
-        _ => Err(OutputError::Extension {
-            path: path.display().to_string(),
-            expected: ".svg or .png".to_string(),
+            .into()),
         }
-        .into()),
     }
 }
 
-/// A drawing failure as one line: the underlying I/O error where there is one.
-pub(crate) fn describe(error: Box<dyn std::error::Error>) -> String {
-    let mut cause: Option<&(dyn std::error::Error + 'static)> = Some(error.as_ref());
-    while let Some(current) = cause {
-        if let Some(io) = current.downcast_ref::<std::io::Error>() {
-            return io.to_string();
+/// The geometry of one chart as drawn, in the picture's (SVG) pixels.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ChartLayout {
+    /// The plotting area and the ranges it spans.
+    pub frame: Frame,
+    /// The legend's box.
+    pub legend: Rect,
+    /// The labels beside markers.
+    pub labels: Vec<Label>,
+}
+
+/// A picture drawn as SVG text, with the layout of its charts.
+#[derive(Clone, Debug)]
+pub struct Picture {
+    /// The SVG document.
+    pub svg: String,
+    /// Each chart's geometry, left to right.
+    pub charts: Vec<ChartLayout>,
+}
+
+impl Picture {
+    /// The file's bytes in `format`: the SVG text, or the PNG rendered from it.
+    pub fn encode(&self, format: Format) -> Result<Vec<u8>, PlotError> {
+        match format {
+            Format::Svg => Ok(self.svg.clone().into_bytes()),
+            Format::Png => raster::png(&self.svg),
         }
-        cause = current.source();
     }
-    error.to_string()
+
+    /// Writes the picture to `path` atomically, as SVG or PNG by its extension.
+    pub fn write(&self, path: &Path) -> Result<(), PlotError> {
+        let bytes = self.encode(Format::of(path)?)?;
+        Ok(write_all_or_none(&[(path.to_path_buf(), bytes)])?)
+    }
+}
+
+/// A drawing area on an SVG held in memory.
+pub(crate) type Canvas<'a> = DrawingArea<SVGBackend<'a>, Shift>;
+
+/// A chart of two linear coordinates (log10 of the values on logarithmic axes).
+pub(crate) type Chart<'a, 'b> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
+
+/// Draws an SVG of `size` pixels with `draw`, which draws the axes on the canvas and
+/// the data, legends and labels into the overlay (drawn last), and returns the layout
+/// of its charts.
+pub(crate) fn draw_svg(
+    size: (u32, u32),
+    draw: impl FnOnce(&Canvas<'_>, &mut Overlay) -> Result<Vec<ChartLayout>, Box<dyn std::error::Error>>,
+) -> Result<Picture, PlotError> {
+    register_font()?;
+    let mut svg = String::new();
+    let mut overlay = Overlay::default();
+    let charts = {
+        let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
+        let charts = draw(&root, &mut overlay).map_err(|e| PlotError::Draw(e.to_string()))?;
+        root.present().map_err(|e| PlotError::Draw(e.to_string()))?;
+        charts
+    };
+    let end = svg
+        .rfind("</svg>")
+        .ok_or_else(|| PlotError::Draw("the SVG has no end tag".to_string()))?;
+    svg.insert_str(end, &overlay.into_svg());
+    Ok(Picture { svg, charts })
+}
+
+/// Writes every file, each atomically, or none: on a failure the files this call has
+/// already written are removed and the error returned.
+pub fn write_all_or_none(files: &[(PathBuf, Vec<u8>)]) -> Result<(), OutputError> {
+    for (index, (path, bytes)) in files.iter().enumerate() {
+        let written = crate::files::write_atomically(path, |temporary| std::fs::write(temporary, bytes));
+        if let Err(error) = written {
+            for (earlier, _) in &files[..index] {
+                let _ = std::fs::remove_file(earlier);
+            }
+            return Err(error);
+        }
+    }
+    Ok(())
+}
+
+/// Registers the font once per process: text layout needs its metrics.
+pub(crate) fn register_font() -> Result<(), PlotError> {
+    static REGISTERED: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+    let registered =
+        REGISTERED.get_or_init(|| plotters::style::register_font("sans-serif", FontStyle::Normal, FONT).is_ok());
+    if *registered {
+        Ok(())
+    } else {
+        Err(PlotError::Font)
+    }
+}
+
+/// Builds a chart over `x` × `y` and places a legend of `size` in it where it covers
+/// no obstacle, raising the top of `y` by `grow` until there is such a place.
+pub(crate) fn chart_with_legend<'a, 'b>(
+    build: impl Fn(Range<f64>, Range<f64>) -> Result<Chart<'a, 'b>, Box<dyn std::error::Error>>,
+    x: Range<f64>,
+    mut y: Range<f64>,
+    grow: impl Fn(&Range<f64>) -> Range<f64>,
+    size: (f64, f64),
+    obstacles: impl Fn(&Frame) -> Obstacles,
+) -> Result<(Chart<'a, 'b>, Frame, Rect, Obstacles), Box<dyn std::error::Error>> {
+    for _ in 0..16 {
+        let chart = build(x.clone(), y.clone())?;
+        let frame = Frame::of(&chart);
+        let around = obstacles(&frame);
+        if let Some(place) = free_place(&frame.area, size, &around) {
+            return Ok((chart, frame, place, around));
+        }
+        y = grow(&y);
+    }
+    Err("no place for the legend that leaves the data visible".into())
 }
 
 const SEGMENT_COLOURS: [RGBColor; 4] = [
@@ -90,7 +200,7 @@ const SEGMENT_COLOURS: [RGBColor; 4] = [
     RGBColor(255, 127, 14),
 ];
 
-/// What is drawn, computed once for either backend.
+/// What is drawn, computed once.
 struct Scene {
     ellipse: Vec<(f64, f64)>,
     points: Vec<(&'static str, f64, f64)>,
@@ -102,6 +212,12 @@ struct Scene {
 
 /// Draws the ellipse and the loop side by side into `path` (.svg or .png).
 pub fn plot_cycle(path: &Path, cycle: &LoadCycle<f64>, result: &SimulationResult) -> Result<(), PlotError> {
+    Format::of(path)?;
+    cycle_picture(cycle, result)?.write(path)
+}
+
+/// The picture of a simulated cycle: the load ellipse, then the hysteresis loop.
+pub fn cycle_picture(cycle: &LoadCycle<f64>, result: &SimulationResult) -> Result<Picture, PlotError> {
     let geometry = cycle.geometry()?;
     // The geometry is that of φ reduced to [0, π): an odd number of π removed mirrors Q − Q0.
     let turns = (cycle.phase / std::f64::consts::PI).floor() as i64;
@@ -153,172 +269,185 @@ pub fn plot_cycle(path: &Path, cycle: &LoadCycle<f64>, result: &SimulationResult
         segments,
         dissipation: result.w_work,
     };
-    write_picture!(path, (1200, 520), draw(&scene))
+    draw_svg((1200, 520), |root, overlay| draw_cycle(root, overlay, &scene))
 }
 
-/// Registers the font once per process: text layout needs its metrics in SVG too.
-pub(crate) fn register_font() -> Result<(), PlotError> {
-    static REGISTERED: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
-    let registered =
-        REGISTERED.get_or_init(|| plotters::style::register_font("sans-serif", FontStyle::Normal, FONT).is_ok());
-    if *registered {
-        Ok(())
-    } else {
-        Err(PlotError::Font)
-    }
-}
+const MARKER_RADIUS: f64 = 4.0;
+const LABEL_FONT: u32 = 16;
 
-fn draw<DB: DrawingBackend>(root: DrawingArea<DB, Shift>, scene: &Scene) -> Result<(), Box<dyn std::error::Error>>
-where
-    DB::ErrorType: 'static,
-{
+fn draw_cycle(
+    root: &Canvas<'_>,
+    overlay: &mut Overlay,
+    scene: &Scene,
+) -> Result<Vec<ChartLayout>, Box<dyn std::error::Error>> {
     root.fill(&WHITE)?;
     let (left, right) = root.split_horizontally(root.dim_in_pixel().0 / 2);
-    let (top, extent) = (scene.top_load * 1.05, scene.tangential_extent);
-    let mut ellipse = ChartBuilder::on(&left)
-        .caption("load cycle in the (P, Q) plane", ("sans-serif", 18))
-        .margin(12)
-        .x_label_area_size(36)
-        .y_label_area_size(56)
-        .build_cartesian_2d(0.0..top, -extent..extent)?;
-    ellipse.configure_mesh().x_desc("P").y_desc("Q").draw()?;
-    ellipse
-        .draw_series(LineSeries::new([(0.0, 0.0), (top, extent)], BLACK.mix(0.5)))?
-        .label("|Q| = fP")
-        .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], BLACK.mix(0.5)));
-    ellipse.draw_series(LineSeries::new([(0.0, 0.0), (top, -extent)], BLACK.mix(0.5)))?;
-    ellipse.draw_series(LineSeries::new(scene.ellipse.iter().copied(), &BLACK))?;
-    for (name, p, q) in &scene.points {
-        ellipse.draw_series(std::iter::once(Circle::new((*p, *q), 4, RED.filled())))?;
-        ellipse.draw_series(std::iter::once(Text::new(
-            name.to_string(),
-            (*p, *q),
-            ("sans-serif", 16),
-        )))?;
+    Ok(vec![
+        draw_ellipse(&left, overlay, scene)?,
+        draw_loop(&right, overlay, scene)?,
+    ])
+}
+
+/// A linear chart on `area` (its title already drawn).
+fn linear_chart<'a, 'b>(
+    area: &'a Canvas<'b>,
+) -> impl Fn(Range<f64>, Range<f64>) -> Result<Chart<'a, 'b>, Box<dyn std::error::Error>> {
+    move |x, y| {
+        Ok(ChartBuilder::on(area)
+            .margin(12)
+            .x_label_area_size(36)
+            .y_label_area_size(64)
+            .build_cartesian_2d(x, y)?)
     }
-    ellipse
-        .configure_series_labels()
-        .border_style(BLACK)
-        .background_style(WHITE)
+}
+
+/// Draws the mesh of a linear chart with its axis names.
+fn linear_mesh(chart: &mut Chart<'_, '_>, frame: &Frame, x: &str, y: &str) -> Result<(), Box<dyn std::error::Error>> {
+    let (x_range, y_range) = (frame.x.clone(), frame.y.clone());
+    chart
+        .configure_mesh()
+        .x_desc(x)
+        .y_desc(y)
+        .x_label_formatter(&|v| ticks::linear(*v, &x_range))
+        .y_label_formatter(&|v| ticks::linear(*v, &y_range))
         .draw()?;
+    Ok(())
+}
+
+/// The load ellipse with the friction wedge and the points B, C, H, E labelled beside them.
+fn draw_ellipse(
+    area: &Canvas<'_>,
+    overlay: &mut Overlay,
+    scene: &Scene,
+) -> Result<ChartLayout, Box<dyn std::error::Error>> {
+    let area = area.titled("load cycle in the (P, Q) plane", ("sans-serif", 18))?;
+    let (top, extent) = (scene.top_load * 1.05, scene.tangential_extent);
+    let wedge = BLACK.mix(0.5);
+    let entries = [LegendEntry {
+        label: "|Q| = fP".to_string(),
+        swatch: Swatch::Line(wedge, 1.0),
+    }];
+    let wedge_lines = [[(0.0, 0.0), (top, extent)], [(0.0, 0.0), (top, -extent)]];
+    let obstacles = |frame: &Frame| {
+        let mut around = Obstacles::default();
+        for line in wedge_lines {
+            around.line(frame, line);
+        }
+        around.line(frame, scene.ellipse.iter().copied());
+        for (_, p, q) in &scene.points {
+            around.disc(frame, (*p, *q), MARKER_RADIUS);
+        }
+        around
+    };
+    let (mut chart, frame, legend, mut around) = chart_with_legend(
+        linear_chart(&area),
+        0.0..top,
+        -extent..extent,
+        |y| y.start..(y.end + 0.15 * (y.end - y.start)),
+        legend_size(&entries),
+        obstacles,
+    )?;
+    linear_mesh(&mut chart, &frame, "P", "Q")?;
+    let pixels = |points: &[(f64, f64)]| points.iter().map(|p| frame.pixel(*p)).collect::<Vec<_>>();
+    overlay.clip(&frame.area);
+    for line in wedge_lines {
+        overlay.polyline(&pixels(&line), Stroke::solid(wedge, 1.0));
+    }
+    overlay.polyline(&pixels(&scene.ellipse), Stroke::solid(BLACK.to_rgba(), 1.5));
+    overlay.end_clip();
+    for (_, p, q) in &scene.points {
+        overlay.circle(frame.pixel((*p, *q)), MARKER_RADIUS, None, Some(RED.to_rgba()));
+    }
+    let mut labels = Vec::new();
+    for (name, p, q) in &scene.points {
+        let rect = beside(
+            frame.pixel((*p, *q)),
+            MARKER_RADIUS,
+            text_size(name, LABEL_FONT),
+            &frame.area,
+            &around,
+        );
+        around.taken(rect);
+        overlay.text(name, (rect.left, 0.5 * (rect.top + rect.bottom)), LABEL_FONT);
+        labels.push(Label {
+            text: name.to_string(),
+            at: (*p, *q),
+            radius: MARKER_RADIUS,
+            rect,
+        });
+    }
+    draw_legend(overlay, &legend, &entries);
+    Ok(ChartLayout { frame, legend, labels })
+}
+
+/// Consecutive pieces (point pairs) joined into lines where one ends where the next starts.
+fn joined(pairs: &[(f64, f64)]) -> Vec<Vec<(f64, f64)>> {
+    let mut runs: Vec<Vec<(f64, f64)>> = Vec::new();
+    for pair in pairs.chunks(2) {
+        match runs.last_mut() {
+            Some(run) if run.last() == pair.first() => run.extend_from_slice(&pair[1..]),
+            _ => runs.push(pair.to_vec()),
+        }
+    }
+    runs
+}
+
+/// The hysteresis loop, its four segments coloured.
+fn draw_loop(
+    area: &Canvas<'_>,
+    overlay: &mut Overlay,
+    scene: &Scene,
+) -> Result<ChartLayout, Box<dyn std::error::Error>> {
+    let area = area.titled(
+        &format!("hysteresis loop, W = {:.6e}", scene.dissipation),
+        ("sans-serif", 18),
+    )?;
     let all = scene.segments.iter().flat_map(|(_, points)| points);
     let (u_min, u_max, q_min, q_max) = all.fold(
         (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY, f64::NEG_INFINITY),
         |(a, b, c, d), (u, q)| (a.min(*u), b.max(*u), c.min(*q), d.max(*q)),
     );
     let pad = |a: f64, b: f64| 0.05 * (b - a).abs().max(1e-300);
-    let mut hysteresis = ChartBuilder::on(&right)
-        .caption(
-            format!("hysteresis loop, W = {:.6e}", scene.dissipation),
-            ("sans-serif", 18),
-        )
-        .margin(12)
-        .x_label_area_size(36)
-        .y_label_area_size(56)
-        .build_cartesian_2d(
-            (u_min - pad(u_min, u_max))..(u_max + pad(u_min, u_max)),
-            (q_min - pad(q_min, q_max))..(q_max + pad(q_min, q_max)),
-        )?;
-    hysteresis.configure_mesh().x_desc("u").y_desc("Q").draw()?;
+    let entries: Vec<LegendEntry> = Segment::ALL
+        .into_iter()
+        .zip(SEGMENT_COLOURS)
+        .map(|(segment, colour)| LegendEntry {
+            label: segment.name().to_string(),
+            swatch: Swatch::Line(colour.to_rgba(), 2.0),
+        })
+        .collect();
+    let obstacles = |frame: &Frame| {
+        let mut around = Obstacles::default();
+        for (_, points) in scene.segments.iter() {
+            for pair in points.chunks(2) {
+                around.line(frame, pair.iter().copied());
+            }
+        }
+        around
+    };
+    let (mut chart, frame, legend, _) = chart_with_legend(
+        linear_chart(&area),
+        (u_min - pad(u_min, u_max))..(u_max + pad(u_min, u_max)),
+        (q_min - pad(q_min, q_max))..(q_max + pad(q_min, q_max)),
+        |y| y.start..(y.end + 0.15 * (y.end - y.start)),
+        legend_size(&entries),
+        obstacles,
+    )?;
+    linear_mesh(&mut chart, &frame, "u", "Q")?;
+    overlay.clip(&frame.area);
     for (segment, colour) in Segment::ALL.into_iter().zip(SEGMENT_COLOURS) {
-        hysteresis
-            .draw_series(
-                scene
-                    .segments
-                    .get(segment)
-                    .chunks(2)
-                    .map(move |c| PathElement::new(c.to_vec(), colour.stroke_width(2))),
-            )?
-            .label(segment.name())
-            .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2)));
-    }
-    hysteresis
-        .configure_series_labels()
-        .border_style(BLACK)
-        .background_style(WHITE)
-        .draw()?;
-    root.present()?;
-    Ok(())
-}
-
-/// One curve per (rule, precision): log10 relative error against log10 seconds,
-/// with the Pareto front circled, into `path` (.svg or .png).
-pub fn plot_accuracy(path: &Path, measurements: &[crate::accuracy::Measurement]) -> Result<(), PlotError> {
-    write_picture!(path, (1100, 700), draw_accuracy(measurements))
-}
-
-fn draw_accuracy<DB: DrawingBackend>(
-    root: DrawingArea<DB, Shift>,
-    measurements: &[crate::accuracy::Measurement],
-) -> Result<(), Box<dyn std::error::Error>>
-where
-    DB::ErrorType: 'static,
-{
-    root.fill(&WHITE)?;
-    let point = |m: &crate::accuracy::Measurement| (m.seconds.max(1e-9).log10(), m.rel_error.max(1e-300).log10());
-    let (x_min, x_max, y_min) = measurements.iter().map(point).fold(
-        (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY),
-        |(a, b, c), (x, y)| (a.min(x), b.max(x), c.min(y)),
-    );
-    let mut chart = ChartBuilder::on(&root)
-        .caption("accuracy against cost (all cases)", ("sans-serif", 20))
-        .margin(14)
-        .x_label_area_size(40)
-        .y_label_area_size(56)
-        .build_cartesian_2d((x_min - 0.2)..(x_max + 0.2), (y_min - 5.0)..1.0)?;
-    chart
-        .configure_mesh()
-        .x_desc("log10 seconds per W")
-        .y_desc("log10 relative error")
-        .draw()?;
-    let mut curves: Vec<(String, Vec<&crate::accuracy::Measurement>)> = Vec::new();
-    for m in measurements {
-        let key = if m.precision_bits == 53 {
-            format!("{} f64", m.rule)
-        } else {
-            format!("{} {} bits", m.rule, m.precision_bits)
-        };
-        match curves.iter_mut().find(|(k, _)| *k == key) {
-            Some((_, list)) => list.push(m),
-            None => curves.push((key, vec![m])),
+        for run in joined(scene.segments.get(segment)) {
+            let pixels: Vec<(f64, f64)> = run.iter().map(|p| frame.pixel(*p)).collect();
+            overlay.polyline(&pixels, Stroke::solid(colour.to_rgba(), 2.0));
         }
     }
-    for (index, (key, mut list)) in curves.into_iter().enumerate() {
-        list.sort_by(|a, b| a.case.cmp(&b.case).then(a.parameter.total_cmp(&b.parameter)));
-        let colour = Palette99::pick(index).to_rgba();
-        let mut by_case: Vec<Vec<(f64, f64)>> = Vec::new();
-        let mut last_case = String::new();
-        for m in list {
-            if m.case != last_case {
-                by_case.push(Vec::new());
-                last_case = m.case.clone();
-            }
-            if let Some(curve) = by_case.last_mut() {
-                curve.push(point(m));
-            }
-        }
-        for (i, curve) in by_case.into_iter().enumerate() {
-            let series = chart.draw_series(LineSeries::new(curve, colour.stroke_width(2)))?;
-            if i == 0 {
-                series
-                    .label(key.clone())
-                    .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 18, y)], colour.stroke_width(2)));
-            }
-        }
-    }
-    let front = crate::accuracy::pareto_front(measurements);
-    chart
-        .draw_series(front.iter().map(|m| Circle::new(point(m), 6, BLACK.stroke_width(2))))?
-        .label("Pareto front")
-        .legend(|(x, y)| Circle::new((x + 9, y), 5, BLACK.stroke_width(2)));
-    chart
-        .configure_series_labels()
-        .border_style(BLACK)
-        .background_style(WHITE.mix(0.9))
-        .position(SeriesLabelPosition::UpperRight)
-        .draw()?;
-    root.present()?;
-    Ok(())
+    overlay.end_clip();
+    draw_legend(overlay, &legend, &entries);
+    Ok(ChartLayout {
+        frame,
+        legend,
+        labels: Vec::new(),
+    })
 }
 
 #[cfg(test)]

@@ -6,6 +6,7 @@ use std::process::Command;
 use microslip::accuracy::{
     cheapest_for, measure_case, pareto_front, reference_value, standard_cases, to_csv, Measurement,
 };
+use microslip::plot::{accuracy_picture, Format};
 
 fn synthetic(rule: &'static str, seconds: f64, rel_error: f64) -> Measurement {
     Measurement {
@@ -84,4 +85,81 @@ fn accuracy_command_writes_the_csv_and_both_plots() {
     let svg = std::fs::read_to_string(dir.join("accuracy.svg")).unwrap();
     assert!(svg.contains("Pareto front") && svg.contains("tanh-sinh"));
     std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn accuracy_writes_all_three_files_or_none() {
+    let dir = std::env::temp_dir().join(format!("microslip-accuracy-full-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    // File size limited to 64 KiB, as a full disk would stop it: the CSV and the SVG fit,
+    // the PNG does not (a write beyond the limit fails with "File too large").
+    let output = Command::new("bash")
+        .arg("-c")
+        .arg("trap '' XFSZ; ulimit -f 64; exec \"$0\" \"$@\"")
+        .arg(env!("CARGO_BIN_EXE_microslip"))
+        .args(["accuracy", "--quick", "--out"])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert_eq!(
+        output.status.code(),
+        Some(1),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    assert!(output.stdout.is_empty());
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(
+        stderr.contains("accuracy.png") && stderr.contains("no file of this run was kept"),
+        "{stderr}"
+    );
+    let left: Vec<_> = std::fs::read_dir(&dir).unwrap().collect();
+    assert!(left.is_empty(), "{left:?}");
+    std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// The measurements of a CSV written by `to_csv`.
+fn read_measurements(text: &str) -> Vec<Measurement> {
+    let mut reader = csv::Reader::from_reader(text.as_bytes());
+    reader
+        .records()
+        .map(|record| {
+            let r = record.unwrap();
+            Measurement {
+                rule: Box::leak(r[0].to_string().into_boxed_str()),
+                precision_bits: r[1].parse().unwrap(),
+                parameter: r[2].parse().unwrap(),
+                evaluations: r[3].parse().unwrap(),
+                seconds: r[4].parse().unwrap(),
+                rel_error: r[5].parse().unwrap(),
+                case: r[6].to_string(),
+            }
+        })
+        .collect()
+}
+
+#[test]
+fn the_committed_accuracy_chart_is_the_drawing_of_the_committed_measurements() {
+    // With MICROSLIP_REDRAW=1 the pictures are redrawn from benches/accuracy.csv instead.
+    let benches = std::path::Path::new(env!("CARGO_MANIFEST_DIR")).join("benches");
+    let csv = std::fs::read_to_string(benches.join("accuracy.csv")).unwrap();
+    let measurements = read_measurements(&csv);
+    assert_eq!(to_csv(&measurements).unwrap(), csv, "the CSV reads back as written");
+    let picture = accuracy_picture(&measurements).unwrap();
+    let svg = picture.encode(Format::Svg).unwrap();
+    let png = picture.encode(Format::Png).unwrap();
+    if std::env::var_os("MICROSLIP_REDRAW").is_some() {
+        std::fs::write(benches.join("accuracy.svg"), &svg).unwrap();
+        std::fs::write(benches.join("accuracy.png"), &png).unwrap();
+    }
+    assert!(
+        std::fs::read(benches.join("accuracy.svg")).unwrap() == svg,
+        "accuracy.svg is stale"
+    );
+    assert!(
+        std::fs::read(benches.join("accuracy.png")).unwrap() == png,
+        "accuracy.png is stale"
+    );
 }

@@ -4,16 +4,23 @@
 use std::process::Command;
 use std::sync::OnceLock;
 
+use microslip::accuracy::Measurement;
 use microslip::compliance::Polynomial;
 use microslip::cycle::{CycleError, LoadCycle};
 use microslip::dissipation::{dissipation, Options};
+use microslip::figures::draw::{figure_picture, slope_guide};
 use microslip::figures::evaluate::{
     fitted_log_slope, gross_slip_amplitude, gross_slip_amplitude_at_ratio, limit_slope, local_slope, resolved, Formula,
     Point,
 };
-use microslip::figures::{compute, Figures, Progress};
+use microslip::figures::{compute, Figures, Progress, Style};
+use microslip::inputs::{Case, CaseText};
+use microslip::plot::layout::{Frame, Rect};
+use microslip::plot::{accuracy_picture, cycle_picture, Format};
 use microslip::real::{Precision, Real};
+use microslip::simulate::{simulate, SimulationOptions, SimulationResult};
 use microslip::verify::small_amplitude::coefficient;
+use resvg::tiny_skia::Pixmap;
 use rug::Float;
 
 /// The figures, computed once for all the tests of this file.
@@ -374,4 +381,367 @@ fn figures_command_refuses_an_unusable_directory_before_computing() {
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert_eq!(stderr.lines().count(), 1, "{stderr}");
     assert!(stderr.contains("cannot write to the output directory"), "{stderr}");
+}
+
+/// Whether a line through `points` (pixels) touches `rect` (sampled finely along each piece).
+fn line_touches(points: &[(f64, f64)], rect: &Rect) -> Option<(f64, f64)> {
+    let inside = |(x, y): (f64, f64)| x >= rect.left && x <= rect.right && y >= rect.top && y <= rect.bottom;
+    if let [single] = points {
+        return inside(*single).then_some(*single);
+    }
+    points.windows(2).find_map(|w| {
+        (0..=64).find_map(|k| {
+            let t = f64::from(k) / 64.0;
+            let p = (w[0].0 + t * (w[1].0 - w[0].0), w[0].1 + t * (w[1].1 - w[0].1));
+            inside(p).then_some(p)
+        })
+    })
+}
+
+/// The pixel of a point in drawn coordinates, from the chart's area and ranges.
+fn pixel(frame: &Frame, (x, y): (f64, f64)) -> (f64, f64) {
+    let a = &frame.area;
+    let fx = (x - frame.x.start) / (frame.x.end - frame.x.start);
+    let fy = (y - frame.y.start) / (frame.y.end - frame.y.start);
+    (a.left + fx * (a.right - a.left), a.bottom - fy * (a.bottom - a.top))
+}
+
+/// The legend's box is drawn in the SVG where the layout says.
+fn assert_legend_drawn(svg: &str, legend: &Rect) {
+    let (w, h) = (legend.right - legend.left, legend.bottom - legend.top);
+    let drawn = format!(
+        "<rect x=\"{}\" y=\"{}\" width=\"{w}\" height=\"{h}\"",
+        legend.left, legend.top
+    );
+    assert!(svg.contains(&drawn), "{drawn}");
+}
+
+#[test]
+fn no_figure_legend_covers_a_curve_point_line_or_marker() {
+    for figure in &figures().figures {
+        let picture = figure_picture(figure).unwrap();
+        assert_eq!(picture.charts.len(), figure.panels.len());
+        for (chart, panel) in picture.charts.iter().zip(&figure.panels) {
+            let legend = chart.legend.inflate(1.0);
+            assert_legend_drawn(&picture.svg, &chart.legend);
+            let area = &chart.frame.area;
+            assert!(
+                area.encloses(&chart.legend),
+                "Fig. {}: legend outside the chart",
+                figure.number
+            );
+            let drawn = |x: f64, w: f64| {
+                if figure.log_log {
+                    (x.log10(), w.log10())
+                } else {
+                    (x, w)
+                }
+            };
+            for curve in &panel.curves {
+                let points: Vec<(f64, f64)> = curve
+                    .samples
+                    .iter()
+                    .filter(|(x, w, _)| !figure.log_log || (*x > 0.0 && *w > 0.0))
+                    .map(|(x, w, _)| pixel(&chart.frame, drawn(*x, *w)))
+                    .collect();
+                let marker = match curve.style {
+                    Style::Points => 6.0,
+                    Style::Line => 0.0,
+                };
+                let hit = if marker > 0.0 {
+                    points.iter().find(|p| legend.inflate(marker).contains(**p)).copied()
+                } else {
+                    line_touches(&points, &legend)
+                };
+                assert!(
+                    hit.is_none(),
+                    "Fig. {} {}: the legend {:?} covers {:?} of {}",
+                    figure.number,
+                    panel.name,
+                    chart.legend,
+                    hit,
+                    curve.label
+                );
+                // The crosses at the ends (half-width 7).
+                for end in [points.first(), points.last()].into_iter().flatten() {
+                    assert!(!legend.inflate(7.0).contains(*end), "Fig. {}: a cross", figure.number);
+                }
+            }
+            if figure.log_log {
+                let (line, _) = slope_guide(panel, figure.number).unwrap();
+                let guide: Vec<(f64, f64)> = line.iter().map(|p| pixel(&chart.frame, *p)).collect();
+                assert!(
+                    line_touches(&guide, &legend).is_none(),
+                    "Fig. {}: slope guide",
+                    figure.number
+                );
+            }
+        }
+    }
+}
+
+/// Simulated cycles of several shapes: the README's, a mean tangential load, φ past π.
+fn simulated_cycles() -> Vec<(LoadCycle<f64>, SimulationResult)> {
+    let case = |p1: &str, q0: &str, q1: &str, phi: &str| CaseText {
+        p0: "1".into(),
+        p1: p1.into(),
+        q0: q0.into(),
+        q1: q1.into(),
+        phi: phi.into(),
+        friction: "1".into(),
+        lambda: Some("1".into()),
+        nu: None,
+        compliance: "persson:gamma=1,sigma=1".into(),
+    };
+    [
+        case("0.4", "0", "0.5", "0.4pi"),
+        case("0.3", "0.2", "0.3", "0.1pi"),
+        case("0.5", "-0.1", "0.4", "1.3pi"),
+        case("0.2", "0", "0.7", "0.5pi"),
+    ]
+    .iter()
+    .map(|text| {
+        let Case { cycle, compliance } = text.read::<f64>(Precision::DOUBLE).unwrap();
+        let options = SimulationOptions {
+            elements: Some(100),
+            steps: Some(400),
+            extrapolate: false,
+            ..SimulationOptions::default()
+        };
+        let result = simulate(&cycle, compliance.as_ref(), &options).unwrap();
+        (cycle, result)
+    })
+    .collect()
+}
+
+#[test]
+fn simulate_plot_legends_cover_no_data_and_labels_sit_beside_their_markers() {
+    for (cycle, result) in simulated_cycles() {
+        let picture = cycle_picture(&cycle, &result).unwrap();
+        let [ellipse, hysteresis] = picture.charts.as_slice() else {
+            panic!("two charts")
+        };
+        for chart in [ellipse, hysteresis] {
+            assert_legend_drawn(&picture.svg, &chart.legend);
+            assert!(chart.frame.area.encloses(&chart.legend));
+        }
+        let loads: Vec<(f64, f64)> = result
+            .steady_loop
+            .iter()
+            .map(|s| pixel(&ellipse.frame, (s.normal_load, s.tangential_load)))
+            .collect();
+        assert_eq!(line_touches(&loads, &ellipse.legend.inflate(1.0)), None, "{cycle:?}");
+        // The friction wedge |Q| = fP.
+        let top = ellipse.frame.x.end;
+        for sign in [1.0, -1.0] {
+            let wedge = [(0.0, 0.0), (top, sign * cycle.friction * top)].map(|p| pixel(&ellipse.frame, p));
+            assert_eq!(line_touches(&wedge, &ellipse.legend.inflate(1.0)), None, "{cycle:?}");
+        }
+        let loop_points: Vec<(f64, f64)> = result
+            .steady_loop
+            .iter()
+            .map(|s| pixel(&hysteresis.frame, (s.displacement, s.tangential_load)))
+            .collect();
+        assert_eq!(
+            line_touches(&loop_points, &hysteresis.legend.inflate(1.0)),
+            None,
+            "{cycle:?}"
+        );
+        // B, C, H, E: each label beside its marker, none on any marker or on the legend.
+        let names: Vec<&str> = ellipse.labels.iter().map(|l| l.text.as_str()).collect();
+        assert_eq!(names, ["E", "B", "C", "H"]);
+        for label in &ellipse.labels {
+            assert!(!label.rect.intersects(&ellipse.legend), "{}", label.text);
+            for marker in &ellipse.labels {
+                let (x, y) = pixel(&ellipse.frame, marker.at);
+                let r = marker.radius;
+                // The nearest point of the label's box to the marker's centre lies outside the disc.
+                let dx = (label.rect.left - x).max(0.0).max(x - label.rect.right);
+                let dy = (label.rect.top - y).max(0.0).max(y - label.rect.bottom);
+                assert!(
+                    dx.hypot(dy) > r,
+                    "label {} on the marker of {}",
+                    label.text,
+                    marker.text
+                );
+            }
+            let (x, y) = pixel(&ellipse.frame, label.at);
+            let dx = (label.rect.left - x).max(0.0).max(x - label.rect.right);
+            let dy = (label.rect.top - y).max(0.0).max(y - label.rect.bottom);
+            assert!(
+                dx.hypot(dy) < 3.0 * label.radius + 8.0,
+                "label {} far from its marker",
+                label.text
+            );
+            assert!(
+                picture.svg.contains(&format!(">{}</text>", label.text)),
+                "label {} drawn",
+                label.text
+            );
+        }
+    }
+}
+
+/// The texts of an SVG's text elements.
+fn svg_texts(svg: &str) -> Vec<String> {
+    svg.split("<text")
+        .skip(1)
+        .filter_map(|rest| {
+            let start = rest.find('>')? + 1;
+            let end = rest.find("</text>")?;
+            Some(rest[start..end].trim().to_string())
+        })
+        .collect()
+}
+
+/// Whether `text` reads as a number written with a negative zero ("-0", "-0.0", "-0e0").
+fn negative_zero(text: &str) -> bool {
+    text.strip_prefix('-')
+        .and_then(|rest| rest.parse::<f64>().ok())
+        .is_some_and(|value| value == 0.0)
+}
+
+fn is_power_of_ten(text: &str) -> bool {
+    text.strip_prefix("10").is_some_and(|exponent| {
+        !exponent.is_empty()
+            && exponent
+                .chars()
+                .enumerate()
+                .all(|(i, c)| "⁰¹²³⁴⁵⁶⁷⁸⁹".contains(c) || (i == 0 && c == '⁻'))
+    })
+}
+
+#[test]
+fn no_tick_reads_negative_zero_and_log_axes_show_powers_of_ten() {
+    let mut svgs: Vec<(String, bool)> = figures()
+        .figures
+        .iter()
+        .map(|f| (figure_picture(f).unwrap().svg, f.log_log))
+        .collect();
+    for (cycle, result) in simulated_cycles() {
+        svgs.push((cycle_picture(&cycle, &result).unwrap().svg, false));
+    }
+    let measurements: Vec<Measurement> = (0..12)
+        .map(|k| Measurement {
+            rule: if k % 2 == 0 { "gauss-legendre" } else { "tanh-sinh" },
+            precision_bits: 53,
+            parameter: f64::from(k),
+            evaluations: 10,
+            seconds: 1e-6 * 3f64.powi(k),
+            rel_error: 10f64.powi(-3 * k),
+            case: "x".into(),
+        })
+        .collect();
+    let accuracy = accuracy_picture(&measurements).unwrap().svg;
+    svgs.push((accuracy.clone(), true));
+    for (svg, log) in &svgs {
+        let texts = svg_texts(svg);
+        assert!(texts.len() > 10);
+        for text in &texts {
+            assert!(!negative_zero(text), "a tick reads {text}");
+            assert!(!text.contains("-0.0"), "{text}");
+        }
+        if *log {
+            // Every tick label is a power of ten; nothing is a bare log10 like "-10.0".
+            let numeric: Vec<&String> = texts
+                .iter()
+                .filter(|t| t.starts_with(|c: char| c.is_ascii_digit() || c == '-'))
+                .collect();
+            assert!(numeric.len() >= 6, "{numeric:?}");
+            for text in numeric {
+                assert!(is_power_of_ten(text), "log tick {text}");
+            }
+        }
+    }
+    // The accuracy chart spans 10⁻³³ … 10⁰ in error: its ticks name those decades.
+    let texts = svg_texts(&accuracy);
+    assert!(texts.iter().any(|t| t == "10⁰"), "{texts:?}");
+    assert!(texts.iter().any(|t| t == "10⁻³⁰" || t == "10⁻³⁵"), "{texts:?}");
+}
+
+#[test]
+fn pngs_are_rendered_at_twice_the_old_size_and_anti_aliased() {
+    let fig5 = &figures().figures[1];
+    assert_eq!(fig5.number, 5);
+    let png = figure_picture(fig5).unwrap().encode(Format::Png).unwrap();
+    let pixmap = Pixmap::decode_png(&png).unwrap();
+    assert!(pixmap.width() >= 2 * 820 && pixmap.height() >= 2 * 640);
+    // Anti-aliasing: along the first curve (colour (31, 119, 180) on white) there are
+    // pixels of intermediate coverage, a blend a·colour + (1 − a)·white with a in
+    // (0.15, 0.85); a staircase of whole pixels has none.
+    let colour = [31.0, 119.0, 180.0];
+    let blends = pixmap
+        .pixels()
+        .iter()
+        .filter(|p| {
+            let rgb = [f64::from(p.red()), f64::from(p.green()), f64::from(p.blue())];
+            let a = (255.0 - rgb[2]) / (255.0 - colour[2]);
+            (0.15..0.85).contains(&a)
+                && rgb
+                    .iter()
+                    .zip(colour)
+                    .all(|(v, c)| (v - (a * c + (1.0 - a) * 255.0)).abs() <= 3.0)
+        })
+        .count();
+    assert!(blends > 300, "{blends} blended pixels");
+    // The simulate plot too.
+    let (cycle, result) = &simulated_cycles()[0];
+    let png = cycle_picture(cycle, result).unwrap().encode(Format::Png).unwrap();
+    let pixmap = Pixmap::decode_png(&png).unwrap();
+    assert_eq!((pixmap.width(), pixmap.height()), (2400, 1040));
+    let greys = pixmap
+        .pixels()
+        .iter()
+        .filter(|p| p.red() == p.green() && p.green() == p.blue() && (40..215).contains(&p.red()))
+        .map(|p| p.red())
+        .collect::<std::collections::BTreeSet<u8>>();
+    assert!(greys.len() > 100, "{} grey levels", greys.len());
+}
+
+/// `microslip ARGS` with the file size limited to `kib` KiB (a write beyond it fails
+/// with "File too large" rather than a signal), as a full disk would stop it.
+fn run_with_file_limit(kib: u32, args: &[&str], out: &std::path::Path) -> std::process::Output {
+    Command::new("bash")
+        .arg("-c")
+        .arg(format!("trap '' XFSZ; ulimit -f {kib}; exec \"$0\" \"$@\""))
+        .arg(env!("CARGO_BIN_EXE_microslip"))
+        .args(args)
+        .arg(out)
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn figures_that_cannot_be_written_exit_1_and_leave_no_file_of_the_run() {
+    let dir = std::env::temp_dir().join(format!("microslip-figures-full-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    std::fs::create_dir_all(&dir).unwrap();
+    // 100 KiB: the CSVs, SVGs and the first PNG fit, Fig. 5's PNG does not.
+    let output = run_with_file_limit(100, &["figures", "--out"], &dir);
+    assert_eq!(
+        output.status.code(),
+        Some(1),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    assert!(output.stdout.is_empty());
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert_eq!(stderr.lines().count(), 1, "{stderr}");
+    assert!(stderr.contains("no file of this run was kept"), "{stderr}");
+    let left: Vec<_> = std::fs::read_dir(&dir).unwrap().collect();
+    assert!(left.is_empty(), "{left:?}");
+    // A name taken by a directory is refused before anything is computed.
+    std::fs::create_dir_all(dir.join("fig6.png")).unwrap();
+    let output = Command::new(env!("CARGO_BIN_EXE_microslip"))
+        .args(["figures", "--out"])
+        .arg(&dir)
+        .output()
+        .unwrap();
+    assert_eq!(output.status.code(), Some(2));
+    let stderr = String::from_utf8_lossy(&output.stderr);
+    assert!(
+        stderr.contains("fig6.png") && stderr.contains("is a directory"),
+        "{stderr}"
+    );
+    std::fs::remove_dir_all(&dir).unwrap();
 }

@@ -5,8 +5,8 @@ use std::path::PathBuf;
 use clap::Args;
 
 use microslip::accuracy;
-use microslip::files::{check_writable, write_text_atomically};
-use microslip::plot::plot_accuracy;
+use microslip::files::check_writable;
+use microslip::plot::{accuracy_picture, write_all_or_none, Format};
 
 use super::progress::Progress;
 use super::report::Failure;
@@ -53,12 +53,13 @@ pub fn run(args: &AccuracyArgs) -> Result<String, Failure> {
         }));
     }
     progress.finish();
-    let written = accuracy::to_csv(&measurements)
-        .map_err(|e| e.to_string())
-        .and_then(|text| write_text_atomically(&csv, &text).map_err(|e| e.to_string()))
-        .and_then(|()| plot_accuracy(&svg, &measurements).map_err(|e| e.to_string()))
-        .and_then(|()| plot_accuracy(&png, &measurements).map_err(|e| e.to_string()));
-    written.map_err(Failure::failed)?;
+    // All three files are rendered in memory, then written all or none.
+    let rendered = accuracy_picture(&measurements)
+        .and_then(|picture| Ok([(svg, picture.encode(Format::Svg)?), (png, picture.encode(Format::Png)?)]));
+    let [svg, png] = rendered.map_err(|e| Failure::failed(e.to_string()))?;
+    let text = accuracy::to_csv(&measurements).map_err(|e| Failure::failed(e.to_string()))?;
+    write_all_or_none(&[(csv, text.into_bytes()), svg, png])
+        .map_err(|e| Failure::failed(format!("{e} (no file of this run was kept)")))?;
     let mut out = format!(
         "{:>8}  {:<28} {:>9} {:>9}  {:>12}  {}\n",
         "target", "cheapest rule", "bits", "parameter", "seconds", "case"

@@ -3,6 +3,7 @@
 use std::path::PathBuf;
 
 use clap::Args;
+use microslip::figures::FiguresError;
 
 use super::case::Jobs;
 use super::progress::Progress;
@@ -21,7 +22,12 @@ pub fn run(args: &FiguresArgs) -> Result<String, Failure> {
     let progress = Progress::new(0);
     let summary = microslip::figures::regenerate(&args.out, &|done, total| progress.at_of(done, total, "steps"));
     progress.finish();
-    let summary = summary?;
+    // Only an unusable directory is refused input; anything failing after it was checked
+    // is a failed run.
+    let summary = summary.map_err(|error| match error {
+        FiguresError::Directory { .. } => Failure::refused(error.to_string()),
+        _ => Failure::failed(error.to_string()),
+    })?;
     let facts = microslip::figures::output::FactsJson::of(&summary.figures.facts);
     Ok(format!(
         "{} files written to {}\n{}\n{}",

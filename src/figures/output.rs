@@ -1,19 +1,21 @@
 //! Writing the figures: per figure a CSV, an SVG and a PNG, plus `limit_slopes.csv`
-//! (every local slope of every limit sequence) and `facts.json`. Each file is written
-//! to a temporary name in the output directory and renamed into place, so a reader
-//! never sees a half-written file; the directory is checked before anything is computed.
+//! (every local slope of every limit sequence) and `facts.json`. Everything is rendered
+//! in memory first; each file is then written to a temporary name in the output
+//! directory and renamed into place, so a reader never sees a half-written file, and
+//! a failed write removes the files of this run. The directory is checked before
+//! anything is computed.
 
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 
-use super::draw::draw_figure;
+use super::draw::figure_picture;
 use super::evaluate::LimitSlope;
 use super::sweeps::{compute, step_count, Facts, Figures, SweepError, FIG8_PHASES};
 use super::{Figure, Progress};
 use crate::files::csv_text;
-use crate::plot::PlotError;
+use crate::plot::{write_all_or_none, Format, PlotError};
 
 /// Why the figures could not be written.
 #[derive(Debug, thiserror::Error)]
@@ -27,6 +29,9 @@ pub enum FiguresError {
     /// A file could not be written.
     #[error("writing {path}: {message}")]
     Write { path: String, message: String },
+    /// Writing the files failed; those this run had written are removed.
+    #[error("{0} (no file of this run was kept)")]
+    Files(crate::files::OutputError),
     /// A picture could not be drawn.
     #[error(transparent)]
     Plot(#[from] PlotError),
@@ -41,42 +46,58 @@ pub struct Summary {
     pub figures: Figures,
 }
 
-/// Checks `directory`, computes every figure (reporting (done, total) steps) and writes
-/// the files into it.
+/// The names of the files written, in the order written.
+pub fn file_names() -> Vec<String> {
+    let mut names = Vec::new();
+    for number in 4..=8 {
+        for extension in ["csv", "svg", "png"] {
+            names.push(format!("fig{number}.{extension}"));
+        }
+    }
+    names.extend(["limit_slopes.csv".to_string(), "facts.json".to_string()]);
+    names
+}
+
+/// Checks `directory`, computes every figure (reporting (done, total) steps), renders
+/// every file in memory and then writes them all into it, or none: a failed write
+/// removes the files this run had written.
 pub fn regenerate(directory: &Path, report: &(dyn Fn(usize, usize) + Sync)) -> Result<Summary, FiguresError> {
     check_directory(directory)?;
     let progress = Progress::new(step_count(), report);
     let figures = compute(&progress)?;
-    let mut files = Vec::new();
+    let mut contents: Vec<(PathBuf, Vec<u8>)> = Vec::new();
     for figure in &figures.figures {
         let stem = format!("fig{}", figure.number);
-        let csv = directory.join(format!("{stem}.csv"));
-        write_atomically(&csv, &figure_csv(figure)?)?;
-        files.push(csv);
-        for extension in ["svg", "png"] {
-            let path = directory.join(format!("{stem}.{extension}"));
-            draw_figure(&path, figure)?;
-            files.push(path);
+        contents.push((directory.join(format!("{stem}.csv")), figure_csv(figure)?));
+        let picture = figure_picture(figure)?;
+        for format in [Format::Svg, Format::Png] {
+            let extension = if format == Format::Svg { "svg" } else { "png" };
+            contents.push((directory.join(format!("{stem}.{extension}")), picture.encode(format)?));
         }
     }
-    let slopes = directory.join("limit_slopes.csv");
-    write_atomically(&slopes, &limit_slopes_csv(&figures.facts)?)?;
-    files.push(slopes);
+    contents.push((directory.join("limit_slopes.csv"), limit_slopes_csv(&figures.facts)?));
     let facts = directory.join("facts.json");
     let text = serde_json::to_string_pretty(&FactsJson::of(&figures.facts)).map_err(|e| write_error(&facts, e))?;
-    write_atomically(&facts, format!("{text}\n").as_bytes())?;
-    files.push(facts);
-    Ok(Summary { files, figures })
+    contents.push((facts, format!("{text}\n").into_bytes()));
+    write_all_or_none(&contents).map_err(FiguresError::Files)?;
+    Ok(Summary {
+        files: contents.into_iter().map(|(path, _)| path).collect(),
+        figures,
+    })
 }
 
-/// Creates `directory` if needed and proves a file can be written and renamed in it.
+/// Creates `directory` if needed, proves a file can be written and renamed in it, and
+/// that none of the names to be written is taken by a directory.
 fn check_directory(directory: &Path) -> Result<(), FiguresError> {
     let unusable = |message: String| FiguresError::Directory {
         path: directory.display().to_string(),
         message,
     };
     std::fs::create_dir_all(directory).map_err(|e| unusable(e.to_string()))?;
-    crate::files::check_writable(&directory.join("facts.json"), &[]).map_err(|e| unusable(e.to_string()))
+    for name in file_names() {
+        crate::files::check_writable(&directory.join(name), &[]).map_err(|e| unusable(e.to_string()))?;
+    }
+    Ok(())
 }
 
 fn write_error(path: &Path, error: impl std::fmt::Display) -> FiguresError {
@@ -84,10 +105,6 @@ fn write_error(path: &Path, error: impl std::fmt::Display) -> FiguresError {
         path: path.display().to_string(),
         message: error.to_string(),
     }
-}
-
-fn write_atomically(path: &Path, bytes: &[u8]) -> Result<(), FiguresError> {
-    crate::files::write_atomically(path, |temporary| std::fs::write(temporary, bytes)).map_err(|e| write_error(path, e))
 }
 
 /// One row per sample: panel, curve, abscissa, Ŵ, the precision used, and on the end
