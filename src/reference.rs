@@ -18,7 +18,7 @@ use crate::inputs::{Case, CaseText, InputError};
 use crate::real::{Precision, Real};
 use crate::verified::{
     agreeing_digits, agreement_radius, decimal_ball, decimal_f64, f64_printed_digits, resolved_digits, verify, Bound,
-    Decimal, OutOfBudget, TwoPrecisions, Verified, F64_MOST_DIGITS, GUARD_DIGITS,
+    Decimal, OutOfBudget, TwoPrecisions, Verified, F64_DIGITS_FLOOR, F64_MOST_DIGITS, GUARD_DIGITS,
 };
 
 pub use crate::verified::MAX_DIGITS;
@@ -179,12 +179,18 @@ pub fn printable_dissipation(
     let resolved = resolved_digits(result.total, result.error_estimate);
     let Some(digits) = f64_printed_digits(resolved) else {
         let largest = result.segments.named().iter().map(|(_, v)| v.abs()).fold(0.0, f64::max);
-        return verified(
-            F64_MOST_DIGITS,
-            Some(format!(
-                "f64 resolves {resolved} digits here: its segments, up to {largest:.1e}, cancel to W"
-            )),
-        );
+        // The digits the estimate's width alone would leave.
+        let width = (result.total.abs() / result.error_estimate).log10();
+        let reason = if width >= f64::from(F64_DIGITS_FLOOR) {
+            format!(
+                "f64 resolves {resolved} digits here: W ± its error estimate {:.1e} straddles a rounding boundary of digit {}",
+                result.error_estimate,
+                resolved + 1
+            )
+        } else {
+            format!("f64 resolves {resolved} digits here: its segments, up to {largest:.1e}, cancel to W")
+        };
+        return verified(F64_MOST_DIGITS, Some(reason));
     };
     Ok(PrintedDissipation::from_f64(
         &result,
