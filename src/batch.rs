@@ -22,7 +22,6 @@ use crate::dissipation::{dissipation, DissipationError, Method, Options};
 use crate::inputs::{Case, CaseText};
 use crate::real::{Precision, Real};
 use crate::reference::{printable_dissipation, PrintedDissipation, ReferenceError};
-use crate::verified::resolved_digits;
 
 /// Relative quadrature tolerance of W from a table: far below any table's own error,
 /// and reachable on the interpolant's piecewise-cubic v' in f64.
@@ -124,13 +123,11 @@ pub fn case_dissipation(case: &CaseText, digits: Option<u32>, budget: Duration) 
     };
     let change = dissipation(&cycle, &difference, &error_options).map_err(in_f64)?;
     let table_error = (change.total.abs() + change.error_estimate) / half_table_divisor();
-    // At least one digit: a table is f64 only, and its W is printed whatever it resolves.
-    let digits = resolved_digits(result.total, result.error_estimate + table_error).max(1);
     let shifts = change.segments.named().map(|(_, shift)| shift.abs());
     let segment_errors =
         shifts.map(|shift| result.error_estimate + (change.error_estimate + shift) / half_table_divisor());
     Ok(CaseDissipation {
-        printed: PrintedDissipation::from_f64(&result, digits, segment_errors),
+        printed: PrintedDissipation::within(&result, result.error_estimate + table_error, segment_errors),
         table: Some(TableEstimate {
             error: table_error,
             smoothing_residual: tables.iter().map(|t| t.smoothing_residual).fold(0.0, f64::max),

@@ -68,15 +68,28 @@ pub struct PrintedDissipation {
 
 impl PrintedDissipation {
     /// An f64 result printed: W to `digits` (as [`resolved_digits`] gives them for its
-    /// bound; 0 where none is determined), each segment by the same rule to the digits its
-    /// absolute error in `segment_errors` (EB, BC, CH, HE) determines.
+    /// bound; 0, where none is determined, prints the interval of its error estimate), each
+    /// segment by the same rule to the digits its absolute error in `segment_errors` (EB,
+    /// BC, CH, HE) determines. [`PrintedDissipation::within`] takes W's bound instead.
     pub fn from_f64(result: &Dissipation<f64>, digits: u32, segment_errors: [f64; 4]) -> Self {
-        let s = &result.segments;
         let total = match digits {
-            0 => decimal_f64(result.total, f64::INFINITY).to_string(),
+            0 => decimal_f64(result.total, result.error_estimate).to_string(),
             _ if result.total == 0.0 => Decimal::Zero.to_string(),
             _ => result.total.to_scientific(digits as usize),
         };
+        Self::printed(result, total, digits, segment_errors)
+    }
+
+    /// An f64 result printed by the one rule: W for the absolute `bound` on its error, each
+    /// segment for its own in `segment_errors` (EB, BC, CH, HE).
+    pub fn within(result: &Dissipation<f64>, bound: f64, segment_errors: [f64; 4]) -> Self {
+        let total = decimal_f64(result.total, bound);
+        let digits = total.digits().min(F64_MOST_DIGITS);
+        Self::printed(result, total.to_string(), digits, segment_errors)
+    }
+
+    fn printed(result: &Dissipation<f64>, total: String, digits: u32, segment_errors: [f64; 4]) -> Self {
+        let s = &result.segments;
         PrintedDissipation {
             bound: zero_bound(&total, result.method).unwrap_or(Bound::Estimate),
             total,
