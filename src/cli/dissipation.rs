@@ -126,6 +126,9 @@ fn provenance(printed: &PrintedDissipation, bound: Bound) -> String {
     let agreement = "verified by agreement of two precisions (not a proof)";
     match (bound, &printed.fallback, printed.error_estimate) {
         (Bound::Exact, _, _) => "exact".to_string(),
+        (_, None, Some(error)) if printed.total == "0" => {
+            format!("zero in f64, error estimate {error:.1e} (not proven)")
+        }
         (_, Some(reason), _) => format!("{digits}, in MPFR, {agreement}: {reason}"),
         (Bound::TableError, _, _) => {
             format!("{digits}, f64, as far as the table error and the quadrature's error estimate vouch")
