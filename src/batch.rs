@@ -130,10 +130,9 @@ pub fn case_dissipation(case: &CaseText, digits: Option<u32>, budget: Duration) 
             *shift = shift.max(((half_value.1 - value).abs() + uncertainty) / divisor);
         }
     }
-    let digits = resolved_digits(result.total, result.error_estimate + table_error);
     let segment_errors = segment_shifts.map(|shift| result.error_estimate + shift);
-    let mut printed = PrintedDissipation::from_f64(&result, digits.max(1), segment_errors);
-    if digits == 0 {
+    let mut printed = PrintedDissipation::within(&result, result.error_estimate + table_error, segment_errors);
+    if printed.digits == 0 {
         printed.total = String::new();
         printed.digits = 0;
     }

@@ -18,8 +18,8 @@ use crate::inputs::{Case, CaseText, InputError};
 use crate::quad::{FixedRule, RuleError};
 use crate::real::{Precision, Real};
 use crate::verified::{
-    agreeing_digits, f64_printed_digits, resolved_digits, verify, OutOfBudget, TwoPrecisions, Verified,
-    F64_MOST_DIGITS, GUARD_DIGITS,
+    agreeing_digits, agreement_radius, decimal_ball, decimal_f64, f64_printed_digits, resolved_digits, verify, Bound,
+    Decimal, OutOfBudget, TwoPrecisions, Verified, F64_DIGITS_FLOOR, F64_MOST_DIGITS, GUARD_DIGITS,
 };
 
 pub use crate::verified::MAX_DIGITS;
@@ -27,10 +27,10 @@ pub use crate::verified::MAX_DIGITS;
 /// W with its segments, rounded to the verified digits.
 #[derive(Clone, Debug)]
 pub struct VerifiedDissipation {
-    /// W, rounded to `digits_verified` significant digits.
+    /// W, rounded to `digits_verified` significant digits (`0` for a closed form's zero).
     pub total: String,
-    /// The segments (EB, BC, CH, HE), rounded to the same number of significant digits.
-    /// They carry the same absolute accuracy as W (they are not verified one by one).
+    /// The segments (EB, BC, CH, HE), each printed by the same rule as W to the digits
+    /// its own agreement between the two precisions determines (at most W's).
     pub segments: [(&'static str, String); 4],
     /// The digits asked for.
     pub digits_requested: u32,
@@ -59,6 +59,8 @@ pub struct PrintedDissipation {
     pub precision_bits: u32,
     /// The absolute error estimate of an f64 result (verified digits need none).
     pub error_estimate: Option<f64>,
+    /// What vouches for the digits printed.
+    pub bound: Bound,
     /// Why a run without a digit count computed verified digits in MPFR instead of f64.
     pub fallback: Option<String>,
     /// The f64 values W, EB, BC, CH, HE as computed, where the printed ones come from f64.
@@ -66,22 +68,37 @@ pub struct PrintedDissipation {
 }
 
 impl PrintedDissipation {
-    /// An f64 result printed: W to `digits`, each segment to the digits its absolute error
-    /// in `segment_errors` (EB, BC, CH, HE) leaves it, at least one.
+    /// An f64 result printed: W to `digits` (as [`resolved_digits`] gives them for its
+    /// bound; 0, where none is determined, prints the interval of its error estimate), each
+    /// segment by the same rule to the digits its absolute error in `segment_errors` (EB,
+    /// BC, CH, HE) determines. [`PrintedDissipation::within`] takes W's bound instead.
     pub fn from_f64(result: &Dissipation<f64>, digits: u32, segment_errors: [f64; 4]) -> Self {
+        let total = match digits {
+            0 => decimal_f64(result.total, result.error_estimate).to_string(),
+            _ if result.total == 0.0 => Decimal::Zero.to_string(),
+            _ => result.total.to_scientific(digits as usize),
+        };
+        Self::printed(result, total, digits, segment_errors)
+    }
+
+    /// An f64 result printed by the one rule: W for the absolute `bound` on its error, each
+    /// segment for its own in `segment_errors` (EB, BC, CH, HE).
+    pub fn within(result: &Dissipation<f64>, bound: f64, segment_errors: [f64; 4]) -> Self {
+        let total = decimal_f64(result.total, bound);
+        let digits = total.digits().min(F64_MOST_DIGITS);
+        Self::printed(result, total.to_string(), digits, segment_errors)
+    }
+
+    fn printed(result: &Dissipation<f64>, total: String, digits: u32, segment_errors: [f64; 4]) -> Self {
         let s = &result.segments;
         PrintedDissipation {
-            total: result.total.to_scientific(digits as usize),
+            bound: zero_bound(&total, result.method).unwrap_or(Bound::Estimate),
+            total,
             segments: s
                 .named()
                 .iter()
                 .zip(segment_errors)
-                .map(|((name, value), error)| {
-                    (
-                        *name,
-                        value.to_scientific(resolved_digits(**value, error).max(1) as usize),
-                    )
-                })
+                .map(|((name, value), error)| (*name, decimal_f64(**value, error).to_string()))
                 .collect(),
             digits,
             method: result.method,
@@ -91,6 +108,12 @@ impl PrintedDissipation {
             binary64: Some([result.total, s.eb, s.bc, s.ch, s.he]),
         }
     }
+}
+
+/// [`Bound::Exact`] for a zero W of a closed form (no tangential oscillation, or in phase
+/// with nothing slipping), which is zero by theory, not by rounding.
+fn zero_bound(total: &str, method: Method) -> Option<Bound> {
+    (total == Decimal::Zero.to_string() && method != Method::FourSegment).then_some(Bound::Exact)
 }
 
 /// W for printing: with `digits` = Some(N), N verified digits; without, f64 with the
@@ -104,6 +127,7 @@ pub fn printable_dissipation(
 ) -> Result<PrintedDissipation, ReferenceError> {
     let verified = |digits: u32, fallback: Option<String>| -> Result<PrintedDissipation, ReferenceError> {
         let verified = verified_dissipation(case, digits, budget)?;
+        let bound = zero_bound(&verified.total, verified.method).unwrap_or(Bound::Agreement);
         Ok(PrintedDissipation {
             total: verified.total,
             segments: verified.segments.to_vec(),
@@ -111,6 +135,7 @@ pub fn printable_dissipation(
             method: verified.method,
             precision_bits: verified.precision_bits,
             error_estimate: None,
+            bound,
             fallback,
             binary64: None,
         })
@@ -168,12 +193,18 @@ pub fn printable_dissipation(
     let resolved = resolved_digits(result.total, result.error_estimate);
     let Some(digits) = f64_printed_digits(resolved) else {
         let largest = result.segments.named().iter().map(|(_, v)| v.abs()).fold(0.0, f64::max);
-        return verified(
-            F64_MOST_DIGITS,
-            Some(format!(
-                "f64 resolves {resolved} digits here: its segments, up to {largest:.1e}, cancel to W"
-            )),
-        );
+        // The digits the estimate's width alone would leave.
+        let width = (result.total.abs() / result.error_estimate).log10();
+        let reason = if width >= f64::from(F64_DIGITS_FLOOR) {
+            format!(
+                "f64 resolves {resolved} digits here: W ± its error estimate {:.1e} straddles a rounding boundary of digit {}",
+                result.error_estimate,
+                resolved + 1
+            )
+        } else {
+            format!("f64 resolves {resolved} digits here: its segments, up to {largest:.1e}, cancel to W")
+        };
+        return verified(F64_MOST_DIGITS, Some(reason));
     };
     Ok(PrintedDissipation::from_f64(
         &result,
@@ -380,12 +411,23 @@ pub fn verified_dissipation(
         required: digits + GUARD_DIGITS,
         deadline: Instant::now() + budget,
     };
-    let Verified { output, precision, .. } =
-        verify(digits, w.deadline, &mut w).map_err(|error| error.into_error(ReferenceError::Budget))?;
-    let round = |x: &Float| x.to_scientific(digits as usize);
+    let Verified {
+        output,
+        first,
+        precision,
+        ..
+    } = verify(digits, w.deadline, &mut w).map_err(|error| error.into_error(ReferenceError::Budget))?;
+    // Each value by the one rule, bounded by its agreement with the first run: W has the
+    // digits asked for (verify holds out for them), a segment as many as its own allows.
+    let round = |value: &Float, first: &Float| decimal_ball(value, &agreement_radius(first, value), digits).to_string();
+    let firsts = first.segments.named().map(|(_, value)| value.clone());
+    let mut firsts = firsts.iter();
     Ok(VerifiedDissipation {
-        total: round(&output.total),
-        segments: output.segments.named().map(|(name, value)| (name, round(value))),
+        total: round(&output.total, &first.total),
+        segments: output.segments.named().map(|(name, value)| {
+            let first = firsts.next().expect("four segments in both runs");
+            (name, round(value, first))
+        }),
         digits_requested: digits,
         digits_verified: digits,
         precision_bits: precision.in_bits(),
@@ -427,7 +469,7 @@ mod tests {
         };
         let zero = verified_dissipation(&case("0"), 20, Duration::from_secs(30)).unwrap();
         assert_eq!(zero.method, Method::NoTangentialOscillation);
-        assert_eq!(zero.total, "0.0000000000000000000e0");
+        assert_eq!(zero.total, "0");
         let w = verified_dissipation(&case("0.5"), 20, Duration::from_secs(30)).unwrap();
         assert_eq!(w.total, "4.0624757924582385709e-1");
     }

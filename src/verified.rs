@@ -9,6 +9,7 @@
 
 use std::time::Instant;
 
+use rug::float::Round;
 use rug::Float;
 
 use crate::real::{Precision, Real};
@@ -117,6 +118,9 @@ pub trait TwoPrecisions {
 pub struct Verified<T> {
     /// The check run's result (the higher precision).
     pub output: T,
+    /// The first run's result (the lower precision): its distance from `output` is the
+    /// bound with which `output`'s values are printed ([`agreement_radius`]).
+    pub first: T,
     /// The significant digits on which every value agreed (at least those asked for
     /// plus [`GUARD_DIGITS`]).
     pub agreed: u32,
@@ -203,14 +207,24 @@ pub fn verify<C: TwoPrecisions>(
             Ok((second, first)) => {
                 let exact = computation.zeros_are_exact(&first) && computation.zeros_are_exact(&second);
                 let agreed = agreement(computation.values(&first), computation.values(&second), exact);
-                if agreed >= required {
+                let determined = || {
+                    computation
+                        .values(&first)
+                        .iter()
+                        .zip(computation.values(&second))
+                        .all(|(a, b)| decimal_ball(b, &agreement_radius(a, b), digits).digits() >= digits)
+                };
+                if agreed >= required && determined() {
                     return Ok(Verified {
                         output: second,
+                        first,
                         agreed,
                         precision: higher,
                     });
                 }
-                agreed
+                // Agreement that still straddles a rounding boundary of the last digit
+                // asked for: one more attempt at a higher precision settles it.
+                agreed.min(required - 1)
             }
             Err(error) if computation.retries(&error) => 0,
             Err(error) => return Err(VerifyError::Failed(error)),
@@ -219,6 +233,16 @@ pub fn verify<C: TwoPrecisions>(
         precision = next_precision(precision, required, agreed);
     }
     unreachable!("the attempts are unbounded")
+}
+
+/// The bound with which agreement vouches for the check's `second`: its distance from
+/// the `first` run, and at least one unit in the first run's last bit (two runs that
+/// agree exactly have not measured their error below that).
+pub fn agreement_radius(first: &Float, second: &Float) -> Float {
+    let (distance, _) = Float::with_val_round(second.prec(), first - second, Round::AwayZero);
+    let distance = distance.abs();
+    let resolution = Float::with_val(second.prec(), second.abs_ref()) >> (first.prec().max(2) - 1);
+    distance.max(&resolution)
 }
 
 /// A computation whose check is the same computation at the higher precision; it must
@@ -263,16 +287,240 @@ pub const F64_MOST_DIGITS: u32 = 15;
 /// speed.
 pub const F64_DIGITS_FLOOR: u32 = 12;
 
-/// The significant digits of `value` that an absolute `error` leaves standing (0 to
-/// [`F64_MOST_DIGITS`]; all of them for no error).
+/// What vouches for the digits of a printed value: the kind of its bound.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Bound {
+    /// An f64 computation's error estimate: not proven.
+    Estimate,
+    /// Two computations at different working precisions agree: evidence, not a proof.
+    Agreement,
+    /// A table compliance's error estimate beside the quadrature's: not proven.
+    TableError,
+    /// The value is exact (a closed form's zero).
+    Exact,
+}
+
+impl Bound {
+    /// The machine-readable name (`"estimate"`, `"agreement"`, `"table_error"`, `"exact"`).
+    pub fn key(self) -> &'static str {
+        match self {
+            Bound::Estimate => "estimate",
+            Bound::Agreement => "agreement",
+            Bound::TableError => "table_error",
+            Bound::Exact => "exact",
+        }
+    }
+}
+
+/// The significant digits of `value` that an absolute `error` leaves standing: the most
+/// (up to [`F64_MOST_DIGITS`]) with which every point of [`value` − `error`, `value` +
+/// `error`] rounds to one decimal ([`decimal_f64`]); 0 where not even one digit is
+/// determined, all of them for an exact value (`error` = 0).
 pub fn resolved_digits(value: f64, error: f64) -> u32 {
-    if error <= 0.0 {
-        return F64_MOST_DIGITS;
+    decimal_f64(value, error).digits().min(F64_MOST_DIGITS)
+}
+
+/// A value as printed by the one rule: an N-digit decimal is printed only if every point
+/// of the value's interval [value − bound, value + bound] rounds to it (to nearest);
+/// otherwise fewer digits, and where not even one is determined, the interval itself.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub enum Decimal {
+    /// Exactly zero: the interval is the point 0.
+    Zero,
+    /// The decimal in scientific notation (`5.25214879245e-1`) with its significant digits.
+    Digits { text: String, digits: u32 },
+    /// Not one significant digit is determined: the interval, rounded outwards to two
+    /// digits.
+    Undetermined { lower: String, upper: String },
+}
+
+impl Decimal {
+    /// The significant digits determined: `u32::MAX` for an exact zero, 0 where none is.
+    pub fn digits(&self) -> u32 {
+        match self {
+            Decimal::Zero => u32::MAX,
+            Decimal::Digits { digits, .. } => *digits,
+            Decimal::Undetermined { .. } => 0,
+        }
     }
-    if !value.is_finite() || value.abs() <= error {
-        return 0;
+}
+
+impl std::fmt::Display for Decimal {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Decimal::Zero => f.write_str("0"),
+            Decimal::Digits { text, .. } => f.write_str(text),
+            Decimal::Undetermined { lower, upper } => write!(f, "no digit determined: in [{lower}, {upper}]"),
+        }
     }
-    ((value.abs() / error).log10().floor() as u32).min(F64_MOST_DIGITS)
+}
+
+/// The f64 `value` printed with at most [`F64_MOST_DIGITS`] digits by the one rule, for an
+/// absolute `bound` on its error ([`decimal_ball`], which it agrees with). Most digit counts
+/// are settled in f64 alone (a few hundred nanoseconds); only an end within a few units
+/// in the last place of a rounding boundary is settled in exact arithmetic.
+pub fn decimal_f64(value: f64, bound: f64) -> Decimal {
+    if !value.is_finite() || bound.is_nan() || bound.is_infinite() {
+        let text = |x: f64| {
+            if x.is_nan() {
+                "NaN".to_string()
+            } else {
+                format!("{x:e}")
+            }
+        };
+        return Decimal::Undetermined {
+            lower: text(if bound.is_nan() { f64::NAN } else { value - bound.abs() }),
+            upper: text(if bound.is_nan() { f64::NAN } else { value + bound.abs() }),
+        };
+    }
+    let bound = bound.max(0.0);
+    let exact = || (Float::with_val(53, value), Float::with_val(53, bound));
+    if value.abs() <= bound {
+        let (value, bound) = exact();
+        return decimal_ball(&value, &bound, F64_MOST_DIGITS);
+    }
+    // A cell of N digits about a value of exponent e is 10^(e − N + 1) wide (one exponent
+    // more where the value may round up to a power of ten), and must be wider than 2·bound.
+    let most = match bound {
+        0.0 => F64_MOST_DIGITS,
+        _ => {
+            let exponent = value.abs().log10().floor();
+            let carry = if value.abs() >= 9.0 * 10f64.powf(exponent) {
+                1.0
+            } else {
+                0.0
+            };
+            let width = exponent + 1.0 + carry - (2.0 * bound).log10() + 1e-6;
+            (width.floor().max(0.0) as u32).min(F64_MOST_DIGITS)
+        }
+    };
+    (1..=most)
+        .rev()
+        .find_map(|digits| {
+            let text = match rounds_alike_in_f64(value - bound, value + bound, digits) {
+                Ok(text) => text,
+                Err(Undecided) => {
+                    let (value, bound) = exact();
+                    let (lower, upper) = ends(&value, &bound);
+                    rounds_alike(&lower, &upper, digits)
+                }
+            };
+            text.map(|text| Decimal::Digits { text, digits })
+        })
+        .unwrap_or_else(|| {
+            let (value, bound) = exact();
+            decimal_ball(&value, &bound, F64_MOST_DIGITS)
+        })
+}
+
+/// f64 arithmetic cannot tell: an end lies within a few ulps of a rounding boundary.
+struct Undecided;
+
+/// The `digits`-digit decimal to which every point of [`lower`, `upper`] rounds, where f64
+/// can tell: `lower` and `upper` are the interval's ends rounded to nearest, so the true
+/// ends lie within half an ulp of them, and two ulps further out on each side still
+/// rounding alike (Rust's decimal formatting is correctly rounded) leaves no rounding
+/// boundary inside. `Ok(None)` where each end's own rounding is certain and they differ.
+fn rounds_alike_in_f64(lower: f64, upper: f64, digits: u32) -> Result<Option<String>, Undecided> {
+    if !lower.is_finite() || !upper.is_finite() {
+        return Err(Undecided);
+    }
+    let text = |y: f64| format!("{:.*e}", digits as usize - 1, y);
+    let (outer_low, outer_high) = (text(lower.next_down().next_down()), text(upper.next_up().next_up()));
+    if outer_low == outer_high {
+        return Ok(Some(outer_low));
+    }
+    let (inner_low, inner_high) = (text(lower.next_up().next_up()), text(upper.next_down().next_down()));
+    if inner_low == outer_low && inner_high == outer_high {
+        Ok(None)
+    } else {
+        Err(Undecided)
+    }
+}
+
+/// `value` printed with at most `most` significant digits by the one rule, for an absolute
+/// `radius` about it: the most digits N for which every point of [`value` − `radius`,
+/// `value` + `radius`] rounds to nearest to the same N-digit decimal, with neither end
+/// on a rounding boundary (where ties would decide). The ends are rounded outwards, so
+/// the interval tested contains the one given.
+pub fn decimal_ball(value: &Float, radius: &Float, most: u32) -> Decimal {
+    let radius = radius.clone().abs();
+    if value.is_zero() && radius.is_zero() {
+        return Decimal::Zero;
+    }
+    let (lower, upper) = ends(value, &radius);
+    let undetermined = || Decimal::Undetermined {
+        lower: directed_decimal(&lower, 2, Round::Down),
+        upper: directed_decimal(&upper, 2, Round::Up),
+    };
+    if !lower.is_finite()
+        || !upper.is_finite()
+        || lower.is_sign_negative() != upper.is_sign_negative()
+        || lower.is_zero()
+        || upper.is_zero()
+    {
+        return undetermined();
+    }
+    // A cell of N digits is wider than 2·radius only for N ≤ log10(|value|/radius) + 2.
+    let most = match (value.get_exp(), radius.get_exp()) {
+        (Some(v), Some(r)) => {
+            let ratio_digits = (f64::from(v) - f64::from(r) + 1.0) * std::f64::consts::LOG10_2;
+            (ratio_digits.floor().max(-1.0) as u32 + 2).min(most)
+        }
+        _ => most,
+    };
+    (1..=most.max(1))
+        .rev()
+        .find_map(|digits| rounds_alike(&lower, &upper, digits).map(|text| Decimal::Digits { text, digits }))
+        .unwrap_or_else(undetermined)
+}
+
+/// The `digits`-digit decimal to which every point of [`lower`, `upper`] rounds, if
+/// there is one and neither end is a tie (in exact arithmetic).
+fn rounds_alike(lower: &Float, upper: &Float, digits: u32) -> Option<String> {
+    let low = nearest_decimal(lower, digits)?;
+    (nearest_decimal(upper, digits)? == low).then(|| scientific(&low))
+}
+
+/// The ends of [`value` − `radius`, `value` + `radius`], rounded outwards (exact for f64
+/// operands: 64 bits more than either holds).
+fn ends(value: &Float, radius: &Float) -> (Float, Float) {
+    let bits = value.prec().max(radius.prec()) + 64;
+    let (lower, _) = Float::with_val_round(bits, value - radius, Round::Down);
+    let (upper, _) = Float::with_val_round(bits, value + radius, Round::Up);
+    (lower, upper)
+}
+
+/// A decimal as MPFR gives it: sign, significant digits, exponent of 0.d₁d₂….
+type DecimalParts = (bool, String, i32);
+
+/// `x` rounded to nearest to `digits` significant digits, or `None` where `x` lies on a
+/// rounding boundary (exactly halfway between two such decimals).
+fn nearest_decimal(x: &Float, digits: u32) -> Option<DecimalParts> {
+    let finer = digits as usize + 1;
+    let (_, down, _) = x.to_sign_string_exp_round(10, Some(finer), Round::Down);
+    if down.ends_with('5') && x.to_sign_string_exp_round(10, Some(finer), Round::Up).1 == down {
+        return None;
+    }
+    let (negative, mantissa, exponent) = x.to_sign_string_exp_round(10, Some(digits as usize), Round::Nearest);
+    Some((negative, mantissa, exponent.unwrap_or(1)))
+}
+
+/// `x` to `digits` significant digits rounded in the direction `round`.
+fn directed_decimal(x: &Float, digits: usize, round: Round) -> String {
+    if x.is_zero() || !x.is_finite() {
+        return x.to_f64().to_string();
+    }
+    let (negative, mantissa, exponent) = x.to_sign_string_exp_round(10, Some(digits), round);
+    scientific(&(negative, mantissa, exponent.unwrap_or(1)))
+}
+
+/// MPFR's digits d₁d₂… and exponent e of 0.d₁d₂… × 10^e as `d₁.d₂…e(e − 1)`.
+fn scientific((negative, mantissa, exponent): &DecimalParts) -> String {
+    let (first, rest) = mantissa.split_at(1);
+    let sign = if *negative { "-" } else { "" };
+    let dot = if rest.is_empty() { "" } else { "." };
+    format!("{sign}{first}{dot}{rest}e{}", exponent - 1)
 }
 
 /// The digits to print the f64 `value` with, given verified digits of the same quantity:
@@ -441,9 +689,99 @@ mod tests {
         ));
     }
 
+    fn digits(text: &str, digits: u32) -> Decimal {
+        Decimal::Digits {
+            text: text.to_string(),
+            digits,
+        }
+    }
+
+    #[test]
+    fn a_decimal_is_printed_only_where_the_whole_interval_rounds_to_it() {
+        // 0.12345 ± 1e-9 rounds to 1.2345000e-1 at 8 digits and to nothing finer: at 9 its
+        // ends are 1.23449999e-1 and 1.23450001e-1.
+        assert_eq!(decimal_f64(0.12345, 1e-9), digits("1.2345000e-1", 8));
+        // Straddling a rounding boundary costs the digit it straddles: [0.123454, 0.123458]
+        // holds the boundary 0.123455 of 5 digits, so it has 4, though its width allows 5.
+        assert_eq!(decimal_f64(0.123456, 2e-6), digits("1.235e-1", 4));
+        // The most digits, not the fewest: [0.123549, 0.123551] straddles 4 digits' boundary
+        // 0.12355 but lies inside a cell of 5.
+        assert_eq!(decimal_f64(0.12355, 1e-6), digits("1.2355e-1", 5));
+        // A carry into the next power of ten: [9.9996, 9.9998] rounds to 1.000e1 at 4 digits.
+        assert_eq!(decimal_f64(9.9997, 1e-4), digits("1.000e1", 4));
+        // An exact value has all of f64's digits; an end exactly on a rounding boundary is a
+        // tie, which decides nothing: [0.375, 0.3828125] is not 3.8e-1 (0.375 ties between
+        // 3.7e-1 and 3.8e-1), only 4e-1.
+        assert_eq!(decimal_f64(0.25, 0.0), digits("2.50000000000000e-1", 15));
+        assert_eq!(decimal_f64(0.37890625, 0.00390625), digits("4e-1", 1));
+        assert!(matches!(decimal_f64(0.25, 0.05), Decimal::Undetermined { .. }));
+        // Zero exactly is "0"; an interval about zero determines no digit, and says where W is.
+        assert_eq!(decimal_f64(0.0, 0.0), Decimal::Zero);
+        assert_eq!(decimal_f64(0.0, 0.0).to_string(), "0");
+        let about_zero = decimal_f64(1e-17, 1.234e-16);
+        assert_eq!(about_zero.digits(), 0);
+        assert_eq!(about_zero.to_string(), "no digit determined: in [-1.2e-16, 1.4e-16]");
+        // An interval not about zero but across a first-digit boundary: no digit either.
+        assert_eq!(decimal_f64(0.95, 0.01).digits(), 0);
+        // Negative values round by magnitude; f64's 15 digits are the most.
+        assert_eq!(decimal_f64(-0.12345, 1e-9), digits("-1.2345000e-1", 8));
+        assert_eq!(
+            decimal_f64(1.0 / 3.0, 0.0),
+            digits("3.33333333333333e-1", F64_MOST_DIGITS)
+        );
+        // MPFR values: 1/3 ± 10⁻⁴⁰ at up to 50 digits has 39 (its 40th is within a unit).
+        let p = Precision::bits(300);
+        let third = Float::with_val(p.in_bits(), 1) / 3u32;
+        let ball = decimal_ball(&third, &at(p, "1e-40"), 50);
+        assert_eq!(ball, digits(&format!("3.{}e-1", "3".repeat(38)), 39));
+    }
+
+    #[test]
+    fn the_f64_shortcut_prints_what_exact_arithmetic_prints() {
+        // Random values over 40 decades, both signs, bounds from 1e-17 to 1 of the value
+        // and exact values: the f64 path equals the exact MPFR one on every draw
+        // (300,000 draws in proofs/printing.md).
+        let mut state: u64 = 88172645463325252;
+        for _ in 0..20_000 {
+            state ^= state << 13;
+            state ^= state >> 7;
+            state ^= state << 17;
+            let sign = if state & 1 == 0 { 1.0 } else { -1.0 };
+            let mantissa = f64::from_bits((state >> 12) | 0x3FE0_0000_0000_0000);
+            let value = sign * mantissa * 10f64.powi((state % 40) as i32 - 20);
+            let bound = match state % 97 {
+                0 => 0.0,
+                _ => value.abs() * 10f64.powf(-(((state >> 20) % 1700) as f64) / 100.0),
+            };
+            let exact = decimal_ball(
+                &Float::with_val(53, value),
+                &Float::with_val(53, bound),
+                F64_MOST_DIGITS,
+            );
+            assert_eq!(decimal_f64(value, bound), exact, "{value:e} ± {bound:e}");
+        }
+    }
+
+    #[test]
+    fn the_two_misrounded_reproducers_lose_the_digit_their_bound_straddles() {
+        // Persson (P1 = 0.82575): f64 W = 0.5252148792448502 with error estimate 2.6e-14;
+        // W = 5.2521487924484932684e-1 (Arb), whose 13th digit is 8, not 9.
+        let w = decimal_f64(0.5252148792448502, 2.6218303737392632e-14);
+        assert_eq!(w, digits("5.25214879245e-1", 12));
+        // v' = P⁻³: f64 W = 14018.010208534673, estimate 7.7e-10; W = 14018.01020853501…
+        assert_eq!(
+            decimal_f64(14018.010208534673, 7.72750012239026e-10),
+            digits("1.40180102085e4", 12)
+        );
+        assert_eq!(resolved_digits(14018.010208534673, 7.72750012239026e-10), 12);
+    }
+
     #[test]
     fn f64_suffices_from_twelve_digits() {
         assert_eq!(resolved_digits(0.4, 1.37e-14), 13);
+        assert_eq!(resolved_digits(0.0, 0.0), F64_MOST_DIGITS);
+        assert_eq!(resolved_digits(0.0, 1e-300), 0);
+        assert_eq!(resolved_digits(1.0, f64::NAN), 0);
         assert_eq!(resolved_digits(1.0, 0.0), F64_MOST_DIGITS);
         assert_eq!(resolved_digits(1e-3, 2e-3), 0);
         assert_eq!(resolved_digits(f64::INFINITY, 1.0), 0);

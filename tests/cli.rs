@@ -214,7 +214,9 @@ fn simulate_prints_only_vouched_digits_and_fails_short_of_its_tolerance() {
     let digits = value["digits"].as_u64().unwrap() as usize;
     let estimate = value["estimated_rel_error"].as_f64().unwrap();
     assert!(estimate <= 1e-6 && estimate <= 10f64.powi(-(digits as i32)), "{value}");
-    assert!(estimate > 10f64.powi(-(digits as i32) - 1) || digits == 15, "{value}");
+    // The printing rule gives up a digit whose rounding boundary W ± the estimate straddles.
+    assert!(estimate > 10f64.powi(-(digits as i32) - 2) || digits == 15, "{value}");
+    assert_eq!(value["bound"], "estimate");
     let w = value["W"].as_str().unwrap();
     assert_eq!(w.split('e').next().unwrap().replace('.', "").len(), digits, "{value}");
     assert_eq!(

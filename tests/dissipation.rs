@@ -363,3 +363,99 @@ fn the_error_estimate_bounds_the_error_where_convergence_slows_at_256_bits() {
         coarse.error_estimate.to_f64()
     );
 }
+
+#[path = "common/strategies.rs"]
+mod strategies;
+
+#[test]
+fn the_f64_error_estimate_bounds_the_f64_error_against_256_bits_on_random_cases() {
+    // Every f64 W (inputs read from their decimals in f64, as the command line reads them)
+    // must lie within its error estimate of the same decimal case computed at 256 bits to
+    // 1e-60: the printing rule rounds the interval W ± estimate, so an estimate short of
+    // the true error would print wrong digits. MICROSLIP_ESTIMATE_CASES=N draws N cases
+    // (proofs/printing.md: 4,000); the worst ratio of error to estimate is printed.
+    use microslip::inputs::Case;
+    use proptest::prop_assert;
+    use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
+    let cases = std::env::var("MICROSLIP_ESTIMATE_CASES")
+        .ok()
+        .and_then(|n| n.parse().ok())
+        .unwrap_or(48);
+    let config = Config {
+        cases,
+        failure_persistence: None,
+        ..Config::default()
+    };
+    let mut runner = TestRunner::new_with_rng(config, TestRng::from_seed(RngAlgorithm::ChaCha, &[19; 32]));
+    let worst = std::cell::Cell::new((0.0f64, 0u32));
+    runner
+        .run(&strategies::case(true), |case| {
+            let Case { cycle, compliance } = case.read::<f64>(Precision::DOUBLE).unwrap();
+            let Ok(f64_run) = dissipation(&cycle, compliance.as_ref(), &Options::default()) else {
+                // Refused in f64 (near separation, say): the command line computes in MPFR.
+                return Ok(());
+            };
+            let precise = case.read::<Float>(Precision::bits(256)).unwrap();
+            let options = Options {
+                relative_tolerance: Some(Real::powi(&Float::with_val(256, 10), -60)),
+                ..Options::default()
+            };
+            let reference = dissipation(&precise.cycle, precise.compliance.as_ref(), &options).unwrap();
+            let error = (Float::with_val(256, f64_run.total) - &reference.total).abs().to_f64();
+            let ratio = error / f64_run.error_estimate;
+            let (largest, checked) = worst.get();
+            worst.set((largest.max(ratio), checked + 1));
+            prop_assert!(
+                error <= f64_run.error_estimate,
+                "W_f64 = {:e} is {error:.2e} from {}, beyond its estimate {:.2e}, for {case:?}",
+                f64_run.total,
+                reference.total.to_scientific(20),
+                f64_run.error_estimate
+            );
+            Ok(())
+        })
+        .unwrap();
+    let (largest, checked) = worst.get();
+    eprintln!("{checked} f64 cases: largest error / estimate {largest:.3}");
+}
+
+#[test]
+fn the_readme_shows_what_dissipation_prints() {
+    // Each console example of `microslip dissipation` in the README, run from the
+    // repository root, prints exactly the lines the README shows under it.
+    let root = env!("CARGO_MANIFEST_DIR");
+    let readme = std::fs::read_to_string(format!("{root}/README.md")).unwrap();
+    let mut examples = 0;
+    let mut lines = readme.lines().peekable();
+    while let Some(line) = lines.next() {
+        let Some(command) = line.strip_prefix("$ microslip dissipation ") else {
+            continue;
+        };
+        let mut command = command.trim_end_matches('\\').to_string();
+        let mut continued = line.ends_with('\\');
+        while continued {
+            let next = lines.next().unwrap();
+            command.push(' ');
+            command.push_str(next.trim().trim_end_matches('\\'));
+            continued = next.ends_with('\\');
+        }
+        let mut shown = Vec::new();
+        while let Some(next) = lines
+            .peek()
+            .filter(|next| !next.starts_with("```") && !next.starts_with('$'))
+        {
+            shown.push(next.to_string());
+            lines.next();
+        }
+        let mut args = vec!["dissipation".to_string()];
+        args.extend(command.split_whitespace().map(|arg| match arg.strip_prefix("table:") {
+            Some(file) => format!("table:{root}/{file}"),
+            None => arg.to_string(),
+        }));
+        let (code, stdout, stderr) = common::microslip(&args);
+        assert_eq!(code, 0, "{args:?}: {stderr}");
+        assert_eq!(stdout.trim_end().lines().collect::<Vec<_>>(), shown, "{args:?}");
+        examples += 1;
+    }
+    assert!(examples >= 2, "{examples} examples");
+}

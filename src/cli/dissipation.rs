@@ -4,17 +4,21 @@ use clap::Args;
 
 use microslip::batch::{case_dissipation, CaseError};
 use microslip::dissipation::{DissipationError, Method};
-use microslip::reference::ReferenceError;
+use microslip::reference::{PrintedDissipation, ReferenceError};
+use microslip::verified::{Bound, F64_MOST_DIGITS};
 
 use super::case::{Answer, CaseArgs};
 use super::json::{DissipationReport, Segments};
 use super::report::Failure;
 
 #[derive(Args)]
-#[command(mut_arg("digits", |digits| digits.help(
-    "Significant digits to compute and verify (1–1000); without it, f64 and the digits its error \
-     estimate vouches for"
-)))]
+#[command(
+    mut_arg("digits", |digits| digits.help(
+        "Significant digits to compute and verify (1–1000); without it, f64 and the digits its error \
+         estimate vouches for"
+    )),
+    after_help = UNITS_AND_DIGITS
+)]
 pub struct DissipationArgs {
     #[command(flatten)]
     pub case: CaseArgs,
@@ -22,9 +26,17 @@ pub struct DissipationArgs {
     pub answer: Answer,
 }
 
+/// What the printed numbers mean, for --help.
+const UNITS_AND_DIGITS: &str = "W is energy per cycle in the units of load × approach of the inputs \
+(N·m for loads in N and a compliance in m/N). The segments are the four integrals of v'(P) − v'(P0) \
+(v'(P0) contributes nothing over the closed cycle, so they sum to W). Every number is printed \
+only with the digits on which its whole error interval rounds alike, so a segment may carry \
+fewer digits than W; the output names the bound: an f64 error estimate (not proven), agreement \
+of two precisions with --digits (not a proof), a table's error, or exact.";
+
 fn method_name(method: Method) -> &'static str {
     match method {
-        Method::FourSegment => "four-segment integrals in the cycle angle",
+        Method::FourSegment => "four-segment integrals of v' − v'(P0) in the cycle angle",
         Method::InPhase => "in-phase closed form (paper appendix)",
         Method::ConstantNormalLoad => "constant-normal-load closed form",
         Method::NoTangentialOscillation => "no tangential oscillation (W = 0)",
@@ -54,6 +66,10 @@ pub fn run(args: &DissipationArgs) -> Result<String, Failure> {
         other => Failure::refused(other.to_string()),
     })?;
     let (printed, table) = (result.printed, result.table);
+    let bound = match printed.bound {
+        Bound::Estimate if table.is_some() => Bound::TableError,
+        bound => bound,
+    };
     if args.answer.json {
         // A segment with no known digit is printed empty (a coarse table): null here.
         let segments: Vec<Option<String>> = printed
@@ -65,7 +81,8 @@ pub fn run(args: &DissipationArgs) -> Result<String, Failure> {
             w: (printed.digits > 0).then(|| printed.total.clone()),
             w_f64: printed.binary64.map(|values| values[0]),
             digits: printed.digits,
-            digits_verified: printed.error_estimate.is_none().then_some(printed.digits),
+            digits_verified: matches!(bound, Bound::Agreement | Bound::Exact).then_some(printed.digits),
+            bound: bound.key(),
             precision_bits: printed.precision_bits,
             error_estimate: printed.error_estimate,
             f64_fallback: printed.fallback.clone(),
@@ -87,21 +104,15 @@ pub fn run(args: &DissipationArgs) -> Result<String, Failure> {
             table.unrounded.abs() + table.error + printed.error_estimate.unwrap_or(0.0),
         ),
         _ => format!(
-        "W = {}   ({}; {} significant digits{})\n",
-        printed.total,
-        method_name(printed.method),
-        printed.digits,
-        match (&printed.fallback, printed.error_estimate) {
-            (Some(reason), _) => format!(", verified in MPFR: {reason}"),
-            (None, Some(_)) if table.is_some() => ", f64, as far as the table and the quadrature vouch".to_string(),
-            (None, Some(error)) if printed.digits < 15 => {
-                format!(", f64, error estimate {error:.1e}; --digits N gives more")
-            }
-            (None, Some(_)) => ", f64".to_string(),
-            (None, None) => ", verified".to_string(),
-        }
-    ),
+            "W = {}   ({}; {})\n",
+            printed.total,
+            method_name(printed.method),
+            provenance(&printed, bound)
+        ),
     };
+    if printed.segments.iter().any(|(_, value)| value != "0") {
+        out.push_str("  segments, each printed to the digits its own bound determines:\n");
+    }
     for (name, value) in &printed.segments {
         let value = if value.is_empty() { "no digit determined" } else { value };
         out.push_str(&format!("  {name}  {value}\n"));
@@ -118,6 +129,31 @@ pub fn run(args: &DissipationArgs) -> Result<String, Failure> {
         ));
     }
     Ok(out.trim_end().to_string())
+}
+
+/// How many digits W has and what vouches for them, as the W line says it.
+fn provenance(printed: &PrintedDissipation, bound: Bound) -> String {
+    let digits = match printed.digits {
+        0 => "no significant digit determined".to_string(),
+        1 => "1 significant digit".to_string(),
+        n => format!("{n} significant digits"),
+    };
+    let agreement = "verified by agreement of two precisions (not a proof)";
+    match (bound, &printed.fallback, printed.error_estimate) {
+        (Bound::Exact, _, _) => "exact".to_string(),
+        (_, None, Some(error)) if printed.total == "0" => {
+            format!("zero in f64, error estimate {error:.1e} (not proven)")
+        }
+        (_, Some(reason), _) => format!("{digits}, in MPFR, {agreement}: {reason}"),
+        (Bound::TableError, _, _) => {
+            format!("{digits}, f64, as far as the table error and the quadrature's error estimate vouch")
+        }
+        (Bound::Agreement, None, _) => format!("{digits}, {agreement}"),
+        (_, None, Some(error)) if printed.digits < F64_MOST_DIGITS => {
+            format!("{digits}, f64, error estimate {error:.1e} (not proven); --digits N gives more")
+        }
+        (_, None, _) => format!("{digits}, f64, error estimate (not proven)"),
+    }
 }
 
 #[cfg(test)]

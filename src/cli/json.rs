@@ -3,7 +3,10 @@
 //! it was computed in f64 also the binary64 number itself in shortest round-trip form
 //! (`"W_f64"`); `digits` is the significant digits printed, `digits_verified` the
 //! digits checked by a second computation at higher precision (null where none were),
-//! `precision_bits` the working precision (53 for f64), `inputs` the inputs as given.
+//! `bound` what vouches for the digits printed (`"estimate"`, `"agreement"`,
+//! `"table_error"` or `"exact"`), `precision_bits` the working precision (53 for f64),
+//! `inputs` the inputs as given. Every value string is printed by one rule: only the
+//! digits on which its whole error interval rounds alike; `"0"` for an exact zero.
 
 use serde::ser::SerializeMap;
 use serde::Serialize;
@@ -45,6 +48,9 @@ pub struct DissipationReport<'a> {
     pub w_f64: Option<f64>,
     pub digits: u32,
     pub digits_verified: Option<u32>,
+    /// What vouches for the digits: `"estimate"` (f64's error estimate, not proven),
+    /// `"agreement"` (two precisions agree, not a proof), `"table_error"`, `"exact"`.
+    pub bound: &'static str,
     pub precision_bits: u32,
     /// The absolute error estimate of an f64 W (null for verified digits).
     pub error_estimate: Option<f64>,
@@ -76,7 +82,7 @@ pub struct SimulationInputs<'a> {
 /// `microslip simulate --json`.
 #[derive(Serialize)]
 pub struct SimulationReport<'a> {
-    /// W as the work of the load, to the digits the estimate vouches for.
+    /// W as the work of the load, to the digits the estimate determines.
     #[serde(rename = "W")]
     pub w: String,
     #[serde(rename = "W_f64")]
@@ -89,6 +95,8 @@ pub struct SimulationReport<'a> {
     pub digits: u32,
     /// Simulated digits are estimated, not verified: always null.
     pub digits_verified: Option<u32>,
+    /// Always `"estimate"`: the simulation's error is estimated from its refinements.
+    pub bound: &'static str,
     pub precision_bits: u32,
     pub estimated_rel_error: f64,
     pub method: &'static str,

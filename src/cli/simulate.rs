@@ -10,8 +10,9 @@ use microslip::batch;
 use microslip::files::{check_writable, write_text_atomically};
 use microslip::inputs::{Case, CaseText};
 use microslip::plot::{plot_cycle, PLOT_EXTENSIONS};
-use microslip::real::{Precision, Real};
+use microslip::real::Precision;
 use microslip::simulate::{loop_csv, simulate, SimulationError, SimulationOptions, SimulationResult};
+use microslip::verified::{decimal_f64, Bound, Decimal, F64_MOST_DIGITS};
 
 use super::case::CaseArgs;
 use super::json::{SimulationInputs, SimulationReport};
@@ -19,6 +20,9 @@ use super::parse;
 use super::report::Failure;
 
 #[derive(Args)]
+#[command(after_help = "W is energy per cycle in the units of load × approach of the inputs \
+(N·m for loads in N and a compliance in m/N), printed only with the digits on which its whole \
+estimated error interval rounds alike.")]
 pub struct SimulateArgs {
     #[command(flatten)]
     pub case: CaseArgs,
@@ -96,8 +100,8 @@ pub fn run(args: &SimulateArgs) -> Result<String, Failure> {
         ..SimulationOptions::default()
     };
     let result = simulate(&cycle, compliance.as_ref(), &options).map_err(simulation_failure)?;
-    let digits = result.vouched_digits().max(1);
-    let w = result.w_work.to_scientific(digits as usize);
+    let printed = PrintedSimulation::of(&result);
+    let w = printed.work.to_string();
     // A write that fails after the run still reports W.
     let lost =
         |error: &dyn std::fmt::Display| Failure::failed(format!("{error} (the simulation's W = {w} is not lost)"));
@@ -109,31 +113,56 @@ pub fn run(args: &SimulateArgs) -> Result<String, Failure> {
         plot_cycle(path, &cycle, &result).map_err(|e| lost(&e))?;
     }
     if args.json {
-        return Ok(serde_json::to_string(&simulation_report(&result, digits, &case, args))?);
+        return Ok(serde_json::to_string(&simulation_report(
+            &result, &printed, &case, args,
+        ))?);
     }
+    let digits = match printed.work.digits() {
+        0 => "no significant digit determined".to_string(),
+        1 => "1 significant digit".to_string(),
+        n => format!("{} significant digits", n.min(F64_MOST_DIGITS)),
+    };
     Ok(format!(
-        "W = {w} (work of the load) = {} (frictional work); estimated relative error {:.1e}, {digits} significant digits; {} elements, {} steps per cycle (finest run)",
-        result.w_friction.to_scientific(digits as usize),
+        "W = {w} (work of the load; the frictional work agrees: {}); estimated relative error {:.1e} (an estimate, not proven), {digits}; {} elements, {} steps per cycle (finest run)",
+        printed.friction,
         result.estimated_rel_error,
         result.elements,
         result.steps
     ))
 }
 
+/// The simulation's two measures of W, each printed by the one rule with the absolute
+/// bound its estimated relative error gives W (which includes their difference).
+struct PrintedSimulation {
+    work: Decimal,
+    friction: Decimal,
+}
+
+impl PrintedSimulation {
+    fn of(result: &SimulationResult) -> Self {
+        let bound = result.estimated_rel_error * result.w_work.abs();
+        PrintedSimulation {
+            work: decimal_f64(result.w_work, bound),
+            friction: decimal_f64(result.w_friction, bound),
+        }
+    }
+}
+
 fn simulation_report<'a>(
     result: &SimulationResult,
-    digits: u32,
+    printed: &PrintedSimulation,
     case: &'a CaseText,
     args: &SimulateArgs,
 ) -> SimulationReport<'a> {
     let defaults = SimulationOptions::default();
     SimulationReport {
-        w: result.w_work.to_scientific(digits as usize),
+        w: printed.work.to_string(),
         w_f64: result.w_work,
-        w_friction: result.w_friction.to_scientific(digits as usize),
+        w_friction: printed.friction.to_string(),
         w_friction_f64: result.w_friction,
-        digits,
+        digits: printed.work.digits().min(F64_MOST_DIGITS),
         digits_verified: None,
+        bound: Bound::Estimate.key(),
         precision_bits: 53,
         estimated_rel_error: result.estimated_rel_error,
         method: "history simulation of a spring bed, Richardson-extrapolated from three resolutions",
