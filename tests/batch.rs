@@ -336,7 +336,7 @@ fn all_rows_computed_exits_0_and_replaces_the_output_whole() {
     );
     let results = read_jsonl(&std::fs::read(&output_path).expect("output"));
     assert_eq!(results.len(), 7);
-    assert!(results.iter().all(|r| r["error"].is_null() && r["W"].is_string()));
+    assert!(results.iter().all(|r| r["error"].is_null() && r["W"].is_number()));
     // No temporary file left beside the output.
     let names: Vec<String> = std::fs::read_dir(&dir)
         .expect("dir")
