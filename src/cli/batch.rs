@@ -57,9 +57,9 @@ pub fn run(args: &BatchArgs) -> Result<usize, Failure> {
     let mut output = StreamedOutput::create(output_path).map_err(|e| Failure::failed(e.to_string()))?;
     let lost = |e: std::io::Error| Failure::failed(format!("{}: {e}", args.output));
     let jsonl = args.format == "jsonl";
-    if !jsonl {
-        output.write_all(&batch::csv_header(&header)?).map_err(lost)?;
-    }
+    // The CSV header goes out with the first rows, so that input refused before them
+    // leaves a stream output empty.
+    let mut pending = if jsonl { Vec::new() } else { batch::csv_header(&header)? };
     let progress = Progress::new(0);
     let done = std::sync::atomic::AtomicUsize::new(0);
     let started = Instant::now();
@@ -78,11 +78,12 @@ pub fn run(args: &BatchArgs) -> Result<usize, Failure> {
             let finished = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
             progress.at_of(finished, read, "rows");
         });
-        let bytes = if jsonl {
+        let mut bytes = std::mem::take(&mut pending);
+        bytes.extend(if jsonl {
             super::json::lines(&batch::records(&header, &chunk, &results))?
         } else {
             batch::csv_rows(&header, &chunk, &results)?
-        };
+        });
         rows_done = read;
         failed += results.iter().filter(|r| !RowResult::succeeded(r)).count();
         match output.write_all(&bytes).and_then(|()| output.flush()) {
@@ -95,6 +96,7 @@ pub fn run(args: &BatchArgs) -> Result<usize, Failure> {
         }
     }
     progress.finish();
+    output.write_all(&pending).map_err(lost)?;
     output.finish().map_err(|e| Failure::failed(e.to_string()))?;
     if failed > 0 || args.output != "-" {
         warn(&format!(
