@@ -5,13 +5,15 @@
 //! but a regular file replaced; never a panic (101) or an abort (134); never a run
 //! beyond its budget and a second. 24 random CSVs by default (`PROPTEST_CASES=N`).
 
-use std::io::{Read, Write};
+use std::io::Write;
 use std::os::unix::fs::FileTypeExt;
 use std::path::{Path, PathBuf};
 use std::process::{Child, Command, Stdio};
 use std::time::{Duration, Instant};
 
 use proptest::prelude::*;
+
+mod common;
 use proptest::test_runner::{Config, TestCaseError, TestRunner};
 
 fn scratch(name: &str) -> PathBuf {
@@ -35,52 +37,11 @@ fn spawn(args: &[&str], stdin: Stdio) -> Child {
         .expect("run microslip")
 }
 
-/// What a finished run did.
-struct Outcome {
-    code: i32,
-    stdout: Vec<u8>,
-    stderr: String,
-    seconds: f64,
-}
+use common::Bounded as Outcome;
 
 /// Runs to the end with `input` on stdin, killed (and the test failed) after `limit`.
 fn run(args: &[&str], input: &[u8], limit: Duration) -> Outcome {
-    let started = Instant::now();
-    let mut child = spawn(args, Stdio::piped());
-    let mut stdin = child.stdin.take().expect("stdin");
-    let input = input.to_vec();
-    // The child may stop reading early (a refused header): a closed pipe is no error here.
-    let writer = std::thread::spawn(move || drop(stdin.write_all(&input)));
-    let mut stdout = child.stdout.take().expect("stdout");
-    let mut stderr = child.stderr.take().expect("stderr");
-    let out = std::thread::spawn(move || {
-        let mut bytes = Vec::new();
-        let _ = stdout.read_to_end(&mut bytes);
-        bytes
-    });
-    let err = std::thread::spawn(move || {
-        let mut text = String::new();
-        let _ = stderr.read_to_string(&mut text);
-        text
-    });
-    let status = loop {
-        if let Some(status) = child.try_wait().expect("wait") {
-            break status;
-        }
-        if started.elapsed() > limit {
-            let _ = child.kill();
-            let _ = child.wait();
-            panic!("microslip {args:?} ran beyond {limit:?}");
-        }
-        std::thread::sleep(Duration::from_millis(20));
-    };
-    let _ = writer.join();
-    Outcome {
-        code: status.code().unwrap_or(-1),
-        stdout: out.join().expect("stdout"),
-        stderr: err.join().expect("stderr"),
-        seconds: started.elapsed().as_secs_f64(),
-    }
+    common::microslip_bounded(args, input, limit).unwrap_or_else(|why| panic!("{why}"))
 }
 
 fn runner(seed: u8) -> TestRunner {
