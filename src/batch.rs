@@ -219,25 +219,64 @@ const ROW_GRACE: Duration = Duration::from_millis(500);
 /// Stack of a row's thread: as large as a command's worker has.
 const ROW_STACK_BYTES: usize = 64 << 20;
 
-/// `work()` on a thread of its own, or None when it has not answered within `budget`
-/// and [`ROW_GRACE`]: the computation checks its deadline between steps, and a step that
-/// outlasts it is left to finish on its own rather than hold the batch.
-fn within_budget<T: Send + 'static>(
-    budget: Duration,
-    work: impl FnOnce() -> T + Send + 'static,
-) -> Option<std::thread::Result<T>> {
-    let (sender, receiver) = std::sync::mpsc::channel();
-    let run = move || {
-        let _ = sender.send(std::panic::catch_unwind(std::panic::AssertUnwindSafe(work)));
-    };
-    let spawned = std::thread::Builder::new().stack_size(ROW_STACK_BYTES).spawn(run);
-    if spawned.is_err() {
-        return Some(Err(Box::new("cannot start a thread")));
-    }
-    receiver.recv_timeout(budget.saturating_add(ROW_GRACE)).ok()
+/// A unit of work for a row thread.
+type Job = Box<dyn FnOnce() + Send>;
+
+/// The threads rows run on, beside the pool that waits for them: a row that outlasts
+/// its budget is left to finish on its thread, which then ends, while the batch goes on.
+/// Idle threads are reused (a thread per row would cost more than an f64 row), and end
+/// when the batch is over.
+#[derive(Default)]
+struct RowThreads {
+    idle: std::sync::Mutex<Vec<std::sync::mpsc::Sender<Job>>>,
 }
 
-fn row_result(row: &InputRow, digits: Option<u32>, budget: Duration) -> RowResult {
+impl RowThreads {
+    /// An idle thread, or a new one.
+    fn take(&self) -> Option<std::sync::mpsc::Sender<Job>> {
+        if let Some(idle) = self.idle.lock().ok().and_then(|mut idle| idle.pop()) {
+            return Some(idle);
+        }
+        let (sender, receiver) = std::sync::mpsc::channel::<Job>();
+        let thread = std::thread::Builder::new().stack_size(ROW_STACK_BYTES);
+        thread
+            .spawn(move || {
+                // Until its sender is dropped: by the pool at the end, or by a row that gave up.
+                while let Ok(job) = receiver.recv() {
+                    job();
+                }
+            })
+            .ok()?;
+        Some(sender)
+    }
+
+    /// `work()` on a row thread, or None when it has not answered within `budget` and
+    /// [`ROW_GRACE`]: the computation checks its deadline between steps, and a step that
+    /// outlasts it is left to finish on its own rather than hold the batch.
+    fn within_budget<T: Send + 'static>(
+        &self,
+        budget: Duration,
+        work: impl FnOnce() -> T + Send + 'static,
+    ) -> Option<std::thread::Result<T>> {
+        let Some(thread) = self.take() else {
+            return Some(Err(Box::new("cannot start a thread")));
+        };
+        let (sender, receiver) = std::sync::mpsc::channel();
+        let job: Job = Box::new(move || {
+            let _ = sender.send(std::panic::catch_unwind(std::panic::AssertUnwindSafe(work)));
+        });
+        if thread.send(job).is_err() {
+            return Some(Err(Box::new("a row thread ended")));
+        }
+        let answer = receiver.recv_timeout(budget.saturating_add(ROW_GRACE)).ok()?;
+        if let Ok(mut idle) = self.idle.lock() {
+            idle.push(thread);
+        }
+        Some(answer)
+    }
+}
+
+fn row_result(threads: &RowThreads, row: &InputRow, digits: Option<u32>, budget: Duration) -> RowResult {
     let failed = |error: String| RowResult {
         error: format!("line {}: {error}", row.line),
         ..RowResult::default()
@@ -246,7 +285,7 @@ fn row_result(row: &InputRow, digits: Option<u32>, budget: Duration) -> RowResul
         Ok(case) => case.clone(),
         Err(problem) => return failed(problem.clone()),
     };
-    match within_budget(budget, move || case_dissipation(&case, digits, budget)) {
+    match threads.within_budget(budget, move || case_dissipation(&case, digits, budget)) {
         Some(Ok(Ok(result))) => {
             let printed = result.printed;
             let mut method = method_key(printed.method).to_string();
@@ -274,9 +313,10 @@ fn row_result(row: &InputRow, digits: Option<u32>, budget: Duration) -> RowResul
 /// Every row on all cores, each within `budget`, in input order; `row_done` is called
 /// as each row finishes.
 pub fn run(rows: &[InputRow], digits: Option<u32>, budget: Duration, row_done: &(dyn Fn() + Sync)) -> Vec<RowResult> {
+    let threads = RowThreads::default();
     rows.par_iter()
         .map(|row| {
-            let result = row_result(row, digits, budget);
+            let result = row_result(&threads, row, digits, budget);
             row_done();
             result
         })
