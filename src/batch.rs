@@ -5,14 +5,11 @@
 //! [`printable_dissipation`] gives them, and for a compliance from a table the f64
 //! value with the error the table introduces beside the quadrature's.
 
-use std::collections::BTreeMap;
-use std::io::Read;
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 use std::sync::Arc;
 
 use rayon::prelude::*;
-use serde::Serialize;
 
 use crate::compliance::{parse_spec_with, tables_in_spec, ComplianceTable, TableError, TableInterpolant};
 use crate::cycle::LoadCycle;
@@ -21,6 +18,12 @@ use crate::inputs::{Case, CaseText};
 use crate::real::Precision;
 use crate::reference::{printable_dissipation, PrintedDissipation, ReferenceError};
 use crate::verified::resolved_digits;
+
+mod input;
+mod output;
+
+pub use input::{read_input, BatchInput, InputRow, MAX_RECORD_BYTES};
+pub use output::{BatchRecord, JsonValue};
 
 /// Relative quadrature tolerance of W from a table: far below any table's own error,
 /// and reachable on the interpolant's piecewise-cubic v' in f64.
@@ -101,6 +104,7 @@ pub fn case_dissipation(case: &CaseText, digits: Option<u32>, budget: Duration) 
     if digits.is_some() {
         return Err(CaseError::DigitsForTable);
     }
+    let deadline = Instant::now() + budget;
     let Case { cycle, compliance } = case.read::<f64>(Precision::DOUBLE).map_err(ReferenceError::from)?;
     cycle.validate().map_err(DissipationError::from)?;
     tables_cover(&tables, &cycle)?;
@@ -113,6 +117,7 @@ pub fn case_dissipation(case: &CaseText, digits: Option<u32>, budget: Duration) 
     };
     let options = Options {
         relative_tolerance: Some(TABLE_QUADRATURE_TOLERANCE),
+        deadline: Some(deadline),
         ..Options::default()
     };
     let result = dissipation(&cycle, compliance.as_ref(), &options).map_err(in_f64)?;
@@ -185,124 +190,19 @@ pub fn method_key(method: Method) -> &'static str {
 /// A batch input that cannot be used at all.
 #[derive(Debug, thiserror::Error)]
 pub enum BatchError {
-    /// The input cannot be read or has no usable header.
+    /// The input cannot be read, or is not a CSV.
     #[error("batch input: {0}")]
     Input(String),
     /// Required columns are missing.
     #[error("batch input has no column {missing} (its header is '{header}'); a batch needs p0, p1, q1, phi, friction, lambda or nu, compliance, and optionally q0 and id")]
     MissingColumns { missing: String, header: String },
+    /// A column is named twice: which one a row's value came from would be a guess.
+    #[error("batch input names the column '{name}' twice (its header is '{header}'); give each column once")]
+    DuplicateColumn { name: String, header: String },
 }
 
 /// The columns a batch appends to its input's.
 pub const RESULT_COLUMNS: [&str; 6] = ["W", "digits", "error_estimate", "table_error", "method", "error"];
-
-/// One input row: its line in the file, its cells, and the case (or why there is none).
-#[derive(Clone, Debug)]
-pub struct InputRow {
-    /// Line of the input file (1 is the header).
-    pub line: u64,
-    /// The cells, one per header column (missing ones empty).
-    pub cells: Vec<String>,
-    /// The case, or what is wrong with the row.
-    pub case: Result<CaseText, String>,
-}
-
-/// A batch input: the header and the rows.
-#[derive(Clone, Debug)]
-pub struct BatchInput {
-    /// Column names as given.
-    pub header: Vec<String>,
-    /// The rows in input order.
-    pub rows: Vec<InputRow>,
-}
-
-/// Reads a batch CSV (header, `#` comments, cells trimmed). Only a missing column or an
-/// unreadable file is an error; a bad row becomes a row whose case says why.
-pub fn read_input(source: impl Read) -> Result<BatchInput, BatchError> {
-    let mut reader = csv::ReaderBuilder::new()
-        .comment(Some(b'#'))
-        .trim(csv::Trim::All)
-        .flexible(true)
-        .from_reader(source);
-    let header: Vec<String> = reader
-        .headers()
-        .map_err(|e| BatchError::Input(e.to_string()))?
-        .iter()
-        .map(str::to_string)
-        .collect();
-    let find = |name: &str| header.iter().position(|h| h.eq_ignore_ascii_case(name));
-    let required = ["p0", "p1", "q1", "phi", "friction", "compliance"];
-    let mut missing: Vec<&str> = required.iter().copied().filter(|name| find(name).is_none()).collect();
-    if find("lambda").is_none() && find("nu").is_none() {
-        missing.push("lambda (or nu)");
-    }
-    if !missing.is_empty() {
-        return Err(BatchError::MissingColumns {
-            missing: missing.join(", "),
-            header: header.join(","),
-        });
-    }
-    let index = |name: &str| find(name);
-    let columns = [
-        index("p0"),
-        index("p1"),
-        index("q0"),
-        index("q1"),
-        index("phi"),
-        index("friction"),
-        index("lambda"),
-        index("nu"),
-        index("compliance"),
-    ];
-    let mut rows = Vec::new();
-    for record in reader.byte_records() {
-        let record = record.map_err(|e| BatchError::Input(e.to_string()))?;
-        let line = record.position().map_or(0, |p| p.line());
-        let text: Vec<Option<String>> = record
-            .iter()
-            .map(|cell| std::str::from_utf8(cell).ok().map(|s| s.to_string()))
-            .collect();
-        if text.iter().all(|cell| cell.as_deref() == Some("")) {
-            continue;
-        }
-        let cells: Vec<String> = (0..header.len())
-            .map(|i| text.get(i).cloned().flatten().unwrap_or_default())
-            .collect();
-        let case = row_case(&header, &text, &columns);
-        rows.push(InputRow { line, cells, case });
-    }
-    Ok(BatchInput { header, rows })
-}
-
-fn row_case(header: &[String], text: &[Option<String>], columns: &[Option<usize>; 9]) -> Result<CaseText, String> {
-    if text.len() != header.len() {
-        return Err(format!(
-            "the row has {} fields, the header {} (a compliance SPEC with commas must be quoted: \"persson:gamma=1,sigma=1\")",
-            text.len(),
-            header.len()
-        ));
-    }
-    if let Some(i) = text.iter().position(Option::is_none) {
-        return Err(format!("{} is not UTF-8 text", header[i]));
-    }
-    let cell = |k: usize| -> Option<String> { columns[k].and_then(|i| text[i].clone()).filter(|s| !s.is_empty()) };
-    let required = |k: usize, name: &str| cell(k).ok_or_else(|| format!("{name} is empty"));
-    let (lambda, nu) = (cell(6), cell(7));
-    if lambda.is_some() == nu.is_some() {
-        return Err("give exactly one of lambda and nu".to_string());
-    }
-    Ok(CaseText {
-        p0: required(0, "p0")?,
-        p1: required(1, "p1")?,
-        q0: cell(2).unwrap_or_else(|| "0".to_string()),
-        q1: required(3, "q1")?,
-        phi: required(4, "phi")?,
-        friction: required(5, "friction")?,
-        lambda,
-        nu,
-        compliance: required(8, "compliance")?,
-    })
-}
 
 /// The result of one row, as the output columns print it.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -328,18 +228,80 @@ impl RowResult {
     }
 }
 
-fn row_result(row: &InputRow, digits: Option<u32>, budget: Duration) -> RowResult {
+/// What a row gets beyond its budget to return its own, more specific, answer.
+const ROW_GRACE: Duration = Duration::from_millis(500);
+
+/// Stack of a row's thread: as large as a command's worker has.
+const ROW_STACK_BYTES: usize = 64 << 20;
+
+/// A unit of work for a row thread.
+type Job = Box<dyn FnOnce() + Send>;
+
+/// The threads rows run on, beside the pool that waits for them: a row that outlasts
+/// its budget is left to finish on its thread, which then ends, while the batch goes on.
+/// Idle threads are reused (a thread per row would cost more than an f64 row), and end
+/// when the batch is over.
+#[derive(Default)]
+struct RowThreads {
+    idle: std::sync::Mutex<Vec<std::sync::mpsc::Sender<Job>>>,
+}
+
+impl RowThreads {
+    /// An idle thread, or a new one.
+    fn take(&self) -> Option<std::sync::mpsc::Sender<Job>> {
+        if let Some(idle) = self.idle.lock().ok().and_then(|mut idle| idle.pop()) {
+            return Some(idle);
+        }
+        let (sender, receiver) = std::sync::mpsc::channel::<Job>();
+        let thread = std::thread::Builder::new().stack_size(ROW_STACK_BYTES);
+        thread
+            .spawn(move || {
+                // Until its sender is dropped: by the pool at the end, or by a row that gave up.
+                while let Ok(job) = receiver.recv() {
+                    job();
+                }
+            })
+            .ok()?;
+        Some(sender)
+    }
+
+    /// `work()` on a row thread, or None when it has not answered within `budget` and
+    /// [`ROW_GRACE`]: the computation checks its deadline between steps, and a step that
+    /// outlasts it is left to finish on its own rather than hold the batch.
+    fn within_budget<T: Send + 'static>(
+        &self,
+        budget: Duration,
+        work: impl FnOnce() -> T + Send + 'static,
+    ) -> Option<std::thread::Result<T>> {
+        let Some(thread) = self.take() else {
+            return Some(Err(Box::new("cannot start a thread")));
+        };
+        let (sender, receiver) = std::sync::mpsc::channel();
+        let job: Job = Box::new(move || {
+            let _ = sender.send(std::panic::catch_unwind(std::panic::AssertUnwindSafe(work)));
+        });
+        if thread.send(job).is_err() {
+            return Some(Err(Box::new("a row thread ended")));
+        }
+        let answer = receiver.recv_timeout(budget.saturating_add(ROW_GRACE)).ok()?;
+        if let Ok(mut idle) = self.idle.lock() {
+            idle.push(thread);
+        }
+        Some(answer)
+    }
+}
+
+fn row_result(threads: &RowThreads, row: &InputRow, digits: Option<u32>, budget: Duration) -> RowResult {
     let failed = |error: String| RowResult {
         error: format!("line {}: {error}", row.line),
         ..RowResult::default()
     };
     let case = match &row.case {
-        Ok(case) => case,
+        Ok(case) => case.clone(),
         Err(problem) => return failed(problem.clone()),
     };
-    let outcome = std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| case_dissipation(case, digits, budget)));
-    match outcome {
-        Ok(Ok(result)) => {
+    match threads.within_budget(budget, move || case_dissipation(&case, digits, budget)) {
+        Some(Ok(Ok(result))) => {
             let printed = result.printed;
             let mut method = method_key(printed.method).to_string();
             if let Some(reason) = &printed.fallback {
@@ -354,18 +316,22 @@ fn row_result(row: &InputRow, digits: Option<u32>, budget: Duration) -> RowResul
                 error: String::new(),
             }
         }
-        Ok(Err(error)) => failed(error.to_string()),
-        Err(_) => failed("internal error: the computation panicked (please report this case)".to_string()),
+        Some(Ok(Err(error))) => failed(error.to_string()),
+        Some(Err(_)) => failed("internal error: the computation panicked (please report this case)".to_string()),
+        None => failed(format!(
+            "the time budget of {} s per row ran out before the result was reached; raise --max-seconds",
+            budget.as_secs_f64()
+        )),
     }
 }
 
-/// Every row on all cores, in input order; `row_done` is called as each row finishes.
-pub fn run(input: &BatchInput, digits: Option<u32>, budget: Duration, row_done: &(dyn Fn() + Sync)) -> Vec<RowResult> {
-    input
-        .rows
-        .par_iter()
+/// Every row on all cores, each within `budget`, in input order; `row_done` is called
+/// as each row finishes.
+pub fn run(rows: &[InputRow], digits: Option<u32>, budget: Duration, row_done: &(dyn Fn() + Sync)) -> Vec<RowResult> {
+    let threads = RowThreads::default();
+    rows.par_iter()
         .map(|row| {
-            let result = row_result(row, digits, budget);
+            let result = row_result(&threads, row, digits, budget);
             row_done();
             result
         })
@@ -373,9 +339,9 @@ pub fn run(input: &BatchInput, digits: Option<u32>, budget: Duration, row_done: 
 }
 
 /// The input columns that are echoed (all but those named like a result column).
-fn echoed(input: &BatchInput) -> Vec<usize> {
-    (0..input.header.len())
-        .filter(|&i| !RESULT_COLUMNS.contains(&input.header[i].as_str()))
+fn echoed(header: &[String]) -> Vec<usize> {
+    (0..header.len())
+        .filter(|&i| !RESULT_COLUMNS.contains(&header[i].as_str()))
         .collect()
 }
 
@@ -383,61 +349,53 @@ fn estimate_text(value: Option<f64>) -> String {
     value.map_or(String::new(), |v| format!("{v:.2e}"))
 }
 
-/// The results as CSV: the input columns, then [`RESULT_COLUMNS`].
-pub fn to_csv(input: &BatchInput, results: &[RowResult]) -> Result<Vec<u8>, BatchError> {
-    let keep = echoed(input);
-    let mut writer = csv::Writer::from_writer(Vec::new());
-    let header = keep.iter().map(|&i| input.header[i].as_str()).chain(RESULT_COLUMNS);
-    let io = |e: csv::Error| BatchError::Input(e.to_string());
-    writer.write_record(header).map_err(io)?;
-    for (row, result) in input.rows.iter().zip(results) {
-        let cells = keep.iter().map(|&i| row.cells[i].clone()).chain([
+/// The header line of the CSV output: the input columns, then [`RESULT_COLUMNS`].
+pub fn csv_header(header: &[String]) -> Result<Vec<u8>, BatchError> {
+    let names = echoed(header)
+        .into_iter()
+        .map(|i| header[i].as_str())
+        .chain(RESULT_COLUMNS);
+    csv_lines([names])
+}
+
+/// The CSV lines of rows and their results.
+pub fn csv_rows(header: &[String], rows: &[InputRow], results: &[RowResult]) -> Result<Vec<u8>, BatchError> {
+    let keep = echoed(header);
+    csv_lines(rows.iter().zip(results).map(|(row, result)| {
+        keep.iter().map(|&i| row.cells[i].clone()).chain([
             result.total.clone(),
             result.digits.map_or(String::new(), |d| d.to_string()),
             estimate_text(result.error_estimate),
             estimate_text(result.table_error),
             result.method.clone(),
             result.error.clone(),
-        ]);
-        writer.write_record(cells).map_err(io)?;
-    }
-    writer.into_inner().map_err(|e| BatchError::Input(e.to_string()))
+        ])
+    }))
 }
 
-/// One output row of a batch as a JSON object: the echoed input columns (as text,
-/// the last of equally named ones kept) and the result fields (null where absent).
-#[derive(Debug, Serialize)]
-pub struct BatchRecord<'a> {
-    #[serde(flatten)]
-    pub inputs: BTreeMap<&'a str, &'a str>,
-    #[serde(rename = "W")]
-    pub w: Option<&'a str>,
-    pub digits: Option<u32>,
-    pub error_estimate: Option<f64>,
-    pub table_error: Option<f64>,
-    pub method: Option<&'a str>,
-    pub error: Option<&'a str>,
+fn csv_lines<Row, Cell>(rows: impl IntoIterator<Item = Row>) -> Result<Vec<u8>, BatchError>
+where
+    Row: IntoIterator<Item = Cell>,
+    Cell: AsRef<[u8]>,
+{
+    let io = |e: &dyn std::fmt::Display| BatchError::Input(e.to_string());
+    let mut writer = csv::Writer::from_writer(Vec::new());
+    for row in rows {
+        writer.write_record(row).map_err(|e| io(&e))?;
+    }
+    writer.into_inner().map_err(|e| io(&e))
 }
 
 /// The results as records, one per row in input order (the JSON lines output).
-pub fn records<'a>(input: &'a BatchInput, results: &'a [RowResult]) -> Vec<BatchRecord<'a>> {
-    let keep = echoed(input);
-    let text = |s: &'a str| (!s.is_empty()).then_some(s);
-    input
-        .rows
-        .iter()
+pub fn records<'a>(header: &'a [String], rows: &'a [InputRow], results: &'a [RowResult]) -> Vec<BatchRecord<'a>> {
+    let keep = echoed(header);
+    rows.iter()
         .zip(results)
-        .map(|(row, result)| BatchRecord {
-            inputs: keep
-                .iter()
-                .map(|&i| (input.header[i].as_str(), row.cells[i].as_str()))
-                .collect(),
-            w: text(&result.total),
-            digits: result.digits,
-            error_estimate: result.error_estimate,
-            table_error: result.table_error,
-            method: text(&result.method),
-            error: text(&result.error),
+        .map(|(row, result)| {
+            BatchRecord::new(
+                keep.iter().map(|&i| (header[i].as_str(), row.cells[i].as_str())),
+                result,
+            )
         })
         .collect()
 }
@@ -445,26 +403,68 @@ pub fn records<'a>(input: &'a BatchInput, results: &'a [RowResult]) -> Vec<Batch
 #[cfg(test)]
 mod tests {
     use super::*;
+    use std::io::Read;
+
+    fn rows_of(text: &str) -> (Vec<String>, Vec<InputRow>) {
+        let input = read_input(text.as_bytes()).unwrap();
+        let header = input.header.clone();
+        (header, input.map(Result::unwrap).collect())
+    }
 
     #[test]
     fn a_record_echoes_the_inputs_and_gives_absent_results_as_null() {
         let text = "id,p0,p1,q1,phi,friction,lambda,compliance,W\n\
                     a,1,0.4,0.5,0.4pi,1,1,\"persson:gamma=1,sigma=1\",old\n\
                     b,1,0.4,5,0.4pi,1,1,\"persson:gamma=1,sigma=1\",old\n";
-        let input = read_input(text.as_bytes()).unwrap();
-        let results = run(&input, None, Duration::from_secs(10), &|| {});
-        let lines: Vec<serde_json::Value> = records(&input, &results)
+        let (header, rows) = rows_of(text);
+        let results = run(&rows, None, Duration::from_secs(10), &|| {});
+        let lines: Vec<serde_json::Value> = records(&header, &rows, &results)
             .iter()
             .map(|record| serde_json::to_value(record).unwrap())
             .collect();
         // The input's own W column is not echoed: the result's W takes its place.
-        assert_eq!(lines[0]["W"], "4.062475792458e-1");
+        assert_eq!(lines[0]["W"], 0.4062475792458);
         assert_eq!(lines[0]["id"], "a");
+        assert_eq!(lines[0]["p1"], 0.4);
+        assert_eq!(lines[0]["phi"], "0.4pi");
         assert_eq!(lines[0]["compliance"], "persson:gamma=1,sigma=1");
         assert_eq!(lines[0]["digits"], 13);
         assert!(lines[0]["error"].is_null() && lines[0]["table_error"].is_null());
         assert!(lines[1]["W"].is_null() && lines[1]["method"].is_null());
         assert!(lines[1]["error"].as_str().unwrap().contains("gross slip"));
         assert_eq!(lines[0].as_object().unwrap().len(), 14);
+    }
+
+    #[test]
+    fn comments_are_whole_lines_before_the_header_and_every_row_is_a_row() {
+        let text = "# a comment\n#another, with \"a quote\n\
+                    id,p0,p1,q1,phi,friction,lambda,compliance\n\
+                    #1,1,0.4,0.5,0.4pi,1,1,const:c=1\n\
+                    ,,,,,,,\n\
+                    # not a comment,1,0.4,0.5,0.4pi,1,1,const:c=1\n";
+        let (_, rows) = rows_of(text);
+        let ids: Vec<&str> = rows.iter().map(|row| row.cells[0].as_str()).collect();
+        assert_eq!(ids, ["#1", "", "# not a comment"]);
+        assert_eq!(rows.iter().map(|row| row.line).collect::<Vec<_>>(), [4, 5, 6]);
+        assert!(rows[0].case.is_ok());
+        assert_eq!(rows[1].case.as_ref().unwrap_err(), "every cell of the row is empty");
+    }
+
+    #[test]
+    fn a_column_named_twice_and_input_that_is_no_csv_are_refused() {
+        let twice = "p0,p1,q1,phi,friction,lambda,compliance,P0\n1,0.4,0.5,1,1,1,const:c=1,2\n";
+        let error = read_input(twice.as_bytes()).err().unwrap();
+        assert!(error.to_string().contains("names the column 'P0' twice"), "{error}");
+        let zeros = std::io::repeat(0).take(1 << 30);
+        let error = read_input(zeros).err().unwrap();
+        assert!(error.to_string().contains("NUL byte"), "{error}");
+        let endless = std::io::repeat(b'x').take(1 << 30);
+        let error = read_input(endless).err().unwrap();
+        assert!(error.to_string().contains("runs past 1 MiB"), "{error}");
+        let header = "p0,p1,q1,phi,friction,lambda,compliance\n\"";
+        let open_quote = header.as_bytes().chain(std::io::repeat(b'\n').take(1 << 30));
+        let mut input = read_input(open_quote).unwrap();
+        let error = input.next().unwrap().unwrap_err();
+        assert!(error.to_string().contains("unclosed quote"), "{error}");
     }
 }

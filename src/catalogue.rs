@@ -3,16 +3,20 @@
 //! the corners users ask for first — phases near 0 and π, ellipses at the
 //! gross-slip lines, near separation, tiny amplitudes, steep and flat compliance,
 //! extreme friction, P_T near 0. [`check`] recomputes the stored values and reports
-//! every difference; [`regenerate`] and [`save`] replace them.
+//! every difference; [`regenerate`] and [`save`] replace them. A reference value is a
+//! verified decimal, so a compliance from a table (known only to its table error) has
+//! none.
 
 use std::path::Path;
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 use serde::{Deserialize, Serialize};
 
+use crate::batch::CaseError;
+use crate::compliance::tables_in_spec;
 use crate::files::{write_text_atomically, OutputError};
 use crate::inputs::CaseText;
-use crate::reference::{verified_dissipation, ReferenceError};
+use crate::reference::verified_dissipation;
 
 /// One catalogue case and, once computed, its reference value.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -69,8 +73,47 @@ pub enum CatalogueError {
         name: String,
         /// Why it could not be computed.
         #[source]
-        source: ReferenceError,
+        source: EntryError,
     },
+}
+
+/// Why a case has no reference value.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum EntryError {
+    /// Its computation failed, or its compliance has a table.
+    #[error(transparent)]
+    Case(#[from] CaseError),
+    /// The run's time budget ran out before the case was started.
+    #[error("not computed: the time budget of {0:.1} s for the whole run ran out before this case")]
+    NotReached(f64),
+}
+
+/// The reference value of `case` to `digits` verified digits, by `deadline`: a
+/// compliance with a table is refused, as verified digits of it are everywhere.
+pub fn reference_value(case: &CaseText, digits: u32, deadline: Instant) -> Result<ReferenceValue, CaseError> {
+    if !tables_in_spec(&case.compliance)?.is_empty() {
+        return Err(CaseError::DigitsForTable);
+    }
+    let budget = deadline.saturating_duration_since(Instant::now());
+    let verified = verified_dissipation(case, digits, budget).map_err(CaseError::Reference)?;
+    Ok(ReferenceValue {
+        digits: verified.digits_verified,
+        w: verified.total,
+    })
+}
+
+/// [`reference_value`] within a run that started at `started` with `budget`.
+fn value_within(
+    case: &CaseText,
+    digits: u32,
+    started: Instant,
+    budget: Duration,
+) -> Result<ReferenceValue, EntryError> {
+    let deadline = started + budget;
+    if Instant::now() >= deadline {
+        return Err(EntryError::NotReached(budget.as_secs_f64()));
+    }
+    Ok(reference_value(case, digits, deadline)?)
 }
 
 /// Reads a catalogue file.
@@ -104,7 +147,7 @@ pub struct Difference {
     /// The stored value, if any.
     pub stored: Option<ReferenceValue>,
     /// The value computed now, to the stored digits, or why it could not be.
-    pub computed: Result<ReferenceValue, ReferenceError>,
+    pub computed: Result<ReferenceValue, EntryError>,
 }
 
 impl std::fmt::Display for Difference {
@@ -121,24 +164,23 @@ impl std::fmt::Display for Difference {
 }
 
 /// Recomputes every case to its stored number of digits (`default_digits` where none
-/// is stored), each within `budget`, and returns every case whose stored value is
-/// missing or differs, or which could not be computed; `progress` is told each case's
-/// name as it starts.
+/// is stored), all within `budget`, and returns every case whose stored value is
+/// missing or differs, or which could not be computed (a failure is never a match);
+/// `progress` is told each case's name as it starts.
 pub fn check(
     entries: &[CatalogueEntry],
     default_digits: u32,
     budget: Duration,
     mut progress: impl FnMut(usize, &str),
 ) -> Vec<Difference> {
+    let started = Instant::now();
     let mut differences = Vec::new();
     for (index, entry) in entries.iter().enumerate() {
         progress(index, &entry.name);
         let digits = entry.reference.as_ref().map_or(default_digits, |r| r.digits);
-        let computed = verified_dissipation(&entry.case, digits, budget).map(|verified| ReferenceValue {
-            digits: verified.digits_verified,
-            w: verified.total,
-        });
-        if computed.as_ref().ok() != entry.reference.as_ref() {
+        let computed = value_within(&entry.case, digits, started, budget);
+        let reproduced = matches!((&computed, &entry.reference), (Ok(now), Some(stored)) if now == stored);
+        if !reproduced {
             differences.push(Difference {
                 name: entry.name.clone(),
                 stored: entry.reference.clone(),
@@ -149,29 +191,27 @@ pub fn check(
     differences
 }
 
-/// Computes every case's reference value to `digits` verified digits, each within `budget`;
-/// `progress` is told each case's name as it starts.
+/// Computes every case's reference value to `digits` verified digits, all within
+/// `budget`; the first case that fails ends it. `progress` is told each case's name as
+/// it starts.
 pub fn regenerate(
     entries: &[CatalogueEntry],
     digits: u32,
     budget: Duration,
     mut progress: impl FnMut(usize, &str),
 ) -> Result<Vec<CatalogueEntry>, CatalogueError> {
+    let started = Instant::now();
     entries
         .iter()
         .enumerate()
         .map(|(index, entry)| {
             progress(index, &entry.name);
-            let verified =
-                verified_dissipation(&entry.case, digits, budget).map_err(|source| CatalogueError::Case {
-                    name: entry.name.clone(),
-                    source,
-                })?;
+            let value = value_within(&entry.case, digits, started, budget).map_err(|source| CatalogueError::Case {
+                name: entry.name.clone(),
+                source,
+            })?;
             Ok(CatalogueEntry {
-                reference: Some(ReferenceValue {
-                    digits: verified.digits_verified,
-                    w: verified.total,
-                }),
+                reference: Some(value),
                 ..entry.clone()
             })
         })

@@ -154,7 +154,11 @@ pub fn printable_dissipation(
     if let Some(reason) = slope_change_differs_from_mpfr(case, &cycle, compliance.as_ref()) {
         return verified(F64_MOST_DIGITS, Some(reason));
     }
-    let result = match dissipation(&cycle, compliance.as_ref(), &Options::default()) {
+    let within_budget = Options {
+        deadline: Some(Instant::now() + budget),
+        ..Options::default()
+    };
+    let result = match dissipation(&cycle, compliance.as_ref(), &within_budget) {
         Ok(result) => result,
         Err(DissipationError::OutsideRange {
             quantity,

@@ -152,7 +152,15 @@ fn compare_with_single_runs(
                 );
             }
             None => {
-                assert_eq!(batch["W"], single["W"], "row {i}: {:?}", rows[i]);
+                // The same decimal: a number where binary64 holds it, else the same text.
+                let printed = single["W"].as_str().expect("a single run prints W as text");
+                match &batch["W"] {
+                    serde_json::Value::Number(w) => {
+                        assert_eq!(w.as_f64(), printed.parse().ok(), "row {i}: {:?}", rows[i]);
+                        assert!(single["digits"].as_u64().unwrap() <= 17, "row {i}");
+                    }
+                    w => assert_eq!(w, printed, "row {i}: {:?}", rows[i]),
+                }
                 assert_eq!(batch["digits"], single["digits"], "row {i}");
                 assert_eq!(batch["table_error"], single["table_error"], "row {i}");
                 assert!(batch["error"].is_null(), "row {i}: {}", batch["error"]);
@@ -336,7 +344,7 @@ fn all_rows_computed_exits_0_and_replaces_the_output_whole() {
     );
     let results = read_jsonl(&std::fs::read(&output_path).expect("output"));
     assert_eq!(results.len(), 7);
-    assert!(results.iter().all(|r| r["error"].is_null() && r["W"].is_string()));
+    assert!(results.iter().all(|r| r["error"].is_null() && r["W"].is_number()));
     // No temporary file left beside the output.
     let names: Vec<String> = std::fs::read_dir(&dir)
         .expect("dir")
@@ -389,4 +397,53 @@ fn an_unreadable_input_exits_2_and_writes_nothing() {
             _ => assert!(stderr.contains("no column lambda (or nu)"), "{stderr}"),
         }
     }
+}
+
+#[test]
+fn jsonl_gives_numbers_as_numbers_text_only_where_a_number_would_lose_digits_and_null_for_absent() {
+    let input = "id,p0,p1,q0,q1,phi,friction,lambda,nu,compliance\n\
+                 007,1,0.4,-0.0500000000000000000001,0.5,0.4pi,1,,0.3,\"persson:gamma=1,sigma=1\"\n\
+                 far,1e-400,0.4,0,0.5,1.2,1,1,,const:c=1\n";
+    let typed = |digits: &[&str]| {
+        let mut args = vec!["batch", "--input", "-", "--output", "-", "--format", "jsonl"];
+        args.extend_from_slice(digits);
+        read_jsonl(&microslip(&args, Some(input)).stdout)
+    };
+    let rows = typed(&[]);
+    let first = &rows[0];
+    assert_eq!(first["id"], "007");
+    assert_eq!(first["p0"], 1.0);
+    assert_eq!(first["p1"], 0.4);
+    assert_eq!(first["q0"], "-0.0500000000000000000001");
+    assert_eq!(first["phi"], "0.4pi");
+    assert!(first["lambda"].is_null());
+    assert_eq!(first["nu"], 0.3);
+    assert_eq!(first["compliance"], "persson:gamma=1,sigma=1");
+    // W in f64 digits is a number: the single run's decimal, read as binary64.
+    let single = single_run(
+        &[
+            "007",
+            "1",
+            "0.4",
+            "-0.0500000000000000000001",
+            "0.5",
+            "0.4pi",
+            "1",
+            "",
+            "0.3",
+            "persson:gamma=1,sigma=1",
+        ]
+        .map(String::from),
+        None,
+    );
+    let printed: f64 = single["W"].as_str().unwrap().parse().unwrap();
+    assert_eq!(first["W"].as_f64(), Some(printed));
+    assert!(first["error_estimate"].is_number() && first["table_error"].is_null());
+    assert_eq!(rows[1]["p0"], "1e-400");
+    assert_eq!(rows[1]["phi"], 1.2);
+    // Verified digits beyond what binary64 holds are text, all of them.
+    let verified = typed(&["--digits", "25"]);
+    let w = verified[0]["W"].as_str().expect("25 digits are text");
+    assert_eq!(w.split('e').next().unwrap().replace(['.', '-'], "").len(), 25, "{w}");
+    assert!(w.starts_with(&single["W"].as_str().unwrap()[..8]), "{w}");
 }

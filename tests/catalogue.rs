@@ -161,3 +161,43 @@ fn an_unreachable_target_fails_and_says_how_many_digits_were_reached() {
         .to_string();
     assert!(message.contains("of 1000 digits could be verified"), "{message}");
 }
+
+#[test]
+fn a_case_that_cannot_be_computed_or_has_a_table_is_never_reproduced() {
+    let ordinary = entries().into_iter().find(|e| e.name == "persson-ordinary").unwrap();
+    let mut not_a_number = ordinary.clone();
+    not_a_number.name = "not-a-number".into();
+    not_a_number.case.p0 = "nan".into();
+    not_a_number.reference = None;
+    let mut measured = ordinary.clone();
+    measured.name = "measured".into();
+    measured.case.compliance = format!("table:{}/tests/data/rough-surface.csv", env!("CARGO_MANIFEST_DIR"));
+    let mut stored_but_failing = not_a_number.clone();
+    stored_but_failing.name = "stored-but-failing".into();
+    stored_but_failing.reference = ordinary.reference.clone();
+    let cases = [ordinary.clone(), not_a_number, measured.clone(), stored_but_failing];
+    let differences = catalogue::check(&cases, 20, Duration::from_secs(60), |_, _| {});
+    let names: Vec<&str> = differences.iter().map(|d| d.name.as_str()).collect();
+    assert_eq!(names, ["not-a-number", "measured", "stored-but-failing"]);
+    assert!(differences.iter().all(|d| d.computed.is_err()));
+    assert!(
+        differences[1].to_string().contains("table compliance"),
+        "{}",
+        differences[1]
+    );
+    // Writing refuses the table rather than store digits it does not have.
+    let error = catalogue::regenerate(&[measured], 30, Duration::from_secs(60), |_, _| {}).unwrap_err();
+    assert!(
+        error
+            .to_string()
+            .starts_with("case 'measured': verified digits are not computed for a table"),
+        "{error}"
+    );
+    // A run whose budget is spent leaves the remaining cases not computed, and says so.
+    let spent = catalogue::check(&[ordinary], 50, Duration::ZERO, |_, _| {});
+    assert!(
+        spent[0].to_string().contains("ran out before this case"),
+        "{}",
+        spent[0]
+    );
+}

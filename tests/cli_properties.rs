@@ -11,9 +11,7 @@
 //! `PROPTEST_CASES=N` runs more, `MICROSLIP_FUZZ_SEED=S` other draws, and `MICROSLIP_FUZZ_LOG=FILE` appends every failure to FILE and goes on
 //! (to survey a long run instead of stopping at the first failure).
 
-use std::io::Read;
-use std::process::{Command, Stdio};
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use microslip::dissipation::{dissipation, Options};
 use microslip::inputs::{Case, CaseText};
@@ -21,6 +19,8 @@ use microslip::real::{Precision, Real};
 use proptest::prelude::*;
 use proptest::test_runner::{Config, TestCaseError, TestRunner};
 use rug::Float;
+
+mod common;
 
 fn runner(seed: u8) -> TestRunner {
     let cases = std::env::var("PROPTEST_CASES")
@@ -68,44 +68,11 @@ struct Outcome {
 
 /// Runs `microslip args`, killing it if it runs past `limit`.
 fn run_bounded(args: &[String], limit: Duration) -> Result<Outcome, TestCaseError> {
-    let started = Instant::now();
-    let mut child = Command::new(env!("CARGO_BIN_EXE_microslip"))
-        .args(args)
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .map_err(|e| TestCaseError::fail(format!("spawn: {e}")))?;
-    let mut stdout_pipe = child.stdout.take().expect("piped stdout");
-    let mut stderr_pipe = child.stderr.take().expect("piped stderr");
-    let stdout_reader = std::thread::spawn(move || {
-        let mut text = String::new();
-        let _ = stdout_pipe.read_to_string(&mut text);
-        text
-    });
-    let stderr_reader = std::thread::spawn(move || {
-        let mut text = String::new();
-        let _ = stderr_pipe.read_to_string(&mut text);
-        text
-    });
-    let status = loop {
-        if let Some(status) = child.try_wait().map_err(|e| TestCaseError::fail(e.to_string()))? {
-            break status;
-        }
-        if started.elapsed() > limit {
-            let _ = child.kill();
-            let _ = child.wait();
-            return Err(TestCaseError::fail(format!(
-                "still running after {:.1} s (limit {:.1} s): {args:?}",
-                started.elapsed().as_secs_f64(),
-                limit.as_secs_f64()
-            )));
-        }
-        std::thread::sleep(Duration::from_millis(5));
-    };
+    let run = common::microslip_bounded(args, b"", limit).map_err(TestCaseError::fail)?;
     Ok(Outcome {
-        code: status.code().unwrap_or(-1),
-        stdout: stdout_reader.join().unwrap_or_default(),
-        stderr: stderr_reader.join().unwrap_or_default(),
+        code: run.code,
+        stdout: String::from_utf8_lossy(&run.stdout).into_owned(),
+        stderr: run.stderr,
     })
 }
 

@@ -1,12 +1,14 @@
-//! `microslip batch`: W for every row of a CSV file, as CSV or JSON lines.
+//! `microslip batch`: W for every row of a CSV file, as CSV or JSON lines, row by row
+//! as the input streams in.
 
+use std::io::{Read, Write};
 use std::path::Path;
 use std::time::{Duration, Instant};
 
 use clap::Args;
 
-use microslip::batch;
-use microslip::files::{check_writable, write_atomically};
+use microslip::batch::{self, BatchError, InputRow, RowResult};
+use microslip::files::{check_writable, StreamedOutput};
 
 use super::case::Jobs;
 use super::parse;
@@ -18,7 +20,7 @@ pub struct BatchArgs {
     /// Input CSV (`-` for stdin): p0,p1,q1,phi,friction,lambda or nu,compliance; optional q0, id.
     #[arg(long)]
     pub input: String,
-    /// Output file (`-` for stdout), written whole or not at all.
+    /// Output (`-` for stdout); a regular file is written whole or not at all, a device or FIFO in place.
     #[arg(long)]
     pub output: String,
     /// Verified significant digits for every row (1–1000); without it, f64 as a single run.
@@ -27,54 +29,81 @@ pub struct BatchArgs {
     /// Output format.
     #[arg(long, value_parser = ["csv", "jsonl"], default_value = "csv")]
     pub format: String,
-    /// Time budget per row computed in MPFR (--digits, or where f64 does not suffice), in seconds (up to 1e6).
+    /// Time budget of each row, in seconds (up to 1e6): a row that runs out fails alone.
     #[arg(long, allow_hyphen_values = true, value_parser = parse::seconds, default_value = "60")]
     pub max_seconds: Duration,
     #[command(flatten)]
     pub jobs: Jobs,
 }
 
-/// Runs a batch; Ok(failed rows). Nothing is written when the input cannot be read.
+/// Rows read before they are computed together (on all cores) and written, in order.
+const ROWS_PER_CHUNK: usize = 256;
+
+/// Runs a batch; Ok(failed rows). Nothing is written when the input cannot be read, and
+/// nothing computed when the output cannot be written.
 pub fn run(args: &BatchArgs) -> Result<usize, Failure> {
-    if args.output != "-" {
-        check_writable(Path::new(&args.output), &[])?;
-    }
-    let input = if args.input == "-" {
-        batch::read_input(std::io::stdin().lock())?
+    let output_path = Path::new(&args.output);
+    check_writable(output_path, &[])?;
+    let input_name = if args.input == "-" {
+        "standard input"
     } else {
-        let file = std::fs::File::open(&args.input).map_err(|e| Failure::refused(format!("{}: {e}", args.input)))?;
-        batch::read_input(std::io::BufReader::new(file))
-            .map_err(|e| Failure::refused(format!("{}: {e}", args.input)))?
+        &args.input
     };
-    let progress = Progress::new(input.rows.len());
+    let refused = |e: BatchError| Failure::refused(format!("{input_name}: {e}"));
+    let source: Box<dyn Read> = if args.input == "-" {
+        Box::new(std::io::stdin().lock())
+    } else {
+        Box::new(std::fs::File::open(&args.input).map_err(|e| Failure::refused(format!("{}: {e}", args.input)))?)
+    };
+    let mut input = batch::read_input(source).map_err(refused)?;
+    let header = input.header.clone();
+    let mut output = StreamedOutput::create(output_path).map_err(|e| Failure::failed(e.to_string()))?;
+    let lost = |e: std::io::Error| Failure::failed(format!("{}: {e}", args.output));
+    let jsonl = args.format == "jsonl";
+    // The CSV header goes out with the first rows, so that input refused before them
+    // leaves a stream output empty.
+    let mut pending = if jsonl { Vec::new() } else { batch::csv_header(&header)? };
+    let progress = Progress::new(0);
     let done = std::sync::atomic::AtomicUsize::new(0);
     let started = Instant::now();
-    let results = batch::run(&input, args.digits, args.max_seconds, &|| {
-        let finished = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-        progress.at(finished, "rows");
-    });
-    progress.finish();
-    let contents = match args.format.as_str() {
-        "jsonl" => super::json::lines(&batch::records(&input, &results))?,
-        _ => batch::to_csv(&input, &results)?,
-    };
-    if args.output == "-" {
-        let mut stdout = std::io::stdout().lock();
-        match std::io::Write::write_all(&mut stdout, &contents).and_then(|()| std::io::Write::flush(&mut stdout)) {
-            Err(error) if error.kind() != std::io::ErrorKind::BrokenPipe => {
-                return Err(Failure::failed(format!("writing to standard output: {error}")));
-            }
-            _ => {}
+    let (mut rows_done, mut failed) = (0, 0);
+    loop {
+        let chunk: Vec<InputRow> = input
+            .by_ref()
+            .take(ROWS_PER_CHUNK)
+            .collect::<Result<_, _>>()
+            .map_err(refused)?;
+        if chunk.is_empty() {
+            break;
         }
-    } else {
-        write_atomically(Path::new(&args.output), |file| std::fs::write(file, &contents))
-            .map_err(|e| Failure::failed(e.to_string()))?;
+        let read = rows_done + chunk.len();
+        let results = batch::run(&chunk, args.digits, args.max_seconds, &|| {
+            let finished = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
+            progress.at_of(finished, read, "rows");
+        });
+        let mut bytes = std::mem::take(&mut pending);
+        bytes.extend(if jsonl {
+            super::json::lines(&batch::records(&header, &chunk, &results))?
+        } else {
+            batch::csv_rows(&header, &chunk, &results)?
+        });
+        rows_done = read;
+        failed += results.iter().filter(|r| !RowResult::succeeded(r)).count();
+        match output.write_all(&bytes).and_then(|()| output.flush()) {
+            // The reader of standard output has gone: nothing more is wanted.
+            Err(error) if error.kind() == std::io::ErrorKind::BrokenPipe => {
+                progress.finish();
+                return Ok(failed);
+            }
+            written => written.map_err(lost)?,
+        }
     }
-    let failed = results.iter().filter(|r| !r.succeeded()).count();
+    progress.finish();
+    output.write_all(&pending).map_err(lost)?;
+    output.finish().map_err(|e| Failure::failed(e.to_string()))?;
     if failed > 0 || args.output != "-" {
         warn(&format!(
-            "{} rows in {:.2} s, {failed} failed{}",
-            results.len(),
+            "{rows_done} rows in {:.2} s, {failed} failed{}",
             started.elapsed().as_secs_f64(),
             if failed > 0 { " (see their error column)" } else { "" }
         ));

@@ -9,7 +9,7 @@
 use std::sync::mpsc;
 use std::time::Duration;
 
-use super::report::{fail, Failure, REFUSED};
+use super::report::{fail, Failure};
 
 /// What the library gets beyond the budget to return its own, more specific, answer.
 const GRACE: Duration = Duration::from_millis(300);
@@ -20,6 +20,21 @@ const STACK_BYTES: usize = 64 << 20;
 /// `work()`, or a refusal (and the end of the process) when it has not answered within
 /// `budget` plus a short grace.
 pub fn within<T: Send>(budget: Duration, work: impl FnOnce() -> Result<T, Failure> + Send) -> Result<T, Failure> {
+    within_or(budget, work, || {
+        Failure::refused(format!(
+            "the time budget of {} s ran out before the result was reached; raise --max-seconds",
+            budget.as_secs_f64()
+        ))
+    })
+}
+
+/// `work()`, or `timed_out()` reported (and the end of the process) when it has not
+/// answered within `budget` plus a short grace.
+pub fn within_or<T: Send>(
+    budget: Duration,
+    work: impl FnOnce() -> Result<T, Failure> + Send,
+    timed_out: impl FnOnce() -> Failure,
+) -> Result<T, Failure> {
     std::thread::scope(|scope| {
         let (sender, receiver) = mpsc::channel();
         let spawned = std::thread::Builder::new()
@@ -34,12 +49,10 @@ pub fn within<T: Send>(budget: Duration, work: impl FnOnce() -> Result<T, Failur
             Ok(outcome) => outcome,
             Err(mpsc::RecvTimeoutError::Disconnected) => Err(Failure::failed("the computation ended without a result")),
             Err(mpsc::RecvTimeoutError::Timeout) => {
-                let _ = fail(&Failure::refused(format!(
-                    "the time budget of {} s ran out before the result was reached; raise --max-seconds",
-                    budget.as_secs_f64()
-                )));
+                let failure = timed_out();
+                let _ = fail(&failure);
                 // The worker cannot be interrupted; ending the process is the answer.
-                std::process::exit(i32::from(REFUSED))
+                std::process::exit(i32::from(failure.code))
             }
         }
     })

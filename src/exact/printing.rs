@@ -194,7 +194,14 @@ pub fn printed_partial_sums(
         Ok(partial_sums(&cycle, compliance.as_ref(), order)?)
     })?;
     let remaining = budget.saturating_sub(started.elapsed());
-    let w = printable_dissipation(case, Some(asked), remaining)?;
+    // W gets what the sums left of the budget; running out, it reports the whole run's time.
+    let w = printable_dissipation(case, Some(asked), remaining).map_err(|error| match error {
+        ReferenceError::Budget(out) => ReferenceError::Budget(OutOfBudget {
+            seconds: started.elapsed().as_secs_f64(),
+            ..out
+        }),
+        other => other,
+    })?;
     let bits = sums.precision.in_bits();
     let w_value = Float::parse_decimal(&w.total, sums.precision).unwrap_or_else(|_| Float::with_val(bits, 0));
     let resolved = w_value.clone().abs() * Float::with_val(bits, 10).powi(-(w.digits as i32));

@@ -67,3 +67,70 @@ pub fn microslip<S: AsRef<std::ffi::OsStr>>(args: &[S]) -> (i32, String, String)
         String::from_utf8_lossy(&output.stderr).into_owned(),
     )
 }
+
+/// What a run of [`microslip_bounded`] did.
+#[allow(dead_code)] // not every test binary runs the command line
+pub struct Bounded {
+    pub code: i32,
+    pub stdout: Vec<u8>,
+    pub stderr: String,
+    /// Wall time from start to exit.
+    pub seconds: f64,
+}
+
+/// `microslip args…` with `input` on stdin, killed if it runs past `limit` (then why).
+#[allow(dead_code)] // not every test binary runs the command line
+pub fn microslip_bounded<S: AsRef<std::ffi::OsStr> + std::fmt::Debug>(
+    args: &[S],
+    input: &[u8],
+    limit: std::time::Duration,
+) -> Result<Bounded, String> {
+    use std::io::{Read, Write};
+    use std::process::Stdio;
+    let started = std::time::Instant::now();
+    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_microslip"))
+        .args(args)
+        .stdin(Stdio::piped())
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .map_err(|e| format!("spawn: {e}"))?;
+    let mut stdin = child.stdin.take().expect("piped stdin");
+    let input = input.to_vec();
+    // The child may stop reading early (a refused header): a closed pipe is no error here.
+    let writer = std::thread::spawn(move || drop(stdin.write_all(&input)));
+    let mut stdout = child.stdout.take().expect("piped stdout");
+    let mut stderr = child.stderr.take().expect("piped stderr");
+    let stdout_reader = std::thread::spawn(move || {
+        let mut bytes = Vec::new();
+        let _ = stdout.read_to_end(&mut bytes);
+        bytes
+    });
+    let stderr_reader = std::thread::spawn(move || {
+        let mut text = String::new();
+        let _ = stderr.read_to_string(&mut text);
+        text
+    });
+    let status = loop {
+        if let Some(status) = child.try_wait().map_err(|e| e.to_string())? {
+            break status;
+        }
+        if started.elapsed() > limit {
+            let _ = child.kill();
+            let _ = child.wait();
+            return Err(format!(
+                "still running after {:.1} s (limit {:.1} s): {args:?}",
+                started.elapsed().as_secs_f64(),
+                limit.as_secs_f64()
+            ));
+        }
+        std::thread::sleep(std::time::Duration::from_millis(5));
+    };
+    let _ = writer.join();
+    Ok(Bounded {
+        code: status.code().unwrap_or(-1),
+        stdout: stdout_reader.join().unwrap_or_default(),
+        stderr: stderr_reader.join().unwrap_or_default(),
+        seconds: started.elapsed().as_secs_f64(),
+    })
+}
