@@ -56,7 +56,15 @@ pub(crate) fn four_segment_integrals<R: Real>(
     } else {
         (integrands.pieces(), None)
     };
-    let integrated = integrate(&pieces.pieces, &options.settings(&zero))?;
+    let mut settings = options.settings(&zero);
+    // The engine holds each piece to the tolerance times the sum of |pieces|; near in phase
+    // that sum exceeds W by the predicted cancellation, so the tolerance is divided by it
+    // (not below the default of 256 ulps, where rounding, not the rule, decides).
+    let floor = zero.epsilon_like() * &zero.int(256);
+    settings.relative_tolerance = (settings.relative_tolerance.clone() / &cycle.in_phase_cancellation())
+        .max_of(&floor)
+        .min_of(&settings.relative_tolerance);
+    let integrated = integrate(&pieces.pieces, &settings)?;
     let segments = match &curvature {
         None => pieces.sum_by_segment(integrated.values(), &zero),
         Some((curvature, remainder_count)) => {
