@@ -714,9 +714,10 @@ mod tests {
             let number = |x: f64| Float::from_f64(x, bits);
             LoadCycle {
                 mean_normal_load: number(1.0),
-                normal_amplitude: number(0.4),
+                normal_amplitude: number(0.5),
                 mean_tangential_load: number(0.0),
-                tangential_amplitude: number(0.4) - Float::parse_decimal("1e-20", bits).unwrap(),
+                // fP1 − Q1 = 2⁻⁷⁰, exact at both precisions: σ₊ ≈ 8.5e−22 comes from the phase alone.
+                tangential_amplitude: number(0.5) - number(2f64.powi(-70)),
                 phase,
                 friction: number(1.0),
                 compliance_ratio: number(1.0),
@@ -739,10 +740,7 @@ mod tests {
             let relative = (Float::with_val(600, a) - b).abs() / b.clone().abs();
             assert!(relative < 1e-55, "{name}: {a} vs {b}");
         }
-        assert!(
-            near.slip_angle < 1e-29 && near.slip_angle > 1e-31,
-            "{}",
-            near.slip_angle
-        );
+        // π − δ ≈ 2 Q1 fP1 sin φ/((fP1)² − Q1²) = 5.9e−10: small, but not 0.
+        assert!(near.slip_angle < 1e-9 && near.slip_angle > 1e-10, "{}", near.slip_angle);
     }
 }

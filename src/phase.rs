@@ -336,16 +336,18 @@ mod tests {
         ];
         for (text, half_turns, expected) in cases {
             let reduced = ExactPhase::parse(text).unwrap().reduce(Precision::bits(200)).unwrap();
-            assert_eq!(reduced.reverses(), half_turns % 2 != 0, "{text}");
             let psi = reduced.offset_float(200);
             if text == "1e50" {
                 // Independent: 1e50 − round(1e50/π)·π at 3000 bits.
                 let phi = at("1e50");
                 let n = (phi.clone() / &pi).round();
+                let odd = n.to_integer().unwrap().is_odd();
+                assert_eq!(reduced.reverses(), odd, "{text}");
                 let expected = Float::with_val(200, phi - n * &pi);
                 assert_eq!(psi, expected, "{text}");
                 continue;
             }
+            assert_eq!(reduced.reverses(), half_turns % 2 != 0, "{text}");
             assert_eq!(psi, Float::with_val(200, expected), "{text}");
             let f: f64 = reduced.offset(Precision::DOUBLE);
             assert_eq!(f, psi.to_f64(), "{text}");

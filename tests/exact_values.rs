@@ -94,14 +94,21 @@ fn a_phase_near_a_multiple_of_pi_gives_w_its_relative_digits() {
 fn decimal_approximations_of_pi_are_not_pi() {
     let bits = 300;
     let pi = Float::with_val(bits, rug::float::Constant::Pi);
+    let tiny = Float::parse_decimal("1e-60", Precision::bits(bits)).unwrap();
     let (c_pi, _) = w("pi-1e-30");
-    let c_pi = c_pi / Float::parse_decimal("1e-60", Precision::bits(bits)).unwrap();
+    let (c_zero, _) = w("1e-30");
+    let (c_pi, c_zero) = (c_pi / &tiny, c_zero / &tiny);
     for decimal in ["3.141592653589793", "3.14159265358979323846", "-3.141592653589793"] {
         let value = Float::parse_decimal(decimal, Precision::bits(bits)).unwrap();
-        let offset = if value > 0 { pi.clone() - &value } else { value + &pi };
+        // 3.14… lies just below π; −3.14… just above −π, i.e. just above 0 modulo π.
+        let (offset, constant) = if value > 0 {
+            (pi.clone() - &value, &c_pi)
+        } else {
+            (value + &pi, &c_zero)
+        };
         let (printed, _) = w(decimal);
         assert!(printed != 0, "φ = {decimal} printed W = 0");
-        let expected = c_pi.clone() * offset.square();
+        let expected = constant.clone() * offset.square();
         assert!(
             relative(&printed, &expected) < 1e-13,
             "φ = {decimal}: {printed} vs {expected}"
@@ -172,8 +179,11 @@ fn every_exact_zero_prints_at_once_as_exact() {
 #[test]
 fn values_that_are_not_exactly_zero_are_not_printed_as_zero() {
     for overrides in [
-        // The coefficients cancel only to 1e−10: v'' = 1e−10·P⁻³ ≠ 0.
-        vec![("--compliance", "power:c=1,beta=-1+power:c=-1.0000000001,beta=-1")],
+        // The coefficients cancel only to 1e−10: v'' = −1e−10·P⁻² ≠ 0.
+        vec![(
+            "--compliance",
+            "power:c=1,beta=-1+power:c=-0.9999999999,beta=-1+const:c=1",
+        )],
         // In phase but Q1 > fP1: it slips.
         vec![("--phi", "pi"), ("--q1", "0.5")],
         // φ = 1e−8 (W ≈ 9.46e−18, which f64 printed as 0).
