@@ -93,12 +93,11 @@ pub(crate) fn outside_f64_range<R: Real>(value: &R, text: &str) -> bool {
     (*value == zero && nonzero_text) || (*value != zero && value.abs() < smallest_normal)
 }
 
-/// Reads a phase (see [`ExactPhase::parse`] for the forms) and reduces it exactly modulo π:
-/// ψ ∈ [−π/2, π/2] at the precision, and whether an odd multiple of π was removed (the
-/// cycle at ψ is then the mirror image of the one written).
+/// Reads a phase (see [`ExactPhase::parse`] for the forms), reduces it exactly modulo π, and
+/// gives the phase a cycle is read with ([`ReducedPhase::cycle_phase`]: φ modulo 2π, or within
+/// 2⁻²⁰ of an odd multiple of π the offset ψ from it) and whether that is the mirror image's.
 pub fn parse_phase<R: Real>(text: &str, precision: Precision) -> Result<(R, bool), PhaseError> {
-    let reduced = ExactPhase::parse(text)?.reduce(precision)?;
-    Ok((reduced.offset(precision), reduced.reverses()))
+    Ok(ExactPhase::parse(text)?.reduce(precision)?.cycle_phase(precision))
 }
 
 /// A case read at a precision: the load cycle and the compliance.
@@ -130,14 +129,14 @@ impl CaseText {
             (None, Some(nu)) => compliance_ratio_from_poisson(&number("nu", nu)?)?,
             _ => return Err(InputError::LambdaOrNu),
         };
-        let (phase, reverses) = self.phase(precision)?;
+        let (phase, mirrored) = self.phase(precision)?;
         let mean_tangential_load = number("q0", &self.q0)?;
         let cycle = LoadCycle {
             mean_normal_load: number("p0", &self.p0)?,
             normal_amplitude: number("p1", &self.p1)?,
-            // φ = nπ + ψ with n odd is the mirror image of the cycle at ψ with Q0 reversed:
-            // the same W, segments and validity (proofs/exact-values.md).
-            mean_tangential_load: if reverses {
+            // Within 2⁻²⁰ of an odd multiple of π, φ = nπ + ψ is read as the mirror image, the
+            // cycle at ψ with Q0 reversed: the same W, segments and validity (proofs/exact-values.md).
+            mean_tangential_load: if mirrored {
                 -mean_tangential_load
             } else {
                 mean_tangential_load
@@ -151,10 +150,11 @@ impl CaseText {
         Ok(Case { cycle, compliance })
     }
 
-    /// ψ, φ's offset from the nearest multiple of π, at the precision, and whether that
-    /// multiple is odd. An offset f64 cannot hold (1e-400) is refused in f64 like any number.
+    /// The phase at the precision ([`parse_phase`]) and whether it is the mirror image's. An
+    /// offset from a multiple of π that f64 cannot hold (1e-400) is refused in f64 like any number.
     fn phase<R: Real>(&self, precision: Precision) -> Result<(R, bool), InputError> {
         let reduced = ExactPhase::parse(&self.phi)?.reduce(precision)?;
+        let (phase, mirrored): (R, bool) = reduced.cycle_phase(precision);
         let offset: R = reduced.offset(precision);
         let zero = offset.int(0);
         let smallest_normal = R::smallest_full_precision(precision) * &R::epsilon(precision);
@@ -167,7 +167,7 @@ impl CaseText {
                 text: reduced.offset_float(64).to_string_radix(10, Some(6)),
             });
         }
-        Ok((offset, reduced.reverses()))
+        Ok((phase, mirrored))
     }
 
     /// Why W is exactly 0, if it is, decided from the exact text: v'' ≡ 0 (a SPEC whose
@@ -220,13 +220,18 @@ mod tests {
     #[test]
     fn phase_reads_to_its_offset_from_the_nearest_multiple_of_pi() {
         let p = Precision::bits(200);
-        let (x, reverses): (Float, bool) = parse_phase("0.4pi", p).unwrap();
-        let expected = Float::with_val(200, Float::pi(p) * Float::with_val(400, Rational::from((2, 5))));
-        assert_eq!((x, reverses), (expected, false));
-        let (y, reverses): (f64, bool) = parse_phase("pi", Precision::DOUBLE).unwrap();
-        assert_eq!((y, reverses), (0.0, true));
-        let (w, reverses): (Float, bool) = parse_phase("pi-1e-6", p).unwrap();
-        assert_eq!((w, reverses), (-Float::parse_decimal("1e-6", p).unwrap(), true));
+        let (x, mirrored): (Float, bool) = parse_phase("0.4pi", p).unwrap();
+        let pi = Float::with_val(1000, rug::float::Constant::Pi);
+        let expected = Float::with_val(200, pi.clone() * Float::with_val(1000, Rational::from((2, 5))));
+        assert_eq!((x, mirrored), (expected, false));
+        let (y, mirrored): (f64, bool) = parse_phase("pi", Precision::DOUBLE).unwrap();
+        assert_eq!((y, mirrored), (0.0, true));
+        let (w, mirrored): (Float, bool) = parse_phase("pi-1e-7", p).unwrap();
+        assert_eq!((w, mirrored), (-Float::parse_decimal("1e-7", p).unwrap(), true));
+        // Away from π: φ modulo 2π, the cycle as written.
+        let (v, mirrored): (Float, bool) = parse_phase("0.75pi", p).unwrap();
+        let expected = Float::with_val(200, pi * Float::with_val(1000, Rational::from((3, 4))));
+        assert_eq!((v, mirrored), (expected, false));
         assert!(parse_phase::<f64>("xpi", Precision::DOUBLE).is_err());
     }
 
@@ -243,9 +248,11 @@ mod tests {
             nu: None,
             compliance: "persson:gamma=1,sigma=1".into(),
         };
+        let Case { cycle, .. } = case("pi-1e-30").read::<f64>(Precision::DOUBLE).unwrap();
+        assert_eq!((cycle.mean_tangential_load, cycle.phase), (-0.1, -1e-30));
         let Case { cycle, .. } = case("0.75pi").read::<f64>(Precision::DOUBLE).unwrap();
-        assert_eq!(cycle.mean_tangential_load, -0.1);
-        assert!((cycle.phase + std::f64::consts::FRAC_PI_4).abs() < 1e-16);
+        assert_eq!(cycle.mean_tangential_load, 0.1);
+        assert_eq!(cycle.phase, 0.75 * std::f64::consts::PI);
         let Case { cycle, .. } = case("2pi+0.3").read::<f64>(Precision::DOUBLE).unwrap();
         assert_eq!((cycle.mean_tangential_load, cycle.phase), (0.1, 0.3));
         assert!(matches!(

@@ -19,6 +19,9 @@ use crate::real::{Precision, Real};
 pub const PHASE_FORMS: &str = "radians (0.3, -1e-6), a multiple of π (pi, pi/2, 3pi/4, -pi/3, 0.4pi, 0.4*pi, π/2), \
 either plus or minus radians (pi-1e-6, pi/2+1e-3), or degrees (72deg, 72°)";
 
+/// How close to an odd multiple of π a phase is read as the mirror image of its cycle.
+pub const MIRROR_BELOW: f64 = 1.0 / 1_048_576.0;
+
 /// Bits carried beyond the working precision in a reduction.
 const GUARD_BITS: u32 = 64;
 /// The largest power of ten a phase's decimal may carry (1e-100000 is read; 1e-10000000 is not).
@@ -207,6 +210,24 @@ impl ReducedPhase {
     /// ψ at the precision.
     pub fn offset<R: Real>(&self, precision: Precision) -> R {
         R::from_float(&self.offset_float(precision.in_bits()), precision)
+    }
+
+    /// The phase a cycle is read with, and whether it is the mirror image's (Q0 to be
+    /// negated): φ modulo 2π in (−π, π], rounded once from the exact offset, except within
+    /// [`MIRROR_BELOW`] of ±π, where rounding ψ ± π would lose the offset's low bits: there
+    /// ψ itself, for the mirror image (φ + π is the cycle with Q − Q0 reversed).
+    pub fn cycle_phase<R: Real>(&self, precision: Precision) -> (R, bool) {
+        let bits = precision.in_bits();
+        let offset = self.offset_float(bits + GUARD_BITS);
+        if !self.reverses {
+            return (R::from_float(&Float::with_val(bits, &offset), precision), false);
+        }
+        if offset.clone().abs() < MIRROR_BELOW {
+            return (R::from_float(&Float::with_val(bits, &offset), precision), true);
+        }
+        let pi = Float::with_val(bits + GUARD_BITS, Constant::Pi);
+        let turned = if offset > 0 { offset - pi } else { offset + pi };
+        (R::from_float(&Float::with_val(bits, &turned), precision), false)
     }
 }
 

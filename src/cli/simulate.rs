@@ -87,8 +87,8 @@ pub fn run(args: &SimulateArgs) -> Result<String, Failure> {
     }
     let case = args.case.text();
     let Case { mut cycle, compliance } = case.read::<f64>(Precision::DOUBLE)?;
-    // The simulation follows the loads in time: a phase near an odd multiple of π is read as
-    // the mirror image of its cycle (the same W), turned back here for the loop and the plot.
+    // The simulation follows the loads in time: a phase within 2⁻²⁰ of an odd multiple of π is
+    // read as the mirror image of its cycle (the same W), turned back here for the loop and plot.
     if let Ok((_, true)) = parse_phase::<f64>(&case.phi, Precision::DOUBLE) {
         cycle.phase += std::f64::consts::PI;
         cycle.mean_tangential_load = -cycle.mean_tangential_load;

@@ -138,7 +138,14 @@ pub(crate) fn assemble<R: Real>(
     if method == Method::FourSegment {
         amplification += &cycle.cancellation_amplification();
     }
-    let rounding = total.abs() * &(amplification * &eps) + &(scale.clone() * &eps * &eps.int(64));
+    // A W that came out exactly 0 from segments that cancel near in phase is only rounding:
+    // the size it is predicted to have stands in for |W|.
+    let size = if method == Method::FourSegment && total == total.int(0) {
+        scale.clone() / &cycle.in_phase_cancellation()
+    } else {
+        total.abs()
+    };
+    let rounding = size * &(amplification * &eps) + &(scale.clone() * &eps * &eps.int(64));
     let mut error_estimate = parts.error * lambda + &rounding;
     if !total.is_finite() || !error_estimate.is_finite() {
         return Err(DissipationError::NotFinite { segment: "total" });
