@@ -86,7 +86,7 @@ fn slope_form(spec: &str) -> Option<SlopeForm> {
                     let mut sum = Rational::from(0);
                     for (k, c) in coefficients.iter().enumerate().skip(j) {
                         let binomial = Integer::from(k).binomial(j as u32);
-                        sum += c.clone() * binomial * Rational::from(-center.clone()).pow((k - j) as i32);
+                        sum += c.clone() * binomial * (-center.clone()).pow((k - j) as i32);
                     }
                     add(Shape::Power(Rational::from(j)), sum);
                 }
