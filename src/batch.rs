@@ -184,6 +184,7 @@ pub fn method_key(method: Method) -> &'static str {
         Method::InPhase => "in-phase",
         Method::ConstantNormalLoad => "constant-normal-load",
         Method::NoTangentialOscillation => "no-tangential-oscillation",
+        Method::Exact(_) => "exact",
     }
 }
 

@@ -203,7 +203,7 @@ impl<R: Real> LoadCycle<R> {
             });
         }
         // The actual phase, not the reduced one: with Q0 ≠ 0 the cycle and its mirror image differ here.
-        let (sum_amplitude, difference_amplitude) = self.slip_line_amplitudes_at(&self.phase);
+        let (sum_amplitude, difference_amplitude) = self.slip_line_amplitudes_at(&self.actual_phase_trig());
         let friction_limit = self.friction.clone() * &self.mean_normal_load;
         // max(Q − fP) = Q0 − fP0 + σ₋ and max(−Q − fP) = −Q0 − fP0 + σ₊.
         let forward = self.mean_tangential_load.clone() - &friction_limit + &difference_amplitude;
@@ -235,50 +235,47 @@ impl<R: Real> LoadCycle<R> {
         }
     }
 
-    /// φ reduced to [0, π). The dissipation has period π in φ: φ + π is the same
-    /// cycle with Q − Q0 reversed, which is its mirror image in the P axis.
-    ///
-    /// Within two turns of π the phase is reduced modulo π as rounded at the working
-    /// precision, so that a phase read as `pi` is exactly in phase. Beyond, φ − kπ at
-    /// the working precision would lose the bits of kπ below the last of φ (about
-    /// log2|φ| of them), so the angle is recovered from sin φ and cos φ instead, which
-    /// both types evaluate with an exact reduction of the argument.
+    /// φ reduced to [0, π), rounded ([`reduced_angle`]). The dissipation has period π in
+    /// φ: φ + π is the same cycle with Q − Q0 reversed, its mirror image in the P axis.
     pub fn reduced_phase(&self) -> R {
-        let pi = self.phase.pi_like();
-        let reduced = if self.phase.abs() <= pi.clone() * &pi.int(2) {
-            let turns = (self.phase.clone() / &pi).floor();
-            self.phase.clone() - &(turns * &pi)
-        } else {
-            let (sin, cos) = self.phase.sin_cos();
-            let angle = sin.atan2(&cos);
-            if angle < self.phase.int(0) {
-                angle + &pi
-            } else {
-                angle
-            }
-        };
-        // Guard the rounding of the last step: keep the result inside [0, π).
-        if reduced < self.phase.int(0) || reduced >= pi {
-            self.phase.int(0)
-        } else {
-            reduced
-        }
+        reduced_angle(&self.phase)
+    }
+
+    /// The sine, cosine and half-angle squares of φ reduced to [0, π) ([`PhaseTrig::reduced`]).
+    pub fn phase_trig(&self) -> PhaseTrig<R> {
+        PhaseTrig::reduced(&self.phase)
     }
 
     /// (σ₊, σ₋): the amplitudes of Q + fP and of Q − fP over the cycle (for φ reduced to [0, π)).
     pub fn slip_line_amplitudes(&self) -> (R, R) {
-        self.slip_line_amplitudes_at(&self.reduced_phase())
+        self.slip_line_amplitudes_at(&self.phase_trig())
     }
 
-    fn slip_line_amplitudes_at(&self, phi: &R) -> (R, R) {
+    fn slip_line_amplitudes_at(&self, trig: &PhaseTrig<R>) -> (R, R) {
+        let q1 = &self.tangential_amplitude;
+        let q1_sin = q1.clone() * &trig.sin;
+        (
+            self.sum_line_offset(trig).hypot(&q1_sin),
+            self.difference_line_offset(trig).hypot(&q1_sin),
+        )
+    }
+
+    /// Q1 cos φ + fP1, written near φ = π as (fP1 − Q1) + 2 Q1 cos²(φ/2) to keep it accurate.
+    fn sum_line_offset(&self, trig: &PhaseTrig<R>) -> R {
         let q1 = &self.tangential_amplitude;
         let fp1 = self.friction.clone() * &self.normal_amplitude;
-        let (sin_phi, half_sin) = (phi.sin(), (phi.clone() / phi.int(2)).sin());
-        let q1_sin = q1.clone() * &sin_phi;
-        // Q1 cos φ ∓ fP1, the second written as (Q1 − fP1) − 2 Q1 sin²(φ/2) to keep it accurate near φ = 0.
-        let plus = q1.clone() * &phi.cos() + &fp1;
-        let minus = (q1.clone() - &fp1) - &(q1.clone() * &half_sin.square() * &phi.int(2));
-        (plus.hypot(&q1_sin), minus.hypot(&q1_sin))
+        if trig.cos >= trig.cos.int(0) {
+            q1.clone() * &trig.cos + &fp1
+        } else {
+            (fp1 - q1) + &(q1.clone() * &trig.half_cos_squared * &trig.cos.int(2))
+        }
+    }
+
+    /// Q1 cos φ − fP1, written as (Q1 − fP1) − 2 Q1 sin²(φ/2) to keep it accurate near φ = 0.
+    fn difference_line_offset(&self, trig: &PhaseTrig<R>) -> R {
+        let q1 = &self.tangential_amplitude;
+        let fp1 = self.friction.clone() * &self.normal_amplitude;
+        (q1.clone() - &fp1) - &(q1.clone() * &trig.half_sin_squared * &trig.sin.int(2))
     }
 
     /// P_T, the permanent-stick load: the contact area A(P_T) sticks throughout the
@@ -302,13 +299,37 @@ impl<R: Real> LoadCycle<R> {
     /// small against fP1: the slip terms f v'(P) P' and v'(P_Y) σ₋ sin(θ − θ_E) of CH (and
     /// their counterparts in EB and HE) are of size fP1·v' and cancel to a difference of
     /// size Q1·v'. Returns 16 fP1/Q1, twice the largest amplification measured
-    /// (proofs/stability.md, §1), and 0 when Q1 = 0, which has no integrals.
+    /// (proofs/stability.md, §1), times [`LoadCycle::in_phase_cancellation`], and 0 when
+    /// Q1 = 0, which has no integrals.
     pub fn cancellation_amplification(&self) -> R {
         let zero = self.tangential_amplitude.int(0);
         if self.tangential_amplitude == zero {
             return zero;
         }
-        self.friction.clone() * &(self.normal_amplitude.clone() / &self.tangential_amplitude) * &zero.int(16)
+        self.friction.clone()
+            * &(self.normal_amplitude.clone() / &self.tangential_amplitude)
+            * &zero.int(16)
+            * &self.in_phase_cancellation()
+    }
+
+    /// How far the segments cancel near in phase: with Q1 < fP1 nothing slips at φ ≡ 0, BC
+    /// and CH span almost half a cycle each, and their sum W ∝ sin²φ is smaller than |BC|
+    /// by up to 1/(8 sin²φ) (proofs/exact-values.md). Returns that where it exceeds 1, and
+    /// 1 otherwise (also exactly in phase, which has no integrals).
+    pub fn in_phase_cancellation(&self) -> R {
+        let one = self.tangential_amplitude.int(1);
+        let fp1 = self.friction.clone() * &self.normal_amplitude;
+        let sin = self.phase_trig().sin;
+        if self.tangential_amplitude >= fp1 || sin == one.int(0) {
+            return one;
+        }
+        (one.clone() / &(sin.square() * &one.int(8))).max_of(&one)
+    }
+
+    /// The trigonometry of the phase as given (not reduced), for the validation, which
+    /// tells the cycle from its mirror image when Q0 ≠ 0.
+    fn actual_phase_trig(&self) -> PhaseTrig<R> {
+        PhaseTrig::of(&self.phase)
     }
 
     /// The ellipse geometry (for φ reduced to [0, π)) of a cycle not yet validated:
@@ -328,6 +349,101 @@ impl<R: Real> LoadCycle<R> {
         let ((sin_theta, cos_theta), (sin_phi, cos_phi)) = (theta.sin_cos(), self.phase.sin_cos());
         let lag_cos = cos_theta * &cos_phi + &(sin_theta * &sin_phi);
         self.mean_tangential_load.clone() + &(self.tangential_amplitude.clone() * &lag_cos)
+    }
+}
+
+/// Whether `phase` is an offset ψ ∈ [−π/2, 0) from π: the form in which a case read from
+/// text carries a phase just below a multiple of π (see [`crate::phase`]).
+fn below_pi<R: Real>(phase: &R) -> bool {
+    let zero = phase.int(0);
+    *phase < zero && -phase.clone() * &zero.int(2) <= phase.pi_like()
+}
+
+/// φ reduced to [0, π), rounded.
+///
+/// A phase in [0, π) is kept as it is, and one in [−π/2, 0) is read as the offset ψ below
+/// π: φ = π + ψ (rounded here; [`PhaseTrig::reduced`] uses ψ itself, so that π − 10⁻¹⁰⁰ is
+/// not π). Within two turns of π other phases are reduced modulo π as rounded at the
+/// working precision, so that a phase given as the rounded π is exactly in phase. Beyond,
+/// φ − kπ at the working precision would lose the bits of kπ below the last of φ (about
+/// log2|φ| of them), so the angle is recovered from sin φ and cos φ instead, which both
+/// types evaluate with an exact reduction of the argument.
+pub fn reduced_angle<R: Real>(phase: &R) -> R {
+    let pi = phase.pi_like();
+    if below_pi(phase) {
+        return phase.clone() + &pi;
+    }
+    let reduced = if phase.abs() <= pi.clone() * &pi.int(2) {
+        let turns = (phase.clone() / &pi).floor();
+        phase.clone() - &(turns * &pi)
+    } else {
+        let (sin, cos) = phase.sin_cos();
+        let angle = sin.atan2(&cos);
+        if angle < phase.int(0) {
+            angle + &pi
+        } else {
+            angle
+        }
+    };
+    // Guard the rounding of the last step: keep the result inside [0, π).
+    if reduced < phase.int(0) || reduced >= pi {
+        phase.int(0)
+    } else {
+        reduced
+    }
+}
+
+/// sin φ, cos φ, sin²(φ/2) and cos²(φ/2) of an angle, the half-angle squares for
+/// 1 ∓ cos φ without cancellation near 0 and π.
+#[derive(Clone, Debug)]
+pub struct PhaseTrig<R> {
+    /// sin φ.
+    pub sin: R,
+    /// cos φ.
+    pub cos: R,
+    /// sin²(φ/2) = (1 − cos φ)/2.
+    pub half_sin_squared: R,
+    /// cos²(φ/2) = (1 + cos φ)/2.
+    pub half_cos_squared: R,
+}
+
+impl<R: Real> PhaseTrig<R> {
+    /// Of the angle φ.
+    pub fn of(phi: &R) -> Self {
+        let (sin, cos) = phi.sin_cos();
+        let (half_sin, half_cos) = (phi.clone() / &phi.int(2)).sin_cos();
+        PhaseTrig {
+            sin,
+            cos,
+            half_sin_squared: half_sin.square(),
+            half_cos_squared: half_cos.square(),
+        }
+    }
+
+    /// Of φ reduced to [0, π): for a phase in [−π/2, 0), read as the offset ψ below π,
+    /// from ψ itself, so that each is accurate where it is small.
+    pub fn reduced(phase: &R) -> Self {
+        if below_pi(phase) {
+            Self::below_pi(phase)
+        } else {
+            Self::of(&reduced_angle(phase))
+        }
+    }
+
+    /// Of π + ψ, from the offset ψ itself (exact where π + ψ would round to π).
+    fn below_pi(offset: &R) -> Self {
+        let PhaseTrig {
+            sin,
+            cos,
+            half_sin_squared,
+            half_cos_squared,
+        } = Self::of(offset);
+        PhaseTrig {
+            sin: -sin,
+            cos: -cos,
+            half_sin_squared: half_cos_squared,
+            half_cos_squared: half_sin_squared,
+        }
     }
 }
 
@@ -418,20 +534,19 @@ pub struct EllipseGeometry<R> {
 impl<R: Real> EllipseGeometry<R> {
     fn new(cycle: &LoadCycle<R>) -> Self {
         let phi = cycle.reduced_phase();
-        let (sum_amplitude, difference_amplitude) = cycle.slip_line_amplitudes();
+        let trig = cycle.phase_trig();
+        let (sum_amplitude, difference_amplitude) = cycle.slip_line_amplitudes_at(&trig);
         let q1 = cycle.tangential_amplitude.clone();
         let fp1 = cycle.friction.clone() * &cycle.normal_amplitude;
-        let q1_sin = q1.clone() * &phi.sin();
+        let q1_sin = q1.clone() * &trig.sin;
         let pi = phi.pi_like();
-        let half_sin = (phi.clone() / phi.int(2)).sin();
-        let minus = (q1.clone() - &fp1) - &(q1.clone() * &half_sin.square() * &phi.int(2));
-        let theta_e = q1_sin.atan2(&minus);
+        let theta_e = q1_sin.atan2(&cycle.difference_line_offset(&trig));
         // δ = θ_E − θ_A, the angle between (Q1 cos φ + fP1, Q1 sin φ) and (Q1 cos φ − fP1, Q1 sin φ),
         // from their cross and dot products, formed with the loads scaled to at most 1 so
         // that products of loads near the top of the range cannot overflow.
         let largest = q1.max_of(&fp1).max_of(&phi.epsilon_like());
         let (q, p) = (q1.clone() / &largest, fp1.clone() / &largest);
-        let cross = q.clone() * &phi.sin() * &p * &phi.int(2);
+        let cross = q.clone() * &trig.sin * &p * &phi.int(2);
         let dot = (q.clone() - &p) * &(q + &p);
         let stick_angle = cross.atan2(&dot);
         let slip_angle = cross.atan2(&(-dot));
@@ -440,7 +555,7 @@ impl<R: Real> EllipseGeometry<R> {
         let theta_h = theta_c.clone() + &stick_angle;
         let permanent_stick_offset =
             -((sum_amplitude.clone() + &difference_amplitude) / &(cycle.friction.clone() * &phi.int(2)));
-        let phase_sin_cos = phi.sin_cos();
+        let phase_sin_cos = (trig.sin, trig.cos);
         let theta_c_sin_cos = theta_c.sin_cos();
         let theta_b_sin_cos = theta_b.sin_cos();
         let theta_e_sin_cos = theta_e.sin_cos();
@@ -624,5 +739,44 @@ mod tests {
         assert!((c.reduced_phase() - 0.4 * std::f64::consts::PI).abs() < 1e-14);
         let c = cycle(-0.25 * std::f64::consts::PI);
         assert!((c.reduced_phase() - 0.75 * std::f64::consts::PI).abs() < 1e-14);
+    }
+
+    #[test]
+    fn near_pi_the_geometry_comes_from_the_offset() {
+        use crate::real::Precision;
+        use rug::Float;
+        let cycle_at = |phase: Float| {
+            let bits = Precision::bits(phase.prec());
+            let number = |x: f64| Float::from_f64(x, bits);
+            LoadCycle {
+                mean_normal_load: number(1.0),
+                normal_amplitude: number(0.5),
+                mean_tangential_load: number(0.0),
+                // fP1 − Q1 = 2⁻⁷⁰, exact at both precisions: σ₊ ≈ 8.5e−22 comes from the phase alone.
+                tangential_amplitude: number(0.5) - number(2f64.powi(-70)),
+                phase,
+                friction: number(1.0),
+                compliance_ratio: number(1.0),
+            }
+        };
+        // The offset ψ = −1e−30 at 200 bits, against φ = π − 1e−30 itself at 600 bits.
+        let offset = Float::parse_decimal("-1e-30", Precision::bits(200)).unwrap();
+        let near = ValidCycle::new(cycle_at(offset)).unwrap().geometry();
+        let p = Precision::bits(600);
+        let phase = Float::pi(p) - Float::parse_decimal("1e-30", p).unwrap();
+        let exact = ValidCycle::new(cycle_at(phase)).unwrap().geometry();
+        for (name, a, b) in [
+            ("σ₊", &near.sum_amplitude, &exact.sum_amplitude),
+            ("σ₋", &near.difference_amplitude, &exact.difference_amplitude),
+            ("θ_E", &near.theta_e, &exact.theta_e),
+            ("δ", &near.stick_angle, &exact.stick_angle),
+            ("π − δ", &near.slip_angle, &exact.slip_angle),
+            ("P_T", &near.permanent_stick_offset, &exact.permanent_stick_offset),
+        ] {
+            let relative = (Float::with_val(600, a) - b).abs() / b.clone().abs();
+            assert!(relative < 1e-55, "{name}: {a} vs {b}");
+        }
+        // π − δ ≈ 2 Q1 fP1 sin φ/((fP1)² − Q1²) = 5.9e−10: small, but not 0.
+        assert!(near.slip_angle < 1e-9 && near.slip_angle > 1e-10, "{}", near.slip_angle);
     }
 }

@@ -2,12 +2,14 @@
 //! precision. The command line and the reference catalogue both describe cases
 //! this way, so that `0.4` means 4/10 at every precision and `0.4pi` means 0.4·π.
 
-use rug::float::Constant;
-use rug::Float;
+use rug::Rational;
 use serde::{Deserialize, Serialize};
 
+use crate::compliance::constant_slope;
 use crate::compliance::{parse_spec, Compliance, SpecError};
-use crate::cycle::{compliance_ratio_from_poisson, CycleError, LoadCycle, MAX_PHASE};
+use crate::cycle::{compliance_ratio_from_poisson, CycleError, LoadCycle};
+use crate::dissipation::ExactZero;
+use crate::phase::{decimal, ExactPhase, PhaseError};
 use crate::real::{ParseRealError, Precision, Real};
 
 /// The text of one case. Numbers are decimal strings; `phase` may end in `pi`.
@@ -57,9 +59,12 @@ pub enum InputError {
     /// The compliance SPEC is wrong.
     #[error(transparent)]
     Spec(#[from] SpecError),
-    /// ν is out of range or not finite, or φ is too large.
+    /// ν is out of range or not finite.
     #[error(transparent)]
     Cycle(#[from] CycleError),
+    /// The phase is not written in an accepted form, or is too large.
+    #[error(transparent)]
+    Phase(#[from] PhaseError),
     /// A decimal that f64 cannot hold: it overflows, or underflows to zero or to a
     /// subnormal (which keeps fewer than 53 bits). Higher precision reads it exactly.
     #[error("{quantity} = {text} lies outside the range of f64 (normal magnitudes 2.2e-308 to 1.8e308)")]
@@ -88,58 +93,11 @@ pub(crate) fn outside_f64_range<R: Real>(value: &R, text: &str) -> bool {
     (*value == zero && nonzero_text) || (*value != zero && value.abs() < smallest_normal)
 }
 
-/// Bits carried through a phase reduction beyond the working precision and φ's exponent.
-const PHASE_GUARD_BITS: u32 = 64;
-
-/// Reads a phase: a decimal (radians), a multiple of π (`0.4pi`, `pi`, `-2pi`), or a
-/// multiple of π plus a decimal offset (`pi-1e-6`, `0.5pi+0.01`), each part read
-/// exactly at the precision.
-///
-/// A phase beyond 2π in size is reduced modulo 2π (which changes no cycle) before it
-/// is rounded to the precision: the text is exact, so it is read and reduced in MPFR
-/// with the working bits plus the bits of its exponent plus a guard, and the reduced
-/// angle, in [−π, π], is then rounded once. Reducing after rounding would lose about
-/// log2|φ| bits (3 of 15 digits at φ = 1e4). Phases beyond [`MAX_PHASE`] are returned
-/// unreduced, for the cycle's validation to refuse.
-pub fn parse_phase<R: Real>(text: &str, precision: Precision) -> Result<R, ParseRealError> {
-    let estimate: Float = phase_at(text, Precision::bits(64))?;
-    let full_turn = Float::with_val(64, Constant::Pi) * 2u32;
-    if !estimate.is_finite() || estimate.clone().abs() <= full_turn || estimate.clone().abs() > MAX_PHASE {
-        return phase_at(text, precision);
-    }
-    let exponent = estimate.get_exp().unwrap_or(0).max(0).unsigned_abs();
-    let bits = precision.in_bits() + exponent + PHASE_GUARD_BITS;
-    let phase: Float = phase_at(text, Precision::bits(bits))?;
-    let full_turn = Float::with_val(bits, Constant::Pi) * 2u32;
-    let turns = (phase.clone() / &full_turn).round();
-    let reduced = Float::with_val(precision.in_bits(), phase - turns * full_turn);
-    // Enough digits to read back as the same number at this precision (f64 reads decimals correctly rounded).
-    R::parse_decimal(&reduced.to_string_radix(10, None), precision)
-}
-
-/// The phase as written, at the precision (no reduction).
-fn phase_at<R: Real>(text: &str, precision: Precision) -> Result<R, ParseRealError> {
-    let error = || ParseRealError { text: text.to_string() };
-    let trimmed = text.trim().replace('π', "pi");
-    let Some((multiple, offset)) = trimmed.split_once("pi") else {
-        return R::parse_decimal(&trimmed, precision);
-    };
-    let multiple = multiple.trim().trim_end_matches('*');
-    let factor = match multiple {
-        "" | "+" => R::from_i64(1, precision),
-        "-" => R::from_i64(-1, precision),
-        m => R::parse_decimal(m, precision).map_err(|_| error())?,
-    };
-    let angle = factor * &R::pi(precision);
-    let offset = offset.trim();
-    if offset.is_empty() {
-        return Ok(angle);
-    }
-    if !offset.starts_with(['+', '-']) {
-        return Err(error());
-    }
-    let offset = R::parse_decimal(offset, precision).map_err(|_| error())?;
-    Ok(angle + &offset)
+/// Reads a phase (see [`ExactPhase::parse`] for the forms), reduces it exactly modulo π, and
+/// gives the phase a cycle is read with ([`ReducedPhase::cycle_phase`]: φ modulo 2π, or within
+/// 2⁻²⁰ of an odd multiple of π the offset ψ from it) and whether that is the mirror image's.
+pub fn parse_phase<R: Real>(text: &str, precision: Precision) -> Result<(R, bool), PhaseError> {
+    Ok(ExactPhase::parse(text)?.reduce(precision)?.cycle_phase(precision))
 }
 
 /// A case read at a precision: the load cycle and the compliance.
@@ -171,12 +129,20 @@ impl CaseText {
             (None, Some(nu)) => compliance_ratio_from_poisson(&number("nu", nu)?)?,
             _ => return Err(InputError::LambdaOrNu),
         };
+        let (phase, mirrored) = self.phase(precision)?;
+        let mean_tangential_load = number("q0", &self.q0)?;
         let cycle = LoadCycle {
             mean_normal_load: number("p0", &self.p0)?,
             normal_amplitude: number("p1", &self.p1)?,
-            mean_tangential_load: number("q0", &self.q0)?,
+            // Within 2⁻²⁰ of an odd multiple of π, φ = nπ + ψ is read as the mirror image, the
+            // cycle at ψ with Q0 reversed: the same W, segments and validity (proofs/exact-values.md).
+            mean_tangential_load: if mirrored {
+                -mean_tangential_load
+            } else {
+                mean_tangential_load
+            },
             tangential_amplitude: number("q1", &self.q1)?,
-            phase: self.phase(precision)?,
+            phase,
             friction: number("friction", &self.friction)?,
             compliance_ratio,
         };
@@ -184,14 +150,50 @@ impl CaseText {
         Ok(Case { cycle, compliance })
     }
 
-    /// φ at the precision, reduced modulo 2π where that matters; refused beyond [`MAX_PHASE`].
-    fn phase<R: Real>(&self, precision: Precision) -> Result<R, InputError> {
-        let number = |source| InputError::Number { field: "phi", source };
-        let estimate: Float = phase_at(&self.phi, Precision::bits(64)).map_err(number)?;
-        if estimate.is_finite() && estimate.clone().abs() > MAX_PHASE {
-            return Err(CycleError::PhaseTooLarge { phi: estimate.to_f64() }.into());
+    /// The phase at the precision ([`parse_phase`]) and whether it is the mirror image's. An
+    /// offset from a multiple of π that f64 cannot hold (1e-400) is refused in f64 like any number.
+    fn phase<R: Real>(&self, precision: Precision) -> Result<(R, bool), InputError> {
+        let reduced = ExactPhase::parse(&self.phi)?.reduce(precision)?;
+        let (phase, mirrored): (R, bool) = reduced.cycle_phase(precision);
+        let offset: R = reduced.offset(precision);
+        let zero = offset.int(0);
+        let smallest_normal = R::smallest_full_precision(precision) * &R::epsilon(precision);
+        let lost = precision == Precision::DOUBLE
+            && !reduced.is_in_phase()
+            && (offset == zero || offset.abs() < smallest_normal);
+        if lost {
+            return Err(InputError::OutsideF64Range {
+                quantity: "the phase's offset from the nearest multiple of π",
+                text: reduced.offset_float(64).to_string_radix(10, Some(6)),
+            });
         }
-        parse_phase(&self.phi, precision).map_err(number)
+        Ok((phase, mirrored))
+    }
+
+    /// Why W is exactly 0, if it is, decided from the exact text: v'' ≡ 0 (a SPEC whose
+    /// non-constant terms cancel exactly), Q1 = 0, or exactly in phase (φ = kπ) with
+    /// Q1 ≤ fP1, where nothing slips. The cycle itself is not validated here.
+    pub fn exact_zero(&self) -> Result<Option<ExactZero>, InputError> {
+        let exact = |field: &'static str, text: &str| {
+            decimal(text).ok_or_else(|| InputError::Number {
+                field,
+                source: ParseRealError { text: text.to_string() },
+            })
+        };
+        let q1 = exact("q1", &self.q1)?;
+        if q1 == 0 {
+            return Ok(Some(ExactZero::NoTangentialOscillation));
+        }
+        if ExactPhase::parse(&self.phi)?.is_in_phase() {
+            let limit: Rational = exact("friction", &self.friction)? * exact("p1", &self.p1)?;
+            if q1 <= limit {
+                return Ok(Some(ExactZero::InPhaseWithoutSlip));
+            }
+        }
+        if constant_slope(&self.compliance) {
+            return Ok(Some(ExactZero::ConstantSlope));
+        }
+        Ok(None)
     }
 }
 
@@ -216,39 +218,47 @@ mod tests {
     use rug::Float;
 
     #[test]
-    fn phase_accepts_multiples_of_pi() {
+    fn phase_reads_to_its_offset_from_the_nearest_multiple_of_pi() {
         let p = Precision::bits(200);
-        let x: Float = parse_phase("0.4pi", p).unwrap();
-        let expected = Float::pi(p) * Float::parse_decimal("0.4", p).unwrap();
-        assert_eq!(x, expected);
-        let y: f64 = parse_phase("pi", Precision::DOUBLE).unwrap();
-        assert_eq!(y, std::f64::consts::PI);
-        let z: f64 = parse_phase("-0.5pi", Precision::DOUBLE).unwrap();
-        assert_eq!(z, -std::f64::consts::FRAC_PI_2);
+        let (x, mirrored): (Float, bool) = parse_phase("0.4pi", p).unwrap();
+        let pi = Float::with_val(1000, rug::float::Constant::Pi);
+        let expected = Float::with_val(200, pi.clone() * Float::with_val(1000, Rational::from((2, 5))));
+        assert_eq!((x, mirrored), (expected, false));
+        let (y, mirrored): (f64, bool) = parse_phase("pi", Precision::DOUBLE).unwrap();
+        assert_eq!((y, mirrored), (0.0, true));
+        let (w, mirrored): (Float, bool) = parse_phase("pi-1e-7", p).unwrap();
+        assert_eq!((w, mirrored), (-Float::parse_decimal("1e-7", p).unwrap(), true));
+        // Away from π: φ modulo 2π, the cycle as written.
+        let (v, mirrored): (Float, bool) = parse_phase("0.75pi", p).unwrap();
+        let expected = Float::with_val(200, pi * Float::with_val(1000, Rational::from((3, 4))));
+        assert_eq!((v, mirrored), (expected, false));
         assert!(parse_phase::<f64>("xpi", Precision::DOUBLE).is_err());
-        assert!(parse_phase::<f64>("pi1", Precision::DOUBLE).is_err());
-        let w: Float = parse_phase("pi-1e-6", p).unwrap();
-        let expected = Float::pi(p) - Float::parse_decimal("1e-6", p).unwrap();
-        assert_eq!(w, expected);
-        assert!(parse_phase::<f64>("0.3", Precision::DOUBLE).is_ok());
     }
 
     #[test]
-    fn large_phases_are_reduced_modulo_two_pi_before_rounding() {
-        let exact = |text: &str, bits: u32| {
-            let phase = Float::with_val(2000, Float::parse(text).unwrap());
-            let turn = Float::with_val(2000, Constant::Pi) * 2u32;
-            let turns = (phase.clone() / &turn).round();
-            Float::with_val(bits, phase - turns * turn)
+    fn an_odd_multiple_of_pi_reads_as_the_mirror_image() {
+        let case = |phi: &str| CaseText {
+            p0: "1".into(),
+            p1: "0.4".into(),
+            q0: "0.1".into(),
+            q1: "0.2".into(),
+            phi: phi.into(),
+            friction: "1".into(),
+            lambda: Some("1".into()),
+            nu: None,
+            compliance: "persson:gamma=1,sigma=1".into(),
         };
-        for text in ["12345.678", "999999", "-1e5", "1e50", "123456789.123456789"] {
-            let reduced: f64 = parse_phase(text, Precision::DOUBLE).unwrap();
-            assert_eq!(reduced, exact(text, 53).to_f64(), "{text}");
-            let reduced: Float = parse_phase(text, Precision::bits(300)).unwrap();
-            assert_eq!(reduced, exact(text, 300), "{text}");
-        }
-        // A multiple of π: 1e6·π + 0.3 ≡ 0.3.
-        let reduced: f64 = parse_phase("1e6pi+0.3", Precision::DOUBLE).unwrap();
-        assert_eq!(reduced, 0.3);
+        let Case { cycle, .. } = case("pi-1e-30").read::<f64>(Precision::DOUBLE).unwrap();
+        assert_eq!((cycle.mean_tangential_load, cycle.phase), (-0.1, -1e-30));
+        let Case { cycle, .. } = case("0.75pi").read::<f64>(Precision::DOUBLE).unwrap();
+        assert_eq!(cycle.mean_tangential_load, 0.1);
+        assert_eq!(cycle.phase, 0.75 * std::f64::consts::PI);
+        let Case { cycle, .. } = case("2pi+0.3").read::<f64>(Precision::DOUBLE).unwrap();
+        assert_eq!((cycle.mean_tangential_load, cycle.phase), (0.1, 0.3));
+        assert!(matches!(
+            case("pi-1e-400").read::<f64>(Precision::DOUBLE),
+            Err(InputError::OutsideF64Range { .. })
+        ));
+        assert!(case("pi-1e-400").read::<Float>(Precision::bits(64)).is_ok());
     }
 }

@@ -24,6 +24,7 @@ pub mod exact;
 pub mod figures;
 pub mod files;
 pub mod inputs;
+pub mod phase;
 #[cfg(feature = "cli")]
 pub mod plot;
 pub mod quad;

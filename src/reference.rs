@@ -11,9 +11,9 @@ use std::time::{Duration, Instant};
 
 use rug::Float;
 
-use crate::compliance::Compliance;
-use crate::cycle::LoadCycle;
-use crate::dissipation::{dissipation, Dissipation, DissipationError, Method, Options, Rules};
+use crate::compliance::{check_admissible, Compliance};
+use crate::cycle::{LoadCycle, ValidCycle};
+use crate::dissipation::{dissipation, Dissipation, DissipationError, ExactZero, Method, Options, Rules};
 use crate::inputs::{Case, CaseText, InputError};
 use crate::quad::{FixedRule, RuleError};
 use crate::real::{Precision, Real};
@@ -142,6 +142,9 @@ pub fn printable_dissipation(
     };
     if let Some(digits) = digits {
         return verified(digits, None);
+    }
+    if exact_zero(case)?.is_some() {
+        return verified(F64_MOST_DIGITS, None);
     }
     let Case { cycle, compliance } = match case.read::<f64>(Precision::DOUBLE) {
         Ok(case) => case,
@@ -293,12 +296,14 @@ fn attempt(
 /// the product of its load rounding and slip-term cancellation amplifications (0 for a
 /// case that does not read).
 fn conditioning_digits(case: &CaseText) -> u32 {
-    let Ok(Case { cycle, .. }) = case.read::<f64>(Precision::DOUBLE) else {
+    // In MPFR, whose range holds the amplification of a phase within 1e-300 of 0 or π.
+    let Ok(Case { cycle, .. }) = case.read::<Float>(Precision::bits(64)) else {
         return 0;
     };
-    let amplification = cycle.rounding_amplification() * cycle.cancellation_amplification().max(1.0);
-    if amplification.is_finite() && amplification > 1.0 {
-        amplification.log10().floor() as u32
+    let one = Float::with_val(64, 1);
+    let amplification = cycle.rounding_amplification() * cycle.cancellation_amplification().max(&one);
+    if amplification.is_finite() && amplification > 1 {
+        amplification.log10().floor().to_f64() as u32
     } else {
         0
     }
@@ -401,7 +406,22 @@ impl TwoPrecisions for FourSegmentW<'_> {
     }
 }
 
-/// W for `case` to `digits` verified significant digits, within `budget`, by [`verify`].
+/// Why W is exactly 0 for a case the theory covers, if it is ([`CaseText::exact_zero`]);
+/// the cycle is validated and the compliance checked over its loads as for a computation.
+fn exact_zero(case: &CaseText) -> Result<Option<ExactZero>, ReferenceError> {
+    let Some(reason) = case.exact_zero()? else {
+        return Ok(None);
+    };
+    let Case { cycle, compliance } = case.read::<Float>(Precision::bits(128))?;
+    let cycle = ValidCycle::new(cycle).map_err(DissipationError::from)?;
+    let low = (cycle.mean_normal_load.clone() - &cycle.normal_amplitude).min_of(&cycle.permanent_stick_load());
+    let high = cycle.mean_normal_load.clone() + &cycle.normal_amplitude;
+    check_admissible(compliance.as_ref(), &low, &high).map_err(DissipationError::from)?;
+    Ok(Some(reason))
+}
+
+/// W for `case` to `digits` verified significant digits, within `budget`, by [`verify`];
+/// an exact zero ([`CaseText::exact_zero`]) at once, as `0`.
 pub fn verified_dissipation(
     case: &CaseText,
     digits: u32,
@@ -409,6 +429,32 @@ pub fn verified_dissipation(
 ) -> Result<VerifiedDissipation, ReferenceError> {
     if digits == 0 || digits > MAX_DIGITS {
         return Err(ReferenceError::DigitsOutOfRange(digits));
+    }
+    if let Some(reason) = exact_zero(case)? {
+        let zero = Float::with_val(Precision::decimal_digits(digits).in_bits(), 0);
+        let segments = crate::dissipation::Segments {
+            eb: zero.clone(),
+            bc: zero.clone(),
+            ch: zero.clone(),
+            he: zero.clone(),
+        };
+        return Ok(VerifiedDissipation {
+            total: "0".to_string(),
+            segments: segments.named().map(|(name, _)| (name, "0".to_string())),
+            digits_requested: digits,
+            digits_verified: digits,
+            precision_bits: zero.prec(),
+            method: Method::Exact(reason),
+            value: Dissipation {
+                total: zero.clone(),
+                segments,
+                error_estimate: zero,
+                evaluations: 0,
+                points: 0,
+                piece_points: Vec::new(),
+                method: Method::Exact(reason),
+            },
+        });
     }
     let mut w = FourSegmentW {
         case,
@@ -472,7 +518,7 @@ mod tests {
             compliance: "persson:gamma=1,sigma=1".into(),
         };
         let zero = verified_dissipation(&case("0"), 20, Duration::from_secs(30)).unwrap();
-        assert_eq!(zero.method, Method::NoTangentialOscillation);
+        assert_eq!(zero.method, Method::Exact(ExactZero::NoTangentialOscillation));
         assert_eq!(zero.total, "0");
         let w = verified_dissipation(&case("0.5"), 20, Duration::from_secs(30)).unwrap();
         assert_eq!(w.total, "4.0624757924582385709e-1");

@@ -724,6 +724,9 @@ fn simulate_at(
             options.initial_path,
             options.deadline,
         )?;
+        if w_friction == 0.0 {
+            return Ok(stuck_throughout(steady_loop, elements, steps));
+        }
         return Ok(SimulationResult {
             estimated_rel_error: (w_work - w_friction).abs() / w_work.abs().max(f64::MIN_POSITIVE),
             w_work,
@@ -751,6 +754,10 @@ fn simulate_at(
             )
         })
         .collect::<Result<Vec<_>, _>>()?;
+    if runs.iter().all(|(_, friction, _)| *friction == 0.0) {
+        let (_, _, steady_loop) = runs.into_iter().last().unwrap_or_default();
+        return Ok(stuck_throughout(steady_loop, elements * 4, steps * 4));
+    }
     let richardson = |coarse: f64, fine: f64| (4.0 * fine - coarse) / 3.0;
     let work = richardson(runs[1].0, runs[2].0);
     let friction = richardson(runs[1].1, runs[2].1);
@@ -768,6 +775,20 @@ fn simulate_at(
         elements: elements * 4,
         steps: steps * 4,
     })
+}
+
+/// The result where no element slipped: the frictional work, a sum of non-negative terms
+/// f n_s |Δw_s|, is exactly 0, so the contact stuck throughout and W = 0 exactly (a constant
+/// v', say), whatever rounding left in ∮ Q du.
+fn stuck_throughout(steady_loop: Vec<LoopSample>, elements: usize, steps: usize) -> SimulationResult {
+    SimulationResult {
+        w_work: 0.0,
+        w_friction: 0.0,
+        estimated_rel_error: 0.0,
+        steady_loop,
+        elements,
+        steps,
+    }
 }
 
 /// The steady loop as CSV: a header `theta,P,Q,u`, then one line per sample.

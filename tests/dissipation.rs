@@ -100,9 +100,14 @@ fn in_phase_dissipation_vanishes_when_the_load_line_is_inside_the_friction_cone(
     )
     .unwrap();
     assert_eq!(closed.total, 0.0);
-    // The ellipse at small φ dissipates in proportion to φ.
+    // The ellipse at small φ dissipates in proportion to φ². f64 refuses it by default (W is
+    // ~1e−11 of the segments BC and CH that cancel to it); allowed here for a loose bound.
     cycle.phase = 1e-6;
-    let general = four_segment(&cycle, &compliance, &Options::default()).unwrap();
+    let loose = Options {
+        rounding_limit: 1.0,
+        ..Options::default()
+    };
+    let general = four_segment(&cycle, &compliance, &loose).unwrap();
     assert!(general.total > 0.0 && general.total < 1e-5, "{}", general.total);
 }
 

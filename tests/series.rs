@@ -66,7 +66,7 @@ fn series_command_refuses_in_its_own_terms() {
         ),
         (
             &["series", "--rho", "1", "--phi", "x", "--order", "3"][..],
-            "φ is not a number",
+            "the phase φ = 'x' is not a phase: write radians",
         ),
         (
             &["series", "--rho", "1", "--phi", "1", "--order", "0"][..],

@@ -150,7 +150,10 @@ fn command_line_reports_each_invalid_cycle_in_one_line_with_exit_code_2() {
     );
     assert_rejected(dissipation_with("--q0", "-0.7", &[]), "Q = −fP");
     assert_rejected(dissipation_with("--p0", "abc", &[]), "'abc' is not a decimal number");
-    assert_rejected(dissipation_with("--phi", "xpi", &[]), "the phase φ (phi)");
+    assert_rejected(
+        dissipation_with("--phi", "xpi", &[]),
+        "the phase φ = 'xpi' is not a phase: write radians",
+    );
 }
 
 #[test]

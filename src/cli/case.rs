@@ -26,7 +26,8 @@ pub struct CaseArgs {
     /// Tangential load amplitude Q1 (≥ 0).
     #[arg(long, allow_hyphen_values = true)]
     pub q1: String,
-    /// Phase lag φ of Q behind P, in radians or as a multiple of π (`0.4pi`, `pi-1e-6`).
+    /// Phase lag φ of Q behind P: radians (`1.2`), a multiple of π (`pi/2`, `3pi/4`, `0.4pi`, `π/2`),
+    /// plus or minus radians (`pi-1e-6`), or degrees (`72deg`, `72°`); read exactly
     #[arg(long, allow_hyphen_values = true)]
     pub phi: String,
     /// Coulomb friction coefficient f (> 0).

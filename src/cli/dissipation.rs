@@ -40,6 +40,15 @@ fn method_name(method: Method) -> &'static str {
         Method::InPhase => "in-phase closed form (paper appendix)",
         Method::ConstantNormalLoad => "constant-normal-load closed form",
         Method::NoTangentialOscillation => "no tangential oscillation (W = 0)",
+        Method::Exact(_) => "exact zero",
+    }
+}
+
+/// Why W is exactly what is printed, where it is.
+fn exact_reason(method: Method) -> Option<&'static str> {
+    match method {
+        Method::Exact(reason) => Some(reason.reason()),
+        _ => None,
     }
 }
 
@@ -87,6 +96,7 @@ pub fn run(args: &DissipationArgs) -> Result<String, Failure> {
             error_estimate: printed.error_estimate,
             f64_fallback: printed.fallback.clone(),
             method: method_name(printed.method),
+            exact: exact_reason(printed.method),
             segments: Segments::from_slice(&segments),
             segments_f64: printed.binary64.and_then(|values| Segments::from_slice(&values[1..])),
             inputs: &case,
@@ -94,6 +104,13 @@ pub fn run(args: &DissipationArgs) -> Result<String, Failure> {
             smoothing_residual: table.as_ref().map(|t| t.smoothing_residual),
         };
         return Ok(serde_json::to_string(&report)?);
+    }
+    if let Some(reason) = exact_reason(printed.method) {
+        let mut out = format!("W = {}   (exact: {reason})", printed.total);
+        for (name, value) in &printed.segments {
+            out.push_str(&format!("\n  {name}  {value}"));
+        }
+        return Ok(out);
     }
     let mut out = match &table {
         Some(table) if printed.digits == 0 => format!(

@@ -57,6 +57,9 @@ pub struct DissipationReport<'a> {
     /// Why a run without --digits computed verified digits in MPFR instead of f64.
     pub f64_fallback: Option<String>,
     pub method: &'static str,
+    /// Why W is exactly 0, where it is (the value is then exact, not rounded).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub exact: Option<&'static str>,
     /// EB, BC, CH, HE as printed; a segment with no known digit is null.
     pub segments: Option<Segments<Option<String>>>,
     pub segments_f64: Option<Segments<f64>>,
@@ -125,6 +128,9 @@ pub struct CoefficientReport<'a> {
     pub digits: u32,
     pub digits_verified: Option<u32>,
     pub precision_bits: u32,
+    /// Why I is exactly the 0 printed, where it is.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub exact: Option<&'static str>,
     pub inputs: ShapeInputs<'a>,
 }
 
@@ -162,6 +168,8 @@ pub struct SeriesReport<'a> {
     pub digits_verified: &'a [u32],
     /// The coefficients in binary64 (f64 runs only).
     pub coefficients_f64: Option<&'a [f64]>,
+    /// Why a coefficient is exactly the 0 printed (null where it is computed).
+    pub exact: &'a [Option<&'static str>],
 }
 
 /// `microslip series` with a case `--json`: the partial sums W_N beside the four-segment W.
@@ -172,8 +180,13 @@ pub struct PartialSumsReport<'a> {
     #[serde(rename = "W_digits_verified")]
     pub w_digits_verified: u32,
     pub partial_sums: &'a [String],
-    /// W_N − W for N = 1 … order.
+    /// W_N − W for N = 1 … order: "0" where exact, "<B" below W's resolution B.
     pub differences: &'a [String],
+    /// Why W_N − W is exactly 0 (null where it is computed).
+    pub differences_exact: &'a [Option<&'static str>],
+    /// Why W and every W_N are exactly 0, where they are.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub exact: Option<&'static str>,
     pub digits_verified: u32,
     pub inputs: &'a CaseText,
 }

@@ -2,7 +2,7 @@
 
 use clap::{ArgGroup, Args};
 
-use microslip::exact::printing::{printed_coefficients, printed_partial_sums};
+use microslip::exact::printing::{printed_coefficients, printed_partial_sums, SumDifference};
 use microslip::inputs::CaseText;
 
 use super::case::Answer;
@@ -20,7 +20,8 @@ pub struct SeriesArgs {
     /// ρ = Q1/(f P1) (> 0): print I₀ … I_N.
     #[arg(long, allow_hyphen_values = true, conflicts_with_all = ["p0", "compliance"])]
     pub rho: Option<String>,
-    /// The phase φ, in radians or as a multiple of π (`0.4pi`).
+    /// The phase φ: radians (`1.2`), a multiple of π (`pi/2`, `3pi/4`, `0.4pi`, `π/2`), plus or minus
+    /// radians (`pi-1e-6`), or degrees (`72deg`, `72°`); read exactly
     #[arg(long, allow_hyphen_values = true)]
     pub phi: String,
     /// The highest order N.
@@ -71,6 +72,7 @@ pub fn run(args: &SeriesArgs) -> Result<String, Failure> {
                 coefficients: &printed.values,
                 digits_verified: &printed.digits,
                 coefficients_f64: (!printed.binary64.is_empty()).then_some(&printed.binary64),
+                exact: &printed.exact,
             };
             return Ok(serde_json::to_string(&report)?);
         }
@@ -78,7 +80,11 @@ pub fn run(args: &SeriesArgs) -> Result<String, Failure> {
             .values
             .iter()
             .enumerate()
-            .map(|(n, v)| format!("I_{n:<3} = {v}"))
+            .zip(&printed.exact)
+            .map(|((n, v), exact)| match exact {
+                Some(reason) => format!("I_{n:<3} = {v}   (exact: {reason})"),
+                None => format!("I_{n:<3} = {v}"),
+            })
             .collect();
         return Ok(format!(
             "Iₙ(ρ = {rho}, φ = {}), n = 0 … {}:\n{}",
@@ -103,7 +109,19 @@ pub fn run(args: &SeriesArgs) -> Result<String, Failure> {
     let differences: Vec<String> = printed
         .differences
         .iter()
-        .map(|d| d.clone().unwrap_or_else(|| "0".into()))
+        .map(|difference| match difference {
+            SumDifference::Exact(_) => "0".to_string(),
+            SumDifference::Unresolved(bound) => format!("<{bound}"),
+            SumDifference::Value(value) => value.clone(),
+        })
+        .collect();
+    let differences_exact: Vec<Option<&'static str>> = printed
+        .differences
+        .iter()
+        .map(|difference| match difference {
+            SumDifference::Exact(reason) => Some(*reason),
+            _ => None,
+        })
         .collect();
     if args.answer.json {
         let report = PartialSumsReport {
@@ -111,18 +129,35 @@ pub fn run(args: &SeriesArgs) -> Result<String, Failure> {
             w_digits_verified: printed.dissipation_digits,
             partial_sums: &printed.sums,
             differences: &differences,
+            differences_exact: &differences_exact,
+            exact: printed.exact,
             digits_verified: printed.digits,
             inputs: &case,
         };
         return Ok(serde_json::to_string(&report)?);
+    }
+    if let Some(reason) = printed.exact {
+        return Ok(format!(
+            "W = 0 and W_N = 0 for N = 1 … {} (exact: {reason})",
+            args.order
+        ));
     }
     let width = printed.digits as usize + 8;
     let mut out = format!(
         "W (four-segment) = {}\n   N  {:<width$}  W_N − W",
         printed.dissipation, "W_N (series to order N)"
     );
-    for (n, (sum, difference)) in printed.sums.iter().zip(&differences).enumerate() {
+    for (n, ((sum, difference), exact)) in printed
+        .sums
+        .iter()
+        .zip(&differences)
+        .zip(&differences_exact)
+        .enumerate()
+    {
         out.push_str(&format!("\n{:>4}  {sum:<width$}  {difference}", n + 1));
+        if let Some(reason) = exact {
+            out.push_str(&format!(" (exact: {reason})"));
+        }
     }
     Ok(out)
 }

@@ -18,7 +18,8 @@ pub struct SmallAmplitudeArgs {
     /// ρ = Q1/(f P1) (> 0).
     #[arg(long, allow_hyphen_values = true)]
     pub rho: String,
-    /// The phase φ, in radians or as a multiple of π (`0.4pi`).
+    /// The phase φ: radians (`1.2`), a multiple of π (`pi/2`, `3pi/4`, `0.4pi`, `π/2`), plus or minus
+    /// radians (`pi-1e-6`), or degrees (`72deg`, `72°`); read exactly
     #[arg(long, allow_hyphen_values = true)]
     pub phi: String,
     #[command(flatten)]
@@ -34,6 +35,7 @@ pub fn run(args: &SmallAmplitudeArgs) -> Result<String, Failure> {
             digits: printed.digits,
             digits_verified: Some(printed.digits),
             precision_bits: printed.precision_bits,
+            exact: printed.exact,
             inputs: ShapeInputs {
                 rho: &args.rho,
                 phi: &args.phi,
@@ -41,5 +43,12 @@ pub fn run(args: &SmallAmplitudeArgs) -> Result<String, Failure> {
         };
         return Ok(serde_json::to_string(&report)?);
     }
-    Ok(format!("I(ρ = {}, φ = {}) = {}", args.rho, args.phi, printed.value))
+    let exact = printed
+        .exact
+        .map(|reason| format!("   (exact: {reason})"))
+        .unwrap_or_default();
+    Ok(format!(
+        "I(ρ = {}, φ = {}) = {}{exact}",
+        args.rho, args.phi, printed.value
+    ))
 }

@@ -9,11 +9,13 @@
 
 mod combinators;
 mod families;
+mod slope_form;
 mod spec;
 mod table;
 
 pub use combinators::{LoadScaled, Scaled, Shifted, Sum};
 pub use families::{Exponential, Hertz, Persson, Polynomial, PowerLaw, Rational};
+pub use slope_form::{constant_slope, slope_polynomial_degree};
 pub use spec::{parse_spec, parse_spec_with, tables_in_spec, SpecError};
 pub use table::{
     cached_table, ComplianceTable, Coordinates, TableColumn, TableCompliance, TableError, TableInterpolant, TABLE_ORDER,

@@ -71,7 +71,7 @@ pub fn tables_in_spec(spec: &str) -> Result<Vec<Arc<ComplianceTable>>, TableErro
 }
 
 /// Splits at each '+' that joins two terms, not at the sign of an exponent (1e+3).
-fn split_terms(spec: &str) -> Vec<&str> {
+pub(super) fn split_terms(spec: &str) -> Vec<&str> {
     let bytes = spec.as_bytes();
     let mut terms = Vec::new();
     let mut start = 0;
@@ -104,13 +104,13 @@ fn number<R: Real>(key: &str, text: &str, precision: Precision) -> Result<R, Str
 }
 
 /// The key=value pairs of one family, each key used once and all of them expected.
-struct Parameters<'a> {
+pub(super) struct Parameters<'a> {
     family: &'a str,
     pairs: Vec<(&'a str, &'a str)>,
 }
 
 impl<'a> Parameters<'a> {
-    fn parse(family: &'a str, text: &'a str) -> Result<Self, String> {
+    pub(super) fn parse(family: &'a str, text: &'a str) -> Result<Self, String> {
         let mut pairs: Vec<(&str, &str)> = Vec::new();
         for item in text.split(',').map(str::trim).filter(|s| !s.is_empty()) {
             let (key, value) = item
@@ -143,7 +143,7 @@ impl<'a> Parameters<'a> {
         Ok(())
     }
 
-    fn text(&self, key: &str) -> &'a str {
+    pub(super) fn text(&self, key: &str) -> &'a str {
         self.pairs
             .iter()
             .find(|(k, _)| *k == key)

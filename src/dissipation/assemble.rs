@@ -19,6 +19,42 @@ pub enum Method {
     ConstantNormalLoad,
     /// Q1 = 0: nothing oscillates tangentially, W = 0.
     NoTangentialOscillation,
+    /// W = 0 exactly, for a reason read from the exact input rather than computed.
+    Exact(ExactZero),
+}
+
+/// Why W is exactly 0, decided from the exact input (the decimals and the phase as
+/// written, the compliance SPEC's structure), never from a rounded value
+/// (proofs/exact-values.md).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ExactZero {
+    /// v' is constant (v'' ≡ 0): a constant v' dissipates nothing (the constant-term theorem).
+    ConstantSlope,
+    /// Q1 = 0: nothing oscillates tangentially.
+    NoTangentialOscillation,
+    /// φ is exactly a multiple of π and Q1 ≤ fP1: the ellipse is a line inside the
+    /// friction cone's stick range, and nothing slips.
+    InPhaseWithoutSlip,
+}
+
+impl ExactZero {
+    /// The reason, as printed after `exact:`.
+    pub fn reason(self) -> &'static str {
+        match self {
+            ExactZero::ConstantSlope => "v'' ≡ 0 on [P_T, P0 + P1]",
+            ExactZero::NoTangentialOscillation => "Q1 = 0",
+            ExactZero::InPhaseWithoutSlip => "in phase, φ = kπ exactly, with Q1 ≤ fP1: nothing slips",
+        }
+    }
+
+    /// A short machine-readable name.
+    pub fn key(self) -> &'static str {
+        match self {
+            ExactZero::ConstantSlope => "constant-slope",
+            ExactZero::NoTangentialOscillation => "no-tangential-oscillation",
+            ExactZero::InPhaseWithoutSlip => "in-phase-without-slip",
+        }
+    }
 }
 
 /// The dissipation per cycle and how it was obtained.
@@ -102,7 +138,14 @@ pub(crate) fn assemble<R: Real>(
     if method == Method::FourSegment {
         amplification += &cycle.cancellation_amplification();
     }
-    let rounding = total.abs() * &(amplification * &eps) + &(scale.clone() * &eps * &eps.int(64));
+    // A W that came out exactly 0 from segments that cancel near in phase is only rounding:
+    // the size it is predicted to have stands in for |W|.
+    let size = if method == Method::FourSegment && total == total.int(0) {
+        scale.clone() / &cycle.in_phase_cancellation()
+    } else {
+        total.abs()
+    };
+    let rounding = size * &(amplification * &eps) + &(scale.clone() * &eps * &eps.int(64));
     let mut error_estimate = parts.error * lambda + &rounding;
     if !total.is_finite() || !error_estimate.is_finite() {
         return Err(DissipationError::NotFinite { segment: "total" });

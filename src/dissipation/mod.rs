@@ -41,7 +41,7 @@ mod segment;
 mod segments;
 mod slope;
 
-pub use assemble::{Dissipation, Method};
+pub use assemble::{Dissipation, ExactZero, Method};
 pub use closed_forms::{constant_normal_load, in_phase, HertzConfiguration, MindlinDeresiewicz};
 pub use error::DissipationError;
 pub use four_segment::four_segment;

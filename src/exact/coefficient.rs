@@ -11,24 +11,34 @@
 //! written in a form that does not, and the formula is evaluated homogeneously in
 //! (ρ, 1)/max(1, ρ) so that no intermediate overflows before I itself does (I ≈ −⅔ρ³).
 
+use crate::cycle::PhaseTrig;
 use crate::real::Real;
 
 /// I(ρ, φ), the coefficient of the cubic law W ≈ λ f² P1³ v''(P0) I, for ρ > 0 and
-/// any φ (period π). At ρ = 1, φ ≡ 0 it returns the limit 0.
+/// any φ (period π; a phase in [−π/2, 0) is the offset below π, as [`PhaseTrig::reduced`]
+/// reads it). At ρ = 1, φ ≡ 0 it returns the limit 0.
 pub fn closed_form_coefficient<R: Real>(rho: &R, phase: &R) -> R {
     let one = rho.int(1);
-    let pi = rho.pi_like();
-    let phi = phase.clone() - &((phase.clone() / &pi).floor() * &pi);
     // (r, e) = (ρ, 1)/k with k = max(1, ρ); I = k³ J(r, e), J homogeneous of degree 3.
     let (scale, r, e) = if *rho > one {
         (rho.clone(), one.clone(), one.clone() / rho)
     } else {
         (one.clone(), rho.clone(), one.clone())
     };
-    let (sin, cos) = phi.sin_cos();
-    let half_sin_sq = (phi.clone() / &rho.int(2)).sin().square();
+    let PhaseTrig {
+        sin,
+        cos,
+        half_sin_squared: half_sin_sq,
+        half_cos_squared,
+    } = PhaseTrig::reduced(phase);
     let two = rho.int(2);
-    let sigma_plus = (r.clone() * &cos + &e).hypot(&(r.clone() * &sin));
+    // r cos φ + e, near φ = π as (e − r) + 2r cos²(φ/2).
+    let plus_line = if cos >= rho.int(0) {
+        r.clone() * &cos + &e
+    } else {
+        (e.clone() - &r) + &(r.clone() * &half_cos_squared * &two)
+    };
+    let sigma_plus = plus_line.hypot(&(r.clone() * &sin));
     let sigma_minus = ((r.clone() - &e) - &(r.clone() * &half_sin_sq * &two)).hypot(&(r.clone() * &sin));
     let zero = rho.int(0);
     if sigma_minus == zero {

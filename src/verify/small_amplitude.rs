@@ -18,8 +18,9 @@ use crate::compliance::Polynomial;
 use crate::cycle::LoadCycle;
 use crate::dissipation::{dissipation, Dissipation, DissipationError, Options};
 use crate::exact::closed_form_coefficient;
-use crate::exact::printing::vanishes_in_phase;
+use crate::exact::printing::{vanishes_in_phase, NOTHING_SLIPS};
 use crate::inputs::parse_phase;
+use crate::phase::PhaseError;
 use crate::real::{ParseRealError, Precision, Real};
 use crate::verified::{f64_digits_against, verified_values, OutOfBudget, F64_MOST_DIGITS, GUARD_DIGITS, MAX_DIGITS};
 
@@ -89,6 +90,8 @@ pub struct PrintedCoefficient {
     pub precision_bits: u32,
     /// I in binary64 when it is representable there (finite, not below the normal range).
     pub binary64: Option<f64>,
+    /// Why I is exactly the 0 printed, where it is.
+    pub exact: Option<&'static str>,
 }
 
 /// Why I(ρ, φ) could not be computed.
@@ -103,6 +106,9 @@ pub enum CoefficientError {
         #[source]
         source: ParseRealError,
     },
+    /// φ is not a phase.
+    #[error(transparent)]
+    Phase(#[from] PhaseError),
     /// ρ ≤ 0, or not finite at the working precision.
     #[error("ρ must be a positive number (and below MPFR's range, about 1e323228496), got {0}")]
     NonPositiveRatio(String),
@@ -122,8 +128,7 @@ pub enum CoefficientError {
 fn read_shape<R: Real>(rho: &str, phase: &str, precision: Precision) -> Result<(R, R), CoefficientError> {
     let rho_value =
         R::parse_decimal(rho, precision).map_err(|source| CoefficientError::Number { quantity: "ρ", source })?;
-    let phase: R =
-        parse_phase(phase, precision).map_err(|source| CoefficientError::Number { quantity: "φ", source })?;
+    let (phase, _): (R, bool) = parse_phase(phase, precision)?;
     if !(rho_value.is_finite() && rho_value > rho_value.int(0)) {
         return Err(CoefficientError::NonPositiveRatio(rho.to_string()));
     }
@@ -165,6 +170,7 @@ pub fn evaluate(
                 digits: kept,
                 precision_bits: 53,
                 binary64: Some(value),
+                exact: None,
             });
         }
         return Ok(PrintedCoefficient { binary64, ..verified });
@@ -197,10 +203,11 @@ fn verified_closed_form(
     if vanishes_in_phase(rho, phase) {
         let zero = Float::with_val(Precision::decimal_digits(digits).in_bits(), 0);
         let printed = PrintedCoefficient {
-            value: zero.to_scientific(digits as usize),
+            value: "0".to_string(),
             digits,
             precision_bits: zero.prec(),
             binary64: Some(0.0),
+            exact: Some(NOTHING_SLIPS),
         };
         return Ok((printed, zero));
     }
@@ -215,6 +222,7 @@ fn verified_closed_form(
         digits,
         precision_bits: verified.precision.in_bits(),
         binary64: None,
+        exact: None,
     };
     Ok((printed, value))
 }

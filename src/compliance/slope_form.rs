@@ -1,0 +1,174 @@
+//! The shape of v' read from a SPEC's exact decimals, to decide by reason, not by
+//! rounding, when W is exactly what it is: v'' ≡ 0 (every non-constant term cancels, so
+//! W = 0 by the constant-term theorem), or v' a polynomial of degree d (so the
+//! small-amplitude series ends at order d and its partial sums from W_d on are W).
+//!
+//! Each term contributes coefficients of the functions it is made of — P^β (power, Persson,
+//! and the monomials of a polynomial expanded about 0), 1/(P + c) (rational), exp(−P/c)
+//! (exp) — and constants, which do not matter. Two terms cancel where their coefficients of
+//! the same function sum to zero, exactly, in rationals. Hertz and tables are never constant
+//! (proofs/exact-values.md).
+
+use rug::ops::Pow;
+use rug::{Integer, Rational};
+
+use super::spec::{split_terms, Parameters};
+use crate::phase::decimal;
+
+/// A non-constant function of P that a SPEC term may contain.
+#[derive(Clone, Debug, PartialEq)]
+enum Shape {
+    /// P^β, β ≠ 0.
+    Power(Rational),
+    /// 1/(P + c).
+    Reciprocal(Rational),
+    /// exp(−P/c).
+    Decay(Rational),
+}
+
+/// v' as a sum of coefficients times shapes (constants dropped), or a term that has no
+/// such form (Hertz, a table).
+#[derive(Debug, Default)]
+struct SlopeForm {
+    terms: Vec<(Shape, Rational)>,
+    opaque: bool,
+}
+
+impl SlopeForm {
+    fn add(&mut self, shape: Shape, coefficient: Rational) {
+        match self.terms.iter_mut().find(|(s, _)| *s == shape) {
+            Some((_, sum)) => *sum += coefficient,
+            None => self.terms.push((shape, coefficient)),
+        }
+    }
+
+    /// The shapes whose coefficients do not cancel.
+    fn remaining(&self) -> impl Iterator<Item = &Shape> {
+        self.terms.iter().filter(|(_, c)| *c != 0).map(|(s, _)| s)
+    }
+}
+
+/// The form of a SPEC's v', or None where a term does not parse (the SPEC parser says why).
+fn slope_form(spec: &str) -> Option<SlopeForm> {
+    let mut form = SlopeForm::default();
+    for term in split_terms(spec) {
+        let term = term.trim();
+        let (factor, body) = match term.split_once('*') {
+            Some((factor, body)) => (decimal(factor)?, body.trim()),
+            None => (Rational::from(1), term),
+        };
+        let (family, text) = body.split_once(':').unwrap_or((body, ""));
+        let family = family.trim();
+        if family == "table" || family == "hertz" {
+            form.opaque = true;
+            continue;
+        }
+        let parameters = Parameters::parse(family, text).ok()?;
+        let value = |key: &str| decimal(parameters.text(key));
+        let mut add = |shape: Shape, coefficient: Rational| form.add(shape, coefficient * &factor);
+        match family {
+            "power" => {
+                let beta = value("beta")?;
+                if beta != 0 {
+                    add(Shape::Power(beta), value("c")?);
+                }
+            }
+            "persson" => add(Shape::Power(Rational::from(-1)), value("gamma")? * value("sigma")?),
+            "poly" => {
+                let center = value("p0")?;
+                let coefficients = parameters
+                    .text("coeffs")
+                    .split(';')
+                    .map(decimal)
+                    .collect::<Option<Vec<_>>>()?;
+                // Σ c_k (P − p0)^k = Σ_j P^j Σ_{k≥j} c_k C(k, j) (−p0)^(k−j).
+                for j in 1..coefficients.len() {
+                    let mut sum = Rational::from(0);
+                    for (k, c) in coefficients.iter().enumerate().skip(j) {
+                        let binomial = Integer::from(k).binomial(j as u32);
+                        sum += c.clone() * binomial * (-center.clone()).pow((k - j) as i32);
+                    }
+                    add(Shape::Power(Rational::from(j)), sum);
+                }
+            }
+            "rational" => add(Shape::Reciprocal(value("c")?), value("b")?),
+            "exp" => add(Shape::Decay(value("c")?), value("a")?),
+            "const" => {}
+            _ => return None,
+        }
+    }
+    Some(form)
+}
+
+/// Whether the SPEC's v' is constant, exactly (v'' ≡ 0 at every load): every term is a
+/// constant or has a zero coefficient, or the non-constant terms cancel exactly.
+pub fn constant_slope(spec: &str) -> bool {
+    slope_form(spec).is_some_and(|form| !form.opaque && form.remaining().next().is_none())
+}
+
+/// The degree of the SPEC's v' where it is exactly a polynomial in P (0 for a constant),
+/// None otherwise.
+pub fn slope_polynomial_degree(spec: &str) -> Option<usize> {
+    let form = slope_form(spec)?;
+    if form.opaque {
+        return None;
+    }
+    let degree = form.remaining().try_fold(0usize, |degree, shape| match shape {
+        Shape::Power(beta) if *beta.denom() == 1 && *beta > 0 => Some(degree.max(beta.numer().to_usize()?)),
+        _ => None,
+    });
+    degree
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn constant_slopes_are_recognised_exactly() {
+        for spec in [
+            "const:c=0.8",
+            "2*const:c=1",
+            "const:c=1+const:c=2",
+            "poly:p0=1,coeffs=1;0;0",
+            "rational:a=1,b=0,c=1",
+            "exp:a=0,c=1,d=1",
+            "power:c=1,beta=-1+power:c=-1,beta=-1+const:c=1",
+            "power:c=5,beta=0",
+            "0*persson:gamma=1,sigma=1",
+            "power:c=0.3,beta=-1+power:c=-0.1,beta=-1+power:c=-0.2,beta=-1",
+            "persson:gamma=2,sigma=0.5+power:c=-1,beta=-1",
+            "poly:p0=2,coeffs=0;1+poly:p0=0,coeffs=3;-1",
+            "poly:p0=1,coeffs=0;0;1+power:c=-1,beta=2+poly:p0=0,coeffs=0;2",
+        ] {
+            assert!(constant_slope(spec), "{spec}");
+        }
+        for spec in [
+            "persson:gamma=1,sigma=1",
+            "power:c=1,beta=-1+power:c=-1,beta=-1.0000000000000000000001",
+            "power:c=0.3,beta=-1+power:c=-0.1,beta=-1+power:c=-0.2000000000000000001,beta=-1",
+            "hertz:r=1,estar=1",
+            "0*hertz:r=1,estar=1",
+            "rational:a=1,b=1,c=1+rational:a=1,b=-1,c=2",
+            "exp:a=1,c=1,d=0",
+            "poly:p0=1,coeffs=1;1e-300",
+            "table:missing.csv",
+            "power:c=1,beta=x",
+        ] {
+            assert!(!constant_slope(spec), "{spec}");
+        }
+    }
+
+    #[test]
+    fn polynomial_degrees_are_read_exactly() {
+        assert_eq!(slope_polynomial_degree("poly:p0=1,coeffs=2;-0.5"), Some(1));
+        assert_eq!(slope_polynomial_degree("const:c=1"), Some(0));
+        assert_eq!(slope_polynomial_degree("poly:p0=1,coeffs=1;2;3;0"), Some(2));
+        assert_eq!(
+            slope_polynomial_degree("power:c=1,beta=3+power:c=-1,beta=3+power:c=1,beta=1"),
+            Some(1)
+        );
+        assert_eq!(slope_polynomial_degree("persson:gamma=1,sigma=1"), None);
+        assert_eq!(slope_polynomial_degree("power:c=1,beta=0.5"), None);
+    }
+}
