@@ -11,7 +11,7 @@
 //! `PROPTEST_CASES=N` runs more, `MICROSLIP_FUZZ_SEED=S` other draws, and `MICROSLIP_FUZZ_LOG=FILE` appends every failure to FILE and goes on
 //! (to survey a long run instead of stopping at the first failure).
 
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 use microslip::dissipation::{dissipation, Options};
 use microslip::inputs::{Case, CaseText};
