@@ -13,7 +13,11 @@
 
 #[cfg(feature = "cli")]
 pub mod accuracy;
+#[cfg(feature = "certified")]
+pub mod ball;
 pub mod batch;
+#[cfg(feature = "certified")]
+pub mod certified;
 #[cfg(feature = "cli")]
 pub mod catalogue;
 pub mod compliance;
