@@ -226,7 +226,12 @@ impl Ball {
         // SAFETY: initialised.
         unsafe {
             if self.is_real() {
-                real(&mut first.raw.real, &mut second.raw.real, self.real_part(), self.slong_precision());
+                real(
+                    &mut first.raw.real,
+                    &mut second.raw.real,
+                    self.real_part(),
+                    self.slong_precision(),
+                );
             } else {
                 complex(&mut first.raw, &mut second.raw, &self.raw, self.slong_precision());
             }
@@ -250,11 +255,22 @@ impl Ball {
         first: impl Fn(&Ball, &Ball) -> bool,
     ) -> Ball {
         if self.complex_context() || other.complex_context() {
-            return if first(self, other) { self.clone() } else { other.clone() };
+            return if first(self, other) {
+                self.clone()
+            } else {
+                other.clone()
+            };
         }
         let mut result = Ball::zero(self.precision);
         // SAFETY: initialised.
-        unsafe { real(&mut result.raw.real, self.real_part(), other.real_part(), self.slong_precision()) };
+        unsafe {
+            real(
+                &mut result.raw.real,
+                self.real_part(),
+                other.real_part(),
+                self.slong_precision(),
+            )
+        };
         result
     }
 
@@ -525,7 +541,11 @@ impl ToPrimitive for Ball {
 
 /// Functions with a branch cut: the real Arb form on real balls; on complex balls the
 /// principal branch, analytic-checked when Arb bounds an integrand.
-fn branch_cut(x: &Ball, real: unsafe extern "C" fn(*mut arb_struct, *const arb_struct, i64), complex_analytic: unsafe extern "C" fn(*mut acb_struct, *const acb_struct, i32, i64)) -> Ball {
+fn branch_cut(
+    x: &Ball,
+    real: unsafe extern "C" fn(*mut arb_struct, *const arb_struct, i64),
+    complex_analytic: unsafe extern "C" fn(*mut acb_struct, *const acb_struct, i32, i64),
+) -> Ball {
     let mut result = Ball::zero(x.precision);
     let analytic = analytic_required();
     // SAFETY: initialised.
@@ -580,7 +600,13 @@ impl Real for Ball {
         let mut ball = Ball::zero(precision.in_bits());
         // SAFETY: initialised; a NUL-terminated string. Arb returns a ball containing
         // the exact decimal.
-        let status = unsafe { arb_set_str(&mut ball.raw.real, c_text.as_ptr().cast::<c_char>(), ball.slong_precision()) };
+        let status = unsafe {
+            arb_set_str(
+                &mut ball.raw.real,
+                c_text.as_ptr().cast::<c_char>(),
+                ball.slong_precision(),
+            )
+        };
         if status != 0 || !ball.is_finite() {
             return Err(error());
         }
@@ -630,7 +656,12 @@ impl Real for Ball {
                     let mut negative = arb_struct::default();
                     arb_init(&mut negative);
                     arb_neg(&mut negative, bound.real_part());
-                    arb_union(&mut result.raw.real, &negative, bound.real_part(), self.slong_precision());
+                    arb_union(
+                        &mut result.raw.real,
+                        &negative,
+                        bound.real_part(),
+                        self.slong_precision(),
+                    );
                     arb_clear(&mut negative);
                 }
                 result
@@ -667,9 +698,20 @@ impl Real for Ball {
         // SAFETY: initialised.
         unsafe {
             if !(self.complex_context() || exponent.complex_context()) {
-                arb_pow(&mut result.raw.real, self.real_part(), exponent.real_part(), self.slong_precision());
+                arb_pow(
+                    &mut result.raw.real,
+                    self.real_part(),
+                    exponent.real_part(),
+                    self.slong_precision(),
+                );
             } else {
-                acb_pow_analytic(&mut result.raw, &self.raw, &exponent.raw, i32::from(analytic), self.slong_precision());
+                acb_pow_analytic(
+                    &mut result.raw,
+                    &self.raw,
+                    &exponent.raw,
+                    i32::from(analytic),
+                    self.slong_precision(),
+                );
                 if analytic && acb_is_finite(&result.raw) == 0 {
                     not_analytic();
                 }
@@ -682,9 +724,19 @@ impl Real for Ball {
         // SAFETY: initialised; an integer power has no branch cut.
         unsafe {
             if self.is_real() {
-                arb_pow_ui(&mut result.raw.real, self.real_part(), u64::from(exponent.unsigned_abs()), self.slong_precision());
+                arb_pow_ui(
+                    &mut result.raw.real,
+                    self.real_part(),
+                    u64::from(exponent.unsigned_abs()),
+                    self.slong_precision(),
+                );
             } else {
-                acb_pow_ui(&mut result.raw, &self.raw, u64::from(exponent.unsigned_abs()), self.slong_precision());
+                acb_pow_ui(
+                    &mut result.raw,
+                    &self.raw,
+                    u64::from(exponent.unsigned_abs()),
+                    self.slong_precision(),
+                );
             }
         }
         if exponent < 0 {
@@ -706,7 +758,14 @@ impl Real for Ball {
         if !(self.complex_context() || other.complex_context()) {
             let mut result = Ball::zero(self.precision);
             // SAFETY: initialised.
-            unsafe { arb_hypot(&mut result.raw.real, self.real_part(), other.real_part(), self.slong_precision()) };
+            unsafe {
+                arb_hypot(
+                    &mut result.raw.real,
+                    self.real_part(),
+                    other.real_part(),
+                    self.slong_precision(),
+                )
+            };
             result
         } else {
             (self.square() + &other.square()).sqrt()
@@ -719,7 +778,14 @@ impl Real for Ball {
         }
         let mut result = Ball::zero(self.precision);
         // SAFETY: initialised.
-        unsafe { arb_atan2(&mut result.raw.real, self.real_part(), x.real_part(), self.slong_precision()) };
+        unsafe {
+            arb_atan2(
+                &mut result.raw.real,
+                self.real_part(),
+                x.real_part(),
+                self.slong_precision(),
+            )
+        };
         result
     }
     fn abs(&self) -> Self {
@@ -811,7 +877,14 @@ pub fn certain_digits(ball: &Ball, max_digits: u32) -> Option<(String, u32)> {
 pub fn hull(a: &Ball, b: &Ball) -> Ball {
     let mut result = Ball::zero(a.precision.max(b.precision));
     // SAFETY: initialised.
-    unsafe { arb_union(&mut result.raw.real, a.real_part(), b.real_part(), result.slong_precision()) };
+    unsafe {
+        arb_union(
+            &mut result.raw.real,
+            a.real_part(),
+            b.real_part(),
+            result.slong_precision(),
+        )
+    };
     result
 }
 

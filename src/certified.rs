@@ -203,7 +203,8 @@ where
     let mut bits = Precision::decimal_digits(digits).in_bits() + 24;
     let mut last_error = None;
     while bits <= MAX_BITS {
-        let (cycle, compliance) = case(Precision::bits(bits)).map_err(|reason| CertifiedError::Case { bits, reason })?;
+        let (cycle, compliance) =
+            case(Precision::bits(bits)).map_err(|reason| CertifiedError::Case { bits, reason })?;
         match enclose_dissipation(&cycle, compliance.as_ref(), bits) {
             Ok(enclosure) => {
                 if let Some((text, reached)) = certain_digits(&enclosure.total, digits) {

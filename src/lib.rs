@@ -16,10 +16,10 @@ pub mod accuracy;
 #[cfg(feature = "certified")]
 pub mod ball;
 pub mod batch;
-#[cfg(feature = "certified")]
-pub mod certified;
 #[cfg(feature = "cli")]
 pub mod catalogue;
+#[cfg(feature = "certified")]
+pub mod certified;
 pub mod compliance;
 pub mod cycle;
 pub mod dissipation;
