@@ -9,6 +9,8 @@ need_packages=""
 command -v m4 >/dev/null 2>&1 || need_packages="$need_packages m4"
 command -v cc >/dev/null 2>&1 || need_packages="$need_packages gcc libc6-dev"
 command -v make >/dev/null 2>&1 || need_packages="$need_packages make"
+# FLINT (the `certified` feature, on by default) compiles one C file of its build with clang.
+command -v clang >/dev/null 2>&1 || need_packages="$need_packages clang"
 command -v cargo >/dev/null 2>&1 || [ -x "$HOME/.cargo/bin/cargo" ] || need_packages="$need_packages curl ca-certificates"
 if [ -n "$need_packages" ]; then
     echo "installing:$need_packages" >&2

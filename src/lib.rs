@@ -13,9 +13,13 @@
 
 #[cfg(feature = "cli")]
 pub mod accuracy;
+#[cfg(feature = "certified")]
+pub mod ball;
 pub mod batch;
 #[cfg(feature = "cli")]
 pub mod catalogue;
+#[cfg(feature = "certified")]
+pub mod certified;
 pub mod compliance;
 pub mod cycle;
 pub mod dissipation;

@@ -214,7 +214,7 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
     /// for EB P_S = P_T + σ₊ sin²h/f at B, of half-width 2 asinh(√(fP_T/σ₊)), and for HE
     /// P_K likewise at E with σ₋. A compliance singular at P = 0 makes these peaks as
     /// narrow as √((P0 − P1)/P0) near separation and √(P_T/P0) near gross slip.
-    fn low_load_peaks(&self, segment: Segment) -> Vec<Peak<R>> {
+    pub(crate) fn low_load_peaks(&self, segment: Segment) -> Vec<Peak<R>> {
         let g = self.geometry;
         let (start, length) = self.extent(segment);
         let zero = length.int(0);

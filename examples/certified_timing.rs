@@ -1,0 +1,93 @@
+//! Certified W per case, timed in process: `cargo run --release --example certified_timing
+//! [CASE …]` prints one line per case and digit count (15, 30, 50, 100) with the best of
+//! several runs, the digits and the working precision. CASE is a name below or
+//! `p0,p1,q1,phi,f,lambda,SPEC` (phi as a multiple of π when it ends in `pi`).
+//! benches/arb_side_by_side.py runs it beside Arb's own `acb.integral`.
+
+use std::time::{Duration, Instant};
+
+use microslip::ball::Ball;
+use microslip::certified::certified_dissipation;
+use microslip::compliance::{parse_spec, Compliance};
+use microslip::cycle::LoadCycle;
+use microslip::real::{Precision, Real};
+
+type BallCase = (LoadCycle<Ball>, Box<dyn Compliance<Ball>>);
+
+const NAMED: [(&str, &str); 6] = [
+    ("persson", "1,0.4,0.5,0.4pi,1,1,persson:gamma=1,sigma=1"),
+    ("power", "1,0.4,0.5,0.4pi,1,1,power:c=0.5,beta=-0.5"),
+    ("hertz", "1,0.4,0.5,0.4pi,1,1,hertz:r=1,estar=1"),
+    (
+        "power-sum",
+        "1,0.4,0.5,0.4pi,1,1,power:c=1,beta=-0.5+power:c=0.5,beta=-1.5",
+    ),
+    ("near-separation", "1,0.999999,0.0005,0.5pi,1,1,persson:gamma=1,sigma=1"),
+    ("near-gross-slip", "1,0.4,0.8886569,1.5,1,1,persson:gamma=1,sigma=1"),
+];
+
+fn number(text: &str, precision: Precision) -> Result<Ball, String> {
+    let parse = |t: &str| Ball::parse_decimal(t, precision).map_err(|e| e.to_string());
+    match text.strip_suffix("pi") {
+        Some(multiple) => Ok(parse(multiple)? * &Ball::pi(precision)),
+        None => parse(text),
+    }
+}
+
+fn case(fields: &str) -> impl Fn(Precision) -> Result<BallCase, String> + '_ {
+    move |precision| {
+        let parts: Vec<&str> = fields.splitn(7, ',').collect();
+        let [p0, p1, q1, phi, f, lambda, spec] = parts[..] else {
+            return Err(format!("'{fields}': expected p0,p1,q1,phi,f,lambda,SPEC"));
+        };
+        let cycle = LoadCycle {
+            mean_normal_load: number(p0, precision)?,
+            normal_amplitude: number(p1, precision)?,
+            mean_tangential_load: Ball::from_i64(0, precision),
+            tangential_amplitude: number(q1, precision)?,
+            phase: number(phi, precision)?,
+            friction: number(f, precision)?,
+            compliance_ratio: number(lambda, precision)?,
+        };
+        Ok((cycle, parse_spec(spec, precision).map_err(|e| e.to_string())?))
+    }
+}
+
+fn main() {
+    let asked: Vec<String> = std::env::args().skip(1).collect();
+    let cases: Vec<(String, String)> = if asked.is_empty() {
+        NAMED.iter().map(|(n, f)| (n.to_string(), f.to_string())).collect()
+    } else {
+        asked
+            .iter()
+            .map(|a| match NAMED.iter().find(|(n, _)| n == a) {
+                Some((n, f)) => (n.to_string(), f.to_string()),
+                None => (a.clone(), a.clone()),
+            })
+            .collect()
+    };
+    for (name, fields) in &cases {
+        let build = case(fields);
+        for digits in [15, 30, 50, 100] {
+            let mut best = Duration::MAX;
+            let mut outcome = None;
+            let started = Instant::now();
+            while started.elapsed() < Duration::from_millis(400) || outcome.is_none() {
+                let run = Instant::now();
+                let result = certified_dissipation(&build, digits);
+                best = best.min(run.elapsed());
+                outcome = Some(result);
+            }
+            match outcome.expect("one run") {
+                Ok(certified) => println!(
+                    "{name} {digits} {:.3} ms  W = {}  ({} bits, {} pieces)",
+                    best.as_secs_f64() * 1e3,
+                    certified.text,
+                    certified.enclosure.precision.in_bits(),
+                    certified.enclosure.pieces
+                ),
+                Err(error) => println!("{name} {digits} failed: {error}"),
+            }
+        }
+    }
+}

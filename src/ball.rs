@@ -1,0 +1,918 @@
+//! Arb balls (FLINT's `acb`): a [`Real`] whose every value is a ball that contains the
+//! exact value of what it computes, so that the same generic code that runs in f64 and
+//! MPFR yields rigorous enclosures.
+//!
+//! A [`Ball`] is a complex ball. Values built through [`Real`] (inputs, constants, the
+//! cycle's geometry) are real: their imaginary part is exactly zero, and every function
+//! takes its real Arb form (`sqrt` of a ball reaching below zero is indeterminate, as
+//! f64 gives NaN). Complex values appear only when Arb's integration bounds an integrand
+//! on a complex ball around a piece of the real axis; there each function is the analytic
+//! continuation of its real form along that piece, and a function that is not analytic
+//! on the ball (a branch cut is touched, `abs` or a comparison cannot decide the sign of
+//! the real part) yields an indeterminate ball, which makes Arb subdivide.
+//!
+//! Comparisons are the soundness trap of running branching code on balls: two
+//! overlapping balls are neither `<` nor `>=`. Such a comparison answers `false`, as f64
+//! does for NaN, and is counted; [`watch`] reports the count of a computation, and a
+//! result reached through an undecided comparison must not be trusted (the certified
+//! driver retries at a higher precision or refuses). Balls are compared by their real
+//! parts, which on a complex ball is the branch the real points inside it take.
+
+use std::cell::Cell;
+use std::cmp::Ordering;
+use std::ffi::{c_char, CString};
+use std::fmt;
+use std::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Rem, RemAssign, Sub, SubAssign};
+
+use flint_sys::acb::*;
+use flint_sys::acb_types::acb_struct;
+use flint_sys::arb::*;
+use flint_sys::arb_types::arb_struct;
+use flint_sys::arf::{arf_get_d, arf_get_mpfr, arf_rnd_t_ARF_RND_NEAR};
+use flint_sys::arf_types::arf_struct;
+use flint_sys::deps::{__mpfr_struct, mpfr_rnd_t_MPFR_RNDD, mpfr_rnd_t_MPFR_RNDU};
+use num_traits::ToPrimitive;
+use rug::Float;
+
+use crate::real::{ParseRealError, Precision, Real};
+
+thread_local! {
+    static UNDECIDED: Cell<u64> = const { Cell::new(0) };
+    static NOT_ANALYTIC: Cell<u64> = const { Cell::new(0) };
+    static ANALYTIC_MODE: Cell<bool> = const { Cell::new(false) };
+}
+
+/// What a computation on balls could not decide.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Doubts {
+    /// Comparisons of overlapping balls (each answered `false`).
+    pub undecided_comparisons: u64,
+    /// Functions asked for an analytic continuation across a branch cut or a sign change.
+    pub not_analytic: u64,
+}
+
+impl Doubts {
+    /// Whether the computation decided everything it branched on.
+    pub fn none(&self) -> bool {
+        self.undecided_comparisons == 0 && self.not_analytic == 0
+    }
+}
+
+/// Runs `computation` and reports what it could not decide (on this thread).
+pub fn watch<T>(computation: impl FnOnce() -> T) -> (T, Doubts) {
+    let before = (UNDECIDED.get(), NOT_ANALYTIC.get());
+    let value = computation();
+    let doubts = Doubts {
+        undecided_comparisons: UNDECIDED.get() - before.0,
+        not_analytic: NOT_ANALYTIC.get() - before.1,
+    };
+    (value, doubts)
+}
+
+/// Runs `computation` with every function required (`true`) to be analytic on its
+/// complex argument, as Arb's integration asks when it bounds an integrand on a ball.
+pub(crate) fn with_analytic<T>(required: bool, computation: impl FnOnce() -> T) -> T {
+    let before = ANALYTIC_MODE.replace(required);
+    let value = computation();
+    ANALYTIC_MODE.set(before);
+    value
+}
+
+fn undecided() {
+    UNDECIDED.set(UNDECIDED.get() + 1);
+}
+
+fn not_analytic() {
+    NOT_ANALYTIC.set(NOT_ANALYTIC.get() + 1);
+}
+
+fn analytic_required() -> bool {
+    ANALYTIC_MODE.get()
+}
+
+/// A complex Arb ball at a working precision; real wherever [`Real`] built it.
+pub struct Ball {
+    raw: acb_struct,
+    precision: u32,
+}
+
+// SAFETY: a ball owns its limbs exclusively and nothing mutates through a shared
+// reference; FLINT's functions are thread-safe on distinct objects.
+unsafe impl Send for Ball {}
+unsafe impl Sync for Ball {}
+
+impl Drop for Ball {
+    fn drop(&mut self) {
+        // SAFETY: `raw` was initialised by `acb_init` in `Ball::zero`.
+        unsafe { acb_clear(&mut self.raw) }
+    }
+}
+
+impl Clone for Ball {
+    fn clone(&self) -> Self {
+        let mut copy = Ball::zero(self.precision);
+        // SAFETY: both initialised.
+        unsafe { acb_set(&mut copy.raw, &self.raw) };
+        copy
+    }
+}
+
+impl Ball {
+    fn zero(precision: u32) -> Ball {
+        let mut raw = acb_struct::default();
+        // SAFETY: acb_init initialises the zeroed struct in place; the struct holds no
+        // pointer into itself, so moving it afterwards is fine.
+        unsafe { acb_init(&mut raw) };
+        Ball { raw, precision }
+    }
+
+    fn slong_precision(&self) -> i64 {
+        i64::from(self.precision)
+    }
+
+    /// A copy of an Arb complex ball, to carry `precision`.
+    ///
+    /// # Safety
+    /// `raw` must point to an initialised `acb_struct`.
+    pub(crate) unsafe fn from_raw(raw: *const acb_struct, precision: u32) -> Ball {
+        let mut copy = Ball::zero(precision);
+        acb_set(&mut copy.raw, raw);
+        copy
+    }
+
+    /// The Arb ball, for FFI.
+    pub(crate) fn as_raw(&self) -> &acb_struct {
+        &self.raw
+    }
+
+    /// A ball from an initialised Arb complex ball (taking it over).
+    pub(crate) fn wrap(raw: acb_struct, precision: u32) -> Ball {
+        Ball { raw, precision }
+    }
+
+    fn real_part(&self) -> &arb_struct {
+        &self.raw.real
+    }
+
+    /// Whether the imaginary part is exactly zero.
+    pub fn is_real(&self) -> bool {
+        // SAFETY: initialised.
+        unsafe { acb_is_real(&self.raw) != 0 }
+    }
+
+    /// Whether the (real) ball contains the MPFR number `x`.
+    pub fn contains(&self, x: &Float) -> bool {
+        // SAFETY: initialised; flint-sys's `__mpfr_struct` has MPFR's layout, which rug's is.
+        self.is_real() && unsafe { arb_contains_mpfr(self.real_part(), x.as_raw().cast::<__mpfr_struct>()) != 0 }
+    }
+
+    /// Whether the ball contains zero.
+    pub fn contains_zero(&self) -> bool {
+        // SAFETY: initialised.
+        unsafe { acb_contains_zero(&self.raw) != 0 }
+    }
+
+    /// The ball is a single number (radius zero).
+    pub fn is_exact(&self) -> bool {
+        // SAFETY: initialised.
+        unsafe { acb_is_exact(&self.raw) != 0 }
+    }
+
+    /// The real part's lower and upper end, rounded outward to `bits`.
+    pub fn bounds(&self, bits: u32) -> (Float, Float) {
+        let (mut lower, mut upper) = (Float::new(bits), Float::new(bits));
+        let (mut a, mut b) = (arf_struct::default(), arf_struct::default());
+        // SAFETY: the arf values are initialised and cleared here; the rug floats are
+        // written through their MPFR pointers with outward rounding.
+        unsafe {
+            flint_sys::arf::arf_init(&mut a);
+            flint_sys::arf::arf_init(&mut b);
+            arb_get_interval_arf(&mut a, &mut b, self.real_part(), i64::from(bits));
+            arf_get_mpfr(lower.as_raw_mut().cast::<__mpfr_struct>(), &a, mpfr_rnd_t_MPFR_RNDD);
+            arf_get_mpfr(upper.as_raw_mut().cast::<__mpfr_struct>(), &b, mpfr_rnd_t_MPFR_RNDU);
+            flint_sys::arf::arf_clear(&mut a);
+            flint_sys::arf::arf_clear(&mut b);
+        }
+        (lower, upper)
+    }
+
+    /// An upper bound on the real part's radius relative to its midpoint (infinite
+    /// where the ball contains zero and is not exactly zero).
+    pub fn relative_radius(&self) -> f64 {
+        let (lower, upper) = self.bounds(self.precision + 64);
+        if lower.is_zero() && upper.is_zero() {
+            return 0.0;
+        }
+        if !(lower.is_finite() && upper.is_finite()) || (lower.is_sign_negative() != upper.is_sign_negative()) {
+            return f64::INFINITY;
+        }
+        let width = Float::with_val(64, &upper - &lower);
+        let smallest = Float::with_val(64, lower.abs_ref()).min(&Float::with_val(64, upper.abs_ref()));
+        (width / smallest).to_f64_round(rug::float::Round::Up)
+    }
+
+    /// (sinh, cosh), entire functions with no Real counterpart, for the sinh map.
+    pub fn sinh_cosh(&self) -> (Ball, Ball) {
+        self.pair(arb_sinh_cosh, acb_sinh_cosh)
+    }
+
+    /// Two functions of one argument computed together, real or complex as for `unary`.
+    fn pair(
+        &self,
+        real: unsafe extern "C" fn(*mut arb_struct, *mut arb_struct, *const arb_struct, i64),
+        complex: unsafe extern "C" fn(*mut acb_struct, *mut acb_struct, *const acb_struct, i64),
+    ) -> (Ball, Ball) {
+        let (mut first, mut second) = (Ball::zero(self.precision), Ball::zero(self.precision));
+        // SAFETY: initialised.
+        unsafe {
+            if self.is_real() {
+                real(
+                    &mut first.raw.real,
+                    &mut second.raw.real,
+                    self.real_part(),
+                    self.slong_precision(),
+                );
+            } else {
+                complex(&mut first.raw, &mut second.raw, &self.raw, self.slong_precision());
+            }
+        }
+        (first, second)
+    }
+
+    /// Whether functions must take their complex, analytic-checked form: on a complex
+    /// ball, and on any ball while Arb bounds an integrand (where a real ball's real
+    /// form, e.g. |x| across zero, would not be analytic).
+    fn complex_context(&self) -> bool {
+        analytic_required() || !self.is_real()
+    }
+
+    /// The larger (or smaller) of two balls: `real` on real balls; otherwise the one
+    /// `first` picks, which must decide.
+    fn extreme(
+        &self,
+        other: &Ball,
+        real: unsafe extern "C" fn(*mut arb_struct, *const arb_struct, *const arb_struct, i64),
+        first: impl Fn(&Ball, &Ball) -> bool,
+    ) -> Ball {
+        if self.complex_context() || other.complex_context() {
+            return if first(self, other) {
+                self.clone()
+            } else {
+                other.clone()
+            };
+        }
+        let mut result = Ball::zero(self.precision);
+        // SAFETY: initialised.
+        unsafe {
+            real(
+                &mut result.raw.real,
+                self.real_part(),
+                other.real_part(),
+                self.slong_precision(),
+            )
+        };
+        result
+    }
+
+    /// Applies a real Arb function on real balls and a complex one otherwise.
+    fn unary(
+        &self,
+        real: unsafe extern "C" fn(*mut arb_struct, *const arb_struct, i64),
+        complex: unsafe extern "C" fn(*mut acb_struct, *const acb_struct, i64),
+    ) -> Ball {
+        let mut result = Ball::zero(self.precision);
+        // SAFETY: initialised; Arb allows any arguments.
+        unsafe {
+            if self.is_real() {
+                real(&mut result.raw.real, self.real_part(), self.slong_precision());
+            } else {
+                complex(&mut result.raw, &self.raw, self.slong_precision());
+            }
+        }
+        result
+    }
+
+    fn indeterminate(&self) -> Ball {
+        let mut result = Ball::zero(self.precision);
+        // SAFETY: initialised.
+        unsafe { acb_indeterminate(&mut result.raw) };
+        result
+    }
+
+    /// The sign of the real part where it is decided (for the continuation of a
+    /// function defined piecewise by sign): `Some(true)` for > 0, `Some(false)` for < 0.
+    fn real_sign(&self) -> Option<bool> {
+        // SAFETY: initialised.
+        unsafe {
+            if arb_is_positive(self.real_part()) != 0 {
+                Some(true)
+            } else if arb_is_negative(self.real_part()) != 0 {
+                Some(false)
+            } else {
+                None
+            }
+        }
+    }
+
+    /// The real part's midpoint.
+    fn midpoint_f64(&self) -> f64 {
+        // SAFETY: initialised.
+        unsafe { arf_get_d(&self.raw.real.mid, arf_rnd_t_ARF_RND_NEAR) }
+    }
+
+    /// The ball times 2^exponent (exact).
+    fn times_power_of_two(self, exponent: i64) -> Ball {
+        // SAFETY: initialised; in place.
+        self.in_place(|raw, _| unsafe { acb_mul_2exp_si(raw, raw, exponent) })
+    }
+
+    /// Applies an in-place Arb operation.
+    fn in_place(mut self, operation: impl FnOnce(*mut acb_struct, i64)) -> Ball {
+        let precision = self.slong_precision();
+        operation(&mut self.raw, precision);
+        self
+    }
+}
+
+/// A binary operation: real Arb arithmetic on real balls, complex otherwise; the
+/// result carries the left operand's precision, as MPFR's does.
+macro_rules! arithmetic {
+    ($trait:ident, $method:ident, $assign_trait:ident, $assign:ident, $real:ident, $complex:ident) => {
+        impl $trait<&Ball> for Ball {
+            type Output = Ball;
+            fn $method(mut self, rhs: &Ball) -> Ball {
+                self.$assign(rhs);
+                self
+            }
+        }
+        impl $trait<Ball> for Ball {
+            type Output = Ball;
+            fn $method(self, rhs: Ball) -> Ball {
+                self.$method(&rhs)
+            }
+        }
+        impl $assign_trait<&Ball> for Ball {
+            fn $assign(&mut self, rhs: &Ball) {
+                let precision = self.slong_precision();
+                let both_real = self.is_real() && rhs.is_real();
+                let this: *mut acb_struct = &mut self.raw;
+                // SAFETY: initialised; Arb allows the output to alias an input.
+                unsafe {
+                    if both_real {
+                        let real = std::ptr::addr_of_mut!((*this).real);
+                        $real(real, real, &rhs.raw.real, precision);
+                    } else {
+                        $complex(this, this, &rhs.raw, precision);
+                    }
+                }
+            }
+        }
+        impl $assign_trait<Ball> for Ball {
+            fn $assign(&mut self, rhs: Ball) {
+                self.$assign(&rhs);
+            }
+        }
+    };
+}
+
+arithmetic!(Add, add, AddAssign, add_assign, arb_add, acb_add);
+arithmetic!(Sub, sub, SubAssign, sub_assign, arb_sub, acb_sub);
+arithmetic!(Mul, mul, MulAssign, mul_assign, arb_mul, acb_mul);
+arithmetic!(Div, div, DivAssign, div_assign, arb_div, acb_div);
+
+impl Rem<&Ball> for Ball {
+    type Output = Ball;
+    /// x − y·trunc(x/y), the remainder f64's `%` gives; where trunc(x/y) is not one
+    /// integer throughout, the ball covers every candidate.
+    fn rem(self, rhs: &Ball) -> Ball {
+        if self.complex_context() || rhs.complex_context() {
+            not_analytic();
+            return self.indeterminate();
+        }
+        let quotient = self.clone() / rhs;
+        let mut truncated = Ball::zero(self.precision);
+        let mut ceiling = Ball::zero(self.precision);
+        let p = self.slong_precision();
+        // SAFETY: initialised.
+        unsafe {
+            arb_floor(&mut truncated.raw.real, quotient.real_part(), p);
+            arb_ceil(&mut ceiling.raw.real, quotient.real_part(), p);
+            if arb_is_nonnegative(quotient.real_part()) == 0 {
+                if arb_is_nonpositive(quotient.real_part()) != 0 {
+                    std::mem::swap(&mut truncated, &mut ceiling);
+                } else {
+                    let floor_copy = truncated.clone();
+                    arb_union(&mut truncated.raw.real, floor_copy.real_part(), ceiling.real_part(), p);
+                }
+            }
+        }
+        self - &(truncated * rhs)
+    }
+}
+
+impl Rem<Ball> for Ball {
+    type Output = Ball;
+    fn rem(self, rhs: Ball) -> Ball {
+        self % &rhs
+    }
+}
+
+impl RemAssign<&Ball> for Ball {
+    fn rem_assign(&mut self, rhs: &Ball) {
+        *self = self.clone() % rhs;
+    }
+}
+
+impl RemAssign<Ball> for Ball {
+    fn rem_assign(&mut self, rhs: Ball) {
+        *self = self.clone() % &rhs;
+    }
+}
+
+impl Neg for Ball {
+    type Output = Ball;
+    fn neg(self) -> Ball {
+        // SAFETY: initialised; in place.
+        self.in_place(|raw, _| unsafe { acb_neg(raw, raw) })
+    }
+}
+
+impl PartialEq for Ball {
+    /// Equal when both are the same exact number; unequal when the real parts are
+    /// disjoint; otherwise undecided (counted, and `false`).
+    fn eq(&self, other: &Ball) -> bool {
+        // SAFETY: initialised.
+        unsafe {
+            if acb_eq(&self.raw, &other.raw) != 0 {
+                true
+            } else if arb_ne(self.real_part(), other.real_part()) != 0 || acb_ne(&self.raw, &other.raw) != 0 {
+                false
+            } else {
+                undecided();
+                false
+            }
+        }
+    }
+}
+
+/// One order relation on the real parts: `certain` decides it true and `refuted` false.
+fn decide(
+    a: &Ball,
+    b: &Ball,
+    certain: unsafe extern "C" fn(*const arb_struct, *const arb_struct) -> i32,
+    refuted: unsafe extern "C" fn(*const arb_struct, *const arb_struct) -> i32,
+) -> bool {
+    // SAFETY: initialised.
+    unsafe {
+        if certain(a.real_part(), b.real_part()) != 0 {
+            true
+        } else if refuted(a.real_part(), b.real_part()) != 0 {
+            false
+        } else {
+            undecided();
+            false
+        }
+    }
+}
+
+impl PartialOrd for Ball {
+    fn partial_cmp(&self, other: &Ball) -> Option<Ordering> {
+        // SAFETY: initialised.
+        unsafe {
+            if arb_lt(self.real_part(), other.real_part()) != 0 {
+                Some(Ordering::Less)
+            } else if arb_gt(self.real_part(), other.real_part()) != 0 {
+                Some(Ordering::Greater)
+            } else if acb_eq(&self.raw, &other.raw) != 0 {
+                Some(Ordering::Equal)
+            } else {
+                undecided();
+                None
+            }
+        }
+    }
+    fn lt(&self, other: &Ball) -> bool {
+        decide(self, other, arb_lt, arb_ge)
+    }
+    fn le(&self, other: &Ball) -> bool {
+        decide(self, other, arb_le, arb_gt)
+    }
+    fn gt(&self, other: &Ball) -> bool {
+        decide(self, other, arb_gt, arb_le)
+    }
+    fn ge(&self, other: &Ball) -> bool {
+        decide(self, other, arb_ge, arb_lt)
+    }
+}
+
+impl fmt::Debug for Ball {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let digits = Precision::bits(self.precision).in_decimal_digits().max(1);
+        let text = |part: &arb_struct| {
+            // SAFETY: arb_get_str returns a NUL-terminated string FLINT allocated.
+            unsafe {
+                let raw = arb_get_str(part, i64::from(digits), 0);
+                let text = std::ffi::CStr::from_ptr(raw).to_string_lossy().into_owned();
+                flint_sys::flint::flint_free(raw.cast());
+                text
+            }
+        };
+        if self.is_real() {
+            write!(f, "{}", text(&self.raw.real))
+        } else {
+            write!(f, "{} + {}i", text(&self.raw.real), text(&self.raw.imag))
+        }
+    }
+}
+
+impl ToPrimitive for Ball {
+    fn to_i64(&self) -> Option<i64> {
+        let x = self.midpoint_f64();
+        (x.is_finite() && x.abs() < 9.2e18).then_some(x as i64)
+    }
+    fn to_u64(&self) -> Option<u64> {
+        let x = self.midpoint_f64();
+        (x.is_finite() && (0.0..1.8e19).contains(&x)).then_some(x as u64)
+    }
+    fn to_f64(&self) -> Option<f64> {
+        Some(self.midpoint_f64())
+    }
+}
+
+/// Functions with a branch cut: the real Arb form on real balls; on complex balls the
+/// principal branch, analytic-checked when Arb bounds an integrand.
+fn branch_cut(
+    x: &Ball,
+    real: unsafe extern "C" fn(*mut arb_struct, *const arb_struct, i64),
+    complex_analytic: unsafe extern "C" fn(*mut acb_struct, *const acb_struct, i32, i64),
+) -> Ball {
+    let mut result = Ball::zero(x.precision);
+    let analytic = analytic_required();
+    // SAFETY: initialised.
+    unsafe {
+        if !x.complex_context() {
+            real(&mut result.raw.real, x.real_part(), x.slong_precision());
+        } else {
+            complex_analytic(&mut result.raw, &x.raw, i32::from(analytic), x.slong_precision());
+            if analytic && acb_is_finite(&result.raw) == 0 {
+                not_analytic();
+            }
+        }
+    }
+    result
+}
+
+impl Real for Ball {
+    fn precision(&self) -> Precision {
+        Precision::bits(self.precision)
+    }
+    fn from_f64(x: f64, precision: Precision) -> Self {
+        let mut ball = Ball::zero(precision.in_bits().max(53));
+        // SAFETY: initialised; exact.
+        unsafe { arb_set_d(&mut ball.raw.real, x) };
+        ball
+    }
+    fn from_i64(n: i64, precision: Precision) -> Self {
+        let mut ball = Ball::zero(precision.in_bits());
+        // SAFETY: initialised; exact.
+        unsafe { arb_set_si(&mut ball.raw.real, n) };
+        ball
+    }
+    fn from_float(x: &Float, precision: Precision) -> Self {
+        let mut ball = Ball::zero(precision.in_bits());
+        // SAFETY: initialised; exact (the ball is the MPFR number itself).
+        unsafe { flint_sys::arf::arf_set_mpfr(&mut ball.raw.real.mid, x.as_raw().cast::<__mpfr_struct>()) };
+        ball
+    }
+    fn parse_decimal(text: &str, precision: Precision) -> Result<Self, ParseRealError> {
+        let error = || ParseRealError { text: text.to_string() };
+        let trimmed = text.trim();
+        // Arb also reads "inf", "nan" and "[m +/- r]"; only plain decimals are numbers here.
+        if trimmed.is_empty()
+            || !trimmed.chars().any(|c| c.is_ascii_digit())
+            || !trimmed
+                .chars()
+                .all(|c| c.is_ascii_digit() || matches!(c, '.' | 'e' | 'E' | '+' | '-'))
+        {
+            return Err(error());
+        }
+        let c_text = CString::new(trimmed).map_err(|_| error())?;
+        let mut ball = Ball::zero(precision.in_bits());
+        // SAFETY: initialised; a NUL-terminated string. Arb returns a ball containing
+        // the exact decimal.
+        let status = unsafe {
+            arb_set_str(
+                &mut ball.raw.real,
+                c_text.as_ptr().cast::<c_char>(),
+                ball.slong_precision(),
+            )
+        };
+        if status != 0 || !ball.is_finite() {
+            return Err(error());
+        }
+        Ok(ball)
+    }
+    fn pi(precision: Precision) -> Self {
+        let mut ball = Ball::zero(precision.in_bits());
+        // SAFETY: initialised.
+        unsafe { arb_const_pi(&mut ball.raw.real, ball.slong_precision()) };
+        ball
+    }
+    fn epsilon(precision: Precision) -> Self {
+        Ball::from_i64(1, precision).times_power_of_two(1 - i64::from(precision.in_bits()))
+    }
+    fn smallest_full_precision(precision: Precision) -> Self {
+        // Arb's exponents are unbounded; like MPFR, nothing physical comes near this.
+        Ball::from_i64(1, precision).times_power_of_two(-(1i64 << 28))
+    }
+
+    fn sqrt(&self) -> Self {
+        branch_cut(self, arb_sqrt, acb_sqrt_analytic)
+    }
+    fn cbrt(&self) -> Self {
+        // The real cube root is odd; continue it from whichever side of zero the ball is on.
+        let root = |x: &Ball| {
+            let mut result = Ball::zero(x.precision);
+            // SAFETY: initialised.
+            unsafe {
+                if x.is_real() {
+                    arb_root_ui(&mut result.raw.real, x.real_part(), 3, x.slong_precision());
+                } else {
+                    acb_root_ui(&mut result.raw, &x.raw, 3, x.slong_precision());
+                }
+            }
+            result
+        };
+        match self.real_sign() {
+            Some(true) => root(self),
+            Some(false) => -root(&-self.clone()),
+            None if !self.complex_context() => {
+                // Straddling zero: cbrt is increasing, so [−∛|a|, ∛b] covers the image.
+                let magnitude = self.abs();
+                let bound = root(&magnitude);
+                let mut result = Ball::zero(self.precision);
+                // SAFETY: initialised.
+                unsafe {
+                    let mut negative = arb_struct::default();
+                    arb_init(&mut negative);
+                    arb_neg(&mut negative, bound.real_part());
+                    arb_union(
+                        &mut result.raw.real,
+                        &negative,
+                        bound.real_part(),
+                        self.slong_precision(),
+                    );
+                    arb_clear(&mut negative);
+                }
+                result
+            }
+            None => {
+                not_analytic();
+                self.indeterminate()
+            }
+        }
+    }
+    fn ln(&self) -> Self {
+        branch_cut(self, arb_log, acb_log_analytic)
+    }
+    fn ln_1p(&self) -> Self {
+        if analytic_required() {
+            // log(1 + z) is analytic where Re z > −1.
+            let shifted = self.clone() + &self.int(1);
+            if shifted.real_sign() != Some(true) {
+                not_analytic();
+                return self.indeterminate();
+            }
+        }
+        self.unary(arb_log1p, acb_log1p)
+    }
+    fn exp(&self) -> Self {
+        self.unary(arb_exp, acb_exp)
+    }
+    fn exp_m1(&self) -> Self {
+        self.unary(arb_expm1, acb_expm1)
+    }
+    fn powr(&self, exponent: &Self) -> Self {
+        let mut result = Ball::zero(self.precision);
+        let analytic = analytic_required();
+        // SAFETY: initialised.
+        unsafe {
+            if !(self.complex_context() || exponent.complex_context()) {
+                arb_pow(
+                    &mut result.raw.real,
+                    self.real_part(),
+                    exponent.real_part(),
+                    self.slong_precision(),
+                );
+            } else {
+                acb_pow_analytic(
+                    &mut result.raw,
+                    &self.raw,
+                    &exponent.raw,
+                    i32::from(analytic),
+                    self.slong_precision(),
+                );
+                if analytic && acb_is_finite(&result.raw) == 0 {
+                    not_analytic();
+                }
+            }
+        }
+        result
+    }
+    fn powi(&self, exponent: i32) -> Self {
+        let mut result = Ball::zero(self.precision);
+        // SAFETY: initialised; an integer power has no branch cut.
+        unsafe {
+            if self.is_real() {
+                arb_pow_ui(
+                    &mut result.raw.real,
+                    self.real_part(),
+                    u64::from(exponent.unsigned_abs()),
+                    self.slong_precision(),
+                );
+            } else {
+                acb_pow_ui(
+                    &mut result.raw,
+                    &self.raw,
+                    u64::from(exponent.unsigned_abs()),
+                    self.slong_precision(),
+                );
+            }
+        }
+        if exponent < 0 {
+            self.int(1) / &result
+        } else {
+            result
+        }
+    }
+    fn sin(&self) -> Self {
+        self.unary(arb_sin, acb_sin)
+    }
+    fn cos(&self) -> Self {
+        self.unary(arb_cos, acb_cos)
+    }
+    fn sin_cos(&self) -> (Self, Self) {
+        self.pair(arb_sin_cos, acb_sin_cos)
+    }
+    fn hypot(&self, other: &Self) -> Self {
+        if !(self.complex_context() || other.complex_context()) {
+            let mut result = Ball::zero(self.precision);
+            // SAFETY: initialised.
+            unsafe {
+                arb_hypot(
+                    &mut result.raw.real,
+                    self.real_part(),
+                    other.real_part(),
+                    self.slong_precision(),
+                )
+            };
+            result
+        } else {
+            (self.square() + &other.square()).sqrt()
+        }
+    }
+    fn atan2(&self, x: &Self) -> Self {
+        if self.complex_context() || x.complex_context() {
+            not_analytic();
+            return self.indeterminate();
+        }
+        let mut result = Ball::zero(self.precision);
+        // SAFETY: initialised.
+        unsafe {
+            arb_atan2(
+                &mut result.raw.real,
+                self.real_part(),
+                x.real_part(),
+                self.slong_precision(),
+            )
+        };
+        result
+    }
+    fn abs(&self) -> Self {
+        if !self.complex_context() {
+            let mut result = Ball::zero(self.precision);
+            // SAFETY: initialised.
+            unsafe { arb_abs(&mut result.raw.real, self.real_part()) };
+            return result;
+        }
+        match self.real_sign() {
+            Some(true) => self.clone(),
+            Some(false) => -self.clone(),
+            None => {
+                undecided();
+                self.indeterminate()
+            }
+        }
+    }
+    fn floor(&self) -> Self {
+        let mut result = Ball::zero(self.precision);
+        // SAFETY: initialised.
+        unsafe { arb_floor(&mut result.raw.real, self.real_part(), self.slong_precision()) };
+        // On a complex ball floor is analytic (constant) only where it is one integer.
+        if self.complex_context() && !result.is_exact() {
+            not_analytic();
+            return self.indeterminate();
+        }
+        result
+    }
+    fn is_finite(&self) -> bool {
+        // SAFETY: initialised.
+        unsafe { acb_is_finite(&self.raw) != 0 }
+    }
+    /// On real balls Arb's max, which needs no decision (max is continuous): equal
+    /// inputs such as Q1 = fP1 stay decidable. On complex balls, by the real parts.
+    fn max_of(&self, other: &Self) -> Self {
+        self.extreme(other, arb_max, |a, b| a >= b)
+    }
+    /// On real balls Arb's min; on complex balls, by the real parts.
+    fn min_of(&self, other: &Self) -> Self {
+        self.extreme(other, arb_min, |a, b| a <= b)
+    }
+    fn to_scientific(&self, digits: usize) -> String {
+        let mut mid = Float::new(self.precision.max(64));
+        // SAFETY: initialised; rounding to nearest into an MPFR number.
+        unsafe {
+            arf_get_mpfr(
+                mid.as_raw_mut().cast::<__mpfr_struct>(),
+                &self.raw.real.mid,
+                flint_sys::deps::mpfr_rnd_t_MPFR_RNDN,
+            )
+        };
+        Real::to_scientific(&mid, digits)
+    }
+}
+
+/// The digits of a real ball that every number in it rounds to: the longest decimal of
+/// at most `max_digits` significant digits (scientific notation, e.g. `1.2345e-3`) to
+/// which both ends of the ball round to nearest. Rounding to nearest is monotone, so
+/// then the whole ball rounds to it. (Agreement at N digits does not imply agreement at
+/// fewer: [0.1234549, 0.1234551] rounds to 1.23455e-1 but not to one 5-digit decimal.)
+/// `None` where not even one digit is determined (or the ball is not real and finite);
+/// an exact zero is `("0", max_digits)`.
+pub fn certain_digits(ball: &Ball, max_digits: u32) -> Option<(String, u32)> {
+    let max_digits = max_digits.max(1);
+    if !ball.is_real() || !ball.is_finite() {
+        return None;
+    }
+    // SAFETY: initialised.
+    if unsafe { arb_is_zero(ball.real_part()) } != 0 {
+        return Some(("0".to_string(), max_digits));
+    }
+    let bits = Precision::decimal_digits(max_digits).in_bits() + 64;
+    let (lower, upper) = ball.bounds(bits.max(ball.precision + 64));
+    // No decimal of more digits than the radius allows can hold both ends.
+    let radius = ball.relative_radius();
+    let most = if radius > 0.0 {
+        max_digits.min((2.0 - radius.log10()).clamp(1.0, f64::from(max_digits)) as u32)
+    } else {
+        max_digits
+    };
+    (1..=most.max(1)).rev().find_map(|digits| {
+        let text = Real::to_scientific(&lower, digits as usize);
+        (text == Real::to_scientific(&upper, digits as usize)).then_some((text, digits))
+    })
+}
+
+/// The smallest ball that contains both real balls.
+pub fn hull(a: &Ball, b: &Ball) -> Ball {
+    let mut result = Ball::zero(a.precision.max(b.precision));
+    // SAFETY: initialised.
+    unsafe {
+        arb_union(
+            &mut result.raw.real,
+            a.real_part(),
+            b.real_part(),
+            result.slong_precision(),
+        )
+    };
+    result
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn ball(text: &str, bits: u32) -> Ball {
+        Ball::parse_decimal(text, Precision::bits(bits)).unwrap()
+    }
+
+    #[test]
+    fn exact_decimals_are_contained() {
+        let tenth = ball("0.1", 128);
+        let exact = Float::with_val(1024, Float::parse("0.1").unwrap());
+        assert!(tenth.contains(&exact));
+        assert!(!tenth.contains(&Float::with_val(1024, 0.1f64)));
+    }
+
+    #[test]
+    fn overlapping_comparisons_are_counted() {
+        let a = ball("1", 64);
+        let b = ball("0.1", 64) * &a.int(10);
+        let ((), doubts) = watch(|| {
+            assert!(!a.lt(&b) && !a.ge(&b));
+        });
+        assert_eq!(doubts.undecided_comparisons, 2);
+        let ((), doubts) = watch(|| assert!(a < a.int(2) && a.int(2) >= a));
+        assert!(doubts.none());
+    }
+}

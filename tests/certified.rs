@@ -1,0 +1,384 @@
+//! Certified enclosures on Arb balls: every ball function contains the MPFR value at
+//! twice the precision, overlapping comparisons are counted, and the enclosure of W
+//! contains an MPFR reference computed at 500 bits by the library's own quadrature
+//! (Gauss–Legendre to a 1e-140 tolerance) — across the families, their sums and the
+//! corners of the domain — and is narrow enough for the digits asked.
+
+use microslip::ball::{certain_digits, hull, watch, Ball};
+use microslip::certified::{certified_dissipation, enclose_dissipation, CertifiedError};
+use microslip::compliance::{parse_spec, Compliance};
+use microslip::cycle::LoadCycle;
+use microslip::dissipation::{dissipation, Options, Segment};
+use microslip::real::{Precision, Real};
+use rug::ops::Pow;
+use rug::Float;
+
+/// A case as exact decimals; a phase ending in `pi` is that multiple of π.
+#[derive(Clone, Debug)]
+struct Case {
+    p0: String,
+    p1: String,
+    q1: String,
+    phi: String,
+    friction: String,
+    lambda: String,
+    spec: String,
+}
+
+fn case(p0: &str, p1: &str, q1: &str, phi: &str, friction: &str, spec: &str) -> Case {
+    Case {
+        p0: p0.into(),
+        p1: p1.into(),
+        q1: q1.into(),
+        phi: phi.into(),
+        friction: friction.into(),
+        lambda: "1".into(),
+        spec: spec.into(),
+    }
+}
+
+const PERSSON: &str = "persson:gamma=1,sigma=1";
+
+fn acceptance() -> Case {
+    case("1", "0.4", "0.5", "0.4pi", "1", PERSSON)
+}
+
+fn number<R: Real>(text: &str, precision: Precision) -> R {
+    match text.strip_suffix("pi") {
+        Some(multiple) => R::parse_decimal(multiple, precision).unwrap() * &R::pi(precision),
+        None => R::parse_decimal(text, precision).unwrap(),
+    }
+}
+
+fn cycle_at<R: Real>(case: &Case, precision: Precision) -> LoadCycle<R> {
+    LoadCycle {
+        mean_normal_load: number(&case.p0, precision),
+        normal_amplitude: number(&case.p1, precision),
+        mean_tangential_load: R::from_i64(0, precision),
+        tangential_amplitude: number(&case.q1, precision),
+        phase: number(&case.phi, precision),
+        friction: number(&case.friction, precision),
+        compliance_ratio: number(&case.lambda, precision),
+    }
+}
+
+type BallCase = (LoadCycle<Ball>, Box<dyn Compliance<Ball>>);
+
+fn ball_case(case: &Case) -> impl Fn(Precision) -> Result<BallCase, String> + '_ {
+    move |precision| {
+        let compliance = parse_spec::<Ball>(&case.spec, precision).map_err(|e| e.to_string())?;
+        Ok((cycle_at(case, precision), compliance))
+    }
+}
+
+const REFERENCE_BITS: u32 = 500;
+
+/// W at 500 bits by the library's Gauss–Legendre quadrature to a 1e-140 tolerance.
+fn reference(case: &Case) -> Float {
+    let precision = Precision::bits(REFERENCE_BITS);
+    let compliance = parse_spec::<Float>(&case.spec, precision).unwrap();
+    let options = Options {
+        relative_tolerance: Some(Float::with_val(REFERENCE_BITS, Float::parse("1e-140").unwrap())),
+        max_points: 4096,
+        ..Options::default()
+    };
+    dissipation(&cycle_at(case, precision), compliance.as_ref(), &options)
+        .unwrap_or_else(|e| panic!("{case:?}: {e}"))
+        .total
+}
+
+/// Certifies `digits` digits and checks the enclosure holds the reference and is narrow.
+fn assert_certified(case: &Case, digits: u32) {
+    let certified = certified_dissipation(ball_case(case), digits).unwrap_or_else(|e| panic!("{case:?}: {e}"));
+    let total = &certified.enclosure.total;
+    let exact = reference(case);
+    assert!(
+        total.contains(&exact),
+        "{case:?}: reference {} outside {:?}",
+        exact.to_string_radix(10, Some(60)),
+        total
+    );
+    assert!(certified.digits >= digits, "{case:?}: {} digits", certified.digits);
+    let radius = total.relative_radius();
+    assert!(
+        radius <= 10f64.powi(-(digits as i32)),
+        "{case:?}: relative radius {radius:e}"
+    );
+    // The printed digits are the reference's, rounded.
+    assert_eq!(
+        certified.text,
+        Real::to_scientific(&exact, certified.digits as usize),
+        "{case:?}"
+    );
+}
+
+#[test]
+fn ball_functions_contain_the_mpfr_values_at_twice_the_precision() {
+    let bits = 128;
+    let (p, wide) = (Precision::bits(bits), 2 * bits);
+    for text in ["0.3", "1.7", "123.456", "2e-30", "7e40"] {
+        let x = Ball::parse_decimal(text, p).unwrap();
+        let y = Float::with_val(wide, Float::parse(text).unwrap());
+        let other = Ball::parse_decimal("0.45", p).unwrap();
+        let other_y = Float::with_val(wide, Float::parse("0.45").unwrap());
+        let mut checks: Vec<(&str, Ball, Float)> = vec![
+            ("sqrt", x.sqrt(), y.clone().sqrt()),
+            ("cbrt", x.cbrt(), y.clone().cbrt()),
+            ("cbrt(-x)", (-x.clone()).cbrt(), (-y.clone()).cbrt()),
+            ("ln", x.ln(), y.clone().ln()),
+            ("ln_1p", x.ln_1p(), y.clone().ln_1p()),
+            ("powr", x.powr(&other), y.clone().pow(&other_y)),
+            ("powi", x.powi(-3), y.clone().pow(-3)),
+            ("sin", x.sin(), y.clone().sin()),
+            ("cos", x.cos(), y.clone().cos()),
+            ("sin_cos.0", x.sin_cos().0, y.clone().sin()),
+            ("sin_cos.1", x.sin_cos().1, y.clone().cos()),
+            ("hypot", x.hypot(&other), y.clone().hypot(&other_y)),
+            ("atan2", x.atan2(&-other.clone()), y.clone().atan2(&-other_y.clone())),
+            ("abs", (-x.clone()).abs(), y.clone().abs()),
+            ("floor", x.floor(), y.clone().floor()),
+            ("x/y", x.clone() / &other, y.clone() / &other_y),
+            ("x*y-y", x.clone() * &other - &other, y.clone() * &other_y - &other_y),
+            ("pi", Ball::pi(p), Float::with_val(wide, rug::float::Constant::Pi)),
+        ];
+        // e^(−7e40) is below MPFR's exponent range, and 7e40 % 0.45 needs 41 digits of the quotient.
+        if text != "7e40" {
+            checks.extend([
+                ("exp(-x)", (-x.clone()).exp(), (-y.clone()).exp()),
+                ("exp_m1(-x)", (-x.clone()).exp_m1(), (-y.clone()).exp_m1()),
+                ("x%y", x.clone() % &other, y.clone() % &other_y),
+            ]);
+        }
+        for (name, ball, exact) in checks {
+            assert!(ball.contains(&exact), "{name}({text}): {exact} outside {ball:?}");
+            assert!(ball.relative_radius() < 1e-30, "{name}({text}): {ball:?}");
+        }
+    }
+}
+
+#[test]
+fn ball_functions_outside_their_domain_are_not_finite() {
+    let p = Precision::bits(64);
+    let negative = Ball::parse_decimal("-0.5", p).unwrap();
+    assert!(!negative.sqrt().is_finite());
+    assert!(!negative.ln().is_finite());
+    assert!(!(negative.int(1) / &negative.int(0)).is_finite());
+    // A ball across zero: the real cube root covers both signs.
+    let epsilon = negative.epsilon_like();
+    let across = hull(&-epsilon.clone(), &epsilon);
+    let root = across.cbrt();
+    let cube_root_of_epsilon = Float::with_val(64, Float::with_val(64, 2).pow(-63)).cbrt();
+    for x in [Float::new(64), cube_root_of_epsilon.clone(), -cube_root_of_epsilon] {
+        assert!(root.contains(&x), "{x} outside {root:?}");
+    }
+}
+
+#[test]
+fn comparisons_of_overlapping_balls_are_flagged() {
+    let p = Precision::bits(64);
+    let third = Ball::from_i64(1, p) / &Ball::from_i64(3, p);
+    let one = third.clone() * &third.int(3);
+    let ((), doubts) = watch(|| {
+        assert!(!one.lt(&one.int(1)));
+        assert!(!one.ge(&one.int(1)));
+        assert!(one != one.int(1));
+        assert!(one.partial_cmp(&one.int(1)).is_none());
+    });
+    assert_eq!(doubts.undecided_comparisons, 4);
+    let ((), doubts) = watch(|| {
+        assert!(third < one);
+        assert!(one > third);
+        assert!(third <= third.int(1));
+        assert!(third.int(0) == one.int(0));
+    });
+    assert!(doubts.none());
+}
+
+#[test]
+fn exact_decimals_are_read_as_balls_that_contain_them() {
+    for text in ["0.1", "3.141592653589793", "1e-300", "-2.5e300", "0.999999999999999"] {
+        let ball = Ball::parse_decimal(text, Precision::bits(80)).unwrap();
+        let exact = Float::with_val(2048, Float::parse(text).unwrap());
+        assert!(ball.contains(&exact), "{text}");
+        assert!(ball.relative_radius() < 1e-23, "{text}");
+    }
+    for text in ["", "inf", "nan", "[1 +/- 0.1]", "0x10", "pi"] {
+        assert!(Ball::parse_decimal(text, Precision::bits(80)).is_err(), "{text:?}");
+    }
+}
+
+#[test]
+fn certain_digits_are_those_the_whole_ball_rounds_to() {
+    let p = Precision::bits(200);
+    let third = Ball::from_i64(1, p) / &Ball::from_i64(3, p);
+    let (text, digits) = certain_digits(&third, 40).unwrap();
+    assert_eq!(
+        (text.as_str(), digits),
+        ("3.333333333333333333333333333333333333333e-1", 40)
+    );
+    // [0.1234549, 0.1234551] rounds to one 6-digit decimal, to no 5-digit one, and to
+    // one 4-digit one.
+    let ball = hull(
+        &Ball::parse_decimal("0.1234549", p).unwrap(),
+        &Ball::parse_decimal("0.1234551", p).unwrap(),
+    );
+    assert_eq!(certain_digits(&ball, 10).unwrap(), ("1.23455e-1".to_string(), 6));
+    assert_eq!(certain_digits(&ball, 5).unwrap(), ("1.235e-1".to_string(), 4));
+    // A ball across zero determines no digit; an exact zero all of them.
+    let across = hull(
+        &Ball::parse_decimal("-1e-9", p).unwrap(),
+        &Ball::parse_decimal("1e-9", p).unwrap(),
+    );
+    assert!(certain_digits(&across, 10).is_none());
+    assert_eq!(
+        certain_digits(&Ball::from_i64(0, p), 10).unwrap(),
+        ("0".to_string(), 10)
+    );
+}
+
+#[test]
+fn acceptance_case_is_certified_at_15_30_50_and_100_digits() {
+    for digits in [15, 30, 50, 100] {
+        assert_certified(&acceptance(), digits);
+    }
+}
+
+#[test]
+fn segments_sum_to_w_and_each_holds_its_reference() {
+    let case = acceptance();
+    let precision = Precision::bits(200);
+    let (cycle, compliance) = ball_case(&case)(precision).unwrap();
+    let enclosure = enclose_dissipation(&cycle, compliance.as_ref(), 200).unwrap();
+    let float_precision = Precision::bits(REFERENCE_BITS);
+    let float_compliance = parse_spec::<Float>(&case.spec, float_precision).unwrap();
+    let options = Options {
+        relative_tolerance: Some(Float::with_val(REFERENCE_BITS, Float::parse("1e-100").unwrap())),
+        ..Options::default()
+    };
+    let reference = dissipation(&cycle_at(&case, float_precision), float_compliance.as_ref(), &options).unwrap();
+    for segment in Segment::ALL {
+        let ball = enclosure.segments.get(segment);
+        assert!(ball.contains(reference.segments.get(segment)), "{segment}: {ball:?}");
+        assert!(ball.relative_radius() < 1e-50, "{segment}: {ball:?}");
+    }
+}
+
+#[test]
+fn every_family_and_sum_is_certified_at_30_digits() {
+    for spec in [
+        PERSSON,
+        "power:c=1,beta=-0.5",
+        "power:c=2,beta=-1.37",
+        "hertz:r=1,estar=1",
+        "rational:a=0.5,b=1,c=0.2",
+        "exp:a=1,c=2,d=0.1",
+        "poly:p0=1,coeffs=1;-0.3;0.05",
+        "power:c=1,beta=-0.5+persson:gamma=0.5,sigma=1",
+        "2*hertz:r=1,estar=1+exp:a=0.3,c=1.5,d=0",
+    ] {
+        let mut case = acceptance();
+        case.spec = spec.into();
+        assert_certified(&case, 30);
+    }
+}
+
+/// A small linear congruential generator: reproducible draws without a dependency.
+struct Draws(u64);
+
+impl Draws {
+    fn uniform(&mut self, low: f64, high: f64) -> f64 {
+        self.0 = self
+            .0
+            .wrapping_mul(6364136223846793005)
+            .wrapping_add(1442695040888963407);
+        low + (high - low) * ((self.0 >> 11) as f64 / (1u64 << 53) as f64)
+    }
+    /// A decimal with six significant digits in [low, high).
+    fn decimal(&mut self, low: f64, high: f64) -> String {
+        format!("{:.5e}", self.uniform(low, high))
+    }
+}
+
+#[test]
+fn random_cases_across_the_families_are_certified_at_40_digits() {
+    let specs = [
+        PERSSON,
+        "power:c=1,beta=-0.25",
+        "hertz:r=2,estar=0.5",
+        "rational:a=0.2,b=1,c=0.1",
+        "exp:a=1,c=3,d=0.2",
+        "poly:p0=1,coeffs=1;-0.2",
+        "persson:gamma=1,sigma=0.5+power:c=0.5,beta=-0.75",
+    ];
+    let mut draws = Draws(19);
+    let mut certified = 0;
+    while certified < 10 {
+        let p1 = draws.decimal(0.05, 0.9);
+        let friction = draws.decimal(0.3, 1.5);
+        let phi = draws.decimal(0.05, 3.1);
+        let q1 = draws.decimal(0.01, 1.2);
+        let mut case = case("1", &p1, &q1, &phi, &friction, specs[certified % specs.len()]);
+        case.lambda = draws.decimal(1.0, 2.0);
+        // Only cycles the theory covers (the draw is of loads, not of valid cycles).
+        if cycle_at::<f64>(&case, Precision::DOUBLE).validate().is_err() {
+            continue;
+        }
+        assert_certified(&case, 40);
+        certified += 1;
+    }
+}
+
+#[test]
+fn corners_of_the_domain_are_certified() {
+    let corners = [
+        // Within 1e-6 of separation (Q1 must then be below √(2·1e-6) against fP0). At 1e-15
+        // Arb's bisection runs out of evaluations on BC (proofs/certified-digits.md).
+        case("1", "0.999999", "0.0005", "0.5pi", "1", PERSSON),
+        // Nearly in phase and nearly out of phase: with Q1 > fP1 near the in-phase W, with
+        // Q1 < fP1 near W = 0 (W ∝ φ², every segment of order 1).
+        case("1", "0.4", "0.5", "1e-20", "1", PERSSON),
+        case("1", "0.4", "0.5", "3.141592653589793", "1", PERSSON),
+        case("1", "0.4", "0.2", "1e-20", "1", PERSSON),
+        case("1", "0.4", "0.2", "3.141592653589793", "1", PERSSON),
+        // Q1 = fP1 exactly: equal loads that the geometry takes the larger of.
+        case("1", "0.4", "0.4", "0.4pi", "1", PERSSON),
+        // Tiny amplitudes.
+        case("1", "1e-12", "0.5", "0.4pi", "1", PERSSON),
+        case("1", "0.4", "1e-12", "0.4pi", "1", PERSSON),
+        // Load scales 1e±300.
+        case("1e300", "4e299", "5e299", "0.4pi", "1", PERSSON),
+        case("1e-300", "4e-301", "5e-301", "0.4pi", "1", "power:c=1,beta=-0.5"),
+    ];
+    for corner in &corners {
+        assert_certified(corner, 30);
+    }
+}
+
+#[test]
+fn no_tangential_oscillation_is_exactly_zero() {
+    let case = case("1", "0.4", "0", "0.4pi", "1", PERSSON);
+    let certified = certified_dissipation(ball_case(&case), 50).unwrap();
+    assert!(certified.enclosure.total.is_exact() && certified.enclosure.total.contains(&Float::new(64)));
+}
+
+#[test]
+fn a_perturbation_of_1e_minus_40_moves_the_enclosure_off_the_old_value() {
+    let plain = acceptance();
+    let mut perturbed = acceptance();
+    // v' + 1e-40·P: a linear term, which dissipates (W is linear in v', and v'' ≠ 0).
+    perturbed.spec = format!("{PERSSON}+poly:p0=0,coeffs=0;1e-40");
+    let old = reference(&plain);
+    let moved = certified_dissipation(ball_case(&perturbed), 50).unwrap();
+    assert!(!moved.enclosure.total.contains(&old), "{:?}", moved.enclosure.total);
+    let kept = certified_dissipation(ball_case(&plain), 50).unwrap();
+    assert!(kept.enclosure.total.contains(&old));
+}
+
+#[test]
+fn invalid_cycles_are_refused_with_the_cycle_error() {
+    let gross = case("1", "0.4", "0.95", "1.5", "1", PERSSON);
+    assert!(matches!(
+        certified_dissipation(ball_case(&gross), 20),
+        Err(CertifiedError::Cycle(_))
+    ));
+}
