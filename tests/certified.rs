@@ -77,11 +77,9 @@ const REFERENCE_BITS: u32 = 500;
 fn reference(case: &Case) -> Float {
     let precision = Precision::bits(REFERENCE_BITS);
     let compliance = parse_spec::<Float>(&case.spec, precision).unwrap();
-    let options = Options {
-        relative_tolerance: Some(Float::with_val(REFERENCE_BITS, Float::parse("1e-140").unwrap())),
-        max_points: 4096,
-        ..Options::default()
-    };
+    let options = Options::default()
+        .with_tolerance(Float::with_val(REFERENCE_BITS, Float::parse("1e-140").unwrap()))
+        .with_max_points(4096);
     dissipation(&cycle_at(case, precision), compliance.as_ref(), &options)
         .unwrap_or_else(|e| panic!("{case:?}: {e}"))
         .total
