@@ -261,10 +261,15 @@ impl<R: Real> LoadCycle<R> {
     }
 
     /// Q1 cos φ + fP1, written near φ = π as (fP1 − Q1) + 2 Q1 cos²(φ/2) to keep it accurate.
+    ///
+    /// Both forms are exact and accurate around the switch, which sits at cos φ = −3/5: no
+    /// input φ reaches it exactly (a rational multiple of π has cos φ = −3/5 never, by Niven's
+    /// theorem; a decimal offset has a transcendental cosine), so an enclosure of φ always
+    /// decides the branch at some precision, where a switch at φ = π/2 would not.
     fn sum_line_offset(&self, trig: &PhaseTrig<R>) -> R {
         let q1 = &self.tangential_amplitude;
         let fp1 = self.friction.clone() * &self.normal_amplitude;
-        if trig.cos >= trig.cos.int(0) {
+        if trig.cos >= trig.cos.ratio(-3, 5) {
             q1.clone() * &trig.cos + &fp1
         } else {
             (fp1 - q1) + &(q1.clone() * &trig.half_cos_squared * &trig.cos.int(2))
