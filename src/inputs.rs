@@ -94,7 +94,7 @@ pub(crate) fn outside_f64_range<R: Real>(value: &R, text: &str) -> bool {
 }
 
 /// Reads a phase (see [`ExactPhase::parse`] for the forms), reduces it exactly modulo π, and
-/// gives the phase a cycle is read with ([`ReducedPhase::cycle_phase`]: φ modulo 2π, or within
+/// gives the phase a cycle is read with ([`crate::phase::ReducedPhase::cycle_phase`]: φ modulo 2π, or within
 /// 2⁻²⁰ of an odd multiple of π the offset ψ from it) and whether that is the mirror image's.
 pub fn parse_phase<R: Real>(text: &str, precision: Precision) -> Result<(R, bool), PhaseError> {
     Ok(ExactPhase::parse(text)?.reduce(precision)?.cycle_phase(precision))

@@ -139,7 +139,7 @@ pub enum Stop {
     /// integrand, though above the share: the change is rounding, not error.
     RoundingFloor,
     /// The error predicted from the last two changes is safely below the share
-    /// ([`predicted_error`]), one doubling early.
+    /// (`predicted_error`), one doubling early.
     Predicted,
     /// Gauss–Legendre stalled and tanh–sinh converged.
     TanhSinh,

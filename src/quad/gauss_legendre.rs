@@ -6,7 +6,7 @@
 //! Nodes and weights are computed at the working precision (Newton's method on
 //! the three-term Legendre recurrence, started from an asymptotic guess polished
 //! in f64) and cached per (number type, n) at the highest precision asked for; a lower
-//! precision is served by rounding (see [`super::cache`]).
+//! precision is served by rounding (see `quad::cache`).
 
 use std::sync::Arc;
 use std::time::Instant;
