@@ -14,7 +14,7 @@ use std::time::{Duration, Instant};
 use proptest::prelude::*;
 
 mod common;
-use proptest::test_runner::{Config, TestCaseError, TestRunner};
+use proptest::test_runner::{TestCaseError, TestRunner};
 
 fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("microslip-batch-properties-{}-{name}", std::process::id()));
@@ -45,18 +45,7 @@ fn run(args: &[&str], input: &[u8], limit: Duration) -> Outcome {
 }
 
 fn runner(seed: u8) -> TestRunner {
-    let cases = std::env::var("PROPTEST_CASES")
-        .ok()
-        .and_then(|n| n.parse().ok())
-        .unwrap_or(24);
-    TestRunner::new_with_rng(
-        Config {
-            cases,
-            failure_persistence: None,
-            ..Config::default()
-        },
-        proptest::test_runner::TestRng::from_seed(proptest::test_runner::RngAlgorithm::ChaCha, &[seed; 32]),
-    )
+    common::seeded_runner(seed, 24)
 }
 
 const COLUMNS: [&str; 9] = [

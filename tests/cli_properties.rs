@@ -17,28 +17,13 @@ use microslip::dissipation::{dissipation, Options};
 use microslip::inputs::{Case, CaseText};
 use microslip::real::{Precision, Real};
 use proptest::prelude::*;
-use proptest::test_runner::{Config, TestCaseError, TestRunner};
+use proptest::test_runner::{TestCaseError, TestRunner};
 use rug::Float;
 
 mod common;
 
 fn runner(seed: u8) -> TestRunner {
-    let cases = std::env::var("PROPTEST_CASES")
-        .ok()
-        .and_then(|n| n.parse().ok())
-        .unwrap_or(64);
-    let shift = std::env::var("MICROSLIP_FUZZ_SEED")
-        .ok()
-        .and_then(|n| n.parse::<u8>().ok());
-    let seed = seed.wrapping_add(shift.unwrap_or(0));
-    TestRunner::new_with_rng(
-        Config {
-            cases,
-            failure_persistence: None,
-            ..Config::default()
-        },
-        proptest::test_runner::TestRng::from_seed(proptest::test_runner::RngAlgorithm::ChaCha, &[seed; 32]),
-    )
+    common::seeded_runner(seed, 64)
 }
 
 /// `check`'s verdict, or, when MICROSLIP_FUZZ_LOG names a file, success after logging a failure there.

@@ -215,33 +215,22 @@ fn simulation_of_a_constant_compliance_gives_zero() {
 
 #[test]
 fn the_series_prints_its_exact_values_as_exact() {
+    // The series of the case P1 = 0.1 with the given Q1, φ, SPEC and order, plus `extra` words.
+    let series = |q1: &str, phi: &str, spec: &str, order: &str, extra: &[&str]| {
+        let overrides = [
+            ("--p1", "0.1"),
+            ("--q1", q1),
+            ("--phi", phi),
+            ("--compliance", spec),
+            ("--order", order),
+        ];
+        let mut args = case_args("series", &overrides);
+        args.extend(extra.iter().map(|word| word.to_string()));
+        microslip(&args)
+    };
     // v' = 2 − 0.5(P − 1) is linear: W_N = W exactly for every N ≥ 1.
-    for digits in [None, Some("25")] {
-        let mut args: Vec<String> = [
-            "series",
-            "--p0",
-            "1",
-            "--p1",
-            "0.1",
-            "--q1",
-            "0.1",
-            "--phi",
-            "0.4pi",
-            "--friction",
-            "1",
-            "--lambda",
-            "1",
-            "--compliance",
-            "poly:p0=1,coeffs=2;-0.5",
-            "--order",
-            "3",
-        ]
-        .map(String::from)
-        .to_vec();
-        if let Some(digits) = digits {
-            args.extend(["--digits".to_string(), digits.to_string()]);
-        }
-        let (code, stdout, stderr) = microslip(&args);
+    for digits in [&[][..], &["--digits", "25"][..]] {
+        let (code, stdout, stderr) = series("0.1", "0.4pi", "poly:p0=1,coeffs=2;-0.5", "3", digits);
         assert_eq!(code, 0, "{stderr}");
         let rows: Vec<&str> = stdout.lines().skip(2).collect();
         assert_eq!(rows.len(), 3, "{stdout}");
@@ -254,26 +243,7 @@ fn the_series_prints_its_exact_values_as_exact() {
         }
     }
     // For v' = 1/P the differences are computed, non-zero, shrinking.
-    let (code, stdout, _) = microslip(&[
-        "series",
-        "--p0",
-        "1",
-        "--p1",
-        "0.1",
-        "--q1",
-        "0.1",
-        "--phi",
-        "0.4pi",
-        "--friction",
-        "1",
-        "--lambda",
-        "1",
-        "--compliance",
-        PERSSON,
-        "--order",
-        "2",
-        "--json",
-    ]);
+    let (code, stdout, _) = series("0.1", "0.4pi", PERSSON, "2", &["--json"]);
     assert_eq!(code, 0);
     let json: serde_json::Value = serde_json::from_str(stdout.trim()).unwrap();
     for difference in json["differences"].as_array().unwrap() {
@@ -287,25 +257,7 @@ fn the_series_prints_its_exact_values_as_exact() {
         ("0.04", "pi", PERSSON),
     ] {
         let started = Instant::now();
-        let (code, stdout, stderr) = microslip(&[
-            "series",
-            "--p0",
-            "1",
-            "--p1",
-            "0.1",
-            "--q1",
-            q1,
-            "--phi",
-            phi,
-            "--friction",
-            "1",
-            "--lambda",
-            "1",
-            "--compliance",
-            spec,
-            "--order",
-            "3",
-        ]);
+        let (code, stdout, stderr) = series(q1, phi, spec, "3", &[]);
         assert!(started.elapsed() < Duration::from_secs(1));
         assert_eq!(code, 0, "{stderr}");
         assert!(

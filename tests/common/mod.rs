@@ -134,3 +134,26 @@ pub fn microslip_bounded<S: AsRef<std::ffi::OsStr> + std::fmt::Debug>(
         seconds: started.elapsed().as_secs_f64(),
     })
 }
+
+/// A proptest runner with a fixed seed, so that a run is repeatable: `PROPTEST_CASES`
+/// replaces `default_cases`, and `MICROSLIP_FUZZ_SEED` shifts the seed for a fresh draw.
+#[allow(dead_code)] // not every test binary runs property tests
+pub fn seeded_runner(seed: u8, default_cases: u32) -> proptest::test_runner::TestRunner {
+    use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
+    let cases = std::env::var("PROPTEST_CASES")
+        .ok()
+        .and_then(|n| n.parse().ok())
+        .unwrap_or(default_cases);
+    let shift = std::env::var("MICROSLIP_FUZZ_SEED")
+        .ok()
+        .and_then(|n| n.parse::<u8>().ok());
+    let seed = seed.wrapping_add(shift.unwrap_or(0));
+    TestRunner::new_with_rng(
+        Config {
+            cases,
+            failure_persistence: None,
+            ..Config::default()
+        },
+        TestRng::from_seed(RngAlgorithm::ChaCha, &[seed; 32]),
+    )
+}
