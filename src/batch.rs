@@ -139,7 +139,6 @@ pub fn case_dissipation(case: &CaseText, digits: Option<u32>, budget: Duration) 
     let mut printed = PrintedDissipation::within(&result, result.error_estimate + table_error, segment_errors);
     if printed.digits == 0 {
         printed.total = String::new();
-        printed.digits = 0;
     }
     for ((_, text), (value, error)) in printed
         .segments
