@@ -261,10 +261,19 @@ impl Ball {
                 other.clone()
             };
         }
+        self.real_binary(other, real)
+    }
+
+    /// `function` of the real parts of `self` and `other`, as a real ball.
+    fn real_binary(
+        &self,
+        other: &Ball,
+        function: unsafe extern "C" fn(*mut arb_struct, *const arb_struct, *const arb_struct, i64),
+    ) -> Ball {
         let mut result = Ball::zero(self.precision);
         // SAFETY: initialised.
         unsafe {
-            real(
+            function(
                 &mut result.raw.real,
                 self.real_part(),
                 other.real_part(),
@@ -693,28 +702,22 @@ impl Real for Ball {
         self.unary(arb_expm1, acb_expm1)
     }
     fn powr(&self, exponent: &Self) -> Self {
+        if !(self.complex_context() || exponent.complex_context()) {
+            return self.real_binary(exponent, arb_pow);
+        }
         let mut result = Ball::zero(self.precision);
         let analytic = analytic_required();
         // SAFETY: initialised.
         unsafe {
-            if !(self.complex_context() || exponent.complex_context()) {
-                arb_pow(
-                    &mut result.raw.real,
-                    self.real_part(),
-                    exponent.real_part(),
-                    self.slong_precision(),
-                );
-            } else {
-                acb_pow_analytic(
-                    &mut result.raw,
-                    &self.raw,
-                    &exponent.raw,
-                    i32::from(analytic),
-                    self.slong_precision(),
-                );
-                if analytic && acb_is_finite(&result.raw) == 0 {
-                    not_analytic();
-                }
+            acb_pow_analytic(
+                &mut result.raw,
+                &self.raw,
+                &exponent.raw,
+                i32::from(analytic),
+                self.slong_precision(),
+            );
+            if analytic && acb_is_finite(&result.raw) == 0 {
+                not_analytic();
             }
         }
         result
@@ -756,17 +759,7 @@ impl Real for Ball {
     }
     fn hypot(&self, other: &Self) -> Self {
         if !(self.complex_context() || other.complex_context()) {
-            let mut result = Ball::zero(self.precision);
-            // SAFETY: initialised.
-            unsafe {
-                arb_hypot(
-                    &mut result.raw.real,
-                    self.real_part(),
-                    other.real_part(),
-                    self.slong_precision(),
-                )
-            };
-            result
+            self.real_binary(other, arb_hypot)
         } else {
             (self.square() + &other.square()).sqrt()
         }
@@ -776,17 +769,7 @@ impl Real for Ball {
             not_analytic();
             return self.indeterminate();
         }
-        let mut result = Ball::zero(self.precision);
-        // SAFETY: initialised.
-        unsafe {
-            arb_atan2(
-                &mut result.raw.real,
-                self.real_part(),
-                x.real_part(),
-                self.slong_precision(),
-            )
-        };
-        result
+        self.real_binary(x, arb_atan2)
     }
     fn abs(&self) -> Self {
         if !self.complex_context() {
