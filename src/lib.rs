@@ -13,6 +13,7 @@
 
 #[cfg(feature = "cli")]
 pub mod accuracy;
+pub mod answer;
 #[cfg(feature = "certified")]
 pub mod ball;
 pub mod batch;

@@ -449,9 +449,19 @@ pub fn decimal_ball(value: &Float, radius: &Float, most: u32) -> Decimal {
         return Decimal::Zero;
     }
     let (lower, upper) = ends(value, &radius);
+    decimal_interval(&lower, &upper, most)
+}
+
+/// The interval [`lower`, `upper`] printed with at most `most` significant digits by the
+/// one rule: the most digits N for which every point of it rounds to nearest to the same
+/// N-digit decimal, with neither end on a rounding boundary.
+pub fn decimal_interval(lower: &Float, upper: &Float, most: u32) -> Decimal {
+    if lower.is_zero() && upper.is_zero() {
+        return Decimal::Zero;
+    }
     let undetermined = || Decimal::Undetermined {
-        lower: directed_decimal(&lower, 2, Round::Down),
-        upper: directed_decimal(&upper, 2, Round::Up),
+        lower: directed_decimal(lower, 2, Round::Down),
+        upper: directed_decimal(upper, 2, Round::Up),
     };
     if !lower.is_finite()
         || !upper.is_finite()
@@ -461,8 +471,10 @@ pub fn decimal_ball(value: &Float, radius: &Float, most: u32) -> Decimal {
     {
         return undetermined();
     }
-    // A cell of N digits is wider than 2·radius only for N ≤ log10(|value|/radius) + 2.
-    let most = match (value.get_exp(), radius.get_exp()) {
+    // A cell of N digits is wider than the interval only for N ≤ log10(|value|/width) + 2.
+    let width = Float::with_val(64, upper - lower);
+    let magnitude = lower.get_exp().max(upper.get_exp());
+    let most = match (magnitude, width.get_exp()) {
         (Some(v), Some(r)) => {
             let ratio_digits = (f64::from(v) - f64::from(r) + 1.0) * std::f64::consts::LOG10_2;
             (ratio_digits.floor().max(-1.0) as u32 + 2).min(most)
@@ -471,7 +483,7 @@ pub fn decimal_ball(value: &Float, radius: &Float, most: u32) -> Decimal {
     };
     (1..=most.max(1))
         .rev()
-        .find_map(|digits| rounds_alike(&lower, &upper, digits).map(|text| Decimal::Digits { text, digits }))
+        .find_map(|digits| rounds_alike(lower, upper, digits).map(|text| Decimal::Digits { text, digits }))
         .unwrap_or_else(undetermined)
 }
 

@@ -1,0 +1,249 @@
+//! One answer for every quantity microslip prints — W with its segments, the
+//! small-amplitude coefficient I(ρ, φ), the series coefficients Iₙ, a partial sum W_N
+//! and its difference from W — so that the command line, JSON, batch rows and the
+//! catalogue only format it.
+//!
+//! An [`Answer`] is a value printed by the one rule ([`crate::verified::decimal_ball`]:
+//! a digit is printed only if every point of the value's interval rounds to it), the
+//! interval itself, and its [`Provenance`]: what vouches for the interval — a proof
+//! (exact by reason, a rigorous enclosure) or an estimate (f64's error estimate, two
+//! precisions agreeing, a table's error, the simulation).
+
+use rug::Float;
+
+use crate::dissipation::{ExactZero, Method, Segments};
+use crate::verified::{decimal_f64, decimal_interval, Decimal, F64_MOST_DIGITS};
+
+/// What vouches for a printed value.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum Provenance {
+    /// The value is exactly the one printed, for a reason read from the exact input.
+    Exact(ExactReason),
+    /// A rigorous enclosure in ball arithmetic (Arb), at a working precision: every
+    /// printed digit is proven.
+    Certified {
+        /// The working precision of the enclosure, in bits.
+        bits: u32,
+    },
+    /// Two computations at different working precisions agree: evidence, not proof.
+    Agreement {
+        /// The higher of the two working precisions, in bits.
+        bits: u32,
+    },
+    /// An f64 run with its quadrature error estimate: not proven.
+    Estimate {
+        /// The absolute error estimate.
+        error_estimate: f64,
+    },
+    /// A table compliance: the quadrature's estimate plus the table's estimated error
+    /// (a model error, not a proof).
+    Table {
+        /// The estimated absolute error due to the table.
+        table_error: f64,
+        /// The largest relative change the smoothing fit made to the data.
+        smoothing_residual: f64,
+    },
+    /// The history simulation: an independent estimate, not a proof.
+    Simulated {
+        /// Its estimated absolute error.
+        error_estimate: f64,
+    },
+}
+
+impl Provenance {
+    /// Whether the interval printed is proven to contain the value.
+    pub fn is_proven(&self) -> bool {
+        matches!(self, Provenance::Exact(_) | Provenance::Certified { .. })
+    }
+
+    /// The machine-readable name: `exact`, `certified`, `agreement`, `estimate`,
+    /// `table_error` or `simulated`.
+    pub fn key(&self) -> &'static str {
+        match self {
+            Provenance::Exact(_) => "exact",
+            Provenance::Certified { .. } => "certified",
+            Provenance::Agreement { .. } => "agreement",
+            Provenance::Estimate { .. } => "estimate",
+            Provenance::Table { .. } => "table_error",
+            Provenance::Simulated { .. } => "simulated",
+        }
+    }
+
+    /// The working precision in bits of the value printed (53 for f64).
+    pub fn precision_bits(&self) -> Option<u32> {
+        match self {
+            Provenance::Certified { bits } | Provenance::Agreement { bits } => Some(*bits),
+            Provenance::Estimate { .. } | Provenance::Table { .. } | Provenance::Simulated { .. } => Some(53),
+            Provenance::Exact(_) => None,
+        }
+    }
+}
+
+impl std::fmt::Display for Provenance {
+    /// How the output names the bound: proven or estimated, and by what.
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Provenance::Exact(reason) => write!(f, "exact: {}", reason.reason()),
+            Provenance::Certified { bits } => write!(f, "proven (rigorous enclosure at {bits} bits)"),
+            Provenance::Agreement { bits } => {
+                write!(f, "agreement, not proof (two precisions agree, up to {bits} bits)")
+            }
+            Provenance::Estimate { error_estimate } => {
+                write!(f, "estimated (f64, error estimate {error_estimate:.1e}; not proven)")
+            }
+            Provenance::Table { table_error, .. } => {
+                write!(
+                    f,
+                    "estimated (table error {table_error:.1e} with the quadrature's; not proven)"
+                )
+            }
+            Provenance::Simulated { error_estimate } => {
+                write!(
+                    f,
+                    "estimated (simulation, error estimate {error_estimate:.1e}; not proven)"
+                )
+            }
+        }
+    }
+}
+
+/// Why a value is exact.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum ExactReason {
+    /// W = 0 (and every W_N, and every segment): see [`ExactZero`].
+    Zero(ExactZero),
+    /// I₀ ≡ 0: the constant term of v' dissipates nothing (the constant-term theorem).
+    ConstantTerm,
+    /// In phase (φ = kπ exactly) with ρ ≤ 1: nothing slips, so every Iₙ is 0.
+    NothingSlips,
+    /// v' is a polynomial of degree ≤ N, so the series ends at order N and W_N − W = 0.
+    SeriesEnds,
+}
+
+impl ExactReason {
+    /// The reason, as printed after `exact:`.
+    pub fn reason(self) -> &'static str {
+        match self {
+            ExactReason::Zero(zero) => zero.reason(),
+            ExactReason::ConstantTerm => "the constant term of v' dissipates nothing",
+            ExactReason::NothingSlips => "in phase, φ = kπ exactly, with ρ ≤ 1: nothing slips",
+            ExactReason::SeriesEnds => "v' is a polynomial of degree ≤ N, so the series ends at order N",
+        }
+    }
+
+    /// A short machine-readable name.
+    pub fn key(self) -> &'static str {
+        match self {
+            ExactReason::Zero(zero) => zero.key(),
+            ExactReason::ConstantTerm => "constant-term",
+            ExactReason::NothingSlips => "nothing-slips",
+            ExactReason::SeriesEnds => "series-ends",
+        }
+    }
+}
+
+/// One value as printed, with the interval its digits were read from.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Value {
+    /// The value by the one printing rule.
+    pub decimal: Decimal,
+    /// Decimal strings, rounded outwards, of an interval that contains the value (for a
+    /// proven provenance, proven to): `None` for an exact value.
+    pub enclosure: Option<(String, String)>,
+    /// The binary64 value computed, where the printed digits come from an f64 run.
+    pub binary64: Option<f64>,
+}
+
+/// The significant digits of the outward-rounded ends of an enclosure.
+const ENCLOSURE_DIGITS: usize = 20;
+
+impl Value {
+    /// Exactly zero.
+    pub fn zero() -> Self {
+        Value {
+            decimal: Decimal::Zero,
+            enclosure: None,
+            binary64: None,
+        }
+    }
+
+    /// The value in [`lower`, `upper`], with at most `most` significant digits.
+    pub fn within(lower: &Float, upper: &Float, most: u32) -> Self {
+        Value {
+            decimal: decimal_interval(lower, upper, most),
+            enclosure: Some((
+                outward(lower, rug::float::Round::Down),
+                outward(upper, rug::float::Round::Up),
+            )),
+            binary64: None,
+        }
+    }
+
+    /// An f64 `value` with an absolute `bound` on its error.
+    pub fn from_f64(value: f64, bound: f64) -> Self {
+        let (lower, upper) = (Float::with_val(64, value) - bound, Float::with_val(64, value) + bound);
+        Value {
+            decimal: decimal_f64(value, bound),
+            enclosure: Some((
+                outward(&lower, rug::float::Round::Down),
+                outward(&upper, rug::float::Round::Up),
+            )),
+            binary64: Some(value),
+        }
+    }
+
+    /// The significant digits printed (`u32::MAX` for an exact zero, 0 where none is
+    /// determined).
+    pub fn digits(&self) -> u32 {
+        self.decimal.digits()
+    }
+}
+
+/// `x` as a decimal of [`ENCLOSURE_DIGITS`] digits rounded in the direction `round`.
+fn outward(x: &Float, round: rug::float::Round) -> String {
+    if x.is_zero() || !x.is_finite() {
+        return x.to_f64().to_string();
+    }
+    let (negative, mantissa, exponent) = x.to_sign_string_exp_round(10, Some(ENCLOSURE_DIGITS), round);
+    let (first, rest) = mantissa.split_at(1);
+    let sign = if negative { "-" } else { "" };
+    format!("{sign}{first}.{rest}e{}", exponent.unwrap_or(1) - 1)
+}
+
+/// One printed quantity: its value, its segments where it has them (W), and what
+/// vouches for them.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Answer {
+    /// The value.
+    pub value: Value,
+    /// W's four segments (EB, BC, CH, HE), each by the same rule; `None` for I, Iₙ, W_N.
+    pub segments: Option<Segments<Value>>,
+    /// The significant digits asked for (`--digits`), if any.
+    pub digits_requested: Option<u32>,
+    /// What vouches for the value and its segments.
+    pub provenance: Provenance,
+    /// How W was computed, where the answer is a W.
+    pub method: Option<Method>,
+}
+
+impl Answer {
+    /// The significant digits printed (at most the request; [`F64_MOST_DIGITS`] or the
+    /// request for an exact value).
+    pub fn digits(&self) -> u32 {
+        match self.value.decimal {
+            Decimal::Zero => self.digits_requested.unwrap_or(F64_MOST_DIGITS),
+            _ => self.value.digits(),
+        }
+    }
+
+    /// The digits that are proven (all printed ones for a proven provenance, else 0).
+    pub fn digits_certified(&self) -> u32 {
+        if self.provenance.is_proven() {
+            self.digits()
+        } else {
+            0
+        }
+    }
+}
