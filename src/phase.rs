@@ -24,6 +24,8 @@ pub const MIRROR_BELOW: f64 = 1.0 / 1_048_576.0;
 
 /// Bits carried beyond the working precision in a reduction.
 const GUARD_BITS: u32 = 64;
+/// The bits of ψ kept from the reduction: precisions up to them round from it.
+const STORED_BITS: u32 = 128;
 /// The most bits a reduction may use before it gives up (never reached by a decimal written by hand).
 const MAX_REDUCTION_BITS: u32 = 1 << 22;
 
@@ -62,6 +64,9 @@ pub struct ReducedPhase {
     offset: Rational,
     /// The binary exponent of |φ| (at least 0): the bits the multiple of π cancels.
     exponent: u32,
+    /// ψ = mπ + x to [`STORED_BITS`] and a guard beyond its cancellation, computed once
+    /// (None when ψ is the rational x): what f64 and ordinary MPFR precisions round from.
+    stored: Option<Float>,
 }
 
 impl ExactPhase {
@@ -153,14 +158,16 @@ impl ExactPhase {
         let turns = Float::with_val(bits, &self.offset) / Float::with_val(bits, Constant::Pi)
             + Float::with_val(bits, &self.multiple);
         let half_turns = turns.round().to_integer().unwrap_or_default();
-        let reduced = ReducedPhase {
+        let mut reduced = ReducedPhase {
             reverses: half_turns.is_odd(),
             multiple: self.multiple.clone() - Rational::from(half_turns),
             offset: self.offset.clone(),
             exponent,
+            stored: None,
         };
-        if reduced.multiple != 0 && reduced.irrational_offset(64, MAX_REDUCTION_BITS).is_none() {
-            return Err(PhaseError::TooLarge { phi: estimate });
+        if reduced.multiple != 0 {
+            let stored = reduced.irrational_offset(STORED_BITS, MAX_REDUCTION_BITS);
+            reduced.stored = Some(stored.ok_or(PhaseError::TooLarge { phi: estimate })?);
         }
         Ok(reduced)
     }
@@ -182,6 +189,9 @@ impl ReducedPhase {
     pub fn offset_float(&self, bits: u32) -> Float {
         if self.multiple == 0 {
             return Float::with_val(bits, &self.offset);
+        }
+        if let Some(stored) = self.stored.as_ref().filter(|_| bits <= STORED_BITS) {
+            return Float::with_val(bits, stored);
         }
         // `reduce` found the cancellation finite; at more bits it needs no more than that.
         let psi = self
@@ -352,6 +362,8 @@ mod tests {
                 continue;
             }
             assert_eq!(reduced.reverses(), half_turns % 2 != 0, "{text}");
+            // Below the stored bits, rounded from the one reduction; above, computed again.
+            assert_eq!(reduced.offset_float(100), Float::with_val(100, &expected), "{text}");
             assert_eq!(psi, Float::with_val(200, expected), "{text}");
             let f: f64 = reduced.offset(Precision::DOUBLE);
             assert_eq!(f, psi.to_f64(), "{text}");
