@@ -13,9 +13,9 @@ use std::time::{Duration, Instant};
 use rug::Float;
 use serde::Serialize;
 
+use crate::case::{Case, CaseSpec, CaseText};
 use crate::dissipation::{Segment, SegmentIntegrands};
 use crate::files::csv_text;
-use crate::inputs::{Case, CaseText};
 use crate::quad::{gauss_legendre, tanh_sinh, Piece};
 use crate::real::{Precision, Real};
 use crate::reference::verified_dissipation;
@@ -114,8 +114,8 @@ fn median_seconds<T>(budget: Duration, mut run: impl FnMut() -> T) -> (f64, T) {
 type RuleOnce<'r, R> = dyn Fn(&Piece<'_, R>, Precision) -> (R, usize) + 'r;
 
 /// W of `case` at `precision`, each piece integrated by `rule`, with the evaluations it took.
-fn fixed_rule_w<R: Real>(case: &CaseText, precision: Precision, rule: &RuleOnce<'_, R>) -> Option<(R, usize)> {
-    let Case { cycle, compliance } = case.read::<R>(precision).ok()?;
+fn fixed_rule_w<R: Real>(case: Option<&CaseSpec>, precision: Precision, rule: &RuleOnce<'_, R>) -> Option<(R, usize)> {
+    let Case { cycle, compliance } = case?.at::<R>(precision).ok()?;
     let geometry = cycle.geometry().ok()?;
     let integrands = SegmentIntegrands {
         geometry: &geometry,
@@ -135,8 +135,8 @@ fn fixed_rule_w<R: Real>(case: &CaseText, precision: Precision, rule: &RuleOnce<
 /// The naive way: each piece as an integral in P, θ(P) on its monotone branch,
 /// midpoint rule with `panels` panels (the end points, where dθ/dP is infinite, are
 /// never evaluated).
-fn naive_in_load(case: &CaseText, panels: usize) -> Option<(f64, usize)> {
-    let Case { cycle, compliance } = case.read::<f64>(Precision::DOUBLE).ok()?;
+fn naive_in_load(case: Option<&CaseSpec>, panels: usize) -> Option<(f64, usize)> {
+    let Case { cycle, compliance } = case?.at::<f64>(Precision::DOUBLE).ok()?;
     let geometry = cycle.geometry().ok()?;
     let integrands = SegmentIntegrands {
         geometry: &geometry,
@@ -213,7 +213,9 @@ pub fn measure_case(
             case: case.name.clone(),
         });
     };
-    let text = &case.text;
+    // Read once; each run below times the computation at its precision, not the reading.
+    let spec = case.text.spec().ok();
+    let text = spec.as_ref();
     let as_float = |r: Option<(f64, usize)>| r.map(|(v, n)| (Float::with_val(53, v), n));
     // f64: our rules, the quadrature crate's, and the naive one.
     progress("f64");

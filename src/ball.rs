@@ -621,6 +621,11 @@ impl Real for Ball {
         }
         Ok(ball)
     }
+    fn from_rational(x: &rug::Rational, precision: Precision) -> Self {
+        // Numerator and denominator exactly, then one ball division: a ball containing x.
+        let exact = |n: &rug::Integer| Ball::from_float(&Float::with_val(n.significant_bits().max(1), n), precision);
+        exact(x.numer()) / exact(x.denom())
+    }
     fn pi(precision: Precision) -> Self {
         let mut ball = Ball::zero(precision.in_bits());
         // SAFETY: initialised.

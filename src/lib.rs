@@ -4,7 +4,7 @@
 //! Read top-down: [`real`] (the number type), [`quad`] (quadrature rules),
 //! [`compliance`] (the contact's normal compliance v(P)), [`cycle`] (the load
 //! cycle and its ellipse), [`dissipation`] (W over the four segments, and the
-//! closed forms).
+//! closed forms), and [`case`] (a case read once from its text, at any precision).
 //!
 //! The default feature `cli` adds the tools around the library: the plots (`plot`,
 //! `figures`), the accuracy benchmark (`accuracy`) and the catalogue of reference
@@ -17,12 +17,14 @@ pub mod answer;
 #[cfg(feature = "certified")]
 pub mod ball;
 pub mod batch;
+pub mod case;
 #[cfg(feature = "cli")]
 pub mod catalogue;
 #[cfg(feature = "certified")]
 pub mod certified;
 pub mod compliance;
 pub mod cycle;
+mod decimal;
 pub mod dissipation;
 pub mod exact;
 #[cfg(feature = "cli")]

@@ -9,10 +9,10 @@
 //! Whether the cycle is exactly in phase is decided from the text: ψ = 0 exactly.
 
 use rug::float::Constant;
-use rug::ops::Pow;
 use rug::{Float, Integer, Rational};
 
 use crate::cycle::MAX_PHASE;
+pub(crate) use crate::decimal::decimal;
 use crate::real::{Precision, Real};
 
 /// The forms a phase may be written in, for refusals.
@@ -24,8 +24,8 @@ pub const MIRROR_BELOW: f64 = 1.0 / 1_048_576.0;
 
 /// Bits carried beyond the working precision in a reduction.
 const GUARD_BITS: u32 = 64;
-/// The largest power of ten a phase's decimal may carry (1e-100000 is read; 1e-10000000 is not).
-const MAX_DECIMAL_EXPONENT: i64 = 100_000;
+/// The bits of ψ kept from the reduction: precisions up to them round from it.
+const STORED_BITS: u32 = 128;
 /// The most bits a reduction may use before it gives up (never reached by a decimal written by hand).
 const MAX_REDUCTION_BITS: u32 = 1 << 22;
 
@@ -53,16 +53,20 @@ pub struct ExactPhase {
     offset: Rational,
 }
 
-/// A phase reduced modulo π: φ = nπ + ψ with ψ ∈ [−π/2, π/2].
-#[derive(Clone, Debug)]
+/// A phase reduced modulo π: φ = nπ + ψ with ψ = mπ + x ∈ [−π/2, π/2], m and x exact.
+#[derive(Clone, Debug, PartialEq)]
 pub struct ReducedPhase {
     /// n is odd: the cycle is the mirror image (Q − Q0 reversed) of the one at ψ.
     reverses: bool,
-    /// ψ when it is an exact rational (the multiple of π was the integer n).
-    exact: Option<Rational>,
-    /// ψ to at least the bits of the precision it was reduced for, beyond its last
-    /// bit of cancellation (None when `exact` is given).
-    approximate: Option<Float>,
+    /// m = k − n, the multiple of π left in ψ (0 when ψ is the rational x).
+    multiple: Rational,
+    /// x, the offset in radians as written.
+    offset: Rational,
+    /// The binary exponent of |φ| (at least 0): the bits the multiple of π cancels.
+    exponent: u32,
+    /// ψ = mπ + x to [`STORED_BITS`] and a guard beyond its cancellation, computed once
+    /// (None when ψ is the rational x): what f64 and ordinary MPFR precisions round from.
+    stored: Option<Float>,
 }
 
 impl ExactPhase {
@@ -139,8 +143,11 @@ impl ExactPhase {
         .to_f64()
     }
 
-    /// φ reduced once, exactly, modulo π; refused beyond [`MAX_PHASE`].
-    pub fn reduce(&self, precision: Precision) -> Result<ReducedPhase, PhaseError> {
+    /// φ reduced once, exactly, modulo π: the nearest multiple nπ and the exact offset ψ from
+    /// it. Refused beyond [`MAX_PHASE`], or where ψ cancels more bits than a reduction may use
+    /// (never for a decimal written by hand). The offset is then evaluated at any precision
+    /// ([`ReducedPhase::offset_float`]) without reducing again.
+    pub fn reduce(&self) -> Result<ReducedPhase, PhaseError> {
         let estimate = self.to_f64();
         if !estimate.is_finite() || estimate.abs() > MAX_PHASE {
             return Err(PhaseError::TooLarge { phi: estimate });
@@ -151,46 +158,25 @@ impl ExactPhase {
         let turns = Float::with_val(bits, &self.offset) / Float::with_val(bits, Constant::Pi)
             + Float::with_val(bits, &self.multiple);
         let half_turns = turns.round().to_integer().unwrap_or_default();
-        let reverses = half_turns.is_odd();
-        let multiple = self.multiple.clone() - Rational::from(half_turns);
-        if multiple == 0 {
-            return Ok(ReducedPhase {
-                reverses,
-                exact: Some(self.offset.clone()),
-                approximate: None,
-            });
+        let mut reduced = ReducedPhase {
+            reverses: half_turns.is_odd(),
+            multiple: self.multiple.clone() - Rational::from(half_turns),
+            offset: self.offset.clone(),
+            exponent,
+            stored: None,
+        };
+        if reduced.multiple != 0 {
+            let stored = reduced.irrational_offset(STORED_BITS, MAX_REDUCTION_BITS);
+            reduced.stored = Some(stored.ok_or(PhaseError::TooLarge { phi: estimate })?);
         }
-        // ψ = (k − n)π + x ≠ 0 (π is irrational): raise the bits until the sum keeps
-        // the working bits and a guard above its rounding error.
-        let wanted = precision.in_bits() + GUARD_BITS;
-        let mut bits = wanted + exponent + GUARD_BITS;
-        loop {
-            let multiple_part = Float::with_val(bits, &multiple) * Float::with_val(bits, Constant::Pi);
-            let offset_part = Float::with_val(bits, &self.offset);
-            let size = Float::with_val(bits, multiple_part.abs_ref()) + Float::with_val(bits, offset_part.abs_ref());
-            let sum = multiple_part + offset_part;
-            // The rounding error of the sum is below 4 ulps of `size`.
-            let kept = sum.get_exp().unwrap_or(i32::MIN) as i64 - size.get_exp().unwrap_or(0) as i64 + bits as i64 - 2;
-            if !sum.is_zero() && kept >= wanted as i64 {
-                return Ok(ReducedPhase {
-                    reverses,
-                    exact: None,
-                    approximate: Some(sum),
-                });
-            }
-            let missing = (wanted as i64 - kept).max(64) as u32;
-            bits = bits.saturating_add(missing + bits / 2);
-            if bits > MAX_REDUCTION_BITS {
-                return Err(PhaseError::TooLarge { phi: estimate });
-            }
-        }
+        Ok(reduced)
     }
 }
 
 impl ReducedPhase {
     /// φ ≡ 0 (mod π) exactly.
     pub fn is_in_phase(&self) -> bool {
-        self.exact.as_ref().is_some_and(|psi| *psi == 0)
+        self.multiple == 0 && self.offset == 0
     }
 
     /// n is odd: φ = ψ + nπ describes the mirror image of the cycle at ψ.
@@ -198,13 +184,50 @@ impl ReducedPhase {
         self.reverses
     }
 
-    /// ψ as a multiple-precision number of `bits` bits, correctly rounded where ψ is exact.
+    /// ψ as a multiple-precision number of `bits` bits, correctly rounded where ψ is exact
+    /// (a rational), and otherwise computed with the bits its cancellation needs.
     pub fn offset_float(&self, bits: u32) -> Float {
-        match (&self.exact, &self.approximate) {
-            (Some(exact), _) => Float::with_val(bits, exact),
-            (None, Some(approximate)) => Float::with_val(bits, approximate),
-            (None, None) => Float::with_val(bits, 0),
+        if self.multiple == 0 {
+            return Float::with_val(bits, &self.offset);
         }
+        if let Some(stored) = self.stored.as_ref().filter(|_| bits <= STORED_BITS) {
+            return Float::with_val(bits, stored);
+        }
+        // `reduce` found the cancellation finite; at more bits it needs no more than that.
+        let psi = self
+            .irrational_offset(bits, u32::MAX)
+            .unwrap_or_else(|| Float::with_val(bits, 0));
+        Float::with_val(bits, psi)
+    }
+
+    /// ψ = mπ + x ≠ 0 (π is irrational) to `bits` bits and a guard beyond its last bit of
+    /// cancellation: the bits are raised until the sum keeps them above its rounding error;
+    /// None beyond `limit` bits.
+    fn irrational_offset(&self, bits: u32, limit: u32) -> Option<Float> {
+        let wanted = bits + GUARD_BITS;
+        let mut bits = wanted + self.exponent + GUARD_BITS;
+        loop {
+            let multiple_part = Float::with_val(bits, &self.multiple) * Float::with_val(bits, Constant::Pi);
+            let offset_part = Float::with_val(bits, &self.offset);
+            let size = Float::with_val(bits, multiple_part.abs_ref()) + Float::with_val(bits, offset_part.abs_ref());
+            let sum = multiple_part + offset_part;
+            // The rounding error of the sum is below 4 ulps of `size`.
+            let kept = sum.get_exp().unwrap_or(i32::MIN) as i64 - size.get_exp().unwrap_or(0) as i64 + bits as i64 - 2;
+            if !sum.is_zero() && kept >= wanted as i64 {
+                return Some(sum);
+            }
+            let missing = (wanted as i64 - kept).max(64) as u32;
+            bits = bits.saturating_add(missing + bits / 2);
+            if bits > limit {
+                return None;
+            }
+        }
+    }
+
+    /// Whether a cycle is read as the mirror image of the one at ψ (Q0 negated): within
+    /// [`MIRROR_BELOW`] of an odd multiple of π ([`ReducedPhase::cycle_phase`]).
+    pub fn is_mirror_image(&self) -> bool {
+        self.reverses && self.offset_float(GUARD_BITS).abs() < MIRROR_BELOW
     }
 
     /// ψ at the precision.
@@ -222,43 +245,13 @@ impl ReducedPhase {
         if !self.reverses {
             return (R::from_float(&Float::with_val(bits, &offset), precision), false);
         }
-        if offset.clone().abs() < MIRROR_BELOW {
+        if self.is_mirror_image() {
             return (R::from_float(&Float::with_val(bits, &offset), precision), true);
         }
         let pi = Float::with_val(bits + GUARD_BITS, Constant::Pi);
         let turned = if offset > 0 { offset - pi } else { offset + pi };
         (R::from_float(&Float::with_val(bits, &turned), precision), false)
     }
-}
-
-/// A plain decimal (`-1.5e-3`) as an exact rational; None for anything else.
-pub(crate) fn decimal(text: &str) -> Option<Rational> {
-    let text = text.trim();
-    let (mantissa, exponent) = match text.split_once(['e', 'E']) {
-        Some((mantissa, exponent)) => (mantissa, exponent.parse::<i64>().ok()?),
-        None => (text, 0),
-    };
-    let (negative, mantissa) = match mantissa.strip_prefix('-') {
-        Some(rest) => (true, rest),
-        None => (false, mantissa.strip_prefix('+').unwrap_or(mantissa)),
-    };
-    let (whole, fraction) = mantissa.split_once('.').unwrap_or((mantissa, ""));
-    let digits = format!("{whole}{fraction}");
-    if digits.is_empty() || !digits.chars().all(|c| c.is_ascii_digit()) {
-        return None;
-    }
-    let power = exponent.checked_sub(fraction.len() as i64)?;
-    if power.abs() > MAX_DECIMAL_EXPONENT {
-        return None;
-    }
-    let significand: Integer = digits.parse().ok()?;
-    let scale = Integer::from(10).pow(power.unsigned_abs() as u32);
-    let magnitude = if power >= 0 {
-        Rational::from(significand * scale)
-    } else {
-        Rational::from((significand, scale))
-    };
-    Some(if negative { -magnitude } else { magnitude })
 }
 
 #[cfg(test)]
@@ -324,7 +317,7 @@ mod tests {
         for text in ["0", "0.0", "pi", "-pi", "2pi", "180deg", "1e6pi", "0pi+0"] {
             let phase = ExactPhase::parse(text).unwrap();
             assert!(phase.is_in_phase(), "{text}");
-            assert!(phase.reduce(Precision::DOUBLE).unwrap().is_in_phase(), "{text}");
+            assert!(phase.reduce().unwrap().is_in_phase(), "{text}");
         }
         for text in [
             "3.141592653589793",
@@ -336,7 +329,7 @@ mod tests {
         ] {
             let phase = ExactPhase::parse(text).unwrap();
             assert!(!phase.is_in_phase(), "{text}");
-            assert!(!phase.reduce(Precision::DOUBLE).unwrap().is_in_phase(), "{text}");
+            assert!(!phase.reduce().unwrap().is_in_phase(), "{text}");
         }
     }
 
@@ -356,7 +349,7 @@ mod tests {
             ("2pi+1e-300", 2, at("1e-300")),
         ];
         for (text, half_turns, expected) in cases {
-            let reduced = ExactPhase::parse(text).unwrap().reduce(Precision::bits(200)).unwrap();
+            let reduced = ExactPhase::parse(text).unwrap().reduce().unwrap();
             let psi = reduced.offset_float(200);
             if text == "1e50" {
                 // Independent: 1e50 − round(1e50/π)·π at 3000 bits.
@@ -369,6 +362,8 @@ mod tests {
                 continue;
             }
             assert_eq!(reduced.reverses(), half_turns % 2 != 0, "{text}");
+            // Below the stored bits, rounded from the one reduction; above, computed again.
+            assert_eq!(reduced.offset_float(100), Float::with_val(100, &expected), "{text}");
             assert_eq!(psi, Float::with_val(200, expected), "{text}");
             let f: f64 = reduced.offset(Precision::DOUBLE);
             assert_eq!(f, psi.to_f64(), "{text}");
@@ -378,9 +373,9 @@ mod tests {
     #[test]
     fn phases_beyond_the_bound_are_refused() {
         assert!(matches!(
-            ExactPhase::parse("1e101").unwrap().reduce(Precision::DOUBLE),
+            ExactPhase::parse("1e101").unwrap().reduce(),
             Err(PhaseError::TooLarge { .. })
         ));
-        assert!(ExactPhase::parse("3e99pi").unwrap().reduce(Precision::DOUBLE).is_ok());
+        assert!(ExactPhase::parse("3e99pi").unwrap().reduce().is_ok());
     }
 }

@@ -81,6 +81,11 @@ pub trait Real:
     /// A decimal string read as an exact decimal, rounded once to the precision
     /// (`"0.4"` means 4/10, not the double nearest to it).
     fn parse_decimal(text: &str, precision: Precision) -> Result<Self, ParseRealError>;
+    /// An exact rational rounded once to the precision (to nearest), as [`Real::parse_decimal`]
+    /// rounds the decimal it reads; a ball encloses it instead.
+    fn from_rational(x: &rug::Rational, precision: Precision) -> Self {
+        Self::from_float(&rug::Float::with_val(precision.in_bits(), x), precision)
+    }
     /// π at the precision.
     fn pi(precision: Precision) -> Self;
     /// The distance from 1 to the next larger number at the precision.
@@ -198,6 +203,14 @@ impl Real for f64 {
         text.trim()
             .parse::<f64>()
             .map_err(|_| ParseRealError { text: text.to_string() })
+    }
+    fn from_rational(x: &rug::Rational, precision: Precision) -> Self {
+        // Both integers exact in f64: one IEEE division rounds the quotient once.
+        const EXACT: u32 = f64::MANTISSA_DIGITS;
+        if x.numer().significant_bits() <= EXACT && x.denom().significant_bits() <= EXACT {
+            return x.numer().to_f64() / x.denom().to_f64();
+        }
+        rug::Float::with_val(precision.in_bits(), x).to_f64()
     }
     fn pi(_: Precision) -> Self {
         std::f64::consts::PI

@@ -1,7 +1,12 @@
 //! The compliance families and combinators: derivatives consistent with v, the
 //! cancellation-free slope change, and the SPEC language.
 
-use microslip::compliance::{parse_spec, Compliance, LoadScaled, Shifted};
+use std::path::PathBuf;
+
+use microslip::compliance::{
+    cached_table, parse_spec, Compliance, ComplianceSpec, Exponential, Hertz, LoadScaled, Persson, Polynomial,
+    PowerLaw, Rational, Scaled, Shifted, Sum, TableCompliance, TableInterpolant,
+};
 use microslip::real::{Precision, Real};
 use rug::Float;
 
@@ -133,11 +138,213 @@ fn malformed_specs_are_rejected_with_a_reason() {
         ("power:c=1x,beta=2", "c='1x' is not a decimal number"),
         ("persson:gamma=1,sigma=1 + ", "empty term"),
         ("x*persson:gamma=1,sigma=1", "multiplier='x'"),
-        ("power:c=inf,beta=1", "c=inf is not finite"),
+        ("power:c=inf,beta=1", "c='inf' is not a decimal number"),
+        ("power:c=1e400,beta=1", "c=1e400 lies outside the range of f64"),
         ("power:c, beta=1", "is not key=value"),
     ];
     for (spec, expected) in cases {
         let error = parse_spec::<f64>(spec, Precision::DOUBLE).map(|_| ()).expect_err(spec);
         assert!(error.to_string().contains(expected), "{spec}: {error}");
     }
+}
+
+/// The SPECs of the round trip: every family, a multiple, a sum, and a table.
+const TREE_SPECS: [&str; 11] = [
+    "power:c=0.3,beta=-0.4",
+    "persson:gamma=1.5,sigma=0.02",
+    "hertz:r=1.1,estar=2.3",
+    "poly:p0=1.2,coeffs=2;-0.5;-0.1",
+    "rational:a=0.1,b=2,c=0.5",
+    "exp:a=3,c=0.7,d=0.2",
+    "const:c=0.4",
+    "0.7*persson:gamma=1,sigma=0.3",
+    "power:c=1e+0,beta=-0.5 + 2.5*exp:a=1,c=2,d=0 + const:c=0.1",
+    "table:tests/data/rough-surface.csv",
+    "3*table:tests/data/rough-surface.csv+power:c=0.1,beta=-1",
+];
+
+/// The same compliance built by hand, each decimal read from its text at the precision
+/// (independently of the SPEC's tree): what the SPEC means.
+fn by_hand<R: Real>(index: usize, precision: Precision, interpolant: TableInterpolant) -> Box<dyn Compliance<R>> {
+    let d = |text: &str| R::parse_decimal(text, precision).unwrap();
+    let table = || -> Box<dyn Compliance<R>> {
+        Box::new(TableCompliance {
+            table: cached_table("tests/data/rough-surface.csv", 0.0).unwrap(),
+            interpolant,
+        })
+    };
+    match index {
+        0 => Box::new(PowerLaw {
+            coefficient: d("0.3"),
+            exponent: d("-0.4"),
+        }),
+        1 => Box::new(Persson {
+            gamma: d("1.5"),
+            sigma: d("0.02"),
+        }),
+        2 => Box::new(Hertz {
+            radius: d("1.1"),
+            contact_modulus: d("2.3"),
+        }),
+        3 => Box::new(Polynomial {
+            reference: d("1.2"),
+            coefficients: vec![d("2"), d("-0.5"), d("-0.1")],
+        }),
+        4 => Box::new(Rational {
+            constant: d("0.1"),
+            numerator: d("2"),
+            offset: d("0.5"),
+        }),
+        5 => Box::new(Exponential {
+            amplitude: d("3"),
+            decay_load: d("0.7"),
+            constant: d("0.2"),
+        }),
+        6 => Box::new(Polynomial {
+            reference: d("0"),
+            coefficients: vec![d("0.4")],
+        }),
+        7 => Box::new(Scaled {
+            factor: d("0.7"),
+            inner: Box::new(Persson {
+                gamma: d("1"),
+                sigma: d("0.3"),
+            }),
+        }),
+        8 => Box::new(Sum {
+            terms: vec![
+                Box::new(PowerLaw {
+                    coefficient: d("1"),
+                    exponent: d("-0.5"),
+                }),
+                Box::new(Scaled {
+                    factor: d("2.5"),
+                    inner: Box::new(Exponential {
+                        amplitude: d("1"),
+                        decay_load: d("2"),
+                        constant: d("0"),
+                    }),
+                }),
+                Box::new(Polynomial {
+                    reference: d("0"),
+                    coefficients: vec![d("0.1")],
+                }),
+            ],
+        }),
+        9 => table(),
+        _ => Box::new(Sum {
+            terms: vec![
+                Box::new(Scaled {
+                    factor: d("3"),
+                    inner: table(),
+                }),
+                Box::new(PowerLaw {
+                    coefficient: d("0.1"),
+                    exponent: d("-1"),
+                }),
+            ],
+        }),
+    }
+}
+
+/// v, v' and v'' of both at loads inside the table's range, equal to the last bit.
+fn assert_same_values<R: Real>(spec: &str, built: &dyn Compliance<R>, expected: &dyn Compliance<R>, p: Precision) {
+    for load in ["0.35", "1", "1.7"] {
+        let x = R::parse_decimal(load, p).unwrap();
+        for (what, a, b) in [
+            ("v", built.approach(&x), expected.approach(&x)),
+            ("v'", built.slope(&x), expected.slope(&x)),
+            ("v''", built.curvature(&x), expected.curvature(&x)),
+        ] {
+            assert!(a == b, "{spec}: {what} at {load}: {a:?} vs {b:?} at {p:?}");
+        }
+    }
+}
+
+#[test]
+fn the_spec_tree_builds_each_family_and_combinator_as_its_decimals_mean() {
+    for (index, text) in TREE_SPECS.into_iter().enumerate() {
+        let spec = ComplianceSpec::parse(text).unwrap_or_else(|e| panic!("{text}: {e}"));
+        let p = Precision::DOUBLE;
+        let built = spec.build::<f64>(p).unwrap();
+        assert_same_values(
+            text,
+            built.as_ref(),
+            by_hand::<f64>(index, p, TableInterpolant::Cubic).as_ref(),
+            p,
+        );
+        let p = Precision::bits(200);
+        let built = spec.build::<Float>(p).unwrap();
+        assert_same_values(
+            text,
+            built.as_ref(),
+            by_hand::<Float>(index, p, TableInterpolant::Cubic).as_ref(),
+            p,
+        );
+        for interpolant in [TableInterpolant::HalfTable, TableInterpolant::OtherHalfTable] {
+            let built = spec.build_with::<f64>(Precision::DOUBLE, interpolant).unwrap();
+            let expected = by_hand::<f64>(index, Precision::DOUBLE, interpolant);
+            assert_same_values(text, built.as_ref(), expected.as_ref(), Precision::DOUBLE);
+        }
+        assert_eq!(spec.tables().len(), usize::from(text.contains("table:")), "{text}");
+    }
+}
+
+#[test]
+fn a_table_is_read_once_when_its_spec_is_parsed() {
+    let path = std::env::temp_dir().join(format!("microslip-read-once-{}.csv", std::process::id()));
+    std::fs::copy("tests/data/rough-surface.csv", &path).unwrap();
+    let text = format!("2*table:{}", path.display());
+    let spec = ComplianceSpec::parse(&text).unwrap();
+    // Gone before the compliance is built: building reads nothing.
+    std::fs::remove_file(&path).unwrap();
+    let tables = spec.tables();
+    assert_eq!(tables.len(), 1);
+    assert_eq!(PathBuf::from(&tables[0].path), path);
+    let by_hand = |precision| -> Box<dyn Compliance<Float>> {
+        Box::new(Scaled {
+            factor: Float::from_i64(2, precision),
+            inner: Box::new(TableCompliance {
+                table: tables[0].clone(),
+                interpolant: TableInterpolant::Cubic,
+            }),
+        })
+    };
+    for bits in [64, 200] {
+        let p = Precision::bits(bits);
+        assert_same_values(&text, spec.build::<Float>(p).unwrap().as_ref(), by_hand(p).as_ref(), p);
+    }
+    assert!(spec.build::<f64>(Precision::DOUBLE).is_ok());
+    // Parsing again does read, and says the file is gone.
+    let error = ComplianceSpec::parse(&text).unwrap_err().to_string();
+    assert!(error.contains("cannot be read"), "{error}");
+}
+
+#[test]
+fn numbers_f64_cannot_hold_are_refused_in_f64_and_read_above() {
+    let spec = ComplianceSpec::parse("power:c=1e-400,beta=-1").unwrap();
+    let error = spec
+        .build::<f64>(Precision::DOUBLE)
+        .map(|_| ())
+        .unwrap_err()
+        .to_string();
+    assert!(error.contains("c=1e-400 lies outside the range of f64"), "{error}");
+    let p = Precision::bits(64);
+    let compliance = spec.build::<Float>(p).unwrap();
+    let expected = Float::with_val(64, Float::parse("1e-400").unwrap());
+    assert_eq!(compliance.slope(&Float::from_i64(1, p)), expected);
+}
+
+#[cfg(feature = "certified")]
+#[test]
+fn balls_from_the_spec_enclose_the_exact_decimals() {
+    use microslip::ball::Ball;
+    // 0.1 and 1/3-like decimals are not binary: a point would miss the exact value.
+    let spec = ComplianceSpec::parse("const:c=0.1+power:c=0.333333333333333333333333333333,beta=-1").unwrap();
+    let p = Precision::bits(128);
+    let compliance = spec.build::<Ball>(p).unwrap();
+    let slope = compliance.slope(&Ball::from_i64(1, p));
+    let exact = Float::with_val(2000, Float::parse("0.433333333333333333333333333333").unwrap());
+    assert!(slope.contains(&exact), "{slope:?}");
+    assert!(!slope.contains(&Float::with_val(2000, 0.1f64 + 0.333_333_333_333_333_3)));
 }

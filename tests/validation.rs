@@ -136,7 +136,12 @@ fn command_line_reports_each_invalid_cycle_in_one_line_with_exit_code_2() {
     let (code, stdout, _) = dissipation_with("", "", &[]);
     assert_eq!(code, 0);
     assert!(stdout.starts_with("W = "), "{stdout}");
-    assert_rejected(dissipation_with("--p0", "nan", &[]), "P0 is not a finite number");
+    // Read as an exact decimal at every precision, so refused as text in f64 as at --digits.
+    assert_rejected(dissipation_with("--p0", "nan", &[]), "'nan' is not a decimal number");
+    assert_rejected(
+        dissipation_with("--friction", "inf", &[]),
+        "'inf' is not a decimal number",
+    );
     assert_rejected(dissipation_with("--p0", "-1", &[]), "must be positive");
     assert_rejected(dissipation_with("--p1", "-0.1", &[]), "P1 = ");
     assert_rejected(dissipation_with("--q1", "-0.1", &[]), "Q1 = ");

@@ -7,8 +7,8 @@ use std::time::{Duration, Instant};
 use clap::Args;
 
 use microslip::batch;
+use microslip::case::{Case, CaseText};
 use microslip::files::{check_writable, write_text_atomically};
-use microslip::inputs::{parse_phase, Case, CaseText};
 use microslip::plot::{plot_cycle, PLOT_EXTENSIONS};
 use microslip::real::Precision;
 use microslip::simulate::{loop_csv, simulate, SimulationError, SimulationOptions, SimulationResult};
@@ -90,10 +90,11 @@ pub fn run(args: &SimulateArgs) -> Result<String, Failure> {
         }
     }
     let case = args.case.text();
-    let Case { mut cycle, compliance } = case.read::<f64>(Precision::DOUBLE)?;
+    let spec = case.spec()?;
+    let Case { mut cycle, compliance } = spec.at::<f64>(Precision::DOUBLE)?;
     // The simulation follows the loads in time: a phase within 2⁻²⁰ of an odd multiple of π is
     // read as the mirror image of its cycle (the same W), turned back here for the loop and plot.
-    if let Ok((_, true)) = parse_phase::<f64>(&case.phi, Precision::DOUBLE) {
+    if spec.phase().is_mirror_image() {
         cycle.phase += std::f64::consts::PI;
         cycle.mean_tangential_load = -cycle.mean_tangential_load;
     }

@@ -1,7 +1,7 @@
 //! `microslip table`: Ŵ against φ for Persson's compliance (the paper's Fig. 5).
 
+use microslip::case::{Case, CaseText};
 use microslip::dissipation::{dissipation, Options};
-use microslip::inputs::{Case, CaseText};
 use microslip::real::{Precision, Real};
 
 use super::report::Failure;
@@ -26,7 +26,7 @@ pub fn run() -> Result<String, Failure> {
                 nu: None,
                 compliance: "persson:gamma=1,sigma=1".into(),
             };
-            let Case { cycle, compliance } = case.read::<f64>(Precision::DOUBLE)?;
+            let Case { cycle, compliance } = case.spec()?.at::<f64>(Precision::DOUBLE)?;
             let cell = match dissipation(&cycle, compliance.as_ref(), &Options::default()) {
                 Ok(result) => result.total.to_scientific(8),
                 Err(_) => "gross slip".to_string(),

@@ -8,7 +8,7 @@
 //! draws them with the seeded [`Draw`], the property tests with proptest strategies
 //! (tests/common/strategies.rs) that shrink a failure to a small case.
 
-use crate::inputs::CaseText;
+use crate::case::CaseText;
 
 /// A small seeded generator (SplitMix64): reproducible draws with no dependency.
 #[derive(Clone, Debug)]
@@ -252,7 +252,7 @@ pub fn cycle_case(values: &[f64], compliance: impl FnOnce(Loads) -> String) -> C
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::compliance::{check_admissible, parse_spec};
+    use crate::compliance::{check_admissible, ComplianceSpec};
     use crate::real::Precision;
 
     #[test]
@@ -262,7 +262,10 @@ mod tests {
         for _ in 0..300 {
             let spec = compliance_spec(&mut draw, 0.05, 1.9, 1.0);
             seen.insert(spec.split(':').next().unwrap().to_string());
-            let compliance = parse_spec::<f64>(&spec, Precision::DOUBLE).unwrap();
+            let compliance = ComplianceSpec::parse(&spec)
+                .unwrap()
+                .build::<f64>(Precision::DOUBLE)
+                .unwrap();
             check_admissible(compliance.as_ref(), &0.05, &1.9).unwrap_or_else(|e| panic!("{spec}: {e}"));
         }
         assert!(seen.len() >= 5, "{seen:?}");

@@ -4,7 +4,7 @@ use rug::Float;
 
 use super::evaluator::{tally_cases, Failure, Measured, Outcome};
 use super::{number, Tally};
-use crate::compliance::parse_spec;
+use crate::compliance::ComplianceSpec;
 use crate::cycle::LoadCycle;
 use crate::dissipation::{dissipation, Options};
 use crate::real::{Precision, Real};
@@ -45,8 +45,9 @@ impl std::fmt::Display for CubicLawCase {
 /// (order, relative error of the ratio at k = 15).
 pub fn cubic_law_order(case: &CubicLawCase) -> Outcome {
     let precision = Precision::bits(160);
-    let compliance =
-        parse_spec::<Float>(&case.compliance, precision).map_err(|_| Failure::Failed("spec did not parse".into()))?;
+    let compliance = ComplianceSpec::parse(&case.compliance)
+        .and_then(|spec| spec.build::<Float>(precision))
+        .map_err(|_| Failure::Failed("spec did not parse".into()))?;
     let phase = Float::pi(precision) * number::<Float>(case.phase_fraction, precision);
     let rho: Float = number(case.rho, precision);
     let limit = coefficient(&rho, &phase).map_err(|_| Failure::Failed("I(ρ, φ) failed".into()))?;

@@ -4,7 +4,7 @@
 use rug::Float;
 
 use super::{describe, number, random_case, read, relative, Tally};
-use crate::compliance::{parse_spec, Polynomial};
+use crate::compliance::{ComplianceSpec, Polynomial};
 use crate::cycle::LoadCycle;
 use crate::dissipation::{dissipation, four_segment, Options};
 use crate::exact::{closed_form_coefficient, partial_sums, polynomial_dissipation};
@@ -110,7 +110,7 @@ pub fn series_claim(seed: u64, cases: usize) -> ClaimReport {
         let (rho, phase_fraction) = shape(&mut draw);
         let friction = draw.uniform(0.3, 1.5);
         let label = format!("v'={spec} ρ={rho} φ={phase_fraction}π f={friction}");
-        let compliance = match parse_spec::<Float>(&spec, precision) {
+        let compliance = match ComplianceSpec::parse(&spec).and_then(|spec| spec.build::<Float>(precision)) {
             Ok(c) => c,
             Err(e) => {
                 tally.fail(&label, e);

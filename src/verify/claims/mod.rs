@@ -35,10 +35,10 @@ pub use simulation::{
 pub use super::generators::gross_slip_amplitude;
 use super::generators::{compliance_spec, cycle_case, Draw, CYCLE};
 use super::ClaimReport;
+use crate::case::CaseText;
 use crate::compliance::Compliance;
 use crate::cycle::LoadCycle;
 use crate::dissipation::{Dissipation, DissipationError};
-use crate::inputs::CaseText;
 use crate::real::{Precision, Real};
 
 /// Debug as Display: proptest prints a failing case as the gate reports it.
@@ -200,8 +200,10 @@ pub fn random_case(draw: &mut Draw) -> CaseText {
     })
 }
 
+/// The case at the precision its claim is evaluated in (each draw is evaluated at one).
 fn read<R: Real>(case: &CaseText, precision: Precision) -> Option<(LoadCycle<R>, Box<dyn Compliance<R>>)> {
-    case.read::<R>(precision).ok().map(|c| (c.cycle, c.compliance))
+    let case = case.spec().ok()?.at::<R>(precision).ok()?;
+    Some((case.cycle, case.compliance))
 }
 
 /// A case read at a precision: its cycle and compliance.

@@ -1,0 +1,455 @@
+//! A case: the loads, friction, λ or ν and compliance of one load cycle on a contact.
+//!
+//! The command line, batch files and the reference catalogue describe a case as text
+//! ([`CaseText`]). It is read once into a [`CaseSpec`]: exact decimals (`0.4` means 4/10
+//! at every precision), the phase reduced exactly once modulo π (`0.4pi` means 0.4·π,
+//! `pi-1e-100` keeps its offset), and the compliance as a [`ComplianceSpec`] tree with its
+//! tables read. [`CaseSpec::at`] then gives the cycle and compliance at any precision
+//! (f64, MPFR, Arb balls) without reading text again, and [`CaseSpec::exact_zero`] says
+//! from the exact numbers why W is exactly 0, if it is.
+
+use rug::Rational;
+use serde::{Deserialize, Serialize};
+
+use crate::compliance::{Compliance, ComplianceSpec, SpecError, SpecReadError, TableError};
+use crate::cycle::{compliance_ratio_from_poisson, CycleError, LoadCycle};
+use crate::decimal::{decimal, rounded};
+use crate::dissipation::ExactZero;
+use crate::phase::{ExactPhase, PhaseError, ReducedPhase};
+use crate::real::{ParseRealError, Precision, Real};
+
+/// The text of one case. Numbers are decimal strings; `phase` may end in `pi`.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CaseText {
+    /// P0.
+    pub p0: String,
+    /// P1.
+    pub p1: String,
+    /// Q0 (default 0).
+    #[serde(default = "zero_text")]
+    pub q0: String,
+    /// Q1.
+    pub q1: String,
+    /// φ in radians, or a multiple of π written `0.4pi`.
+    pub phi: String,
+    /// f.
+    pub friction: String,
+    /// λ; exactly one of `lambda` and `nu` is given.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub lambda: Option<String>,
+    /// ν, giving λ = (2 − ν)/(2(1 − ν)).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub nu: Option<String>,
+    /// The compliance SPEC (see [`crate::compliance::parse_spec`]).
+    pub compliance: String,
+}
+
+fn zero_text() -> String {
+    "0".to_string()
+}
+
+/// Why a case's text does not describe a case.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum InputError {
+    /// A number that does not parse.
+    #[error("{} ({field}): {source}", quantity_of(.field))]
+    Number {
+        /// The field of the case (`p0`, `phi`, …).
+        field: &'static str,
+        #[source]
+        source: ParseRealError,
+    },
+    /// Neither or both of λ and ν.
+    #[error("give exactly one of the compliance ratio λ and Poisson's ratio ν")]
+    LambdaOrNu,
+    /// The compliance SPEC is wrong.
+    #[error(transparent)]
+    Spec(#[from] SpecError),
+    /// A table the compliance SPEC names cannot be read or is not a compliance.
+    #[error(transparent)]
+    Table(#[from] TableError),
+    /// ν is out of range or not finite.
+    #[error(transparent)]
+    Cycle(#[from] CycleError),
+    /// The phase is not written in an accepted form, or is too large.
+    #[error(transparent)]
+    Phase(#[from] PhaseError),
+    /// A decimal that f64 cannot hold: it overflows, or underflows to zero or to a
+    /// subnormal (which keeps fewer than 53 bits). Higher precision reads it exactly.
+    #[error("{quantity} = {text} lies outside the range of f64 (normal magnitudes 2.2e-308 to 1.8e308)")]
+    OutsideF64Range { quantity: &'static str, text: String },
+}
+
+/// Reads a phase (see [`ExactPhase::parse`] for the forms), reduces it exactly modulo π, and
+/// gives the phase a cycle is read with ([`crate::phase::ReducedPhase::cycle_phase`]: φ modulo 2π, or within
+/// 2⁻²⁰ of an odd multiple of π the offset ψ from it) and whether that is the mirror image's.
+pub fn parse_phase<R: Real>(text: &str, precision: Precision) -> Result<(R, bool), PhaseError> {
+    Ok(ExactPhase::parse(text)?.reduce()?.cycle_phase(precision))
+}
+
+/// A case read at a precision: the load cycle and the compliance.
+#[derive(Debug)]
+pub struct Case<R: Real> {
+    /// The load cycle (not yet validated).
+    pub cycle: LoadCycle<R>,
+    /// The normal compliance.
+    pub compliance: Box<dyn Compliance<R>>,
+}
+
+/// A decimal field of a case: which field (for messages), its text, its exact value.
+#[derive(Clone, Debug, PartialEq)]
+struct Field {
+    name: &'static str,
+    text: String,
+    value: Rational,
+}
+
+impl Field {
+    fn read(name: &'static str, text: &str) -> Result<Field, InputError> {
+        let value = decimal(text).ok_or_else(|| InputError::Number {
+            field: name,
+            source: ParseRealError { text: text.to_string() },
+        })?;
+        Ok(Field {
+            name,
+            text: text.trim().to_string(),
+            value,
+        })
+    }
+
+    /// The value rounded once to the precision; refused where f64 cannot hold it.
+    fn at<R: Real>(&self, precision: Precision) -> Result<R, InputError> {
+        rounded(&self.value, precision).ok_or_else(|| InputError::OutsideF64Range {
+            quantity: quantity_of(self.name),
+            text: self.text.clone(),
+        })
+    }
+}
+
+/// How the case gives the compliance ratio.
+#[derive(Clone, Debug, PartialEq)]
+enum Ratio {
+    /// λ itself.
+    Lambda(Field),
+    /// Poisson's ratio ν, λ = (2 − ν)/(2(1 − ν)).
+    Poisson(Field),
+}
+
+/// A case read once from its text: exact decimals, the phase reduced exactly modulo π,
+/// the compliance as a tree with its tables read. Not yet a valid cycle: the computations
+/// validate the cycle at their precision and say what is wrong.
+#[derive(Clone, Debug)]
+pub struct CaseSpec {
+    mean_normal_load: Field,
+    normal_amplitude: Field,
+    mean_tangential_load: Field,
+    tangential_amplitude: Field,
+    friction: Field,
+    ratio: Ratio,
+    phase: ReducedPhase,
+    compliance: ComplianceSpec,
+}
+
+impl CaseText {
+    /// Reads the case once ([`CaseSpec`]); refuses text that does not describe a case.
+    ///
+    /// ```
+    /// use microslip::case::CaseText;
+    /// use microslip::real::Precision;
+    ///
+    /// let text = CaseText {
+    ///     p0: "1".into(),
+    ///     p1: "0.4".into(),
+    ///     q0: "0".into(),
+    ///     q1: "0.2".into(),
+    ///     phi: "0.4pi".into(),
+    ///     friction: "1".into(),
+    ///     lambda: Some("1".into()),
+    ///     nu: None,
+    ///     compliance: "persson:gamma=1,sigma=1".into(),
+    /// };
+    /// let spec = text.spec().unwrap();
+    /// let case = spec.at::<f64>(Precision::DOUBLE).unwrap();
+    /// assert_eq!(case.cycle.normal_amplitude, 0.4);
+    /// assert_eq!(spec.exact_zero(), None);
+    /// ```
+    pub fn spec(&self) -> Result<CaseSpec, InputError> {
+        let ratio = match (&self.lambda, &self.nu) {
+            (Some(lambda), None) => Ratio::Lambda(Field::read("lambda", lambda)?),
+            (None, Some(nu)) => Ratio::Poisson(Field::read("nu", nu)?),
+            _ => return Err(InputError::LambdaOrNu),
+        };
+        let phase = ExactPhase::parse(&self.phi)?.reduce()?;
+        let mean_tangential_load = Field::read("q0", &self.q0)?;
+        let compliance = ComplianceSpec::read(&self.compliance).map_err(|error| match error {
+            SpecReadError::Spec(error) => InputError::Spec(error),
+            SpecReadError::Table(error) => InputError::Table(error),
+        })?;
+        Ok(CaseSpec {
+            mean_normal_load: Field::read("p0", &self.p0)?,
+            normal_amplitude: Field::read("p1", &self.p1)?,
+            mean_tangential_load,
+            tangential_amplitude: Field::read("q1", &self.q1)?,
+            friction: Field::read("friction", &self.friction)?,
+            ratio,
+            phase,
+            compliance,
+        })
+    }
+
+    /// The load cycle and compliance at `precision` (`self.spec()?.at(precision)`); a caller
+    /// that needs more than one precision reads the [`CaseSpec`] once instead.
+    pub fn read<R: Real>(&self, precision: Precision) -> Result<Case<R>, InputError> {
+        self.spec()?.at(precision)
+    }
+
+    /// Why W is exactly 0, if it is ([`CaseSpec::exact_zero`]).
+    // For the lead at merge: callers (src/reference.rs) move to the `CaseSpec` they hold; then remove.
+    pub fn exact_zero(&self) -> Result<Option<ExactZero>, InputError> {
+        Ok(self.spec()?.exact_zero())
+    }
+}
+
+impl CaseSpec {
+    /// The load cycle and compliance at `precision`, each exact number rounded once. The
+    /// cycle is not validated here: the computations validate it and say what is wrong. In
+    /// f64, a number that f64 cannot hold (1e-400) is refused, higher precisions read it.
+    pub fn at<R: Real>(&self, precision: Precision) -> Result<Case<R>, InputError> {
+        let compliance_ratio = match &self.ratio {
+            Ratio::Lambda(lambda) => lambda.at(precision)?,
+            Ratio::Poisson(nu) => compliance_ratio_from_poisson(&nu.at(precision)?)?,
+        };
+        let (phase, mirrored) = self.cycle_phase(precision)?;
+        let mean_tangential_load: R = self.mean_tangential_load.at(precision)?;
+        let cycle = LoadCycle {
+            mean_normal_load: self.mean_normal_load.at(precision)?,
+            normal_amplitude: self.normal_amplitude.at(precision)?,
+            // Within 2⁻²⁰ of an odd multiple of π, φ = nπ + ψ is read as the mirror image, the
+            // cycle at ψ with Q0 reversed: the same W, segments and validity (proofs/exact-values.md).
+            mean_tangential_load: if mirrored {
+                -mean_tangential_load
+            } else {
+                mean_tangential_load
+            },
+            tangential_amplitude: self.tangential_amplitude.at(precision)?,
+            phase,
+            friction: self.friction.at(precision)?,
+            compliance_ratio,
+        };
+        let compliance = self.compliance.build::<R>(precision)?;
+        Ok(Case { cycle, compliance })
+    }
+
+    /// The phase the cycle is read with at the precision ([`ReducedPhase::cycle_phase`]) and
+    /// whether it is the mirror image's. An offset from a multiple of π that f64 cannot hold
+    /// (1e-400) is refused in f64 like any number.
+    fn cycle_phase<R: Real>(&self, precision: Precision) -> Result<(R, bool), InputError> {
+        let reduced = &self.phase;
+        let (phase, mirrored): (R, bool) = reduced.cycle_phase(precision);
+        if precision == Precision::DOUBLE && !reduced.is_in_phase() {
+            let offset: R = reduced.offset(precision);
+            let zero = offset.int(0);
+            let smallest_normal = R::smallest_full_precision(precision) * &R::epsilon(precision);
+            if offset == zero || offset.abs() < smallest_normal {
+                return Err(InputError::OutsideF64Range {
+                    quantity: "the phase's offset from the nearest multiple of π",
+                    text: reduced.offset_float(64).to_string_radix(10, Some(6)),
+                });
+            }
+        }
+        Ok((phase, mirrored))
+    }
+
+    /// Why W is exactly 0, if it is, decided from the exact numbers: v'' ≡ 0 (a SPEC whose
+    /// non-constant terms cancel exactly), Q1 = 0, or exactly in phase (φ = kπ) with
+    /// Q1 ≤ fP1, where nothing slips. The cycle itself is not validated here.
+    pub fn exact_zero(&self) -> Option<ExactZero> {
+        let q1 = &self.tangential_amplitude.value;
+        if *q1 == 0 {
+            return Some(ExactZero::NoTangentialOscillation);
+        }
+        if self.phase.is_in_phase() && *q1 <= Rational::from(&self.friction.value * &self.normal_amplitude.value) {
+            return Some(ExactZero::InPhaseWithoutSlip);
+        }
+        self.compliance.is_constant_slope().then_some(ExactZero::ConstantSlope)
+    }
+
+    /// The phase, reduced exactly modulo π.
+    pub fn phase(&self) -> &ReducedPhase {
+        &self.phase
+    }
+
+    /// The compliance as read.
+    pub fn compliance(&self) -> &ComplianceSpec {
+        &self.compliance
+    }
+}
+
+/// The name of the quantity a case field gives, as the theory writes it.
+fn quantity_of(flag: &'static str) -> &'static str {
+    match flag {
+        "p0" => "P0",
+        "p1" => "P1",
+        "q0" => "Q0",
+        "q1" => "Q1",
+        "friction" => "the friction coefficient f",
+        "lambda" => "the compliance ratio λ",
+        "nu" => "Poisson's ratio ν",
+        "phi" => "the phase φ",
+        other => other,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use rug::Float;
+
+    #[test]
+    fn phase_reads_to_its_offset_from_the_nearest_multiple_of_pi() {
+        let p = Precision::bits(200);
+        let (x, mirrored): (Float, bool) = parse_phase("0.4pi", p).unwrap();
+        let pi = Float::with_val(1000, rug::float::Constant::Pi);
+        let expected = Float::with_val(200, pi.clone() * Float::with_val(1000, Rational::from((2, 5))));
+        assert_eq!((x, mirrored), (expected, false));
+        let (y, mirrored): (f64, bool) = parse_phase("pi", Precision::DOUBLE).unwrap();
+        assert_eq!((y, mirrored), (0.0, true));
+        let (w, mirrored): (Float, bool) = parse_phase("pi-1e-7", p).unwrap();
+        assert_eq!((w, mirrored), (-Float::parse_decimal("1e-7", p).unwrap(), true));
+        // Away from π: φ modulo 2π, the cycle as written.
+        let (v, mirrored): (Float, bool) = parse_phase("0.75pi", p).unwrap();
+        let expected = Float::with_val(200, pi * Float::with_val(1000, Rational::from((3, 4))));
+        assert_eq!((v, mirrored), (expected, false));
+        assert!(parse_phase::<f64>("xpi", Precision::DOUBLE).is_err());
+    }
+
+    #[test]
+    fn an_odd_multiple_of_pi_reads_as_the_mirror_image() {
+        let case = |phi: &str| CaseText {
+            p0: "1".into(),
+            p1: "0.4".into(),
+            q0: "0.1".into(),
+            q1: "0.2".into(),
+            phi: phi.into(),
+            friction: "1".into(),
+            lambda: Some("1".into()),
+            nu: None,
+            compliance: "persson:gamma=1,sigma=1".into(),
+        };
+        let Case { cycle, .. } = case("pi-1e-30").read::<f64>(Precision::DOUBLE).unwrap();
+        assert_eq!((cycle.mean_tangential_load, cycle.phase), (-0.1, -1e-30));
+        let Case { cycle, .. } = case("0.75pi").read::<f64>(Precision::DOUBLE).unwrap();
+        assert_eq!(cycle.mean_tangential_load, 0.1);
+        assert_eq!(cycle.phase, 0.75 * std::f64::consts::PI);
+        let Case { cycle, .. } = case("2pi+0.3").read::<f64>(Precision::DOUBLE).unwrap();
+        assert_eq!((cycle.mean_tangential_load, cycle.phase), (0.1, 0.3));
+        assert!(matches!(
+            case("pi-1e-400").read::<f64>(Precision::DOUBLE),
+            Err(InputError::OutsideF64Range { .. })
+        ));
+        assert!(case("pi-1e-400").read::<Float>(Precision::bits(64)).is_ok());
+    }
+
+    fn text(p0: &str, q1: &str, phi: &str, compliance: &str) -> CaseText {
+        CaseText {
+            p0: p0.into(),
+            p1: "0.4".into(),
+            q0: "-0.1".into(),
+            q1: q1.into(),
+            phi: phi.into(),
+            friction: "0.7".into(),
+            lambda: None,
+            nu: Some("0.3".into()),
+            compliance: compliance.into(),
+        }
+    }
+
+    #[test]
+    fn a_case_is_read_once_and_gives_its_decimals_at_every_precision() {
+        let spec = text("1.5", "0.2", "0.4pi", "persson:gamma=1,sigma=1").spec().unwrap();
+        let Case { cycle, .. } = spec.at::<f64>(Precision::DOUBLE).unwrap();
+        let loads = |c: &LoadCycle<f64>| {
+            [
+                c.mean_normal_load,
+                c.normal_amplitude,
+                c.mean_tangential_load,
+                c.tangential_amplitude,
+                c.friction,
+            ]
+        };
+        let decimals = ["1.5", "0.4", "-0.1", "0.2", "0.7"];
+        assert_eq!(loads(&cycle), decimals.map(|d| d.parse::<f64>().unwrap()));
+        assert!(
+            (cycle.compliance_ratio - 17.0 / 14.0).abs() <= f64::EPSILON,
+            "{}",
+            cycle.compliance_ratio
+        );
+        let p = Precision::bits(200);
+        let Case { cycle, .. } = spec.at::<Float>(p).unwrap();
+        let fields = [
+            &cycle.mean_normal_load,
+            &cycle.normal_amplitude,
+            &cycle.mean_tangential_load,
+            &cycle.tangential_amplitude,
+            &cycle.friction,
+        ];
+        for (value, decimal) in fields.into_iter().zip(decimals) {
+            assert_eq!(
+                *value,
+                Float::with_val(200, Float::parse(decimal).unwrap()),
+                "{decimal}"
+            );
+        }
+        let ratio = Float::with_val(200, Rational::from((17, 14)));
+        assert!(
+            (cycle.compliance_ratio - ratio).abs() < Float::with_val(200, 1e-58),
+            "λ = 17/14"
+        );
+    }
+
+    #[test]
+    fn why_w_is_exactly_zero_comes_from_the_exact_case() {
+        let zero = |q1: &str, phi: &str, compliance: &str| text("1", q1, phi, compliance).spec().unwrap().exact_zero();
+        let persson = "persson:gamma=1,sigma=1";
+        assert_eq!(zero("0", "0.4pi", persson), Some(ExactZero::NoTangentialOscillation));
+        // f·P1 = 0.28 exactly.
+        assert_eq!(zero("0.28", "pi", persson), Some(ExactZero::InPhaseWithoutSlip));
+        assert_eq!(zero("0.2800000000000000001", "pi", persson), None);
+        assert_eq!(zero("0.2", "3.141592653589793", persson), None);
+        assert_eq!(zero("0.2", "pi-1e-100", persson), None);
+        assert_eq!(zero("0.2", "0.4pi", "const:c=0.8"), Some(ExactZero::ConstantSlope));
+        let cancelling = "power:c=1,beta=-1+power:c=-1,beta=-1+const:c=1";
+        assert_eq!(zero("0.2", "0.4pi", cancelling), Some(ExactZero::ConstantSlope));
+        assert_eq!(zero("0.2", "0.4pi", persson), None);
+    }
+
+    #[test]
+    fn text_that_is_not_a_case_is_refused_once_and_ranges_at_each_precision() {
+        let persson = "persson:gamma=1,sigma=1";
+        assert!(matches!(
+            text("x", "0.2", "1", persson).spec(),
+            Err(InputError::Number { field: "p0", .. })
+        ));
+        assert!(matches!(
+            text("1", "0.2", "1e101", persson).spec(),
+            Err(InputError::Phase(PhaseError::TooLarge { .. }))
+        ));
+        assert!(matches!(
+            text("1", "0.2", "1", "table:no-such-table.csv").spec(),
+            Err(InputError::Table(TableError::File { .. }))
+        ));
+        assert!(matches!(
+            text("1", "0.2", "1", "persson:gamma=0,sigma=1").spec(),
+            Err(InputError::Spec(_))
+        ));
+        let mut both = text("1", "0.2", "1", persson);
+        both.lambda = Some("1".into());
+        assert_eq!(both.spec().unwrap_err(), InputError::LambdaOrNu);
+        let tiny = text("1e-400", "0.2", "1", persson).spec().unwrap();
+        assert!(matches!(
+            tiny.at::<f64>(Precision::DOUBLE),
+            Err(InputError::OutsideF64Range { quantity: "P0", .. })
+        ));
+        assert!(tiny.at::<Float>(Precision::bits(64)).is_ok());
+    }
+}
