@@ -139,8 +139,9 @@ impl ExactPhase {
         .to_f64()
     }
 
-    /// φ reduced once, exactly, modulo π; refused beyond [`MAX_PHASE`].
-    pub fn reduce(&self, precision: Precision) -> Result<ReducedPhase, PhaseError> {
+    /// φ = nπ + ψ with ψ = mπ + x ∈ [−π/2, π/2]: whether n is odd, and the exact m and x
+    /// (for arithmetic that encloses ψ from its exact parts); refused beyond [`MAX_PHASE`].
+    pub fn offset_parts(&self) -> Result<(bool, Rational, &Rational), PhaseError> {
         let estimate = self.to_f64();
         if !estimate.is_finite() || estimate.abs() > MAX_PHASE {
             return Err(PhaseError::TooLarge { phi: estimate });
@@ -152,7 +153,18 @@ impl ExactPhase {
             + Float::with_val(bits, &self.multiple);
         let half_turns = turns.round().to_integer().unwrap_or_default();
         let reverses = half_turns.is_odd();
-        let multiple = self.multiple.clone() - Rational::from(half_turns);
+        Ok((
+            reverses,
+            self.multiple.clone() - Rational::from(half_turns),
+            &self.offset,
+        ))
+    }
+
+    /// φ reduced once, exactly, modulo π; refused beyond [`MAX_PHASE`].
+    pub fn reduce(&self, precision: Precision) -> Result<ReducedPhase, PhaseError> {
+        let estimate = self.to_f64();
+        let (reverses, multiple, _) = self.offset_parts()?;
+        let exponent = estimate.abs().max(1.0).log2().ceil() as u32;
         if multiple == 0 {
             return Ok(ReducedPhase {
                 reverses,
