@@ -13,7 +13,10 @@
 #     and a compliance derivative.
 # MUTANTS_FILTER=regex runs only the mutations whose name matches it.
 # The mutated release binary then runs `microslip verify --quick`, which must fail
-# (exit 1). Prints one line per mutation with the claims that failed, and exits 1 if
+# (exit 1). A mutation of a segment integrand (src/dissipation/segments.rs) must also
+# make the certified enclosures exclude the exact polynomial W: the test
+# `certified::segment_enclosures_hold_the_exact_polynomial_w` must fail on it
+# (MUTANTS_CERTIFIED=0 skips this check, which adds a test build per mutation). Prints one line per mutation with the claims that failed, and exits 1 if
 # any mutation is missed (or 2 if the tree does not build or the unmutated gate fails).
 # Not run in CI: about 20 s per mutation (incremental build of a copy).
 # Usage: sh scripts/mutants.sh (re-runs itself under bash; needs python3 for exact replacements)
@@ -119,6 +122,15 @@ PY
         missed=$((missed + 1))
     else
         printf '%-32s %-8s %s\n' "$name" "caught" "$failed"
+    fi
+    if [ "$file" = src/dissipation/segments.rs ] && [ "${MUTANTS_CERTIFIED:-1}" != 0 ]; then
+        if (cd "$work" && cargo test --release --quiet --test certified segment_enclosures_hold_the_exact_polynomial_w \
+            >"$work/certified.log" 2>&1); then
+            printf '%-32s %-8s %s\n' "$name" "MISSED" "(the certified enclosures held the exact W)"
+            missed=$((missed + 1))
+        else
+            printf '%-32s %-8s %s\n' "$name" "caught" "certified enclosure excludes the exact W"
+        fi
     fi
     cp "$root/$file" "$work/$file"
 done <<<"$mutations"

@@ -18,7 +18,7 @@
 //! driver retries at a higher precision or refuses). Balls are compared by their real
 //! parts, which on a complex ball is the branch the real points inside it take.
 
-use std::cell::Cell;
+use std::cell::{Cell, RefCell};
 use std::cmp::Ordering;
 use std::ffi::{c_char, CString};
 use std::fmt;
@@ -40,6 +40,7 @@ thread_local! {
     static UNDECIDED: Cell<u64> = const { Cell::new(0) };
     static NOT_ANALYTIC: Cell<u64> = const { Cell::new(0) };
     static ANALYTIC_MODE: Cell<bool> = const { Cell::new(false) };
+    static SITES: RefCell<Option<Vec<String>>> = const { RefCell::new(None) };
 }
 
 /// What a computation on balls could not decide.
@@ -80,6 +81,40 @@ pub(crate) fn with_analytic<T>(required: bool, computation: impl FnOnce() -> T) 
 
 fn undecided() {
     UNDECIDED.set(UNDECIDED.get() + 1);
+    SITES.with_borrow_mut(|sites| {
+        if let Some(sites) = sites {
+            sites.push(call_site());
+        }
+    });
+}
+
+/// Runs `computation` as [`watch`] does, and also names where each undecided comparison
+/// was asked: per comparison, the frames of this crate's code that led to it, innermost
+/// first (outside the ball module). For locating a tie that no precision resolves; the
+/// frames' names need the debug information the release profile keeps.
+pub fn locate_doubts<T>(computation: impl FnOnce() -> T) -> (T, Doubts, Vec<String>) {
+    let outer = SITES.replace(Some(Vec::new()));
+    let (value, doubts) = watch(computation);
+    let sites = SITES.replace(outer).unwrap_or_default();
+    (value, doubts, sites)
+}
+
+/// The frames of this crate (outside this module) on the current stack, innermost first.
+fn call_site() -> String {
+    let trace = std::backtrace::Backtrace::force_capture().to_string();
+    let mut frames = Vec::new();
+    let mut lines = trace.lines().map(str::trim).peekable();
+    while let Some(line) = lines.next() {
+        let Some((_, function)) = line.split_once(": ") else {
+            continue;
+        };
+        let location = lines.peek().and_then(|next| next.strip_prefix("at ")).unwrap_or("");
+        if function.starts_with("microslip::") && !function.starts_with("microslip::ball::") {
+            let short = location.rsplit_once("/src/").map_or(location, |(_, file)| file);
+            frames.push(format!("{function} (src/{short})"));
+        }
+    }
+    frames.join(" <- ")
 }
 
 fn not_analytic() {

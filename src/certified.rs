@@ -20,11 +20,20 @@ use flint_sys::arb_types::mag_struct;
 use flint_sys::mag::{mag_clear, mag_init};
 
 use crate::ball::{certain_digits, watch, with_analytic, Ball, Doubts};
+use std::rc::Rc;
+
 use crate::compliance::{Compliance, SlopeChange};
 use crate::cycle::{CycleError, CycleKind, LoadCycle, ValidCycle};
+use crate::dissipation::closed_forms::{
+    constant_normal_load_segments, constant_normal_load_term, in_phase_segments, in_phase_terms, weighted_pieces,
+};
+use crate::dissipation::slope::knot_offsets;
 use crate::dissipation::{Segment, SegmentIntegrands, Segments};
+use crate::phase::{ExactPhase, PhaseError, MIRROR_BELOW};
 use crate::quad::sinh_map::resolve_peaks;
+use crate::quad::Piece;
 use crate::real::{Precision, Real};
+use rug::Rational;
 
 /// W and its segments as balls that contain the exact values.
 #[derive(Clone, Debug)]
@@ -64,10 +73,10 @@ pub enum CertifiedError {
     Undecided { bits: u32, undecided: u64 },
     /// A piece's enclosure is not finite (the integrand is singular on the piece, or
     /// Arb's subdivision gave up).
-    #[error("at {bits} bits the {segment} integral has no finite enclosure: its integrand is not analytic on the piece [{start:.6e}, {end:.6e}]")]
+    #[error("at {bits} bits the {integral} integral has no finite enclosure: its integrand is not analytic on the piece [{start:.6e}, {end:.6e}]")]
     NotFinite {
         bits: u32,
-        segment: Segment,
+        integral: &'static str,
         start: f64,
         end: f64,
     },
@@ -97,60 +106,40 @@ pub fn enclose_dissipation(
 ) -> Result<Enclosure, CertifiedError> {
     let precision = cycle.mean_normal_load.precision();
     let bits = precision.in_bits();
-    let refuse = |doubts: Doubts| CertifiedError::Undecided {
-        bits,
-        undecided: doubts.undecided_comparisons + doubts.not_analytic,
-    };
     let (valid, doubts) = watch(|| ValidCycle::new(cycle.clone()));
     if !doubts.none() {
-        return Err(refuse(doubts));
+        return Err(undecided(bits, doubts));
     }
     let valid = valid?;
     let zero = cycle.mean_normal_load.int(0);
-    if valid.kind() == CycleKind::NoTangentialOscillation {
-        // Q1 = 0 exactly: nothing slips back and forth, W = 0 exactly.
-        return Ok(Enclosure {
-            total: zero.clone(),
-            segments: Segments::from_fn(|_| zero.clone()),
-            precision,
-            pieces: 0,
-        });
-    }
-    let (geometry, doubts) = watch(|| valid.geometry());
-    if !doubts.none() {
-        return Err(refuse(doubts));
-    }
-    let integrands = SegmentIntegrands {
-        geometry: &geometry,
-        compliance,
-        remove_constant_slope: true,
+    let exact_zero = || Enclosure {
+        total: zero.clone(),
+        segments: Segments::from_fn(|_| zero.clone()),
+        precision,
+        pieces: 0,
     };
-    // The compliance's own v'(P0 + x) − v'(P0), free of cancellation, where preparing it
-    // decides all it asks (a power law asks whether β is a small rational, which a ball
-    // around −1/3 cannot answer); otherwise the plain difference, which is the same
-    // function and only loses the bits of v'(P0) that cancel.
-    let (prepared, doubts) = watch(|| integrands.prepared_slope());
-    let mut attempts = vec![];
-    if doubts.none() {
-        attempts.push(prepared);
-    }
-    let (difference, doubts) = watch(|| difference_of_slopes(compliance, &geometry.mean_normal_load));
-    if !doubts.none() {
-        return Err(refuse(doubts));
-    }
-    attempts.push(difference);
-    let mut outcome = None;
-    for slope in &attempts {
-        let (pieces, doubts) = watch(|| certified_pieces(&integrands, slope.as_ref()));
-        if !doubts.none() {
-            return Err(refuse(doubts));
+    let (sums, pieces) = match valid.kind() {
+        // Q1 = 0 exactly: nothing slips back and forth, W = 0 exactly.
+        CycleKind::NoTangentialOscillation => return Ok(exact_zero()),
+        CycleKind::ConstantNormalLoad => {
+            let term = constant_normal_load_term(cycle);
+            let ([loop_integral], pieces) = enclose_terms(cycle, compliance, [term], goal_bits)?;
+            (constant_normal_load_segments(cycle, loop_integral), pieces)
         }
-        outcome = Some(integrate_pieces(&pieces, goal_bits, bits, &zero));
-        if matches!(outcome, Some(Ok(_))) {
-            break;
+        CycleKind::InPhase => {
+            // Exactly in phase, Q1 ≤ fP1: the contact never slips, W = 0 exactly.
+            let (terms, doubts) = watch(|| in_phase_terms(cycle));
+            if !doubts.none() {
+                return Err(undecided(bits, doubts));
+            }
+            let Some(terms) = terms else {
+                return Ok(exact_zero());
+            };
+            let (integrals, pieces) = enclose_terms(cycle, compliance, terms, goal_bits)?;
+            (in_phase_segments(cycle, integrals), pieces)
         }
-    }
-    let (sums, pieces) = outcome.expect("one slope at least")?;
+        CycleKind::Elliptic => enclose_segments(&valid, compliance, goal_bits)?,
+    };
     let lambda = &cycle.compliance_ratio;
     let segments = Segments::from_fn(|segment| sums.get(segment).clone() * lambda);
     let total = segments.total();
@@ -162,31 +151,157 @@ pub fn enclose_dissipation(
     })
 }
 
+/// The undecided comparisons of a computation, as the refusal at `bits`.
+fn undecided(bits: u32, doubts: Doubts) -> CertifiedError {
+    CertifiedError::Undecided {
+        bits,
+        undecided: doubts.undecided_comparisons + doubts.not_analytic,
+    }
+}
+
+/// The slopes x ↦ v'(P0 + x) − v'(P0) to try, in turn: the compliance's own, free of
+/// cancellation, where preparing it decides all it asks (a power law asks whether β is
+/// a small rational, which a ball around −1/3 cannot answer); then the plain difference,
+/// which is the same function and only loses the bits of v'(P0) that cancel.
+fn slopes<'a>(
+    compliance: &'a dyn Compliance<Ball>,
+    mean_load: &Ball,
+    bits: u32,
+) -> Result<Vec<SlopeChange<'a, Ball>>, CertifiedError> {
+    let (prepared, doubts) = watch(|| compliance.slope_change_about(mean_load));
+    let mut attempts = vec![];
+    if doubts.none() {
+        attempts.push(prepared);
+    }
+    let (difference, doubts) = watch(|| difference_of_slopes(compliance, mean_load));
+    if !doubts.none() {
+        return Err(undecided(bits, doubts));
+    }
+    attempts.push(difference);
+    Ok(attempts)
+}
+
+/// The four segments of an elliptic cycle per unit λ, and how many pieces they took.
+fn enclose_segments(
+    valid: &ValidCycle<Ball>,
+    compliance: &dyn Compliance<Ball>,
+    goal_bits: u32,
+) -> Result<(Segments<Ball>, usize), CertifiedError> {
+    let bits = valid.mean_normal_load.precision().in_bits();
+    let (geometry, doubts) = watch(|| valid.geometry());
+    if !doubts.none() {
+        return Err(undecided(bits, doubts));
+    }
+    let integrands = SegmentIntegrands {
+        geometry: &geometry,
+        compliance,
+        remove_constant_slope: true,
+    };
+    let mut outcome = None;
+    for slope in &slopes(compliance, &geometry.mean_normal_load, bits)? {
+        let (pieces, doubts) = watch(|| certified_pieces(&integrands, slope.as_ref()));
+        if !doubts.none() {
+            return Err(undecided(bits, doubts));
+        }
+        outcome = Some(integrate_pieces(&pieces, Segment::ALL.len(), goal_bits, bits));
+        if matches!(outcome, Some(Ok(_))) {
+            break;
+        }
+    }
+    let (sums, pieces) = outcome.expect("one slope at least")?;
+    Ok((
+        Segments::from_fn(|segment| sums[segment_index(segment)].clone()),
+        pieces,
+    ))
+}
+
+/// A closed form's weighted integrals ∫ w(x) v'(P0 + x) dx (each split at the
+/// compliance's knots), enclosed; and how many pieces they took.
+fn enclose_terms<const N: usize>(
+    cycle: &LoadCycle<Ball>,
+    compliance: &dyn Compliance<Ball>,
+    terms: [Piece<'static, Ball>; N],
+    goal_bits: u32,
+) -> Result<([Ball; N], usize), CertifiedError> {
+    let bits = cycle.mean_normal_load.precision().in_bits();
+    let mean_load = &cycle.mean_normal_load;
+    let (knots, doubts) = watch(|| knot_offsets(compliance, mean_load));
+    if !doubts.none() {
+        return Err(undecided(bits, doubts));
+    }
+    // The weights are kept apart from the slope so that each slope can be tried.
+    let weights: Vec<_> = terms.into_iter().map(Rc::new).collect();
+    let mut outcome = None;
+    for slope in slopes(compliance, mean_load, bits)? {
+        let slope = Rc::new(slope);
+        let terms: [Piece<'_, Ball>; N] = std::array::from_fn(|term| {
+            let weight = Rc::clone(&weights[term]);
+            Piece::new(
+                weight.label,
+                weight.start.clone(),
+                weight.end.clone(),
+                move |x: &Ball| (weight.integrand)(x),
+            )
+        });
+        let ((pieces, term_of_piece), doubts) = watch(|| weighted_pieces(terms, Rc::clone(&slope), &knots));
+        if !doubts.none() {
+            return Err(undecided(bits, doubts));
+        }
+        let pieces: Vec<CertifiedPiece<'_>> = pieces
+            .into_iter()
+            .zip(term_of_piece)
+            .map(|(piece, term)| CertifiedPiece {
+                group: term,
+                label: piece.label,
+                start: piece.start,
+                end: piece.end,
+                integrand: piece.integrand,
+            })
+            .collect();
+        outcome = Some(integrate_pieces(&pieces, N, goal_bits, bits));
+        if matches!(outcome, Some(Ok(_))) {
+            break;
+        }
+    }
+    let (sums, pieces) = outcome.expect("one slope at least")?;
+    let mut sums = sums.into_iter();
+    Ok((std::array::from_fn(|_| sums.next().expect("one sum per term")), pieces))
+}
+
+/// The position of a segment in [`Segment::ALL`].
+fn segment_index(segment: Segment) -> usize {
+    Segment::ALL
+        .iter()
+        .position(|s| *s == segment)
+        .expect("every segment is listed")
+}
+
 /// x ↦ v'(P0 + x) − v'(P0) as the difference of two slopes.
 fn difference_of_slopes<'a>(compliance: &'a dyn Compliance<Ball>, mean_load: &Ball) -> SlopeChange<'a, Ball> {
     let (mean_load, at_mean) = (mean_load.clone(), compliance.slope(mean_load));
     Box::new(move |offset: &Ball| compliance.slope(&(mean_load.clone() + offset)) - &at_mean)
 }
 
-/// The pieces' enclosures summed per segment (per unit λ), and how many pieces there were.
+/// The pieces' enclosures summed per group (a segment, or a closed form's term), and
+/// how many pieces there were.
 fn integrate_pieces(
     pieces: &[CertifiedPiece<'_>],
+    groups: usize,
     goal_bits: u32,
     bits: u32,
-    zero: &Ball,
-) -> Result<(Segments<Ball>, usize), CertifiedError> {
-    let mut sums = Segments::from_fn(|_| zero.clone());
+) -> Result<(Vec<Ball>, usize), CertifiedError> {
+    let mut sums = vec![Ball::from_i64(0, Precision::bits(bits)); groups];
     for piece in pieces {
         let value = integrate_piece(piece, goal_bits, bits);
         if !value.is_finite() {
             return Err(CertifiedError::NotFinite {
                 bits,
-                segment: piece.segment,
+                integral: piece.label,
                 start: piece.start.to_f64_lossy(),
                 end: piece.end.to_f64_lossy(),
             });
         }
-        *sums.get_mut(piece.segment) += &value;
+        sums[piece.group] += &value;
     }
     Ok((sums, pieces.len()))
 }
@@ -199,43 +314,108 @@ where
     F: Fn(Precision) -> Result<(LoadCycle<Ball>, Box<dyn Compliance<Ball>>), String>,
 {
     let digits = digits.max(1);
-    // Guard bits for the rounding of the integrand and the sum of the pieces.
-    let mut bits = Precision::decimal_digits(digits).in_bits() + 24;
-    let mut last_error = None;
-    while bits <= MAX_BITS {
+    // Guard bits for the rounding of the integrand and the sum of the pieces, and the
+    // bits that a phase near a multiple of π costs, known before the first attempt.
+    let guarded = Precision::decimal_digits(digits).in_bits() + 24;
+    let (cycle, _) = case(Precision::bits(guarded)).map_err(|reason| CertifiedError::Case { bits: guarded, reason })?;
+    let mut bits = guarded + phase_bits(&cycle);
+    loop {
         let (cycle, compliance) =
             case(Precision::bits(bits)).map_err(|reason| CertifiedError::Case { bits, reason })?;
-        match enclose_dissipation(&cycle, compliance.as_ref(), bits) {
+        let error = match enclose_dissipation(&cycle, compliance.as_ref(), bits) {
             Ok(enclosure) => {
-                if let Some((text, reached)) = certain_digits(&enclosure.total, digits) {
-                    if reached >= digits {
-                        return Ok(Certified {
-                            enclosure,
-                            text,
-                            digits: reached,
-                        });
-                    }
+                let reached = certain_digits(&enclosure.total, digits);
+                if let Some((text, reached)) = reached.clone().filter(|(_, reached)| *reached >= digits) {
+                    return Ok(Certified {
+                        enclosure,
+                        text,
+                        digits: reached,
+                    });
                 }
-                let reached = certain_digits(&enclosure.total, digits).map_or(0, |(_, n)| n);
-                last_error = Some(CertifiedError::TooWide {
+                CertifiedError::TooWide {
                     asked: digits,
-                    reached,
+                    reached: reached.map_or(0, |(_, n)| n),
                     relative_radius: enclosure.total.relative_radius(),
                     bits,
-                });
+                }
             }
             // A cycle outside the theory stays outside at any precision.
             Err(error @ CertifiedError::Cycle(_)) => return Err(error),
-            Err(error) => last_error = Some(error),
-        }
+            Err(error) => error,
+        };
         bits *= 2;
+        if bits > MAX_BITS {
+            return Err(error);
+        }
     }
-    Err(last_error.expect("at least one precision is tried"))
 }
 
-/// One integral of W: ∫ from `start` to `end` of `integrand`, in `segment`.
+/// The bits a phase φ near a multiple of π costs beyond the digits asked: the angles of
+/// the ellipse are resolved to about |sin φ| of a turn (log2(1/|sin φ|) bits), or, with
+/// Q1 < fP1, where the segments, each of order one, cancel to W ∝ sin²φ
+/// ([`LoadCycle::in_phase_cancellation`]), the bits of that cancellation, which are more.
+/// Zero exactly in phase, which has no angles.
+fn phase_bits(cycle: &LoadCycle<Ball>) -> u32 {
+    // Only an estimate of a starting precision: undecided comparisons here do no harm.
+    let ((sin, cancellation), _) = watch(|| (cycle.phase_trig().sin.abs(), cycle.in_phase_cancellation()));
+    let log2 = |x: &Ball| x.ln().to_f64_lossy() / std::f64::consts::LN_2;
+    let bits = log2(&cancellation).max(-log2(&sin));
+    if bits.is_finite() && bits > 0.0 {
+        (bits.ceil() as u32).min(MAX_BITS)
+    } else {
+        0
+    }
+}
+
+/// The phase a cycle on balls is read with, and whether it is its mirror image's (Q0
+/// to be negated), as [`crate::phase::ReducedPhase::cycle_phase`] gives it in the other
+/// types: an enclosure of the exact φ built from its exact parts φ = nπ + mπ + x (m
+/// rational, x decimal), so that an offset of 10⁻³⁰⁰ from a multiple of π keeps its
+/// digits at any precision, and `3.141592653589793` is not π.
+pub fn cycle_phase(phase: &ExactPhase, precision: Precision) -> Result<(Ball, bool), PhaseError> {
+    let (reverses, multiple, offset) = phase.offset_parts()?;
+    let rational = |value: &Rational, bits: u32| {
+        let exact = |n: &rug::Integer| {
+            let bits = n.significant_bits().max(1);
+            Ball::from_float(&rug::Float::with_val(bits, n), Precision::bits(bits))
+        };
+        Ball::from_i64(1, Precision::bits(bits)) * &exact(value.numer()) / &exact(value.denom())
+    };
+    let bits = precision.in_bits();
+    // ψ = mπ + x cancels where x nearly undoes mπ: add bits until the sum is as precise
+    // as asked (it is not zero: π is irrational, so mπ + x = 0 only for m = x = 0).
+    let mut working = bits + 64;
+    let offset_ball = loop {
+        let sum = rational(&multiple, working) * &Ball::pi(Precision::bits(working)) + &rational(offset, working);
+        if multiple == 0 || sum.relative_radius() < (-f64::from(bits)).exp2() || working > bits + (1 << 20) {
+            break Ball::from_i64(0, precision) + &sum;
+        }
+        working *= 2;
+    };
+    let estimate = offset_ball.to_f64_lossy();
+    if !reverses {
+        return Ok((offset_ball, false));
+    }
+    if estimate.abs() < MIRROR_BELOW {
+        return Ok((offset_ball, true));
+    }
+    let pi = Ball::pi(precision);
+    Ok((
+        if estimate > 0.0 {
+            offset_ball - &pi
+        } else {
+            offset_ball + &pi
+        },
+        false,
+    ))
+}
+
+/// One integral of W: ∫ from `start` to `end` of `integrand`, summed into `group`.
 struct CertifiedPiece<'a> {
-    segment: Segment,
+    /// The segment's (or the closed form's term's) position.
+    group: usize,
+    /// Its name, for messages.
+    label: &'static str,
     start: Ball,
     end: Ball,
     integrand: Box<dyn Fn(&Ball) -> Ball + 'a>,
@@ -267,7 +447,8 @@ fn certified_pieces<'a>(
                     }
                 };
                 pieces.push(CertifiedPiece {
-                    segment,
+                    group: segment_index(segment),
+                    label: segment.name(),
                     start: part.start,
                     end: part.end,
                     integrand,

@@ -143,11 +143,15 @@ impl ExactPhase {
         .to_f64()
     }
 
-    /// φ reduced once, exactly, modulo π: the nearest multiple nπ and the exact offset ψ from
-    /// it. Refused beyond [`MAX_PHASE`], or where ψ cancels more bits than a reduction may use
-    /// (never for a decimal written by hand). The offset is then evaluated at any precision
-    /// ([`ReducedPhase::offset_float`]) without reducing again.
-    pub fn reduce(&self) -> Result<ReducedPhase, PhaseError> {
+    /// φ = nπ + ψ with ψ = mπ + x ∈ [−π/2, π/2]: whether n is odd, and the exact m and x
+    /// (for arithmetic that encloses ψ from its exact parts); refused beyond [`MAX_PHASE`].
+    pub fn offset_parts(&self) -> Result<(bool, Rational, &Rational), PhaseError> {
+        let (reverses, multiple, _) = self.nearest_half_turns()?;
+        Ok((reverses, multiple, &self.offset))
+    }
+
+    /// n = round(φ/π): whether it is odd, m = k − n, and the bits of φ's integer part.
+    fn nearest_half_turns(&self) -> Result<(bool, Rational, u32), PhaseError> {
         let estimate = self.to_f64();
         if !estimate.is_finite() || estimate.abs() > MAX_PHASE {
             return Err(PhaseError::TooLarge { phi: estimate });
@@ -158,16 +162,29 @@ impl ExactPhase {
         let turns = Float::with_val(bits, &self.offset) / Float::with_val(bits, Constant::Pi)
             + Float::with_val(bits, &self.multiple);
         let half_turns = turns.round().to_integer().unwrap_or_default();
+        Ok((
+            half_turns.is_odd(),
+            self.multiple.clone() - Rational::from(half_turns),
+            exponent,
+        ))
+    }
+
+    /// φ reduced once, exactly, modulo π: the nearest multiple nπ and the exact offset ψ from
+    /// it. Refused beyond [`MAX_PHASE`], or where ψ cancels more bits than a reduction may use
+    /// (never for a decimal written by hand). The offset is then evaluated at any precision
+    /// ([`ReducedPhase::offset_float`]) without reducing again.
+    pub fn reduce(&self) -> Result<ReducedPhase, PhaseError> {
+        let (reverses, multiple, exponent) = self.nearest_half_turns()?;
         let mut reduced = ReducedPhase {
-            reverses: half_turns.is_odd(),
-            multiple: self.multiple.clone() - Rational::from(half_turns),
+            reverses,
+            multiple,
             offset: self.offset.clone(),
             exponent,
             stored: None,
         };
         if reduced.multiple != 0 {
             let stored = reduced.irrational_offset(STORED_BITS, MAX_REDUCTION_BITS);
-            reduced.stored = Some(stored.ok_or(PhaseError::TooLarge { phi: estimate })?);
+            reduced.stored = Some(stored.ok_or(PhaseError::TooLarge { phi: self.to_f64() })?);
         }
         Ok(reduced)
     }

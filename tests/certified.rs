@@ -5,10 +5,12 @@
 //! corners of the domain — and is narrow enough for the digits asked.
 
 use microslip::ball::{certain_digits, hull, watch, Ball};
-use microslip::certified::{certified_dissipation, enclose_dissipation, CertifiedError};
-use microslip::compliance::{parse_spec, Compliance};
+use microslip::certified::{certified_dissipation, cycle_phase, enclose_dissipation, CertifiedError};
+use microslip::compliance::{parse_spec, Compliance, Polynomial};
 use microslip::cycle::LoadCycle;
 use microslip::dissipation::{dissipation, Options, Segment};
+use microslip::exact::polynomial_dissipation;
+use microslip::phase::ExactPhase;
 use microslip::real::{Precision, Real};
 use rug::ops::Pow;
 use rug::Float;
@@ -379,4 +381,159 @@ fn invalid_cycles_are_refused_with_the_cycle_error() {
         certified_dissipation(ball_case(&gross), 20),
         Err(CertifiedError::Cycle(_))
     ));
+}
+
+#[test]
+fn near_gross_slip_is_certified() {
+    // 2e-8 from gross slip: the sinh-mapped slip peaks end exactly at their centres.
+    assert_certified(&case("1", "0.4", "0.8886569", "1.5", "1", PERSSON), 30);
+}
+
+/// The four-segment enclosure of W at a phase or amplitude near a degenerate cycle, which
+/// must overlap the closed form's enclosure at the degenerate cycle itself: W is
+/// continuous, and here differs from its limit by far less than the digits asked.
+fn assert_limit_overlaps(degenerate: &Case, near: &Case, digits: u32) {
+    let at = |case: &Case| {
+        certified_dissipation(ball_case(case), digits)
+            .unwrap_or_else(|e| panic!("{case:?}: {e}"))
+            .enclosure
+    };
+    let (closed, limit) = (at(degenerate), at(near));
+    assert!(closed.pieces > 0 && closed.segments.bc.is_exact() && closed.segments.ch.is_exact());
+    let (low, high) = closed.total.bounds(400);
+    let (near_low, near_high) = limit.total.bounds(400);
+    assert!(
+        low <= near_high && near_low <= high,
+        "{degenerate:?}: {:?} and {:?} are disjoint",
+        closed.total,
+        limit.total
+    );
+    assert!(closed.total.contains(&reference(degenerate)), "{degenerate:?}");
+}
+
+#[test]
+fn exactly_in_phase_is_enclosed_by_its_closed_form() {
+    for spec in [
+        PERSSON,
+        "power:c=1,beta=-0.5",
+        "hertz:r=1,estar=1",
+        "poly:p0=1,coeffs=1;-0.3;0.05",
+    ] {
+        let mut degenerate = case("1", "0.4", "0.5", "0", "1", spec);
+        degenerate.lambda = "1.5".into();
+        let mut near = degenerate.clone();
+        near.phi = "1e-60".into();
+        assert_limit_overlaps(&degenerate, &near, 30);
+    }
+}
+
+#[test]
+fn constant_normal_load_is_enclosed_by_its_closed_form() {
+    for spec in [PERSSON, "hertz:r=1,estar=1", "exp:a=1,c=2,d=0.1"] {
+        let degenerate = case("1", "0", "0.3", "0.4pi", "0.8", spec);
+        let mut near = degenerate.clone();
+        near.p1 = "1e-60".into();
+        assert_limit_overlaps(&degenerate, &near, 30);
+    }
+}
+
+#[test]
+fn in_phase_without_slip_is_exactly_zero() {
+    // Q1 ≤ fP1 exactly in phase, also at φ = π read exactly from its text.
+    let precision = Precision::bits(128);
+    for (q1, phi) in [("0.3", "0"), ("0.39", "pi"), ("0.1", "-3pi")] {
+        let phase = ExactPhase::parse(phi).unwrap();
+        let (cycle_phase, _) = cycle_phase(&phase, precision).unwrap();
+        let (mut cycle, compliance) = ball_case(&case("1", "0.4", q1, "0", "1", PERSSON))(precision).unwrap();
+        cycle.phase = cycle_phase;
+        let enclosure = enclose_dissipation(&cycle, compliance.as_ref(), 128).unwrap();
+        assert!(
+            enclosure.total.is_exact() && enclosure.total.contains(&Float::new(64)),
+            "{phi}"
+        );
+    }
+}
+
+#[test]
+fn phases_within_1e_minus_100_of_0_and_pi_keep_their_offset() {
+    let digits = 20;
+    for (phi, q1) in [
+        ("pi-1e-100", "0.2"),
+        ("1e-100", "0.5"),
+        ("pi+1e-100", "0.5"),
+        ("-2pi+1e-100", "0.5"),
+        ("3.141592653589793", "0.2"),
+    ] {
+        let phase = ExactPhase::parse(phi).unwrap();
+        let base = case("1", "0.4", q1, "0", "1", PERSSON);
+        let build = |precision: Precision| {
+            let (mut cycle, compliance) = ball_case(&base)(precision)?;
+            cycle.phase = cycle_phase(&phase, precision).map_err(|e| e.to_string())?.0;
+            Ok((cycle, compliance))
+        };
+        let certified = certified_dissipation(build, digits).unwrap_or_else(|e| panic!("{phi}: {e}"));
+        // The reference: the library's quadrature in MPFR, with the phase reduced exactly
+        // and enough bits for the cancellation near the multiple of π.
+        let bits = 1600;
+        let precision = Precision::bits(bits);
+        let reduced = phase.reduce(precision).unwrap();
+        let mut cycle = cycle_at::<Float>(&base, precision);
+        cycle.phase = reduced.cycle_phase::<Float>(precision).0;
+        let compliance = parse_spec::<Float>(PERSSON, precision).unwrap();
+        let options = Options::default().with_tolerance(Float::with_val(bits, Float::parse("1e-40").unwrap()));
+        let exact = dissipation(&cycle, compliance.as_ref(), &options).unwrap().total;
+        assert!(exact.is_normal(), "{phi}: W = {exact}");
+        // The reference is good to its 1e-40 tolerance: the enclosure must meet it there.
+        let slack = Float::with_val(bits, exact.abs_ref()) * Float::with_val(bits, Float::parse("1e-38").unwrap());
+        let (low, high) = certified.enclosure.total.bounds(bits);
+        assert!(
+            low - &slack <= exact && exact <= high + &slack,
+            "{phi}: {} outside {:?}",
+            exact.to_string_radix(10, Some(30)),
+            certified.enclosure.total
+        );
+        assert_eq!(certified.text, Real::to_scientific(&exact, digits as usize), "{phi}");
+    }
+}
+
+/// W for a polynomial v' exactly, segment by segment, by the trigonometric polynomial
+/// integrals of `exact::polynomial_dissipation` (no quadrature, no segment integrand of
+/// the four-segment code): each certified segment must hold it. scripts/mutants.sh runs
+/// this test on every mutation of a segment integrand, which must make it fail.
+#[test]
+fn segment_enclosures_hold_the_exact_polynomial_w() {
+    let mut draws = Draws(7);
+    let mut checked = 0;
+    while checked < 6 {
+        let coefficients: Vec<String> = (0..4).map(|_| draws.decimal(-2.0, 2.0)).collect();
+        let spec = format!("poly:p0=1.1,coeffs={}", coefficients.join(";"));
+        let p1 = draws.decimal(0.05, 0.9);
+        let mut case = case(
+            "1",
+            &p1,
+            &draws.decimal(0.01, 1.2),
+            &draws.decimal(0.05, 3.1),
+            "0.9",
+            &spec,
+        );
+        case.lambda = draws.decimal(1.0, 2.0);
+        if cycle_at::<f64>(&case, Precision::DOUBLE).validate().is_err() {
+            continue;
+        }
+        let bits = 300;
+        let (cycle, compliance) = ball_case(&case)(Precision::bits(bits)).unwrap();
+        let enclosure = enclose_dissipation(&cycle, compliance.as_ref(), bits).unwrap();
+        let precision = Precision::bits(2 * bits);
+        let polynomial = Polynomial {
+            reference: number("1.1", precision),
+            coefficients: coefficients.iter().map(|c| number(c, precision)).collect(),
+        };
+        let exact = polynomial_dissipation(&cycle_at::<Float>(&case, precision), &polynomial).unwrap();
+        for segment in Segment::ALL {
+            let ball = enclosure.segments.get(segment);
+            assert!(ball.contains(exact.get(segment)), "{case:?} {segment}: {ball:?}");
+            assert!(ball.relative_radius() < 1e-60, "{case:?} {segment}: {ball:?}");
+        }
+        checked += 1;
+    }
 }

@@ -19,8 +19,8 @@ use super::error::DissipationError;
 use super::options::Options;
 use super::segment::Segments;
 use super::slope::{knot_offsets, slope_at};
-use crate::compliance::Compliance;
-use crate::cycle::ValidCycle;
+use crate::compliance::{Compliance, SlopeChange};
+use crate::cycle::{LoadCycle, ValidCycle};
 use crate::quad::{integrate, Integrated, Piece};
 use crate::real::Real;
 
@@ -44,36 +44,58 @@ pub fn in_phase<R: Real>(
     let p1 = &cycle.normal_amplitude;
     let q1 = &cycle.tangential_amplitude;
     let zero = p1.int(0);
-    if q1.clone() <= f.clone() * p1 {
+    let Some(terms) = in_phase_terms(cycle) else {
         return assemble(cycle, Parts::nothing(&zero), Method::InPhase, options);
-    }
+    };
     let q = q1.clone() / f;
-    let (q_ref, p1_ref) = (&q, p1);
-    let terms = [
-        Piece::new("W1", -p1.clone(), p1.clone(), |x: &R| x.clone()),
-        Piece::new("W2", -p1.clone(), -q.clone(), move |x: &R| {
-            x.clone() * &x.int(2) + p1_ref + q_ref
-        }),
-        Piece::new("W4", p1.clone(), -q.clone(), move |x: &R| {
-            x.clone() * &x.int(2) - p1_ref + q_ref
-        }),
-    ];
-    let ([j1, j2, j4], integrated) = integrate_terms(cycle, compliance, options, terms)?;
-    let w1 = f.clone() * q1 / p1 * &j1;
-    let w2 = f.clone() * q1 * &zero.int(2) / &(q.clone() - p1) * &j2;
-    let w4 = f.clone() * q1 * &zero.int(2) / &(q.clone() + p1) * &j4;
+    let (j, integrated) = integrate_terms(cycle, compliance, options, terms)?;
     // Error: each piece's estimate carries at most the largest of the three prefactors.
     let prefactor = (f.clone() * q1 * &zero.int(2) / &(q.clone() - p1)).max_of(&(f.clone() * q1 / p1));
     let error = integrated.error.clone() * &prefactor;
-    // Unloading (EB) and loading (HE); BC and CH are empty.
-    let segments = Segments {
+    let parts = Parts::from_integrals(in_phase_segments(cycle, j), error, &integrated);
+    assemble(cycle, parts, Method::InPhase, options)
+}
+
+/// The in-phase closed form's three integrals W1, W2, W4 (without their prefactors) as
+/// weighted pieces in the offset x = P − P0, or None when nothing slips (Q1 ≤ fP1).
+pub(crate) fn in_phase_terms<'a, R: Real + 'a>(cycle: &LoadCycle<R>) -> Option<[Piece<'a, R>; 3]> {
+    let f = &cycle.friction;
+    let p1 = &cycle.normal_amplitude;
+    let q1 = &cycle.tangential_amplitude;
+    if q1.clone() <= f.clone() * p1 {
+        return None;
+    }
+    let q = q1.clone() / f;
+    let (q_two, p1_two) = (q.clone(), p1.clone());
+    let (q_four, p1_four) = (q.clone(), p1.clone());
+    Some([
+        Piece::new("W1", -p1.clone(), p1.clone(), |x: &R| x.clone()),
+        Piece::new("W2", -p1.clone(), -q.clone(), move |x: &R| {
+            x.clone() * &x.int(2) + &p1_two + &q_two
+        }),
+        Piece::new("W4", p1.clone(), -q.clone(), move |x: &R| {
+            x.clone() * &x.int(2) - &p1_four + &q_four
+        }),
+    ])
+}
+
+/// The in-phase segments per unit λ from the integrals of [`in_phase_terms`]: the
+/// unloading half (EB) is W1 + W4, the loading half (HE) W1 + W2; BC and CH are empty.
+pub(crate) fn in_phase_segments<R: Real>(cycle: &LoadCycle<R>, [j1, j2, j4]: [R; 3]) -> Segments<R> {
+    let f = &cycle.friction;
+    let p1 = &cycle.normal_amplitude;
+    let q1 = &cycle.tangential_amplitude;
+    let zero = p1.int(0);
+    let q = q1.clone() / f;
+    let w1 = f.clone() * q1 / p1 * &j1;
+    let w2 = f.clone() * q1 * &zero.int(2) / &(q.clone() - p1) * &j2;
+    let w4 = f.clone() * q1 * &zero.int(2) / &(q.clone() + p1) * &j4;
+    Segments {
         eb: w1.clone() + &w4,
         bc: zero.clone(),
         ch: zero,
         he: w1 + &w2,
-    };
-    let parts = Parts::from_integrals(segments, error, &integrated);
-    assemble(cycle, parts, Method::InPhase, options)
+    }
 }
 
 /// W at constant normal load (P1 = 0; the phase is irrelevant):
@@ -86,24 +108,36 @@ pub fn constant_normal_load<R: Real>(
 ) -> Result<Dissipation<R>, DissipationError> {
     check_case(cycle, compliance, options)?;
     let f = &cycle.friction;
-    let zero = f.int(0);
+    let ([loop_integral], integrated) =
+        integrate_terms(cycle, compliance, options, [constant_normal_load_term(cycle)])?;
+    let factor = f.clone() * f * &f.int(2);
+    let error = integrated.error.clone() * &factor * &f.int(2);
+    let parts = Parts::from_integrals(constant_normal_load_segments(cycle, loop_integral), error, &integrated);
+    assemble(cycle, parts, Method::ConstantNormalLoad, options)
+}
+
+/// The Masing loop's integral ∫_{−Q1/f}^{0} (−Q1/f − 2x) v'(P0 + x) dx as a weighted piece.
+pub(crate) fn constant_normal_load_term<'a, R: Real + 'a>(cycle: &LoadCycle<R>) -> Piece<'a, R> {
+    let f = &cycle.friction;
     let q = cycle.tangential_amplitude.clone() / f;
-    let q_ref = &q;
-    let term = Piece::new("Masing loop", -q.clone(), zero.clone(), move |x: &R| {
-        -(x.clone() * &x.int(2)) - q_ref
-    });
-    let ([loop_integral], integrated) = integrate_terms(cycle, compliance, options, [term])?;
-    let factor = f.clone() * f * &zero.int(2);
-    let half = loop_integral * &factor;
-    let segments = Segments {
+    let q_weight = q.clone();
+    Piece::new("Masing loop", -q, f.int(0), move |x: &R| {
+        -(x.clone() * &x.int(2)) - &q_weight
+    })
+}
+
+/// The segments per unit λ at constant normal load from the loop integral: EB and HE
+/// carry 2f² times it each.
+pub(crate) fn constant_normal_load_segments<R: Real>(cycle: &LoadCycle<R>, loop_integral: R) -> Segments<R> {
+    let f = &cycle.friction;
+    let zero = f.int(0);
+    let half = loop_integral * &(f.clone() * f * &zero.int(2));
+    Segments {
         eb: half.clone(),
         bc: zero.clone(),
-        ch: zero.clone(),
+        ch: zero,
         he: half,
-    };
-    let error = integrated.error.clone() * &factor * &f.int(2);
-    let parts = Parts::from_integrals(segments, error, &integrated);
-    assemble(cycle, parts, Method::ConstantNormalLoad, options)
+    }
 }
 
 /// ∫ w(x) v'(P0 + x) dx for each term, each split at the compliance's knots, integrated
@@ -122,23 +156,33 @@ fn integrate_terms<'a, R: Real, const N: usize>(
         options.remove_constant_slope,
     ));
     let knots = knot_offsets(compliance, &cycle.mean_normal_load);
-    // Each term's pieces, and which term each piece belongs to.
-    let mut pieces = Vec::new();
-    let mut term_of_piece = Vec::new();
-    for (term, weighted) in terms.into_iter().enumerate() {
-        let (slope, weight) = (Rc::clone(&slope), weighted.integrand);
-        let integrand: Weighted<'a, R> = Rc::new(move |x: &R| weight(x) * &slope(x));
-        for piece in split_at_knots(weighted.label, integrand, &weighted.start, &weighted.end, &knots) {
-            pieces.push(piece);
-            term_of_piece.push(term);
-        }
-    }
+    let (pieces, term_of_piece) = weighted_pieces(terms, slope, &knots);
     let integrated = integrate(&pieces, &options.settings(&zero))?;
     let mut sums = std::array::from_fn(|_| zero.clone());
     for (value, term) in integrated.values().zip(&term_of_piece) {
         sums[*term] += value;
     }
     Ok((sums, integrated))
+}
+
+/// Each term's weight times `slope` (of the offset x = P − P0), split at the `knots`; the
+/// pieces, and which term each belongs to.
+pub(crate) fn weighted_pieces<'a, R: Real, const N: usize>(
+    terms: [Piece<'a, R>; N],
+    slope: Rc<SlopeChange<'a, R>>,
+    knots: &[R],
+) -> (Vec<Piece<'a, R>>, Vec<usize>) {
+    let mut pieces = Vec::new();
+    let mut term_of_piece = Vec::new();
+    for (term, weighted) in terms.into_iter().enumerate() {
+        let (slope, weight) = (Rc::clone(&slope), weighted.integrand);
+        let integrand: Weighted<'a, R> = Rc::new(move |x: &R| weight(x) * &slope(x));
+        for piece in split_at_knots(weighted.label, integrand, &weighted.start, &weighted.end, knots) {
+            pieces.push(piece);
+            term_of_piece.push(term);
+        }
+    }
+    (pieces, term_of_piece)
 }
 
 /// A closed form's integrand in the offset x = P − P0, shared by the pieces it is split into.

@@ -31,7 +31,7 @@
 //! error estimate. [`Options`] and [`DissipationError`] have files of their own.
 
 mod assemble;
-mod closed_forms;
+pub(crate) mod closed_forms;
 mod conditioning;
 mod error;
 mod four_segment;
@@ -39,7 +39,7 @@ mod options;
 mod range;
 mod segment;
 mod segments;
-mod slope;
+pub(crate) mod slope;
 
 pub use assemble::{Dissipation, ExactZero, Method};
 pub use closed_forms::{constant_normal_load, in_phase, HertzConfiguration, MindlinDeresiewicz};

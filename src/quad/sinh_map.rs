@@ -69,20 +69,20 @@ impl<R: Real> SinhMap<R> {
     }
 }
 
-/// asinh x = sign(x)·ln(1 + |x| + x²/(1 + √(1 + x²))), accurate for small and large |x|
-/// (ln 2|x| where x² would overflow).
+/// asinh x = ln(1 + x + x²/(1 + √(1 + x²))) for x ≥ −1/2, accurate for small and
+/// large x (ln 2x where x² would overflow), and −asinh(−x) below. The form needs no sign
+/// of x near 0, where a mapped piece ends at its peak's centre (u = 0): on enclosures of
+/// an end and a centre that are the same number the sign of their difference is never
+/// decided, and asinh, odd and smooth, does not need it.
 pub fn asinh<R: Real>(x: &R) -> R {
-    let (a, one) = (x.abs(), x.int(1));
-    let square = a.square();
-    let value = if square.is_finite() {
-        (a.clone() + &(square.clone() / &((square + &one).sqrt() + &one))).ln_1p()
+    if *x < x.ratio(-1, 2) {
+        return -asinh(&-x.clone());
+    }
+    let (one, square) = (x.int(1), x.square());
+    if square.is_finite() {
+        (x.clone() + &(square.clone() / &((square + &one).sqrt() + &one))).ln_1p()
     } else {
-        a.ln() + &x.int(2).ln()
-    };
-    if *x < x.int(0) {
-        -value
-    } else {
-        value
+        x.ln() + &x.int(2).ln()
     }
 }
 
