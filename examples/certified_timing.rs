@@ -2,6 +2,7 @@
 //! [CASE …]` prints one line per case and digit count (15, 30, 50, 100) with the best of
 //! several runs, the digits and the working precision. CASE is a name below or
 //! `p0,p1,q1,phi,f,lambda,SPEC` (phi as a multiple of π when it ends in `pi`).
+//! `--digits N` times N digits only; `--once` runs each case once (for callgrind).
 //! benches/arb_side_by_side.py runs it beside Arb's own `acb.integral`.
 
 use std::time::{Duration, Instant};
@@ -53,8 +54,25 @@ fn case(fields: &str) -> impl Fn(Precision) -> Result<BallCase, String> + '_ {
     }
 }
 
+/// Removes `flag` from `args`, saying whether it was there.
+fn take_flag(args: &mut Vec<String>, flag: &str) -> bool {
+    let before = args.len();
+    args.retain(|a| a != flag);
+    args.len() != before
+}
+
 fn main() {
-    let asked: Vec<String> = std::env::args().skip(1).collect();
+    let mut asked: Vec<String> = std::env::args().skip(1).collect();
+    let once = take_flag(&mut asked, "--once");
+    let digit_counts: Vec<u32> = match asked.iter().position(|a| a == "--digits") {
+        Some(at) if at + 1 < asked.len() => {
+            let counts = asked[at + 1].split(',').filter_map(|d| d.parse().ok()).collect();
+            asked.drain(at..at + 2);
+            counts
+        }
+        _ => vec![15, 30, 50, 100],
+    };
+    let budget = Duration::from_millis(if once { 0 } else { 400 });
     let cases: Vec<(String, String)> = if asked.is_empty() {
         NAMED.iter().map(|(n, f)| (n.to_string(), f.to_string())).collect()
     } else {
@@ -68,11 +86,11 @@ fn main() {
     };
     for (name, fields) in &cases {
         let build = case(fields);
-        for digits in [15, 30, 50, 100] {
+        for &digits in &digit_counts {
             let mut best = Duration::MAX;
             let mut outcome = None;
             let started = Instant::now();
-            while started.elapsed() < Duration::from_millis(400) || outcome.is_none() {
+            while started.elapsed() < budget || outcome.is_none() {
                 let run = Instant::now();
                 let result = certified_dissipation(&build, digits);
                 best = best.min(run.elapsed());

@@ -13,11 +13,11 @@
 use std::ffi::{c_int, c_void};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
-use flint_sys::acb::{acb_indeterminate, acb_init, acb_set};
+use flint_sys::acb::{acb_get_mag, acb_indeterminate, acb_init, acb_set};
 use flint_sys::acb_calc::{acb_calc_integrate, acb_calc_integrate_opt_init, acb_calc_integrate_opt_struct};
 use flint_sys::acb_types::acb_struct;
 use flint_sys::arb_types::mag_struct;
-use flint_sys::mag::{mag_clear, mag_init};
+use flint_sys::mag::{mag_clear, mag_init, mag_mul_2exp_si};
 
 use crate::ball::{certain_digits, watch, with_analytic, Ball, Doubts};
 use crate::compliance::{Compliance, SlopeChange};
@@ -138,10 +138,9 @@ pub fn enclose_dissipation(
     if !doubts.none() {
         return Err(refuse(doubts));
     }
-    attempts.push(difference);
     let mut outcome = None;
-    for slope in &attempts {
-        let (pieces, doubts) = watch(|| certified_pieces(&integrands, slope.as_ref()));
+    for slope in attempts.iter().chain([&difference]) {
+        let (pieces, doubts) = watch(|| certified_pieces(&integrands, slope.as_ref(), difference.as_ref()));
         if !doubts.none() {
             return Err(refuse(doubts));
         }
@@ -176,8 +175,9 @@ fn integrate_pieces(
     zero: &Ball,
 ) -> Result<(Segments<Ball>, usize), CertifiedError> {
     let mut sums = Segments::from_fn(|_| zero.clone());
+    let tolerance = absolute_tolerance(pieces, goal_bits, zero);
     for piece in pieces {
-        let value = integrate_piece(piece, goal_bits, bits);
+        let value = integrate_piece(piece, goal_bits, &tolerance, bits);
         if !value.is_finite() {
             return Err(CertifiedError::NotFinite {
                 bits,
@@ -238,8 +238,16 @@ struct CertifiedPiece<'a> {
     segment: Segment,
     start: Ball,
     end: Ball,
-    integrand: Box<dyn Fn(&Ball) -> Ball + 'a>,
+    /// The integrand at real points, with the slope change formed without cancellation.
+    integrand: PieceIntegrand<'a>,
+    /// The same analytic function with the slope change as a plain difference of slopes,
+    /// for Arb's bound on complex balls: the precision of a bound does not matter, its
+    /// width does, and the algebraic forms of the slope change (a root raised to powers
+    /// and divided) widen far more on a complex ball than one `acb_pow` does.
+    bound: PieceIntegrand<'a>,
 }
+
+type PieceIntegrand<'a> = Box<dyn Fn(&Ball) -> Ball + 'a>;
 
 /// The pieces of the four segments, as [`SegmentIntegrands::pieces`] splits them, with
 /// the sinh map written through sinh and cosh so that it stays analytic on complex
@@ -247,35 +255,44 @@ struct CertifiedPiece<'a> {
 fn certified_pieces<'a>(
     integrands: &SegmentIntegrands<'a, Ball>,
     slope: &'a (dyn Fn(&Ball) -> Ball + Send + Sync + 'a),
+    bound_slope: &'a (dyn Fn(&Ball) -> Ball + Send + Sync + 'a),
 ) -> Vec<CertifiedPiece<'a>> {
     let mut pieces = Vec::new();
     for segment in Segment::ALL {
         let peaks = integrands.low_load_peaks(segment);
         for (start, end) in integrands.windows(segment) {
             for part in resolve_peaks(&start, &end, &peaks) {
-                let integrands = *integrands;
-                let integrand: Box<dyn Fn(&Ball) -> Ball + 'a> = match part.map {
-                    None => Box::new(move |s: &Ball| integrands.integrand_with(segment, s, slope)),
-                    Some(map) => {
-                        // The map's centre and width are its point and rate at u = 0.
-                        let (center, width) = map.point_and_rate(&part.start.int(0));
-                        Box::new(move |u: &Ball| {
-                            let (sinh, cosh) = u.sinh_cosh();
-                            let s = center.clone() + &(width.clone() * &sinh);
-                            integrands.integrand_with(segment, &s, slope) * &(width.clone() * &cosh)
-                        })
-                    }
-                };
+                // The map's centre and width are its point and rate at u = 0.
+                let map = part.map.map(|map| map.point_and_rate(&part.start.int(0)));
                 pieces.push(CertifiedPiece {
                     segment,
+                    integrand: piece_integrand(*integrands, segment, map.clone(), slope),
+                    bound: piece_integrand(*integrands, segment, map, bound_slope),
                     start: part.start,
                     end: part.end,
-                    integrand,
                 });
             }
         }
     }
     pieces
+}
+
+/// The integrand of `segment` with `slope`, in s, or in u through s = c + w·sinh u where
+/// `map` is (c, w).
+fn piece_integrand<'a>(
+    integrands: SegmentIntegrands<'a, Ball>,
+    segment: Segment,
+    map: Option<(Ball, Ball)>,
+    slope: &'a (dyn Fn(&Ball) -> Ball + Send + Sync + 'a),
+) -> PieceIntegrand<'a> {
+    match map {
+        None => Box::new(move |s: &Ball| integrands.integrand_with(segment, s, slope)),
+        Some((center, width)) => Box::new(move |u: &Ball| {
+            let (sinh, cosh) = u.sinh_cosh();
+            let s = center.clone() + &(width.clone() * &sinh);
+            integrands.integrand_with(segment, &s, slope) * &(width.clone() * &cosh)
+        }),
+    }
 }
 
 /// The integrand as Arb calls it: at `order` 0 an enclosure of f on the (real) ball,
@@ -293,30 +310,88 @@ unsafe extern "C" fn evaluate(
     let piece = unsafe { &*(param as *const CertifiedPiece<'_>) };
     // SAFETY: Arb passes an initialised ball.
     let x = unsafe { Ball::from_raw(input, prec.clamp(2, i64::from(u32::MAX)) as u32) };
-    let outcome = catch_unwind(AssertUnwindSafe(|| {
-        watch(|| with_analytic(order != 0, || (piece.integrand)(&x)))
-    }));
     // SAFETY: `out` is an initialised ball Arb owns.
     unsafe {
-        match outcome {
-            Ok((value, doubts)) if doubts.none() => acb_set(out, value.as_raw()),
-            _ => acb_indeterminate(out),
+        match piece.value(&x, order != 0) {
+            Some(value) => acb_set(out, value.as_raw()),
+            None => acb_indeterminate(out),
         }
     }
     0
 }
 
+impl CertifiedPiece<'_> {
+    /// The integrand on `x` (required to be analytic there where `analytic`), or `None`
+    /// where the evaluation met an undecided comparison or a branch cut, or panicked.
+    fn value(&self, x: &Ball, analytic: bool) -> Option<Ball> {
+        let integrand = if analytic { &self.bound } else { &self.integrand };
+        let outcome = catch_unwind(AssertUnwindSafe(|| watch(|| with_analytic(analytic, || integrand(x)))));
+        match outcome {
+            Ok((value, doubts)) if doubts.none() => Some(value),
+            _ => None,
+        }
+    }
+
+    /// A rough value of the integral (three-point Gauss–Legendre on the midpoints),
+    /// only to scale the tolerance Arb aims at; `None` where an evaluation fails.
+    fn rough_integral(&self) -> Option<Ball> {
+        let half = (self.end.clone() - &self.start) / &self.start.int(2);
+        let middle = self.start.clone() + &half;
+        let offset = half.clone() * &(self.start.int(3) / &self.start.int(5)).sqrt();
+        let mut sum = self.value(&middle, false)? * &self.start.int(8);
+        for node in [middle.clone() - &offset, middle + &offset] {
+            sum += self.value(&node, false)? * &self.start.int(5);
+        }
+        Some(sum * &half / &self.start.int(9))
+    }
+}
+
+/// An absolute error Arb may stop at on a subinterval: 2^−goal of a rough W, so that a
+/// piece whose integrand changes sign (its crude enclosure contains zero, and Arb's
+/// relative goal alone would ask for every bit) stops where W needs no more. Any
+/// tolerance keeps the enclosure rigorous; a rough W far too large only costs digits,
+/// which the next precision recovers. Zero (the relative goal alone) where no rough W
+/// is at hand.
+fn absolute_tolerance(pieces: &[CertifiedPiece<'_>], goal_bits: u32, zero: &Ball) -> Tolerance {
+    let rough = pieces
+        .iter()
+        .try_fold(zero.clone(), |sum, piece| Some(sum + &piece.rough_integral()?));
+    Tolerance::of(rough.filter(Ball::is_finite).as_ref(), goal_bits)
+}
+
+/// An Arb magnitude (an upper bound of |x| times 2^−goal, or zero).
+struct Tolerance(mag_struct);
+
+impl Tolerance {
+    fn of(scale: Option<&Ball>, goal_bits: u32) -> Tolerance {
+        let mut magnitude = mag_struct::default();
+        // SAFETY: initialised here, cleared on drop.
+        unsafe {
+            mag_init(&mut magnitude);
+            if let Some(scale) = scale {
+                acb_get_mag(&mut magnitude, scale.as_raw());
+                mag_mul_2exp_si(&mut magnitude, &magnitude, -i64::from(goal_bits));
+            }
+        }
+        Tolerance(magnitude)
+    }
+}
+
+impl Drop for Tolerance {
+    fn drop(&mut self) {
+        // SAFETY: initialised in `of`.
+        unsafe { mag_clear(&mut self.0) }
+    }
+}
+
 /// Arb's enclosure of one piece's integral at `bits` of working precision.
-fn integrate_piece(piece: &CertifiedPiece<'_>, goal_bits: u32, bits: u32) -> Ball {
+fn integrate_piece(piece: &CertifiedPiece<'_>, goal_bits: u32, tolerance: &Tolerance, bits: u32) -> Ball {
     let mut raw = acb_struct::default();
-    let mut tolerance = mag_struct::default();
     let mut options = acb_calc_integrate_opt_struct::default();
-    // SAFETY: `raw` and `tolerance` are initialised before use and `tolerance` cleared
-    // after; `raw` passes to the returned ball. A zero tolerance makes Arb aim at the
-    // relative goal only; `param` outlives the call.
+    // SAFETY: `raw` is initialised before use and passes to the returned ball; `param`
+    // outlives the call.
     unsafe {
         acb_init(&mut raw);
-        mag_init(&mut tolerance);
         acb_calc_integrate_opt_init(&mut options);
         // Arb's default, 1000·prec + prec², lets a piece that cannot be enclosed (an
         // integrand undecided near a point) run for minutes at high precision.
@@ -328,11 +403,10 @@ fn integrate_piece(piece: &CertifiedPiece<'_>, goal_bits: u32, bits: u32) -> Bal
             piece.start.as_raw(),
             piece.end.as_raw(),
             i64::from(goal_bits),
-            &tolerance,
+            &tolerance.0,
             &options,
             i64::from(bits),
         );
-        mag_clear(&mut tolerance);
     }
     Ball::wrap(raw, bits)
 }
