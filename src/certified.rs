@@ -199,13 +199,16 @@ where
     F: Fn(Precision) -> Result<(LoadCycle<Ball>, Box<dyn Compliance<Ball>>), String>,
 {
     let digits = digits.max(1);
-    // Guard bits for the rounding of the integrand and the sum of the pieces.
-    let mut bits = Precision::decimal_digits(digits).in_bits() + 24;
+    let first = first_precision(digits);
+    let mut bits = first;
     let mut last_error = None;
     while bits <= MAX_BITS {
         let (cycle, compliance) =
             case(Precision::bits(bits)).map_err(|reason| CertifiedError::Case { bits, reason })?;
-        match enclose_dissipation(&cycle, compliance.as_ref(), bits) {
+        // The digits' bits and 24 more, not the limb's spare bits; a retry adds what
+        // the precision gained.
+        let goal = (Precision::decimal_digits(digits).in_bits() + 24).min(first) + (bits - first);
+        match enclose_dissipation(&cycle, compliance.as_ref(), goal) {
             Ok(enclosure) => {
                 if let Some((text, reached)) = certain_digits(&enclosure.total, digits) {
                     if reached >= digits {
@@ -232,6 +235,17 @@ where
     }
     Err(last_error.expect("at least one precision is tried"))
 }
+
+/// The first working precision for `digits` digits: their bits and at least
+/// [`GUARD_BITS`] for the rounding of the integrand and the sum of the pieces, rounded
+/// up to whole 64-bit limbs (Arb works limb by limb, so the bits up to the next limb
+/// cost nothing, and 15 digits fit one limb).
+fn first_precision(digits: u32) -> u32 {
+    (Precision::decimal_digits(digits).in_bits() + GUARD_BITS).next_multiple_of(64)
+}
+
+/// The fewest guard bits of the first attempt.
+const GUARD_BITS: u32 = 12;
 
 /// One integral of W: ∫ from `start` to `end` of `integrand`, in `segment`.
 struct CertifiedPiece<'a> {
