@@ -13,6 +13,7 @@ Usage: benches/arb_side_by_side.py   (optional dependency: python-flint; not run
 Times are the best of repeated runs over 0.4 s, one thread.
 """
 
+import os
 import re
 import subprocess
 import sys
@@ -98,6 +99,7 @@ def main():
         m = re.match(r"(\S+) (\d+) ([\d.]+) ms  W = (\S+)", line)
         if m:
             ours[(m[1], int(m[2]))] = (float(m[3]), m[4])
+    print(f"(load average {os.getloadavg()[0]:.1f} at the start)")
     print("| case | digits | Arb acb.integral, certified | microslip certified | microslip / Arb |")
     print("|---|---|---|---|---|")
     for name, loads, slope in CASES:

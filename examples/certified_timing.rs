@@ -2,17 +2,21 @@
 //! [CASE …]` prints one line per case and digit count (15, 30, 50, 100) with the best of
 //! several runs, the digits and the working precision. CASE is a name below or
 //! `p0,p1,q1,phi,f,lambda,SPEC` (phi as a multiple of π when it ends in `pi`).
+//! `--digits N` times N digits only; `--once` runs each case once (for callgrind);
+//! `--f64` times the default f64 run and one Arb enclosure at 53 bits instead.
 //! benches/arb_side_by_side.py runs it beside Arb's own `acb.integral`.
 
 use std::time::{Duration, Instant};
 
+use microslip::ball::certain_digits;
 use microslip::ball::Ball;
-use microslip::certified::certified_dissipation;
+use microslip::certified::{certified_dissipation, enclose_dissipation};
 use microslip::compliance::{parse_spec, Compliance};
 use microslip::cycle::LoadCycle;
+use microslip::dissipation::{dissipation, Options};
 use microslip::real::{Precision, Real};
 
-type BallCase = (LoadCycle<Ball>, Box<dyn Compliance<Ball>>);
+type RealCase<R> = (LoadCycle<R>, Box<dyn Compliance<R>>);
 
 const NAMED: [(&str, &str); 6] = [
     ("persson", "1,0.4,0.5,0.4pi,1,1,persson:gamma=1,sigma=1"),
@@ -26,15 +30,15 @@ const NAMED: [(&str, &str); 6] = [
     ("near-gross-slip", "1,0.4,0.8886569,1.5,1,1,persson:gamma=1,sigma=1"),
 ];
 
-fn number(text: &str, precision: Precision) -> Result<Ball, String> {
-    let parse = |t: &str| Ball::parse_decimal(t, precision).map_err(|e| e.to_string());
+fn number<R: Real>(text: &str, precision: Precision) -> Result<R, String> {
+    let parse = |t: &str| R::parse_decimal(t, precision).map_err(|e| e.to_string());
     match text.strip_suffix("pi") {
-        Some(multiple) => Ok(parse(multiple)? * &Ball::pi(precision)),
+        Some(multiple) => Ok(parse(multiple)? * &R::pi(precision)),
         None => parse(text),
     }
 }
 
-fn case(fields: &str) -> impl Fn(Precision) -> Result<BallCase, String> + '_ {
+fn case<R: Real>(fields: &str) -> impl Fn(Precision) -> Result<RealCase<R>, String> + '_ {
     move |precision| {
         let parts: Vec<&str> = fields.splitn(7, ',').collect();
         let [p0, p1, q1, phi, f, lambda, spec] = parts[..] else {
@@ -43,7 +47,7 @@ fn case(fields: &str) -> impl Fn(Precision) -> Result<BallCase, String> + '_ {
         let cycle = LoadCycle {
             mean_normal_load: number(p0, precision)?,
             normal_amplitude: number(p1, precision)?,
-            mean_tangential_load: Ball::from_i64(0, precision),
+            mean_tangential_load: R::from_i64(0, precision),
             tangential_amplitude: number(q1, precision)?,
             phase: number(phi, precision)?,
             friction: number(f, precision)?,
@@ -53,8 +57,57 @@ fn case(fields: &str) -> impl Fn(Precision) -> Result<BallCase, String> + '_ {
     }
 }
 
+/// The best time of `run` over `budget` (at least one run), and its last outcome.
+fn best_of<T>(budget: Duration, mut run: impl FnMut() -> T) -> (Duration, T) {
+    let (mut best, started) = (Duration::MAX, Instant::now());
+    loop {
+        let start = Instant::now();
+        let outcome = run();
+        best = best.min(start.elapsed());
+        if started.elapsed() >= budget {
+            return (best, outcome);
+        }
+    }
+}
+
+/// The default f64 run beside one Arb enclosure at 53 bits (goal 53 bits), in µs.
+fn double_beside_arb(name: &str, fields: &str, budget: Duration) {
+    let (cycle, compliance) = case::<f64>(fields)(Precision::DOUBLE).expect("the case reads in f64");
+    let (f64_time, w) = best_of(budget, || dissipation(&cycle, compliance.as_ref(), &Options::default()));
+    let (cycle, compliance) = case::<Ball>(fields)(Precision::bits(53)).expect("the case reads as balls");
+    let (arb_time, enclosure) = best_of(budget, || enclose_dissipation(&cycle, compliance.as_ref(), 53));
+    let digits = enclosure
+        .ok()
+        .and_then(|e| certain_digits(&e.total, 17))
+        .map_or(0, |(_, n)| n);
+    println!(
+        "{name} f64 {:.1} µs  W = {:?}  |  Arb 53 bits {:.1} µs, {digits} certain digits",
+        f64_time.as_secs_f64() * 1e6,
+        w.map(|w| w.total),
+        arb_time.as_secs_f64() * 1e6
+    );
+}
+
+/// Removes `flag` from `args`, saying whether it was there.
+fn take_flag(args: &mut Vec<String>, flag: &str) -> bool {
+    let before = args.len();
+    args.retain(|a| a != flag);
+    args.len() != before
+}
+
 fn main() {
-    let asked: Vec<String> = std::env::args().skip(1).collect();
+    let mut asked: Vec<String> = std::env::args().skip(1).collect();
+    let once = take_flag(&mut asked, "--once");
+    let digit_counts: Vec<u32> = match asked.iter().position(|a| a == "--digits") {
+        Some(at) if at + 1 < asked.len() => {
+            let counts = asked[at + 1].split(',').filter_map(|d| d.parse().ok()).collect();
+            asked.drain(at..at + 2);
+            counts
+        }
+        _ => vec![15, 30, 50, 100],
+    };
+    let budget = Duration::from_millis(if once { 0 } else { 400 });
+    let double = take_flag(&mut asked, "--f64");
     let cases: Vec<(String, String)> = if asked.is_empty() {
         NAMED.iter().map(|(n, f)| (n.to_string(), f.to_string())).collect()
     } else {
@@ -67,12 +120,16 @@ fn main() {
             .collect()
     };
     for (name, fields) in &cases {
-        let build = case(fields);
-        for digits in [15, 30, 50, 100] {
+        if double {
+            double_beside_arb(name, fields, budget);
+            continue;
+        }
+        let build = case::<Ball>(fields);
+        for &digits in &digit_counts {
             let mut best = Duration::MAX;
             let mut outcome = None;
             let started = Instant::now();
-            while started.elapsed() < Duration::from_millis(400) || outcome.is_none() {
+            while started.elapsed() < budget || outcome.is_none() {
                 let run = Instant::now();
                 let result = certified_dissipation(&build, digits);
                 best = best.min(run.elapsed());

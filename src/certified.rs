@@ -13,11 +13,11 @@
 use std::ffi::{c_int, c_void};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 
-use flint_sys::acb::{acb_indeterminate, acb_init, acb_set};
+use flint_sys::acb::{acb_get_mag, acb_indeterminate, acb_init, acb_set};
 use flint_sys::acb_calc::{acb_calc_integrate, acb_calc_integrate_opt_init, acb_calc_integrate_opt_struct};
 use flint_sys::acb_types::acb_struct;
 use flint_sys::arb_types::mag_struct;
-use flint_sys::mag::{mag_clear, mag_init};
+use flint_sys::mag::{mag_clear, mag_init, mag_mul_2exp_si};
 
 use crate::ball::{certain_digits, watch, with_analytic, Ball, Doubts};
 use std::rc::Rc;
@@ -198,8 +198,11 @@ fn enclose_segments(
         remove_constant_slope: true,
     };
     let mut outcome = None;
-    for slope in &slopes(compliance, &geometry.mean_normal_load, bits)? {
-        let (pieces, doubts) = watch(|| certified_pieces(&integrands, slope.as_ref()));
+    let slopes = slopes(compliance, &geometry.mean_normal_load, bits)?;
+    // The plain difference of slopes (the last) bounds every attempt on complex balls.
+    let bound_slope = slopes.last().expect("the plain difference is always tried");
+    for slope in &slopes {
+        let (pieces, doubts) = watch(|| certified_pieces(&integrands, slope.as_ref(), bound_slope.as_ref()));
         if !doubts.none() {
             return Err(undecided(bits, doubts));
         }
@@ -256,6 +259,7 @@ fn enclose_terms<const N: usize>(
                 start: piece.start,
                 end: piece.end,
                 integrand: piece.integrand,
+                bound: None,
             })
             .collect();
         outcome = Some(integrate_pieces(&pieces, N, goal_bits, bits));
@@ -291,8 +295,10 @@ fn integrate_pieces(
     bits: u32,
 ) -> Result<(Vec<Ball>, usize), CertifiedError> {
     let mut sums = vec![Ball::from_i64(0, Precision::bits(bits)); groups];
+    let zero = Ball::from_i64(0, Precision::bits(bits));
+    let tolerance = absolute_tolerance(pieces, goal_bits, &zero);
     for piece in pieces {
-        let value = integrate_piece(piece, goal_bits, bits);
+        let value = integrate_piece(piece, goal_bits, &tolerance, bits);
         if !value.is_finite() {
             return Err(CertifiedError::NotFinite {
                 bits,
@@ -316,13 +322,19 @@ where
     let digits = digits.max(1);
     // Guard bits for the rounding of the integrand and the sum of the pieces, and the
     // bits that a phase near a multiple of π costs, known before the first attempt.
-    let guarded = Precision::decimal_digits(digits).in_bits() + 24;
-    let (cycle, _) = case(Precision::bits(guarded)).map_err(|reason| CertifiedError::Case { bits: guarded, reason })?;
-    let mut bits = guarded + phase_bits(&cycle);
+    let digit_bits = first_precision(digits);
+    let (cycle, _) =
+        case(Precision::bits(digit_bits)).map_err(|reason| CertifiedError::Case { bits: digit_bits, reason })?;
+    let extra = phase_bits(&cycle);
+    let first = (digit_bits + extra).next_multiple_of(64);
+    let mut bits = first;
     loop {
         let (cycle, compliance) =
             case(Precision::bits(bits)).map_err(|reason| CertifiedError::Case { bits, reason })?;
-        let error = match enclose_dissipation(&cycle, compliance.as_ref(), bits) {
+        // The digits' bits and 24 more (and the phase's), not the limb's spare bits; a
+        // retry adds what the precision gained.
+        let goal = (Precision::decimal_digits(digits).in_bits() + 24 + extra).min(first) + (bits - first);
+        let error = match enclose_dissipation(&cycle, compliance.as_ref(), goal) {
             Ok(enclosure) => {
                 let reached = certain_digits(&enclosure.total, digits);
                 if let Some((text, reached)) = reached.clone().filter(|(_, reached)| *reached >= digits) {
@@ -410,6 +422,17 @@ pub fn cycle_phase(phase: &ExactPhase, precision: Precision) -> Result<(Ball, bo
     ))
 }
 
+/// The first working precision for `digits` digits: their bits and at least
+/// [`GUARD_BITS`] for the rounding of the integrand and the sum of the pieces, rounded
+/// up to whole 64-bit limbs (Arb works limb by limb, so the bits up to the next limb
+/// cost nothing, and 15 digits fit one limb).
+fn first_precision(digits: u32) -> u32 {
+    (Precision::decimal_digits(digits).in_bits() + GUARD_BITS).next_multiple_of(64)
+}
+
+/// The fewest guard bits of the first attempt.
+const GUARD_BITS: u32 = 12;
+
 /// One integral of W: ∫ from `start` to `end` of `integrand`, summed into `group`.
 struct CertifiedPiece<'a> {
     /// The segment's (or the closed form's term's) position.
@@ -418,8 +441,17 @@ struct CertifiedPiece<'a> {
     label: &'static str,
     start: Ball,
     end: Ball,
-    integrand: Box<dyn Fn(&Ball) -> Ball + 'a>,
+    /// The integrand at real points, with the slope change formed without cancellation.
+    integrand: PieceIntegrand<'a>,
+    /// The same analytic function with the slope change as a plain difference of slopes,
+    /// for Arb's bound on complex balls: the precision of a bound does not matter, its
+    /// width does, and the algebraic forms of the slope change (a root raised to powers
+    /// and divided) widen far more on a complex ball than one `acb_pow` does.
+    /// `None` where the integrand serves for both.
+    bound: Option<PieceIntegrand<'a>>,
 }
+
+type PieceIntegrand<'a> = Box<dyn Fn(&Ball) -> Ball + 'a>;
 
 /// The pieces of the four segments, as [`SegmentIntegrands::pieces`] splits them, with
 /// the sinh map written through sinh and cosh so that it stays analytic on complex
@@ -427,36 +459,45 @@ struct CertifiedPiece<'a> {
 fn certified_pieces<'a>(
     integrands: &SegmentIntegrands<'a, Ball>,
     slope: &'a (dyn Fn(&Ball) -> Ball + Send + Sync + 'a),
+    bound_slope: &'a (dyn Fn(&Ball) -> Ball + Send + Sync + 'a),
 ) -> Vec<CertifiedPiece<'a>> {
     let mut pieces = Vec::new();
     for segment in Segment::ALL {
         let peaks = integrands.low_load_peaks(segment);
         for (start, end) in integrands.windows(segment) {
             for part in resolve_peaks(&start, &end, &peaks) {
-                let integrands = *integrands;
-                let integrand: Box<dyn Fn(&Ball) -> Ball + 'a> = match part.map {
-                    None => Box::new(move |s: &Ball| integrands.integrand_with(segment, s, slope)),
-                    Some(map) => {
-                        // The map's centre and width are its point and rate at u = 0.
-                        let (center, width) = map.point_and_rate(&part.start.int(0));
-                        Box::new(move |u: &Ball| {
-                            let (sinh, cosh) = u.sinh_cosh();
-                            let s = center.clone() + &(width.clone() * &sinh);
-                            integrands.integrand_with(segment, &s, slope) * &(width.clone() * &cosh)
-                        })
-                    }
-                };
+                // The map's centre and width are its point and rate at u = 0.
+                let map = part.map.map(|map| map.point_and_rate(&part.start.int(0)));
                 pieces.push(CertifiedPiece {
                     group: segment_index(segment),
                     label: segment.name(),
+                    integrand: piece_integrand(*integrands, segment, map.clone(), slope),
+                    bound: Some(piece_integrand(*integrands, segment, map, bound_slope)),
                     start: part.start,
                     end: part.end,
-                    integrand,
                 });
             }
         }
     }
     pieces
+}
+
+/// The integrand of `segment` with `slope`, in s, or in u through s = c + w·sinh u where
+/// `map` is (c, w).
+fn piece_integrand<'a>(
+    integrands: SegmentIntegrands<'a, Ball>,
+    segment: Segment,
+    map: Option<(Ball, Ball)>,
+    slope: &'a (dyn Fn(&Ball) -> Ball + Send + Sync + 'a),
+) -> PieceIntegrand<'a> {
+    match map {
+        None => Box::new(move |s: &Ball| integrands.integrand_with(segment, s, slope)),
+        Some((center, width)) => Box::new(move |u: &Ball| {
+            let (sinh, cosh) = u.sinh_cosh();
+            let s = center.clone() + &(width.clone() * &sinh);
+            integrands.integrand_with(segment, &s, slope) * &(width.clone() * &cosh)
+        }),
+    }
 }
 
 /// The integrand as Arb calls it: at `order` 0 an enclosure of f on the (real) ball,
@@ -474,30 +515,91 @@ unsafe extern "C" fn evaluate(
     let piece = unsafe { &*(param as *const CertifiedPiece<'_>) };
     // SAFETY: Arb passes an initialised ball.
     let x = unsafe { Ball::from_raw(input, prec.clamp(2, i64::from(u32::MAX)) as u32) };
-    let outcome = catch_unwind(AssertUnwindSafe(|| {
-        watch(|| with_analytic(order != 0, || (piece.integrand)(&x)))
-    }));
     // SAFETY: `out` is an initialised ball Arb owns.
     unsafe {
-        match outcome {
-            Ok((value, doubts)) if doubts.none() => acb_set(out, value.as_raw()),
-            _ => acb_indeterminate(out),
+        match piece.value(&x, order != 0) {
+            Some(value) => acb_set(out, value.as_raw()),
+            None => acb_indeterminate(out),
         }
     }
     0
 }
 
+impl CertifiedPiece<'_> {
+    /// The integrand on `x` (required to be analytic there where `analytic`), or `None`
+    /// where the evaluation met an undecided comparison or a branch cut, or panicked.
+    fn value(&self, x: &Ball, analytic: bool) -> Option<Ball> {
+        let integrand = match (&self.bound, analytic) {
+            (Some(bound), true) => bound,
+            _ => &self.integrand,
+        };
+        let outcome = catch_unwind(AssertUnwindSafe(|| watch(|| with_analytic(analytic, || integrand(x)))));
+        match outcome {
+            Ok((value, doubts)) if doubts.none() => Some(value),
+            _ => None,
+        }
+    }
+
+    /// A rough value of the integral (three-point Gauss–Legendre on the midpoints),
+    /// only to scale the tolerance Arb aims at; `None` where an evaluation fails.
+    fn rough_integral(&self) -> Option<Ball> {
+        let half = (self.end.clone() - &self.start) / &self.start.int(2);
+        let middle = self.start.clone() + &half;
+        let offset = half.clone() * &(self.start.int(3) / &self.start.int(5)).sqrt();
+        let mut sum = self.value(&middle, false)? * &self.start.int(8);
+        for node in [middle.clone() - &offset, middle + &offset] {
+            sum += self.value(&node, false)? * &self.start.int(5);
+        }
+        Some(sum * &half / &self.start.int(9))
+    }
+}
+
+/// An absolute error Arb may stop at on a subinterval: 2^−goal of a rough W, so that a
+/// piece whose integrand changes sign (its crude enclosure contains zero, and Arb's
+/// relative goal alone would ask for every bit) stops where W needs no more. Any
+/// tolerance keeps the enclosure rigorous; a rough W far too large only costs digits,
+/// which the next precision recovers. Zero (the relative goal alone) where no rough W
+/// is at hand.
+fn absolute_tolerance(pieces: &[CertifiedPiece<'_>], goal_bits: u32, zero: &Ball) -> Tolerance {
+    let rough = pieces
+        .iter()
+        .try_fold(zero.clone(), |sum, piece| Some(sum + &piece.rough_integral()?));
+    Tolerance::of(rough.filter(Ball::is_finite).as_ref(), goal_bits)
+}
+
+/// An Arb magnitude (an upper bound of |x| times 2^−goal, or zero).
+struct Tolerance(mag_struct);
+
+impl Tolerance {
+    fn of(scale: Option<&Ball>, goal_bits: u32) -> Tolerance {
+        let mut magnitude = mag_struct::default();
+        // SAFETY: initialised here, cleared on drop.
+        unsafe {
+            mag_init(&mut magnitude);
+            if let Some(scale) = scale {
+                acb_get_mag(&mut magnitude, scale.as_raw());
+                mag_mul_2exp_si(&mut magnitude, &magnitude, -i64::from(goal_bits));
+            }
+        }
+        Tolerance(magnitude)
+    }
+}
+
+impl Drop for Tolerance {
+    fn drop(&mut self) {
+        // SAFETY: initialised in `of`.
+        unsafe { mag_clear(&mut self.0) }
+    }
+}
+
 /// Arb's enclosure of one piece's integral at `bits` of working precision.
-fn integrate_piece(piece: &CertifiedPiece<'_>, goal_bits: u32, bits: u32) -> Ball {
+fn integrate_piece(piece: &CertifiedPiece<'_>, goal_bits: u32, tolerance: &Tolerance, bits: u32) -> Ball {
     let mut raw = acb_struct::default();
-    let mut tolerance = mag_struct::default();
     let mut options = acb_calc_integrate_opt_struct::default();
-    // SAFETY: `raw` and `tolerance` are initialised before use and `tolerance` cleared
-    // after; `raw` passes to the returned ball. A zero tolerance makes Arb aim at the
-    // relative goal only; `param` outlives the call.
+    // SAFETY: `raw` is initialised before use and passes to the returned ball; `param`
+    // outlives the call.
     unsafe {
         acb_init(&mut raw);
-        mag_init(&mut tolerance);
         acb_calc_integrate_opt_init(&mut options);
         // Arb's default, 1000·prec + prec², lets a piece that cannot be enclosed (an
         // integrand undecided near a point) run for minutes at high precision.
@@ -509,11 +611,10 @@ fn integrate_piece(piece: &CertifiedPiece<'_>, goal_bits: u32, bits: u32) -> Bal
             piece.start.as_raw(),
             piece.end.as_raw(),
             i64::from(goal_bits),
-            &tolerance,
+            &tolerance.0,
             &options,
             i64::from(bits),
         );
-        mag_clear(&mut tolerance);
     }
     Ball::wrap(raw, bits)
 }
