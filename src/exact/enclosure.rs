@@ -11,6 +11,8 @@
 //! answer; the series' geometry branches on the cycle's shape, so there a doubt raises
 //! the precision and, where it persists, no enclosure is given.
 
+use std::time::Instant;
+
 use rug::float::Constant;
 use rug::{Float, Integer, Rational};
 
@@ -39,6 +41,14 @@ pub enum EnclosureError<E> {
     Undecided {
         /// The last working precision tried.
         bits: u32,
+    },
+    /// The deadline passed before the enclosures were narrow enough.
+    #[error("the enclosure reached only {reached} of the {asked} digits asked within the time budget")]
+    OutOfTime {
+        /// The digits asked for.
+        asked: u32,
+        /// The fewest digits any value reached.
+        reached: u32,
     },
     /// The enclosures stayed wider than asked up to [`MAX_BITS`].
     #[error("the enclosure reached only {reached} of the {asked} digits asked at {bits} bits")]
@@ -91,10 +101,11 @@ fn digits_of(ball: &Ball, digits: u32) -> u32 {
 /// significant digits (the one printing rule). `decided` tells whether a computation's
 /// undecided comparisons make its balls untrustworthy (`false` for code whose every
 /// branch is an identity); a doubt that persists at two successive precisions is a tie
-/// no precision resolves.
+/// no precision resolves. The deadline is looked at before every attempt.
 pub fn enclose<E>(
     digits: u32,
     must_decide: bool,
+    deadline: Instant,
     compute: impl Fn(Precision) -> Result<Vec<Ball>, E>,
 ) -> Result<Enclosed, EnclosureError<E>> {
     let digits = digits.max(1);
@@ -106,6 +117,13 @@ pub fn enclose<E>(
         bits,
     };
     while bits <= MAX_BITS {
+        if Instant::now() >= deadline {
+            let reached = match last {
+                EnclosureError::TooWide { reached, .. } => reached,
+                _ => 0,
+            };
+            return Err(EnclosureError::OutOfTime { asked: digits, reached });
+        }
         let (values, doubts) = watch(|| compute(Precision::bits(bits)));
         let values = values.map_err(EnclosureError::Input)?;
         if must_decide && !doubts.none() {

@@ -61,6 +61,18 @@ pub enum ExactAnswerError {
     /// W failed.
     #[error(transparent)]
     Reference(#[from] ReferenceError),
+    /// The time budget ran out before the enclosures were narrow enough.
+    #[error("only {reached} of the {asked} digits of {quantity} asked were certified within {seconds:.1} s; ask for fewer digits or a larger --max-seconds")]
+    Unreached {
+        /// What was being enclosed (`I`, `Iₙ`, `W_N`).
+        quantity: &'static str,
+        /// The digits asked for.
+        asked: u32,
+        /// The fewest digits reached.
+        reached: u32,
+        /// The time spent.
+        seconds: f64,
+    },
     /// No enclosure, and the agreement path ran out of time.
     #[error("only {} of the {} digits needed ({} asked for and {GUARD_DIGITS} guard digits) agreed between two precisions within {:.1} s, and no rigorous enclosure could be had; ask for fewer digits", .0.digits_agreed, .0.digits_required(), .0.digits_requested, .0.seconds)]
     OutOfTime(OutOfBudget),
@@ -80,7 +92,10 @@ impl ExactAnswerError {
     /// Whether the input was fine and the run could not vouch for its result (exit 1),
     /// rather than refused (exit 2).
     pub fn is_failure(&self) -> bool {
-        matches!(self, ExactAnswerError::OutOfTime(_))
+        matches!(
+            self,
+            ExactAnswerError::OutOfTime(_) | ExactAnswerError::Unreached { .. }
+        )
     }
 }
 
@@ -146,18 +161,27 @@ type Enclosures = Option<(Vec<Interval>, u32)>;
 type Interval = (Float, Float);
 
 #[cfg(feature = "certified")]
-fn enclosures<E>(
+fn enclosures<E: Into<ExactAnswerError>>(
+    quantity: &'static str,
     asked: u32,
     must_decide: bool,
+    started: Instant,
+    budget: Duration,
     compute: impl Fn(Precision) -> Result<Vec<crate::ball::Ball>, E>,
-) -> Result<Enclosures, E> {
+) -> Result<Enclosures, ExactAnswerError> {
     use super::enclosure::{enclose, EnclosureError};
-    match enclose(asked, must_decide, compute) {
+    match enclose(asked, must_decide, started + budget, compute) {
         Ok(enclosed) => Ok(Some((
             (0..enclosed.values.len()).map(|i| enclosed.bounds(i, asked)).collect(),
             enclosed.bits,
         ))),
-        Err(EnclosureError::Input(error)) => Err(error),
+        Err(EnclosureError::Input(error)) => Err(error.into()),
+        Err(EnclosureError::OutOfTime { asked, reached }) => Err(ExactAnswerError::Unreached {
+            quantity,
+            asked,
+            reached,
+            seconds: started.elapsed().as_secs_f64(),
+        }),
         Err(EnclosureError::Undecided { .. } | EnclosureError::TooWide { .. }) => Ok(None),
     }
 }
@@ -243,6 +267,7 @@ pub fn coefficient_answer(
     digits: Option<u32>,
     budget: Duration,
 ) -> Result<Answer, ExactAnswerError> {
+    let started = Instant::now();
     let asked = digits_asked(digits)?;
     let (exact_rho, exact_phase) = checked_shape(rho, phase)?;
     if exact_rho <= 0 {
@@ -253,7 +278,7 @@ pub fn coefficient_answer(
         return Ok(exact(ExactReason::NothingSlips, digits));
     }
     #[cfg(feature = "certified")]
-    let enclosed = enclosures(asked, false, |precision| {
+    let enclosed = enclosures("I", asked, false, started, budget, |precision| {
         Ok::<_, PhaseError>(vec![super::enclosure::coefficient_ball(rho, &exact_phase, precision)?])
     })?;
     #[cfg(not(feature = "certified"))]
@@ -302,6 +327,7 @@ pub fn coefficient_answers(
     if order == 0 || order > MAX_ORDER {
         return Err(ExactAnswerError::OrderOutOfRange(order));
     }
+    let started = Instant::now();
     let asked = digits_asked(digits)?;
     let (exact_rho, exact_phase) = checked_shape(rho, phase)?;
     if exact_rho <= 0 {
@@ -314,7 +340,7 @@ pub fn coefficient_answers(
         return Ok(vec![exact(ExactReason::NothingSlips, digits); order + 1]);
     }
     #[cfg(feature = "certified")]
-    let enclosed = enclosures(asked, true, |precision| {
+    let enclosed = enclosures("Iₙ", asked, true, started, budget, |precision| {
         super::enclosure::coefficient_balls(rho, &exact_phase, order, precision)
     })?;
     #[cfg(not(feature = "certified"))]
@@ -449,14 +475,13 @@ pub fn partial_sum_answers(
             dissipation: w,
         });
     }
-    let remaining = budget.saturating_sub(started.elapsed());
     #[cfg(feature = "certified")]
-    let enclosed = enclosures(asked, true, |precision| {
+    let enclosed = enclosures("W_N", asked, true, started, budget, |precision| {
         super::enclosure::partial_sum_balls(case, order, precision)
     })?;
     #[cfg(not(feature = "certified"))]
     let enclosed = no_enclosure(case);
-    let (sums, intervals) = certified_or_agreed(asked, digits, started + remaining, enclosed, |precision| {
+    let (sums, intervals) = certified_or_agreed(asked, digits, started + budget, enclosed, |precision| {
         let Case { cycle, compliance } = case.read::<Float>(precision)?;
         Ok(partial_sums(&cycle, compliance.as_ref(), order)?)
     })
