@@ -283,7 +283,7 @@ pub fn coefficient_answer(
     })?;
     #[cfg(not(feature = "certified"))]
     let enclosed = no_enclosure(&exact_phase);
-    let (answers, _) = certified_or_agreed(asked, digits, Instant::now() + budget, enclosed, |precision| {
+    let (answers, _) = certified_or_agreed(asked, digits, started + budget, enclosed, |precision| {
         let (rho, phase) = read_shape::<Float>(rho, phase, precision)?;
         Ok(vec![closed_form_coefficient(&rho, &phase)])
     })?;
@@ -345,7 +345,7 @@ pub fn coefficient_answers(
     })?;
     #[cfg(not(feature = "certified"))]
     let enclosed = no_enclosure(&exact_phase);
-    let (computed, _) = certified_or_agreed(asked, digits, Instant::now() + budget, enclosed, |precision| {
+    let (computed, _) = certified_or_agreed(asked, digits, started + budget, enclosed, |precision| {
         let (rho, phase) = read_shape::<Float>(rho, phase, precision)?;
         coefficients_at(&rho, &phase, order)
     })?;
