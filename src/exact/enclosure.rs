@@ -262,3 +262,58 @@ pub fn partial_sum_balls(case: &CaseText, order: usize, precision: Precision) ->
     cycle.mean_tangential_load = if reverses { -q0 } else { q0 };
     Ok(partial_sums(&cycle, compliance.as_ref(), order)?)
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// ψ = φ − nπ in MPFR at 3000 bits, from the phase's value computed directly.
+    fn reference(k: i64, offset: &str) -> (Float, bool) {
+        let bits = 3000;
+        let pi = Float::with_val(bits, Constant::Pi);
+        let phi = pi.clone() * k + Float::with_val(bits, Float::parse(offset).unwrap());
+        let n = Float::with_val(bits, &phi / &pi).round();
+        let odd = n.to_integer().unwrap().is_odd();
+        (phi - n * pi, odd)
+    }
+
+    #[test]
+    fn the_phase_offset_ball_contains_the_exact_offset() {
+        let precision = Precision::bits(200);
+        for (text, k, offset) in [
+            ("pi-1e-100", 1, "-1e-100"),
+            ("3.141592653589793", 0, "3.141592653589793"),
+            ("1e50", 0, "1e50"),
+            ("-3pi+0.25", -3, "0.25"),
+            ("0.3", 0, "0.3"),
+        ] {
+            let (psi, reverses) = phase_offset(&ExactPhase::parse(text).unwrap(), precision).unwrap();
+            let (expected, odd) = reference(k, offset);
+            assert!(psi.contains(&expected), "{text}: {psi:?} vs {expected}");
+            assert_eq!(reverses, odd, "{text}");
+            assert!(relatively_within(&psi, 190), "{text}: {psi:?}");
+        }
+        // −π/2 exactly is read as +π/2 from the next multiple: the same cycle, mirrored.
+        let (psi, reverses) = phase_offset(&ExactPhase::parse("-pi/2").unwrap(), precision).unwrap();
+        let half_pi = Float::with_val(3000, Constant::Pi) / 2u32;
+        assert!(psi.contains(&half_pi) && reverses, "{psi:?}");
+    }
+
+    #[test]
+    fn a_doubt_that_persists_gives_no_enclosure() {
+        let deadline = Instant::now() + std::time::Duration::from_secs(60);
+        // A comparison of two overlapping balls at every precision: 1/3·3 against 1.
+        let tie = |precision: Precision| -> Result<Vec<Ball>, ()> {
+            let one = Ball::from_i64(1, precision);
+            let third = one.clone() / &one.int(3) * &one.int(3);
+            let _ = third < one;
+            Ok(vec![one])
+        };
+        assert!(matches!(
+            enclose(10, true, deadline, tie),
+            Err(EnclosureError::Undecided { .. })
+        ));
+        // Where the branches are identities the doubt does not matter.
+        assert_eq!(enclose(10, false, deadline, tie).unwrap().values.len(), 1);
+    }
+}
