@@ -130,6 +130,11 @@ impl ExactPhase {
         })
     }
 
+    /// The phase's two exact parts: φ = `multiple`·π + `offset` (radians).
+    pub fn parts(&self) -> (&Rational, &Rational) {
+        (&self.multiple, &self.offset)
+    }
+
     /// Whether the phase is exactly a multiple of π: an integer multiple and no offset.
     pub fn is_in_phase(&self) -> bool {
         self.offset == 0 && *self.multiple.denom() == 1

@@ -43,17 +43,18 @@ fn acceptance_index_one_is_the_small_amplitude_coefficient_and_index_zero_vanish
     assert_eq!(coefficients.len(), 5);
     let (code, stdout, _) = microslip(&["small-amplitude", "--rho", "2", "--phi", "0.5pi", "--digits", "35"]);
     assert_eq!(code, 0);
-    let i = stdout.trim().rsplit(' ').next().unwrap();
+    let i = stdout.split_whitespace().nth(7).unwrap();
+    assert!(stdout.contains("proven (rigorous enclosure at "), "{stdout}");
     assert_eq!(coefficients[1].as_str().unwrap(), i);
     assert_eq!(i, "-8.5865010335991924342112268879281007e0");
     let zero: f64 = coefficients[0].as_str().unwrap().parse().unwrap();
     assert_eq!(zero, 0.0);
-    // Without --digits: f64, each coefficient with the digits it keeps.
+    // Without --digits: 15 certified digits, and the f64 values beside them.
     let (code, stdout, stderr) = microslip(&["series", "--rho", "0.5", "--phi", "0.3pi", "--order", "30", "--json"]);
     assert_eq!(code, 0, "{stderr}");
     let value: serde_json::Value = serde_json::from_str(stdout.trim()).unwrap();
     assert_eq!(value["coefficients"].as_array().unwrap().len(), 31);
-    assert!(value["digits"].as_u64().unwrap() >= 13, "{stdout}");
+    assert_eq!(value["digits"], 15, "{stdout}");
     assert_eq!(value["coefficients_f64"].as_array().unwrap().len(), 31);
 }
 
@@ -94,12 +95,12 @@ fn case_partial_sums_approach_the_four_segment_w() {
     let (code, stdout, stderr) = microslip(&args);
     assert_eq!(code, 0, "{stderr}");
     let value: serde_json::Value = serde_json::from_str(stdout.trim()).unwrap();
-    let w: f64 = value["W"].as_str().unwrap().parse().unwrap();
+    let w: f64 = value["W"]["value"].as_str().unwrap().parse().unwrap();
     let sums: Vec<f64> = value["partial_sums"]
         .as_array()
         .unwrap()
         .iter()
-        .map(|s| s.as_str().unwrap().parse().unwrap())
+        .map(|s| s["value"].as_str().unwrap().parse().unwrap())
         .collect();
     assert_eq!(sums.len(), 12);
     // Geometric convergence: each few orders gain a factor ≈ L·P1/P0 ≈ 0.2 or better.
@@ -292,4 +293,191 @@ fn gate_row_7c_holds_for_forty_seeds() {
         worst = worst.max(report.worst_error);
     }
     println!("worst fitted order − (N + 3) over 800 cases: {worst:.4}");
+}
+
+/// The phase k·π + `offset` (radians) at `bits`, computed directly (not reduced).
+fn phase_at(k: i64, offset: &str, bits: u32) -> Float {
+    Float::with_val(bits, rug::float::Constant::Pi) * k + float(offset, bits)
+}
+
+/// The phase as the command line writes it.
+fn phase_text(k: i64, offset: &str) -> String {
+    match (k, offset.strip_prefix('-')) {
+        (0, _) => offset.to_string(),
+        (_, Some(magnitude)) => format!("{k}pi-{magnitude}"),
+        _ => format!("{k}pi+{offset}"),
+    }
+}
+
+/// Whether `reference` lies in an answer's enclosure and rounds to the digits printed.
+fn encloses(answer: &microslip::answer::Answer, reference: &Float) -> Result<(), String> {
+    let (lower, upper) = answer
+        .value
+        .enclosure
+        .as_ref()
+        .ok_or_else(|| format!("no enclosure: {answer:?}"))?;
+    let bits = reference.prec();
+    if !(float(lower, bits) <= *reference && *reference <= float(upper, bits)) {
+        return Err(format!("{reference} outside [{lower}, {upper}]"));
+    }
+    let printed = answer.value.decimal.to_string();
+    let digits = answer.value.digits();
+    if reference.to_scientific(digits as usize) != printed {
+        return Err(format!("{reference} does not round to {printed}"));
+    }
+    Ok(())
+}
+
+/// (ρ, k, offset) cases: random ordinary ones, φ within 1e−100 of 0 and of π (either side),
+/// ρ near 1, ρ → 0 and large ρ.
+fn shapes() -> Vec<(String, i64, String)> {
+    let mut state: u64 = 0x9e37_79b9_7f4a_7c15;
+    let mut next = |modulus: u64| {
+        state ^= state << 13;
+        state ^= state >> 7;
+        state ^= state << 17;
+        state % modulus
+    };
+    let mut cases: Vec<(String, i64, String)> = [
+        ("0.5", 1, "-1e-100"),
+        ("0.5", 0, "1e-100"),
+        ("2", 0, "-1e-100"),
+        ("3", 1, "1e-100"),
+        ("1.000001", 0, "1e-6"),
+        ("0.999999999999", 0, "0.7"),
+        ("1", 0, "1.5707963267948966"),
+        ("1e-12", 0, "0.9"),
+        ("1e-200", 1, "-0.3"),
+        ("1e12", 0, "2.5"),
+        ("1", 0, "3.141592653589793"),
+    ]
+    .iter()
+    .map(|(rho, k, offset)| (rho.to_string(), *k, offset.to_string()))
+    .collect();
+    for _ in 0..12 {
+        let rho = format!("{}.{}e{}", 1 + next(9), next(1000), next(7) as i64 - 3);
+        let k = next(5) as i64 - 2;
+        let offset = format!("{}0.{:03}", if next(2) == 1 { "-" } else { "" }, 1 + next(999));
+        cases.push((rho, k, offset));
+    }
+    cases
+}
+
+/// I(ρ, φ) and I₁ … I₄ as printed at 30 digits enclose the closed form and the exact
+/// trigonometric integrals evaluated in MPFR at 2000 bits on the phase kπ + x itself.
+#[test]
+fn coefficient_enclosures_contain_2000_bit_references() {
+    use microslip::exact::printing::{coefficient_answer, coefficient_answers};
+    let bits = 2000;
+    let budget = std::time::Duration::from_secs(60);
+    for (rho, k, offset) in shapes() {
+        let phi = phase_text(k, &offset);
+        let (rho_value, phi_value) = (float(&rho, bits), phase_at(k, &offset, bits));
+        let i = coefficient_answer(&rho, &phi, Some(30), budget).unwrap_or_else(|e| panic!("{rho}, {phi}: {e}"));
+        let reference = closed_form_coefficient(&rho_value, &phi_value);
+        encloses(&i, &reference).unwrap_or_else(|e| panic!("I({rho}, {phi}): {e}"));
+        assert_eq!(i.value.digits(), 30, "I({rho}, {phi})");
+        #[cfg(feature = "certified")]
+        assert!(i.provenance.is_proven(), "I({rho}, {phi}): {:?}", i.provenance);
+        let answers =
+            coefficient_answers(&rho, &phi, 4, Some(30), budget).unwrap_or_else(|e| panic!("{rho}, {phi}: {e}"));
+        let references = series_coefficients(&rho_value, &phi_value, 4).unwrap();
+        assert_eq!(answers[0].provenance.key(), "exact");
+        for n in 1..=4 {
+            encloses(&answers[n], &references[n].0).unwrap_or_else(|e| panic!("I_{n}({rho}, {phi}): {e}"));
+            #[cfg(feature = "certified")]
+            assert!(answers[n].provenance.is_proven(), "I_{n}({rho}, {phi})");
+        }
+    }
+}
+
+/// A case's partial sums at 30 digits enclose the sums evaluated in MPFR at 2000 bits, for
+/// several compliance families and phases near 0 and π.
+#[test]
+fn partial_sum_enclosures_contain_2000_bit_references() {
+    use microslip::exact::printing::partial_sum_answers;
+    use microslip::inputs::{Case, CaseText};
+    let budget = std::time::Duration::from_secs(60);
+    for (spec, phi) in [
+        ("persson:gamma=1,sigma=1", "0.4pi"),
+        ("power:c=1,beta=-0.5", "pi-1e-100"),
+        ("rational:a=1,b=0.5,c=1", "1e-100"),
+        ("exp:a=1,c=1,d=1", "3.141592653589793"),
+        ("persson:gamma=1,sigma=1+2*power:c=1,beta=-0.5", "2.9"),
+    ] {
+        let case = CaseText {
+            p0: "1".into(),
+            p1: "0.2".into(),
+            q0: "0.05".into(),
+            q1: "0.1".into(),
+            phi: phi.into(),
+            friction: "1".into(),
+            lambda: Some("1.3".into()),
+            nu: None,
+            compliance: spec.into(),
+        };
+        let answers = partial_sum_answers(&case, 4, Some(30), budget).unwrap_or_else(|e| panic!("{spec}, {phi}: {e}"));
+        let Case { cycle, compliance } = case.read::<Float>(Precision::bits(2000)).unwrap();
+        let references = partial_sums(&cycle, compliance.as_ref(), 4).unwrap();
+        for (n, (sum, reference)) in answers.sums.iter().zip(&references).enumerate() {
+            encloses(sum, reference).unwrap_or_else(|e| panic!("W_{} ({spec}, {phi}): {e}", n + 1));
+            #[cfg(feature = "certified")]
+            assert!(sum.provenance.is_proven(), "W_{} ({spec}, {phi})", n + 1);
+        }
+    }
+}
+
+/// Exact values print as exact, with no digits computed, at any --digits.
+#[test]
+fn exact_values_print_as_exact_at_500_digits() {
+    let exact_rows = |stdout: &str| stdout.lines().filter(|line| line.contains("(exact: ")).count();
+    let (code, stdout, stderr) = microslip(&["small-amplitude", "--rho", "1", "--phi", "pi", "--digits", "500"]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stdout.contains("= 0   (exact: in phase"), "{stdout}");
+    let (code, stdout, stderr) = microslip(&[
+        "series", "--rho", "0.3", "--phi", "-2pi", "--order", "5", "--digits", "500",
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    assert_eq!(exact_rows(&stdout), 6, "{stdout}");
+    for overrides in [
+        &[("--compliance", "const:c=0.8")][..],
+        &[("--q1", "0")][..],
+        &[("--phi", "pi"), ("--q1", "0.3")][..],
+    ] {
+        let mut args = common::case_args("series", overrides);
+        args.extend(["--order", "3", "--digits", "500"].map(String::from));
+        let (code, stdout, stderr) = microslip(&args);
+        assert_eq!(code, 0, "{stderr}");
+        assert!(
+            stdout.starts_with("W = 0 and W_N = 0 for N = 1 … 3 (exact: "),
+            "{stdout}"
+        );
+    }
+    // ρ > 1 in phase slips: its Iₙ are computed, never printed as exact. At ρ = 2, φ = π the
+    // closed form has σ₊ = 3, σ₋ = 1, S² − 4 = 12, Z = 25 − 165 + 239 − 3 = 96 and sin φ = 0,
+    // so I₁ = −12·96/(96·1·3) = −4 exactly.
+    let (code, stdout, _) = microslip(&["series", "--rho", "2", "--phi", "pi", "--order", "2", "--digits", "40"]);
+    assert_eq!(code, 0);
+    assert_eq!(exact_rows(&stdout), 1, "{stdout}");
+    assert!(
+        stdout.contains("I_1   = -4.000000000000000000000000000000000000000e0   (proven"),
+        "{stdout}"
+    );
+}
+
+/// The reproducers (small-amplitude's is in tests/exact_values.rs): proven digits,
+/// not zeros, not refused.
+#[test]
+fn the_reproducers_give_proven_digits() {
+    let (code, stdout, _) = microslip(&["series", "--rho", "0.5", "--phi", "pi-1e-100", "--order", "2", "--json"]);
+    assert_eq!(code, 0);
+    let json: serde_json::Value = serde_json::from_str(stdout.trim()).unwrap();
+    for n in 1..=2 {
+        let value = &json["values"][n];
+        let printed: f64 = value["value"].as_str().unwrap().parse().unwrap();
+        assert!(printed != 0.0 && value["provenance"] == "certified", "{stdout}");
+    }
+    let (code, stdout, stderr) = microslip(&["series", "--rho", "1.000001", "--phi", "1e-6", "--order", "2"]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stdout.contains("I_1   = -3.68157194030210e-6   (proven"), "{stdout}");
 }

@@ -110,30 +110,6 @@ pub struct SimulationReport<'a> {
     pub inputs: SimulationInputs<'a>,
 }
 
-/// The inputs of `microslip small-amplitude`.
-#[derive(Serialize)]
-pub struct ShapeInputs<'a> {
-    pub rho: &'a str,
-    pub phi: &'a str,
-}
-
-/// `microslip small-amplitude --json`.
-#[derive(Serialize)]
-pub struct CoefficientReport<'a> {
-    #[serde(rename = "I")]
-    pub i: String,
-    /// I in binary64 where it is representable there (null otherwise).
-    #[serde(rename = "I_f64")]
-    pub i_f64: Option<f64>,
-    pub digits: u32,
-    pub digits_verified: Option<u32>,
-    pub precision_bits: u32,
-    /// Why I is exactly the 0 printed, where it is.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub exact: Option<&'static str>,
-    pub inputs: ShapeInputs<'a>,
-}
-
 /// One row of `microslip verify --json`.
 #[derive(Serialize)]
 pub struct ClaimRow<'a> {
@@ -154,41 +130,6 @@ pub struct GateReport<'a> {
     pub quick: bool,
     pub seconds: f64,
     pub claims: Vec<ClaimRow<'a>>,
-}
-
-/// `microslip series --rho R --json`: the coefficients I₀ … I_N (index = n).
-#[derive(Serialize)]
-pub struct SeriesReport<'a> {
-    pub rho: &'a str,
-    pub phi: &'a str,
-    /// The fewest digits printed of any coefficient.
-    pub digits: u32,
-    pub coefficients: &'a [String],
-    /// The verified digits of each coefficient.
-    pub digits_verified: &'a [u32],
-    /// The coefficients in binary64 (f64 runs only).
-    pub coefficients_f64: Option<&'a [f64]>,
-    /// Why a coefficient is exactly the 0 printed (null where it is computed).
-    pub exact: &'a [Option<&'static str>],
-}
-
-/// `microslip series` with a case `--json`: the partial sums W_N beside the four-segment W.
-#[derive(Serialize)]
-pub struct PartialSumsReport<'a> {
-    #[serde(rename = "W")]
-    pub w: &'a str,
-    #[serde(rename = "W_digits_verified")]
-    pub w_digits_verified: u32,
-    pub partial_sums: &'a [String],
-    /// W_N − W for N = 1 … order: "0" where exact, "<B" below W's resolution B.
-    pub differences: &'a [String],
-    /// Why W_N − W is exactly 0 (null where it is computed).
-    pub differences_exact: &'a [Option<&'static str>],
-    /// Why W and every W_N are exactly 0, where they are.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub exact: Option<&'static str>,
-    pub digits_verified: u32,
-    pub inputs: &'a CaseText,
 }
 
 /// JSON lines: one object per record, each on a line of its own.

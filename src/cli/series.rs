@@ -2,17 +2,20 @@
 
 use clap::{ArgGroup, Args};
 
-use microslip::exact::printing::{printed_coefficients, printed_partial_sums, SumDifference};
+use serde::Serialize;
+
+use microslip::answer::{Answer, Provenance};
+use microslip::exact::printing::{coefficient_answers, partial_sum_answers, ExactAnswerError};
 use microslip::inputs::CaseText;
 
-use super::case::Answer;
-use super::json::{PartialSumsReport, SeriesReport};
+use super::case::Answer as AnswerArgs;
 use super::report::Failure;
 
 /// `--rho` for the coefficients Iₙ alone, or a case (`--p0 … --compliance`) for its partial sums.
 #[derive(Args)]
 #[command(mut_arg("digits", |digits| digits.help(
-    "Verified significant digits (1–1000); without it, f64 (Iₙ) or 15 verified digits (a case)"
+    "Certified significant digits (1–1000), from rigorous enclosures; without it, 15 certified digits (and \
+     the f64 values of Iₙ beside them in JSON)"
 )))]
 #[command(group(ArgGroup::new("source").args(["rho", "p0"]).required(true)))]
 #[command(group(ArgGroup::new("ratio").args(["lambda", "nu"])))]
@@ -52,7 +55,97 @@ pub struct SeriesArgs {
     #[arg(long, allow_hyphen_values = true, requires = "p0")]
     pub compliance: Option<String>,
     #[command(flatten)]
-    pub answer: Answer,
+    pub answer: AnswerArgs,
+}
+
+/// One value of an answer in JSON: its digits, its interval and what vouches for it.
+#[derive(Serialize)]
+pub struct ValueReport {
+    /// The value by the one printing rule (`"0"` for an exact zero).
+    pub value: String,
+    /// The significant digits printed.
+    pub digits: u32,
+    /// The digits proven (by reason or by a rigorous enclosure); 0 where not proven.
+    pub digits_certified: u32,
+    /// Outward-rounded decimal ends of an interval that contains the value (null where
+    /// the value is exact).
+    pub enclosure: Option<(String, String)>,
+    /// `exact`, `certified`, `agreement` or `estimate`.
+    pub provenance: &'static str,
+    /// Why the value is exact, where it is.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub exact: Option<&'static str>,
+    /// The binary64 value computed beside the digits, where there is one.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub f64: Option<f64>,
+}
+
+impl ValueReport {
+    pub fn of(answer: &Answer) -> Self {
+        ValueReport {
+            value: answer.value.decimal.to_string(),
+            digits: answer.digits(),
+            digits_certified: answer.digits_certified(),
+            enclosure: answer.value.enclosure.clone(),
+            provenance: answer.provenance.key(),
+            exact: exact_reason(answer),
+            f64: answer.value.binary64,
+        }
+    }
+}
+
+/// Why an answer is exact, where it is.
+pub fn exact_reason(answer: &Answer) -> Option<&'static str> {
+    match &answer.provenance {
+        Provenance::Exact(reason) => Some(reason.reason()),
+        _ => None,
+    }
+}
+
+/// `value   (provenance)`, as a line of text shows an answer.
+pub fn shown(answer: &Answer) -> String {
+    format!("{}   ({})", answer.value.decimal, answer.provenance)
+}
+
+/// A failure of an answer: refused input (exit 2), or a result that could not be
+/// vouched for (exit 1).
+pub fn failure(error: ExactAnswerError) -> Failure {
+    if error.is_failure() {
+        Failure::failed(error.to_string())
+    } else {
+        Failure::refused(error.to_string())
+    }
+}
+
+/// `microslip series --rho … --json`.
+#[derive(Serialize)]
+struct SeriesReport<'a> {
+    rho: &'a str,
+    phi: &'a str,
+    /// The fewest digits printed of any coefficient.
+    digits: u32,
+    /// I₀ … I_N as printed.
+    coefficients: Vec<String>,
+    /// I₀ … I_N with their intervals and provenance.
+    values: Vec<ValueReport>,
+    /// I₀ … I_N in binary64 (runs without --digits).
+    coefficients_f64: Option<Vec<f64>>,
+    /// Why a coefficient is exactly the 0 printed (null where it is computed).
+    exact: Vec<Option<&'static str>>,
+}
+
+/// `microslip series` with a case `--json`: the partial sums W_N beside W.
+#[derive(Serialize)]
+struct PartialSumsReport<'a> {
+    #[serde(rename = "W")]
+    w: ValueReport,
+    partial_sums: Vec<ValueReport>,
+    /// W_N − W for N = 1 … order.
+    differences: Vec<ValueReport>,
+    /// Why W and every W_N are exactly 0, where they are.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    exact: Option<&'static str>,
+    inputs: &'a CaseText,
 }
 
 pub fn run(args: &SeriesArgs) -> Result<String, Failure> {
@@ -62,29 +155,30 @@ pub fn run(args: &SeriesArgs) -> Result<String, Failure> {
             .rho
             .as_deref()
             .ok_or_else(|| Failure::refused("give --rho, or a case with --p0 … --compliance"))?;
-        let printed = printed_coefficients(rho, &args.phi, args.order, args.answer.digits, budget)?;
-        let digits = printed.digits.iter().copied().min().unwrap_or(0);
+        let answers = coefficient_answers(rho, &args.phi, args.order, args.answer.digits, budget).map_err(failure)?;
         if args.answer.json {
+            let in_f64: Option<Vec<f64>> = answers
+                .iter()
+                .map(|answer| match answer.provenance {
+                    Provenance::Exact(_) => Some(0.0),
+                    _ => answer.value.binary64,
+                })
+                .collect();
             let report = SeriesReport {
                 rho,
                 phi: &args.phi,
-                digits,
-                coefficients: &printed.values,
-                digits_verified: &printed.digits,
-                coefficients_f64: (!printed.binary64.is_empty()).then_some(&printed.binary64),
-                exact: &printed.exact,
+                digits: answers.iter().map(Answer::digits).min().unwrap_or(0),
+                coefficients: answers.iter().map(|a| a.value.decimal.to_string()).collect(),
+                values: answers.iter().map(ValueReport::of).collect(),
+                coefficients_f64: in_f64.filter(|_| args.answer.digits.is_none()),
+                exact: answers.iter().map(exact_reason).collect(),
             };
             return Ok(serde_json::to_string(&report)?);
         }
-        let rows: Vec<String> = printed
-            .values
+        let rows: Vec<String> = answers
             .iter()
             .enumerate()
-            .zip(&printed.exact)
-            .map(|((n, v), exact)| match exact {
-                Some(reason) => format!("I_{n:<3} = {v}   (exact: {reason})"),
-                None => format!("I_{n:<3} = {v}"),
-            })
+            .map(|(n, answer)| format!("I_{n:<3} = {}", shown(answer)))
             .collect();
         return Ok(format!(
             "Iₙ(ρ = {rho}, φ = {}), n = 0 … {}:\n{}",
@@ -105,59 +199,49 @@ pub fn run(args: &SeriesArgs) -> Result<String, Failure> {
         nu: args.nu.clone(),
         compliance: args.compliance.clone().ok_or_else(missing)?,
     };
-    let printed = printed_partial_sums(&case, args.order, args.answer.digits, budget)?;
-    let differences: Vec<String> = printed
-        .differences
-        .iter()
-        .map(|difference| match difference {
-            SumDifference::Exact(_) => "0".to_string(),
-            SumDifference::Unresolved(bound) => format!("<{bound}"),
-            SumDifference::Value(value) => value.clone(),
-        })
-        .collect();
-    let differences_exact: Vec<Option<&'static str>> = printed
-        .differences
-        .iter()
-        .map(|difference| match difference {
-            SumDifference::Exact(reason) => Some(*reason),
-            _ => None,
-        })
-        .collect();
+    let sums = partial_sum_answers(&case, args.order, args.answer.digits, budget).map_err(failure)?;
+    let all_exact = exact_reason(&sums.dissipation);
     if args.answer.json {
         let report = PartialSumsReport {
-            w: &printed.dissipation,
-            w_digits_verified: printed.dissipation_digits,
-            partial_sums: &printed.sums,
-            differences: &differences,
-            differences_exact: &differences_exact,
-            exact: printed.exact,
-            digits_verified: printed.digits,
+            w: ValueReport::of(&sums.dissipation),
+            partial_sums: sums.sums.iter().map(ValueReport::of).collect(),
+            differences: sums.differences.iter().map(ValueReport::of).collect(),
+            exact: all_exact,
             inputs: &case,
         };
         return Ok(serde_json::to_string(&report)?);
     }
-    if let Some(reason) = printed.exact {
+    if let Some(reason) = all_exact {
         return Ok(format!(
             "W = 0 and W_N = 0 for N = 1 … {} (exact: {reason})",
             args.order
         ));
     }
-    let width = printed.digits as usize + 8;
-    let mut out = format!(
-        "W (four-segment) = {}\n   N  {:<width$}  W_N − W",
-        printed.dissipation, "W_N (series to order N)"
-    );
-    for (n, ((sum, difference), exact)) in printed
+    let width = sums
         .sums
         .iter()
-        .zip(&differences)
-        .zip(&differences_exact)
-        .enumerate()
-    {
-        out.push_str(&format!("\n{:>4}  {sum:<width$}  {difference}", n + 1));
-        if let Some(reason) = exact {
-            out.push_str(&format!(" (exact: {reason})"));
-        }
+        .map(|sum| sum.value.decimal.to_string().chars().count())
+        .max()
+        .unwrap_or(0)
+        .max(24);
+    let mut out = format!(
+        "W (four-segment) = {}\n   N  {:<width$}  W_N − W",
+        shown(&sums.dissipation),
+        "W_N (series to order N)"
+    );
+    for (n, (sum, difference)) in sums.sums.iter().zip(&sums.differences).enumerate() {
+        out.push_str(&format!(
+            "\n{:>4}  {:<width$}  {}",
+            n + 1,
+            sum.value.decimal.to_string(),
+            shown(difference)
+        ));
     }
+    let provenance = sums
+        .sums
+        .first()
+        .map(|sum| sum.provenance.to_string())
+        .unwrap_or_default();
+    out.push_str(&format!("\nW_N: {provenance}"));
     Ok(out)
 }

@@ -1,18 +1,18 @@
 //! `microslip small-amplitude`: the coefficient I(ρ, φ).
 
 use clap::Args;
+use serde::Serialize;
 
-use microslip::verify::small_amplitude;
+use microslip::exact::printing::coefficient_answer;
 
 use super::case::Answer;
-use super::json::{CoefficientReport, ShapeInputs};
 use super::report::Failure;
+use super::series::{failure, shown, ValueReport};
 
 #[derive(Args)]
 #[command(mut_arg("digits", |digits| digits.help(
-    "Significant digits, verified by a second run at higher precision (1–1000); without it, f64 with \
-     the digits it shares with 15 verified MPFR digits (those MPFR digits where f64 keeps fewer than \
-     12 or I lies outside its range)"
+    "Certified significant digits (1–1000), from a rigorous enclosure of the closed form; without it, \
+     15 certified digits (and I's f64 value beside them in JSON)"
 )))]
 pub struct SmallAmplitudeArgs {
     /// ρ = Q1/(f P1) (> 0).
@@ -26,16 +26,50 @@ pub struct SmallAmplitudeArgs {
     pub answer: Answer,
 }
 
+/// ρ and φ as given.
+#[derive(Serialize)]
+struct ShapeInputs<'a> {
+    rho: &'a str,
+    phi: &'a str,
+}
+
+/// `microslip small-amplitude --json`.
+#[derive(Serialize)]
+struct CoefficientReport<'a> {
+    #[serde(rename = "I")]
+    i: String,
+    /// I in binary64 where it is representable there (null otherwise).
+    #[serde(rename = "I_f64")]
+    i_f64: Option<f64>,
+    digits: u32,
+    /// The digits printed, each vouched for (proven unless `provenance` says `agreement`).
+    digits_verified: u32,
+    digits_certified: u32,
+    enclosure: Option<(String, String)>,
+    provenance: &'static str,
+    /// The working precision of the enclosure (null for an exact value).
+    precision_bits: Option<u32>,
+    /// Why I is exactly the 0 printed, where it is.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    exact: Option<&'static str>,
+    inputs: ShapeInputs<'a>,
+}
+
 pub fn run(args: &SmallAmplitudeArgs) -> Result<String, Failure> {
-    let printed = small_amplitude::evaluate(&args.rho, &args.phi, args.answer.digits, args.answer.max_seconds)?;
+    let answer =
+        coefficient_answer(&args.rho, &args.phi, args.answer.digits, args.answer.max_seconds).map_err(failure)?;
     if args.answer.json {
+        let value = ValueReport::of(&answer);
         let report = CoefficientReport {
-            i: printed.value.clone(),
-            i_f64: printed.binary64,
-            digits: printed.digits,
-            digits_verified: Some(printed.digits),
-            precision_bits: printed.precision_bits,
-            exact: printed.exact,
+            i: value.value,
+            i_f64: value.f64,
+            digits: value.digits,
+            digits_verified: value.digits,
+            digits_certified: value.digits_certified,
+            enclosure: value.enclosure,
+            provenance: value.provenance,
+            precision_bits: answer.provenance.precision_bits(),
+            exact: value.exact,
             inputs: ShapeInputs {
                 rho: &args.rho,
                 phi: &args.phi,
@@ -43,12 +77,5 @@ pub fn run(args: &SmallAmplitudeArgs) -> Result<String, Failure> {
         };
         return Ok(serde_json::to_string(&report)?);
     }
-    let exact = printed
-        .exact
-        .map(|reason| format!("   (exact: {reason})"))
-        .unwrap_or_default();
-    Ok(format!(
-        "I(ρ = {}, φ = {}) = {}{exact}",
-        args.rho, args.phi, printed.value
-    ))
+    Ok(format!("I(ρ = {}, φ = {}) = {}", args.rho, args.phi, shown(&answer)))
 }

@@ -4,6 +4,8 @@
 //! proofs/small-amplitude-coefficient.md).
 
 pub mod coefficient;
+#[cfg(feature = "certified")]
+pub mod enclosure;
 pub mod polynomial_w;
 pub mod printing;
 pub mod series;

@@ -1,26 +1,41 @@
-//! The series as printed: Iₙ(ρ, φ) and the partial sums of a case, each digit verified.
+//! I(ρ, φ), the series coefficients Iₙ and a case's partial sums W_N beside W, as
+//! [`Answer`]s: exact by reason where the input decides the value (I₀ ≡ 0, nothing slips,
+//! the series ends, W's zeros), otherwise rigorous enclosures of the exact input's value
+//! ([`super::enclosure`]) printed by the one rule, and — only where no enclosure can be
+//! had (feature `certified` off, or a comparison no precision decides) — two precisions'
+//! agreement, labelled as such.
 
 use std::time::{Duration, Instant};
 
-use rug::Float;
+use rug::ops::Pow;
+use rug::{Float, Rational};
 
+use super::coefficient::closed_form_coefficient;
 use super::series::{partial_sums, series_coefficients, SeriesError};
+use crate::answer::{Answer, ExactReason, Provenance, Value};
 use crate::compliance::slope_polynomial_degree;
+use crate::dissipation::Method;
 use crate::inputs::{parse_phase, Case, CaseText, InputError};
 use crate::phase::{decimal, ExactPhase, PhaseError};
 use crate::real::{ParseRealError, Precision, Real};
 use crate::reference::{printable_dissipation, ReferenceError};
-use crate::verified::{f64_digits_against, verified_values, OutOfBudget, VerifyError, F64_MOST_DIGITS, MAX_DIGITS};
+use crate::verified::{
+    agreement_radius, verified_values, Decimal, OutOfBudget, VerifyError, F64_MOST_DIGITS, GUARD_DIGITS, MAX_DIGITS,
+};
 
 /// The highest order the series is computed to.
 pub const MAX_ORDER: usize = 200;
 
-/// Why the series could not be printed.
+/// Significant digits of W_N − W (a difference, read for its size).
+const DIFFERENCE_DIGITS: u32 = 3;
+
+/// Why I, the Iₙ or the partial sums could not be given.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum PrintedSeriesError {
+pub enum ExactAnswerError {
     /// ρ is not a number.
     #[error("{quantity} is not a number: {source}")]
     Number {
+        /// Which input.
         quantity: &'static str,
         #[source]
         source: ParseRealError,
@@ -28,6 +43,9 @@ pub enum PrintedSeriesError {
     /// φ is not a phase.
     #[error(transparent)]
     Phase(#[from] PhaseError),
+    /// ρ ≤ 0 (the small-amplitude coefficient).
+    #[error("ρ must be a positive number (and below MPFR's range, about 1e323228496), got {0}")]
+    NonPositiveRatio(String),
     /// The digits asked for are out of range.
     #[error("the digits asked for must be between 1 and {MAX_DIGITS}, got {0}")]
     DigitsOutOfRange(u32),
@@ -40,225 +58,457 @@ pub enum PrintedSeriesError {
     /// The case does not read.
     #[error(transparent)]
     Input(#[from] InputError),
-    /// W by quadrature failed.
+    /// W failed.
     #[error(transparent)]
     Reference(#[from] ReferenceError),
-    /// The time budget ran out.
-    #[error("only {} of the {} digits needed agreed between two precisions within the time budget; ask for fewer digits or a lower order", .0.digits_agreed, .0.digits_required())]
+    /// The time budget ran out before the enclosures were narrow enough.
+    #[error("only {reached} of the {asked} digits of {quantity} asked were certified within {seconds:.1} s; ask for fewer digits or a larger --max-seconds")]
+    Unreached {
+        /// What was being enclosed (`I`, `Iₙ`, `W_N`).
+        quantity: &'static str,
+        /// The digits asked for.
+        asked: u32,
+        /// The fewest digits reached.
+        reached: u32,
+        /// The time spent.
+        seconds: f64,
+    },
+    /// No enclosure, and the agreement path ran out of time.
+    #[error("only {} of the {} digits needed ({} asked for and {GUARD_DIGITS} guard digits) agreed between two precisions within {:.1} s, and no rigorous enclosure could be had; ask for fewer digits", .0.digits_agreed, .0.digits_required(), .0.digits_requested, .0.seconds)]
     OutOfTime(OutOfBudget),
 }
 
-impl From<VerifyError<PrintedSeriesError>> for PrintedSeriesError {
-    fn from(error: VerifyError<PrintedSeriesError>) -> Self {
-        error.into_error(PrintedSeriesError::OutOfTime)
+#[cfg(feature = "certified")]
+impl From<super::enclosure::BallInputError> for ExactAnswerError {
+    fn from(error: super::enclosure::BallInputError) -> Self {
+        match error {
+            super::enclosure::BallInputError::Input(error) => ExactAnswerError::Input(error),
+            super::enclosure::BallInputError::Series(error) => ExactAnswerError::Series(error),
+        }
     }
 }
 
-/// Why I₀ is exactly 0: v' = 1 is a constant slope (proofs/constant-term.md).
-pub const CONSTANT_TERM: &str = "I₀ ≡ 0, the constant-term theorem";
-
-/// Why every Iₙ is exactly 0 in phase with ρ ≤ 1.
-pub const NOTHING_SLIPS: &str = "in phase, φ = kπ exactly, with ρ ≤ 1: nothing slips";
-
-/// I₀ … I_N as decimal strings.
-#[derive(Clone, Debug, PartialEq)]
-pub struct PrintedCoefficients {
-    /// Iₙ at index n; I₀ is printed as 0 (the constant-term theorem).
-    pub values: Vec<String>,
-    /// Why Iₙ is exactly the 0 printed, where it is (I₀ always).
-    pub exact: Vec<Option<&'static str>>,
-    /// The verified significant digits of each (I₀: those asked for).
-    pub digits: Vec<u32>,
-    /// Iₙ in binary64 where f64 was used (no `digits`), else empty.
-    pub binary64: Vec<f64>,
+impl ExactAnswerError {
+    /// Whether the input was fine and the run could not vouch for its result (exit 1),
+    /// rather than refused (exit 2).
+    pub fn is_failure(&self) -> bool {
+        matches!(
+            self,
+            ExactAnswerError::OutOfTime(_) | ExactAnswerError::Unreached { .. }
+        )
+    }
 }
 
-/// ρ and φ's offset from the nearest multiple of π (the series has period π in φ).
-fn read_shape<R: Real>(rho: &str, phase: &str, precision: Precision) -> Result<(R, R), PrintedSeriesError> {
-    let number = |quantity, source| PrintedSeriesError::Number { quantity, source };
-    let rho = R::parse_decimal(rho, precision).map_err(|source| number("ρ", source))?;
-    let (offset, _) = parse_phase(phase, precision)?;
-    Ok((rho, offset))
+impl From<VerifyError<ExactAnswerError>> for ExactAnswerError {
+    fn from(error: VerifyError<ExactAnswerError>) -> Self {
+        error.into_error(ExactAnswerError::OutOfTime)
+    }
 }
 
-/// I₁ … I_N at a precision. I₀ is not computed: it is 0 exactly (the constant-term
-/// theorem), and what the integration gives for it is only its rounding.
-fn coefficients_at<R: Real>(rho: &R, phase: &R, order: usize) -> Result<Vec<R>, PrintedSeriesError> {
-    let values = series_coefficients(rho, phase, order)?;
-    Ok(values.into_iter().skip(1).map(|(value, _)| value).collect())
-}
-
-/// In phase (φ = kπ exactly, as written) with 0 < ρ ≤ 1 (exactly) nothing slips: every Iₙ is 0.
+/// Why the Iₙ are exactly 0 in phase with ρ ≤ 1, decided from the text.
 pub fn vanishes_in_phase(rho: &str, phase: &str) -> bool {
     let rho = decimal(rho);
     ExactPhase::parse(phase).is_ok_and(|phase| phase.is_in_phase()) && rho.is_some_and(|rho| rho > 0 && rho <= 1)
 }
 
-/// The verified digits to compute for `order` and `digits` (without, [`F64_MOST_DIGITS`]),
-/// each checked in range.
-fn digits_asked(order: usize, digits: Option<u32>) -> Result<u32, PrintedSeriesError> {
-    if order == 0 || order > MAX_ORDER {
-        return Err(PrintedSeriesError::OrderOutOfRange(order));
-    }
+/// ρ and φ checked: ρ a positive decimal, φ a phase within range.
+fn checked_shape(rho: &str, phase: &str) -> Result<(Rational, ExactPhase), ExactAnswerError> {
+    let exact_rho = decimal(rho).ok_or_else(|| ExactAnswerError::Number {
+        quantity: "ρ",
+        source: ParseRealError { text: rho.to_string() },
+    })?;
+    let phase = ExactPhase::parse(phase)?;
+    phase.reduce(Precision::DOUBLE)?;
+    Ok((exact_rho, phase))
+}
+
+/// The digits asked for (without, [`F64_MOST_DIGITS`]), checked in range.
+fn digits_asked(digits: Option<u32>) -> Result<u32, ExactAnswerError> {
     let asked = digits.unwrap_or(F64_MOST_DIGITS);
     if asked == 0 || asked > MAX_DIGITS {
-        return Err(PrintedSeriesError::DigitsOutOfRange(asked));
+        return Err(ExactAnswerError::DigitsOutOfRange(asked));
     }
     Ok(asked)
 }
 
-/// I₀ … I_`order` at (ρ, φ) given as text: with `digits` = Some(D), each to D verified
-/// digits; without, f64 with the digits on which it agrees with 15 verified digits
-/// where that suffices ([`f64_digits_against`]), the verified digits themselves otherwise.
-pub fn printed_coefficients(
+/// An exact answer.
+fn exact(reason: ExactReason, digits: Option<u32>) -> Answer {
+    Answer {
+        value: Value::zero(),
+        segments: None,
+        digits_requested: digits,
+        provenance: Provenance::Exact(reason),
+        method: None,
+    }
+}
+
+/// An answer for `value` with `provenance`.
+fn answer(value: Value, digits: Option<u32>, provenance: Provenance) -> Answer {
+    Answer {
+        value,
+        segments: None,
+        digits_requested: digits,
+        provenance,
+        method: None,
+    }
+}
+
+/// Values by rigorous enclosure to `asked` digits where one can be had (`None` where it
+/// cannot: feature `certified` off, or a comparison no precision decides).
+type Enclosures = Option<(Vec<Interval>, u32)>;
+
+/// The lower and upper end of an interval that contains a value.
+type Interval = (Float, Float);
+
+#[cfg(feature = "certified")]
+fn enclosures<E: Into<ExactAnswerError>>(
+    quantity: &'static str,
+    asked: u32,
+    must_decide: bool,
+    started: Instant,
+    budget: Duration,
+    compute: impl Fn(Precision) -> Result<Vec<crate::ball::Ball>, E>,
+) -> Result<Enclosures, ExactAnswerError> {
+    use super::enclosure::{enclose, EnclosureError};
+    match enclose(asked, must_decide, started + budget, compute) {
+        Ok(enclosed) => Ok(Some((
+            (0..enclosed.values.len()).map(|i| enclosed.bounds(i, asked)).collect(),
+            enclosed.bits,
+        ))),
+        Err(EnclosureError::Input(error)) => Err(error.into()),
+        Err(EnclosureError::OutOfTime { asked, reached }) => Err(ExactAnswerError::Unreached {
+            quantity,
+            asked,
+            reached,
+            seconds: started.elapsed().as_secs_f64(),
+        }),
+        Err(EnclosureError::Undecided { .. } | EnclosureError::TooWide { .. }) => Ok(None),
+    }
+}
+
+/// Without ball arithmetic there are no enclosures.
+#[cfg(not(feature = "certified"))]
+fn no_enclosure<T>(_inputs: &T) -> Enclosures {
+    None
+}
+
+/// The values of `compute` to `asked` digits by two precisions' agreement (not proof).
+fn agreed(
+    asked: u32,
+    deadline: Instant,
+    compute: impl FnMut(Precision) -> Result<Vec<Float>, ExactAnswerError>,
+) -> Result<(Vec<Interval>, u32), ExactAnswerError> {
+    let verified = verified_values(asked, deadline, compute)?;
+    let intervals = verified
+        .output
+        .iter()
+        .zip(&verified.first)
+        .map(|(second, first)| {
+            let radius = agreement_radius(first, second);
+            (
+                Float::with_val(second.prec() + 64, second - &radius),
+                Float::with_val(second.prec() + 64, second + &radius),
+            )
+        })
+        .collect();
+    Ok((intervals, verified.precision.in_bits()))
+}
+
+/// Answers from intervals: certified (`proven`) or agreed, at `bits`.
+fn interval_answers(
+    intervals: &[(Float, Float)],
+    bits: u32,
+    proven: bool,
+    digits: Option<u32>,
+    asked: u32,
+) -> Vec<Answer> {
+    let provenance = if proven {
+        Provenance::Certified { bits }
+    } else {
+        Provenance::Agreement { bits }
+    };
+    intervals
+        .iter()
+        .map(|(lower, upper)| answer(Value::within(lower, upper, asked), digits, provenance.clone()))
+        .collect()
+}
+
+/// Certified answers where an enclosure was had, else agreed ones.
+fn certified_or_agreed(
+    asked: u32,
+    digits: Option<u32>,
+    deadline: Instant,
+    enclosed: Enclosures,
+    agree: impl FnMut(Precision) -> Result<Vec<Float>, ExactAnswerError>,
+) -> Result<(Vec<Answer>, Vec<Interval>), ExactAnswerError> {
+    let (intervals, bits, proven) = match enclosed {
+        Some((intervals, bits)) => (intervals, bits, true),
+        None => {
+            let (intervals, bits) = agreed(asked, deadline, agree)?;
+            (intervals, bits, false)
+        }
+    };
+    Ok((interval_answers(&intervals, bits, proven, digits, asked), intervals))
+}
+
+/// Keeps the binary64 value computed beside an answer (the digits printed stay those of
+/// the enclosure: f64 is only reported).
+fn with_binary64(mut answer: Answer, value: Option<f64>) -> Answer {
+    answer.value.binary64 = value.filter(|v| v.is_finite() && (*v == 0.0 || v.abs() >= f64::MIN_POSITIVE));
+    answer
+}
+
+/// I(ρ, φ), what `microslip small-amplitude` prints: exact 0 in phase with ρ ≤ 1;
+/// otherwise the closed form enclosed to `digits` (15 without) certified digits, with
+/// I's binary64 value beside them where the run is without `digits`.
+pub fn coefficient_answer(
+    rho: &str,
+    phase: &str,
+    digits: Option<u32>,
+    budget: Duration,
+) -> Result<Answer, ExactAnswerError> {
+    let started = Instant::now();
+    let asked = digits_asked(digits)?;
+    let (exact_rho, exact_phase) = checked_shape(rho, phase)?;
+    if exact_rho <= 0 {
+        return Err(ExactAnswerError::NonPositiveRatio(rho.to_string()));
+    }
+    // In phase with ρ ≤ 1 nothing slips; at ρ = 1 this is also the closed form's limit.
+    if vanishes_in_phase(rho, phase) {
+        return Ok(exact(ExactReason::NothingSlips, digits));
+    }
+    #[cfg(feature = "certified")]
+    let enclosed = enclosures("I", asked, false, started, budget, |precision| {
+        Ok::<_, PhaseError>(vec![super::enclosure::coefficient_ball(rho, &exact_phase, precision)?])
+    })?;
+    #[cfg(not(feature = "certified"))]
+    let enclosed = no_enclosure(&exact_phase);
+    let (answers, _) = certified_or_agreed(asked, digits, started + budget, enclosed, |precision| {
+        let (rho, phase) = read_shape::<Float>(rho, phase, precision)?;
+        Ok(vec![closed_form_coefficient(&rho, &phase)])
+    })?;
+    let binary64 = digits
+        .is_none()
+        .then(|| read_shape::<f64>(rho, phase, Precision::DOUBLE).ok())
+        .flatten()
+        // + 0.0 turns a −0 from the formula into 0.
+        .map(|(rho, phase)| closed_form_coefficient(&rho, &phase) + 0.0);
+    Ok(with_binary64(answers.into_iter().next().expect("one value"), binary64))
+}
+
+/// ρ and φ's offset from the nearest multiple of π (the series has period π in φ), read
+/// at a precision, for the agreement path and the binary64 values.
+fn read_shape<R: Real>(rho: &str, phase: &str, precision: Precision) -> Result<(R, R), ExactAnswerError> {
+    let rho_value =
+        R::parse_decimal(rho, precision).map_err(|source| ExactAnswerError::Number { quantity: "ρ", source })?;
+    if !(rho_value.is_finite() && rho_value > rho_value.int(0)) {
+        return Err(ExactAnswerError::NonPositiveRatio(rho.to_string()));
+    }
+    let (offset, _) = parse_phase(phase, precision)?;
+    Ok((rho_value, offset))
+}
+
+/// I₁ … I_N at a precision (I₀ ≡ 0 is not computed).
+fn coefficients_at<R: Real>(rho: &R, phase: &R, order: usize) -> Result<Vec<R>, ExactAnswerError> {
+    let values = series_coefficients(rho, phase, order)?;
+    Ok(values.into_iter().skip(1).map(|(value, _)| value).collect())
+}
+
+/// I₀ … I_`order` at (ρ, φ) given as text: I₀ exact (the constant-term theorem), every
+/// Iₙ exact in phase with ρ ≤ 1, the others enclosed to `digits` (15 without) certified
+/// digits, with their binary64 values beside them where the run is without `digits`.
+pub fn coefficient_answers(
     rho: &str,
     phase: &str,
     order: usize,
     digits: Option<u32>,
     budget: Duration,
-) -> Result<PrintedCoefficients, PrintedSeriesError> {
-    let asked = digits_asked(order, digits)?;
-    // Refusals first: ρ and φ must read.
-    read_shape::<Float>(rho, phase, Precision::bits(64))?;
-    let zero = "0".to_string();
-    if vanishes_in_phase(rho, phase) {
-        return Ok(PrintedCoefficients {
-            values: vec![zero; order + 1],
-            exact: vec![Some(NOTHING_SLIPS); order + 1],
-            digits: vec![asked; order + 1],
-            binary64: if digits.is_none() { vec![0.0; order + 1] } else { vec![] },
-        });
+) -> Result<Vec<Answer>, ExactAnswerError> {
+    if order == 0 || order > MAX_ORDER {
+        return Err(ExactAnswerError::OrderOutOfRange(order));
     }
-    let verified = verified_values(asked, Instant::now() + budget, |precision| {
+    let started = Instant::now();
+    let asked = digits_asked(digits)?;
+    let (exact_rho, exact_phase) = checked_shape(rho, phase)?;
+    if exact_rho <= 0 {
+        return Err(SeriesError::NonPositiveRatio {
+            rho: exact_rho.to_f64(),
+        }
+        .into());
+    }
+    if vanishes_in_phase(rho, phase) {
+        return Ok(vec![exact(ExactReason::NothingSlips, digits); order + 1]);
+    }
+    #[cfg(feature = "certified")]
+    let enclosed = enclosures("Iₙ", asked, true, started, budget, |precision| {
+        super::enclosure::coefficient_balls(rho, &exact_phase, order, precision)
+    })?;
+    #[cfg(not(feature = "certified"))]
+    let enclosed = no_enclosure(&exact_phase);
+    let (computed, _) = certified_or_agreed(asked, digits, started + budget, enclosed, |precision| {
         let (rho, phase) = read_shape::<Float>(rho, phase, precision)?;
         coefficients_at(&rho, &phase, order)
     })?;
-    let mut printed = PrintedCoefficients {
-        values: vec![zero],
-        exact: vec![Some(CONSTANT_TERM)],
-        digits: vec![asked],
-        binary64: vec![],
-    };
-    let in_f64 = match digits {
-        Some(_) => None,
-        None => read_shape::<f64>(rho, phase, Precision::DOUBLE)
-            .ok()
-            .and_then(|(rho, phase)| coefficients_at(&rho, &phase, order).ok()),
-    };
-    if let Some(values) = &in_f64 {
-        printed.binary64 = std::iter::once(0.0).chain(values.iter().copied()).collect();
+    let in_f64 = digits
+        .is_none()
+        .then(|| read_shape::<f64>(rho, phase, Precision::DOUBLE).ok())
+        .flatten()
+        .and_then(|(rho, phase)| coefficients_at(&rho, &phase, order).ok());
+    let mut answers = vec![exact(ExactReason::ConstantTerm, digits)];
+    for (n, computed) in computed.into_iter().enumerate() {
+        answers.push(with_binary64(computed, in_f64.as_ref().map(|values| values[n])));
     }
-    for (n, reference) in verified.output.iter().enumerate() {
-        let kept = in_f64
-            .as_ref()
-            .and_then(|values| Some((values[n], f64_digits_against(values[n], reference)?)));
-        printed.exact.push(None);
-        match kept {
-            Some((value, kept)) => {
-                printed.values.push(value.to_scientific(kept as usize));
-                printed.digits.push(kept);
-            }
-            None => {
-                printed.values.push(reference.to_scientific(asked as usize));
-                printed.digits.push(asked);
-            }
-        }
-    }
-    Ok(printed)
+    Ok(answers)
 }
 
-/// W_N − W as printed.
+/// The partial sums W_N (N = 1 … order) of a case beside its W.
 #[derive(Clone, Debug, PartialEq)]
-pub enum SumDifference {
-    /// Exactly 0, and why.
-    Exact(&'static str),
-    /// Below what the digits of W resolve: |W_N − W| < the bound given (3 digits).
-    Unresolved(String),
-    /// The difference (3 digits).
-    Value(String),
-}
-
-/// Why W_N − W is exactly 0 for a polynomial v' of degree d ≤ N.
-pub const SERIES_ENDS: &str = "v' is a polynomial of degree ≤ N, so the series ends at order N";
-
-/// The partial sums W_N (N = 1 … order) of a case beside its W by quadrature.
-#[derive(Clone, Debug, PartialEq)]
-pub struct PrintedPartialSums {
-    /// W (four-segment quadrature), verified digits.
-    pub dissipation: String,
-    /// The verified significant digits of W.
-    pub dissipation_digits: u32,
-    /// Why W (and with it every W_N) is exactly 0, where it is.
-    pub exact: Option<&'static str>,
+pub struct PartialSums {
+    /// W, from the four-segment path (or exact by reason).
+    pub dissipation: Answer,
     /// W_N at index N − 1.
-    pub sums: Vec<String>,
+    pub sums: Vec<Answer>,
     /// W_N − W at index N − 1.
-    pub differences: Vec<SumDifference>,
-    /// The verified significant digits of every W_N.
-    pub digits: u32,
+    pub differences: Vec<Answer>,
+}
+
+/// W as an [`Answer`], from [`printable_dissipation`]: exact by reason, f64 with its
+/// estimate, or agreed digits (their interval: the numbers that round to them).
+fn dissipation_answer(case: &CaseText, digits: Option<u32>, budget: Duration) -> Result<Answer, ExactAnswerError> {
+    let w = printable_dissipation(case, digits, budget)?;
+    if let Method::Exact(reason) = w.method {
+        return Ok(exact(ExactReason::Zero(reason), digits));
+    }
+    let decimal = Decimal::Digits {
+        text: w.total.clone(),
+        digits: w.digits,
+    };
+    let (value, provenance) = match (w.error_estimate, w.binary64) {
+        (Some(error_estimate), Some(binary64)) => {
+            let mut value = Value::from_f64(binary64[0], error_estimate);
+            if w.digits > 0 {
+                value.decimal = decimal;
+            }
+            (value, Provenance::Estimate { error_estimate })
+        }
+        _ => {
+            let bits = Precision::decimal_digits(w.digits).in_bits() + 64;
+            let centre = Float::parse(&w.total).map(|parsed| Float::with_val(bits, parsed)).ok();
+            let mut value = match centre {
+                Some(centre) => {
+                    // Agreement vouches for the digits printed: the numbers that round to them.
+                    let exponent = w
+                        .total
+                        .rsplit_once('e')
+                        .and_then(|(_, e)| e.parse::<i32>().ok())
+                        .unwrap_or(0);
+                    let half = Float::with_val(bits, 10).pow(exponent - w.digits as i32 + 1) / 2u32;
+                    Value::within(&(centre.clone() - &half), &(centre + &half), w.digits)
+                }
+                None => Value {
+                    decimal: Decimal::Zero,
+                    enclosure: None,
+                    binary64: None,
+                },
+            };
+            value.decimal = decimal;
+            (value, Provenance::Agreement { bits: w.precision_bits })
+        }
+    };
+    Ok(answer(value, digits, provenance))
+}
+
+/// W_N − W from their intervals, with the weaker provenance of the two.
+fn difference(sum: &Answer, sum_interval: &Interval, w: &Answer, digits: Option<u32>) -> Answer {
+    let bound = |text: &str| Float::parse(text).map(|parsed| Float::with_val(sum_interval.0.prec(), parsed));
+    let interval = w
+        .value
+        .enclosure
+        .as_ref()
+        .and_then(|(lower, upper)| Some((bound(lower).ok()?, bound(upper).ok()?)));
+    let Some((w_lower, w_upper)) = interval else {
+        let unknown = Value {
+            decimal: Decimal::Undetermined {
+                lower: "-inf".to_string(),
+                upper: "inf".to_string(),
+            },
+            enclosure: None,
+            binary64: None,
+        };
+        return answer(unknown, digits, w.provenance.clone());
+    };
+    let lower = Float::with_val_round(
+        sum_interval.0.prec(),
+        &sum_interval.0 - &w_upper,
+        rug::float::Round::Down,
+    )
+    .0;
+    let upper = Float::with_val_round(sum_interval.1.prec(), &sum_interval.1 - &w_lower, rug::float::Round::Up).0;
+    let provenance = if w.provenance.is_proven() {
+        sum.provenance.clone()
+    } else {
+        w.provenance.clone()
+    };
+    answer(Value::within(&lower, &upper, DIFFERENCE_DIGITS), digits, provenance)
 }
 
 /// The series of a case summed to orders 1 … `order`, each partial sum to `digits`
-/// verified digits (15 without), beside W from the four-segment quadrature. Where W is
-/// exactly 0 (v'' ≡ 0, Q1 = 0, in phase with nothing slipping) every W_N is too, and
-/// where v' is a polynomial of degree d, W_N = W exactly from N = d on.
-pub fn printed_partial_sums(
+/// certified digits (15 without), beside W. Where W is exactly 0 (v'' ≡ 0, Q1 = 0, in
+/// phase with nothing slipping) every W_N and difference is too, and where v' is a
+/// polynomial of degree d, W_N − W = 0 exactly from N = d on.
+pub fn partial_sum_answers(
     case: &CaseText,
     order: usize,
     digits: Option<u32>,
     budget: Duration,
-) -> Result<PrintedPartialSums, PrintedSeriesError> {
-    let asked = digits_asked(order, digits)?;
+) -> Result<PartialSums, ExactAnswerError> {
+    if order == 0 || order > MAX_ORDER {
+        return Err(ExactAnswerError::OrderOutOfRange(order));
+    }
+    let asked = digits_asked(digits)?;
     let started = Instant::now();
-    let w = printable_dissipation(case, Some(asked), budget)?;
-    if let crate::dissipation::Method::Exact(reason) = w.method {
-        return Ok(PrintedPartialSums {
-            dissipation: w.total,
-            dissipation_digits: w.digits,
-            exact: Some(reason.reason()),
-            sums: vec!["0".to_string(); order],
-            differences: vec![SumDifference::Exact(reason.reason()); order],
-            digits: asked,
+    let w = dissipation_answer(case, Some(asked), budget)?;
+    if let Provenance::Exact(reason) = w.provenance {
+        return Ok(PartialSums {
+            sums: vec![exact(reason, digits); order],
+            differences: vec![exact(reason, digits); order],
+            dissipation: w,
         });
     }
-    let remaining = budget.saturating_sub(started.elapsed());
-    // The sums get what W left of the budget; running out, they report the whole run's time.
-    let sums = verified_values(asked, started + remaining, |precision| {
+    #[cfg(feature = "certified")]
+    let enclosed = enclosures("W_N", asked, true, started, budget, |precision| {
+        super::enclosure::partial_sum_balls(case, order, precision)
+    })?;
+    #[cfg(not(feature = "certified"))]
+    let enclosed = no_enclosure(case);
+    let (sums, intervals) = certified_or_agreed(asked, digits, started + budget, enclosed, |precision| {
         let Case { cycle, compliance } = case.read::<Float>(precision)?;
         Ok(partial_sums(&cycle, compliance.as_ref(), order)?)
     })
     .map_err(|error| match error {
-        VerifyError::OutOfBudget(out) => VerifyError::OutOfBudget(OutOfBudget {
+        // Running out, the sums report the whole run's time.
+        ExactAnswerError::OutOfTime(out) => ExactAnswerError::OutOfTime(OutOfBudget {
             seconds: started.elapsed().as_secs_f64(),
             ..out
         }),
         other => other,
     })?;
-    let bits = sums.precision.in_bits();
-    let w_value = Float::parse_decimal(&w.total, sums.precision).unwrap_or_else(|_| Float::with_val(bits, 0));
-    let resolved = w_value.clone().abs() * Float::with_val(bits, 10).powi(-(w.digits as i32));
     let degree = slope_polynomial_degree(&case.compliance);
     let differences = sums
-        .output
         .iter()
+        .zip(&intervals)
         .enumerate()
-        .map(|(index, sum)| {
-            let difference = sum.clone() - &w_value;
+        .map(|(index, (sum, interval))| {
             if degree.is_some_and(|degree| degree <= index + 1) {
-                SumDifference::Exact(SERIES_ENDS)
-            } else if difference.clone().abs() > resolved {
-                SumDifference::Value(difference.to_scientific(3))
+                exact(ExactReason::SeriesEnds, digits)
             } else {
-                SumDifference::Unresolved(resolved.to_scientific(3))
+                difference(sum, interval, &w, digits)
             }
         })
         .collect();
-    Ok(PrintedPartialSums {
-        dissipation: w.total,
-        dissipation_digits: w.digits,
-        exact: None,
-        sums: sums.output.iter().map(|s| s.to_scientific(asked as usize)).collect(),
+    Ok(PartialSums {
+        dissipation: w,
+        sums,
         differences,
-        digits: asked,
     })
 }

@@ -1,0 +1,319 @@
+//! Rigorous enclosures of the small-amplitude coefficient I(ρ, φ), the series
+//! coefficients Iₙ and a case's partial sums W_N (proofs/series.md,
+//! proofs/small-amplitude.md).
+//!
+//! The closed form and the exact trigonometric integrals are generic over [`Real`]; run on
+//! Arb balls ([`Ball`]) whose inputs contain the exact decimals and the exact phase, every
+//! operation returns a ball that contains the exact result. What can break that is a
+//! branch: a comparison of overlapping balls answers `false` and is counted by
+//! [`watch`]. The closed form's comparisons only choose between algebraically equal
+//! expressions (proofs/small-amplitude.md), so its balls are enclosures whatever they
+//! answer; the series' geometry branches on the cycle's shape, so there a doubt raises
+//! the precision and, where it persists, no enclosure is given.
+
+use std::time::Instant;
+
+use rug::float::Constant;
+use rug::{Float, Integer, Rational};
+
+use super::coefficient::closed_form_coefficient;
+use super::series::{partial_sums, series_coefficients, SeriesError};
+use crate::ball::{watch, Ball};
+use crate::certified::MAX_BITS;
+use crate::inputs::{CaseText, InputError};
+use crate::phase::{ExactPhase, PhaseError};
+use crate::real::{Precision, Real};
+use crate::verified::decimal_interval;
+
+/// Bits a phase offset is computed with beyond the working precision and its exponent.
+const PHASE_GUARD_BITS: u32 = 64;
+/// The most bits the offset of a phase from its nearest multiple of π may need.
+const MAX_PHASE_BITS: u32 = 1 << 22;
+
+/// Why no enclosure narrow enough could be given.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum EnclosureError<E> {
+    /// The computation itself refused the input.
+    #[error(transparent)]
+    Input(E),
+    /// A comparison of the generic code stayed undecided as the precision rose.
+    #[error("at {bits} bits a comparison of the cycle's geometry stays undecided")]
+    Undecided {
+        /// The last working precision tried.
+        bits: u32,
+    },
+    /// The deadline passed before the enclosures were narrow enough.
+    #[error("the enclosure reached only {reached} of the {asked} digits asked within the time budget")]
+    OutOfTime {
+        /// The digits asked for.
+        asked: u32,
+        /// The fewest digits any value reached.
+        reached: u32,
+    },
+    /// The enclosures stayed wider than asked up to [`MAX_BITS`].
+    #[error("the enclosure reached only {reached} of the {asked} digits asked at {bits} bits")]
+    TooWide {
+        /// The digits asked for.
+        asked: u32,
+        /// The fewest digits any value reached.
+        reached: u32,
+        /// The last working precision tried.
+        bits: u32,
+    },
+}
+
+/// Values enclosed to the digits asked, and the working precision that gave them.
+#[derive(Clone, Debug)]
+pub struct Enclosed {
+    /// Balls that contain the exact values.
+    pub values: Vec<Ball>,
+    /// The working precision, in bits.
+    pub bits: u32,
+}
+
+impl Enclosed {
+    /// The `index`th value's real interval, rounded outwards to enough bits for `digits`.
+    pub fn bounds(&self, index: usize, digits: u32) -> (Float, Float) {
+        interval(&self.values[index], digits)
+    }
+}
+
+/// The ball's real interval, rounded outwards to enough bits for `digits` and the ball.
+fn interval(ball: &Ball, digits: u32) -> (Float, Float) {
+    let bits = Precision::decimal_digits(digits)
+        .in_bits()
+        .max(ball.precision().in_bits())
+        + 64;
+    ball.bounds(bits)
+}
+
+/// The significant digits (at most `digits`) to which every point of the ball rounds,
+/// by the one printing rule ([`decimal_interval`]); 0 where not one is determined.
+fn digits_of(ball: &Ball, digits: u32) -> u32 {
+    if !(ball.is_real() && ball.is_finite()) {
+        return 0;
+    }
+    let (lower, upper) = interval(ball, digits);
+    decimal_interval(&lower, &upper, digits).digits()
+}
+
+/// `compute` at rising working precisions until every value's ball rounds to `digits`
+/// significant digits (the one printing rule). `decided` tells whether a computation's
+/// undecided comparisons make its balls untrustworthy (`false` for code whose every
+/// branch is an identity); a doubt that persists at two successive precisions is a tie
+/// no precision resolves. The deadline is looked at before every attempt.
+pub fn enclose<E>(
+    digits: u32,
+    must_decide: bool,
+    deadline: Instant,
+    compute: impl Fn(Precision) -> Result<Vec<Ball>, E>,
+) -> Result<Enclosed, EnclosureError<E>> {
+    let digits = digits.max(1);
+    let mut bits = Precision::decimal_digits(digits).in_bits() + 24;
+    let mut doubted = false;
+    let mut last = EnclosureError::TooWide {
+        asked: digits,
+        reached: 0,
+        bits,
+    };
+    while bits <= MAX_BITS {
+        if Instant::now() >= deadline {
+            let reached = match last {
+                EnclosureError::TooWide { reached, .. } => reached,
+                _ => 0,
+            };
+            return Err(EnclosureError::OutOfTime { asked: digits, reached });
+        }
+        let (values, doubts) = watch(|| compute(Precision::bits(bits)));
+        let values = values.map_err(EnclosureError::Input)?;
+        if must_decide && !doubts.none() {
+            if doubted {
+                return Err(EnclosureError::Undecided { bits });
+            }
+            doubted = true;
+            last = EnclosureError::Undecided { bits };
+        } else {
+            doubted = false;
+            let reached = values.iter().map(|v| digits_of(v, digits)).min();
+            if reached.unwrap_or(digits) >= digits {
+                return Ok(Enclosed { values, bits });
+            }
+            last = EnclosureError::TooWide {
+                asked: digits,
+                reached: reached.unwrap_or(0),
+                bits,
+            };
+        }
+        bits *= 2;
+    }
+    Err(last)
+}
+
+/// A ball that contains the rational `q`.
+fn rational_ball(q: &Rational, precision: Precision) -> Ball {
+    let integer = |n: &Integer| match n.to_i64() {
+        Some(small) => Ball::from_i64(small, precision),
+        None => Ball::parse_decimal(&n.to_string(), precision).expect("an integer's digits read"),
+    };
+    integer(q.numer()) / &integer(q.denom())
+}
+
+/// A ball that contains the decimal `text` (checked to be a number by the caller).
+pub fn decimal_ball(text: &str, precision: Precision) -> Option<Ball> {
+    Ball::parse_decimal(text, precision).ok()
+}
+
+/// ψ = φ − nπ for the integer n nearest φ/π, as a ball that contains the exact ψ with
+/// the working precision's relative accuracy, and whether n is odd. ψ lies in
+/// (−π/2, π/2]; the cancellation of φ − nπ (`3.141592653589793` − π ≈ −1.2e−16) is paid
+/// for with bits, and an offset from an integer multiple (`pi-1e-100`) is the exact
+/// rational itself.
+pub fn phase_offset(phase: &ExactPhase, precision: Precision) -> Result<(Ball, bool), PhaseError> {
+    // The range check.
+    phase.reduce(Precision::DOUBLE)?;
+    let (multiple, offset) = phase.parts();
+    let exponent = phase.to_f64().abs().max(1.0).log2().ceil() as u32;
+    let bits = exponent + PHASE_GUARD_BITS;
+    let turns = Float::with_val(bits, offset) / Float::with_val(bits, Constant::Pi) + Float::with_val(bits, multiple);
+    let nearest = turns.round().to_integer().unwrap_or_default();
+    let mut reverses = nearest.is_odd();
+    let mut rest: Rational = multiple.clone() - Rational::from(nearest);
+    // ψ = −π/2 exactly is taken as π/2 (n − 1 in place of n): the generic code reads a
+    // negative offset as one below π, and at −π/2 exactly it could not decide that.
+    if rest == Rational::from((-1, 2)) && *offset == 0 {
+        rest = Rational::from((1, 2));
+        reverses = !reverses;
+    }
+    if rest == 0 {
+        return Ok((rational_ball(offset, precision), reverses));
+    }
+    let mut working = precision.in_bits() + exponent + PHASE_GUARD_BITS;
+    loop {
+        let at = Precision::bits(working);
+        let psi = rational_ball(&rest, at) * &Ball::pi(at) + &rational_ball(offset, at);
+        if relatively_within(&psi, precision.in_bits()) {
+            // SAFETY: `psi` is an initialised ball; the copy keeps its midpoint and radius.
+            let psi = unsafe { Ball::from_raw(psi.as_raw(), precision.in_bits()) };
+            return Ok((psi, reverses));
+        }
+        working = working.saturating_mul(2);
+        if working > MAX_PHASE_BITS {
+            return Err(PhaseError::TooLarge { phi: phase.to_f64() });
+        }
+    }
+}
+
+/// Whether the ball's width is at most 2^−`bits` of its smallest magnitude (a ball
+/// that contains zero is not).
+fn relatively_within(ball: &Ball, bits: u32) -> bool {
+    let (lower, upper) = ball.bounds(ball.precision().in_bits() + 64);
+    if lower.is_zero() || upper.is_zero() || lower.is_sign_negative() != upper.is_sign_negative() {
+        return false;
+    }
+    let width = Float::with_val(64, &upper - &lower);
+    let smallest = lower.get_exp().min(upper.get_exp()).unwrap_or(i32::MIN);
+    width.is_zero() || i64::from(width.get_exp().unwrap_or(i32::MAX)) + i64::from(bits) < i64::from(smallest)
+}
+
+/// I(ρ, φ) enclosed: the closed form on balls that contain ρ and ψ. (Its comparisons
+/// choose between equal expressions; a σ₋ that may be 0 gives a non-finite ball.)
+pub fn coefficient_ball(rho: &str, phase: &ExactPhase, precision: Precision) -> Result<Ball, PhaseError> {
+    let rho = decimal_ball(rho, precision).expect("ρ is checked to read before");
+    let (psi, _) = phase_offset(phase, precision)?;
+    Ok(closed_form_coefficient(&rho, &psi))
+}
+
+/// I₁ … I_`order` enclosed at a precision (I₀ ≡ 0 is not computed).
+pub fn coefficient_balls(
+    rho: &str,
+    phase: &ExactPhase,
+    order: usize,
+    precision: Precision,
+) -> Result<Vec<Ball>, BallInputError> {
+    let rho = decimal_ball(rho, precision).expect("ρ is checked to read before");
+    let (psi, _) = phase_offset(phase, precision).map_err(InputError::from)?;
+    let values = series_coefficients(&rho, &psi, order)?;
+    Ok(values.into_iter().skip(1).map(|(value, _)| value).collect())
+}
+
+/// Why the series' inputs could not be read into balls, or the series failed.
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum BallInputError {
+    /// The case does not read.
+    #[error(transparent)]
+    Input(#[from] InputError),
+    /// The series failed.
+    #[error(transparent)]
+    Series(#[from] SeriesError),
+}
+
+/// W_1 … W_`order` of a case enclosed at a precision: the case's decimals as balls, its
+/// phase as the exact offset ψ from the nearest multiple nπ (with Q0 reversed for odd
+/// n: the mirror image, which has the same W).
+pub fn partial_sum_balls(case: &CaseText, order: usize, precision: Precision) -> Result<Vec<Ball>, BallInputError> {
+    let crate::inputs::Case { mut cycle, compliance } = case.read::<Ball>(precision)?;
+    let (psi, reverses) =
+        phase_offset(&ExactPhase::parse(&case.phi).map_err(InputError::from)?, precision).map_err(InputError::from)?;
+    let q0 = decimal_ball(&case.q0, precision).ok_or_else(|| InputError::Number {
+        field: "q0",
+        source: crate::real::ParseRealError { text: case.q0.clone() },
+    })?;
+    cycle.phase = psi;
+    cycle.mean_tangential_load = if reverses { -q0 } else { q0 };
+    Ok(partial_sums(&cycle, compliance.as_ref(), order)?)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// ψ = φ − nπ in MPFR at 3000 bits, from the phase's value computed directly.
+    fn reference(k: i64, offset: &str) -> (Float, bool) {
+        let bits = 3000;
+        let pi = Float::with_val(bits, Constant::Pi);
+        let phi = pi.clone() * k + Float::with_val(bits, Float::parse(offset).unwrap());
+        let n = Float::with_val(bits, &phi / &pi).round();
+        let odd = n.to_integer().unwrap().is_odd();
+        (phi - n * pi, odd)
+    }
+
+    #[test]
+    fn the_phase_offset_ball_contains_the_exact_offset() {
+        let precision = Precision::bits(200);
+        for (text, k, offset) in [
+            ("pi-1e-100", 1, "-1e-100"),
+            ("3.141592653589793", 0, "3.141592653589793"),
+            ("1e50", 0, "1e50"),
+            ("-3pi+0.25", -3, "0.25"),
+            ("0.3", 0, "0.3"),
+        ] {
+            let (psi, reverses) = phase_offset(&ExactPhase::parse(text).unwrap(), precision).unwrap();
+            let (expected, odd) = reference(k, offset);
+            assert!(psi.contains(&expected), "{text}: {psi:?} vs {expected}");
+            assert_eq!(reverses, odd, "{text}");
+            assert!(relatively_within(&psi, 190), "{text}: {psi:?}");
+        }
+        // −π/2 exactly is read as +π/2 from the next multiple: the same cycle, mirrored.
+        let (psi, reverses) = phase_offset(&ExactPhase::parse("-pi/2").unwrap(), precision).unwrap();
+        let half_pi = Float::with_val(3000, Constant::Pi) / 2u32;
+        assert!(psi.contains(&half_pi) && reverses, "{psi:?}");
+    }
+
+    #[test]
+    fn a_doubt_that_persists_gives_no_enclosure() {
+        let deadline = Instant::now() + std::time::Duration::from_secs(60);
+        // A comparison of two overlapping balls at every precision: 1/3·3 against 1.
+        let tie = |precision: Precision| -> Result<Vec<Ball>, ()> {
+            let one = Ball::from_i64(1, precision);
+            let third = one.clone() / &one.int(3) * &one.int(3);
+            let _ = third < one;
+            Ok(vec![one])
+        };
+        assert!(matches!(
+            enclose(10, true, deadline, tie),
+            Err(EnclosureError::Undecided { .. })
+        ));
+        // Where the branches are identities the doubt does not matter.
+        assert_eq!(enclose(10, false, deadline, tie).unwrap().values.len(), 1);
+    }
+}
