@@ -33,7 +33,7 @@ use crate::phase::{ExactPhase, PhaseError, MIRROR_BELOW};
 use crate::quad::sinh_map::resolve_peaks;
 use crate::quad::Piece;
 use crate::real::{Precision, Real};
-use rug::Rational;
+use rug::{Float, Rational};
 
 /// W and its segments as balls that contain the exact values.
 #[derive(Clone, Debug)]
@@ -323,8 +323,10 @@ where
     // Guard bits for the rounding of the integrand and the sum of the pieces, and the
     // bits that a phase near a multiple of π costs, known before the first attempt.
     let digit_bits = first_precision(digits);
-    let (cycle, _) =
-        case(Precision::bits(digit_bits)).map_err(|reason| CertifiedError::Case { bits: digit_bits, reason })?;
+    let (cycle, _) = case(Precision::bits(digit_bits)).map_err(|reason| CertifiedError::Case {
+        bits: digit_bits,
+        reason,
+    })?;
     let extra = phase_bits(&cycle);
     let first = (digit_bits + extra).next_multiple_of(64);
     let mut bits = first;
@@ -385,25 +387,7 @@ fn phase_bits(cycle: &LoadCycle<Ball>) -> u32 {
 /// rational, x decimal), so that an offset of 10⁻³⁰⁰ from a multiple of π keeps its
 /// digits at any precision, and `3.141592653589793` is not π.
 pub fn cycle_phase(phase: &ExactPhase, precision: Precision) -> Result<(Ball, bool), PhaseError> {
-    let (reverses, multiple, offset) = phase.offset_parts()?;
-    let rational = |value: &Rational, bits: u32| {
-        let exact = |n: &rug::Integer| {
-            let bits = n.significant_bits().max(1);
-            Ball::from_float(&rug::Float::with_val(bits, n), Precision::bits(bits))
-        };
-        Ball::from_i64(1, Precision::bits(bits)) * &exact(value.numer()) / &exact(value.denom())
-    };
-    let bits = precision.in_bits();
-    // ψ = mπ + x cancels where x nearly undoes mπ: add bits until the sum is as precise
-    // as asked (it is not zero: π is irrational, so mπ + x = 0 only for m = x = 0).
-    let mut working = bits + 64;
-    let offset_ball = loop {
-        let sum = rational(&multiple, working) * &Ball::pi(Precision::bits(working)) + &rational(offset, working);
-        if multiple == 0 || sum.relative_radius() < (-f64::from(bits)).exp2() || working > bits + (1 << 20) {
-            break Ball::from_i64(0, precision) + &sum;
-        }
-        working *= 2;
-    };
+    let (offset_ball, reverses) = phase_offset(phase, precision)?;
     let estimate = offset_ball.to_f64_lossy();
     if !reverses {
         return Ok((offset_ball, false));
@@ -420,6 +404,56 @@ pub fn cycle_phase(phase: &ExactPhase, precision: Precision) -> Result<(Ball, bo
         },
         false,
     ))
+}
+
+/// Bits a phase offset is computed with beyond the working precision and its exponent.
+const PHASE_GUARD_BITS: u32 = 64;
+/// The most bits the offset of a phase from its nearest multiple of π may need.
+const MAX_PHASE_BITS: u32 = 1 << 22;
+
+/// ψ = φ − nπ for the integer n nearest φ/π, as a ball that contains the exact ψ with
+/// the working precision's relative accuracy, and whether n is odd. ψ lies in
+/// (−π/2, π/2]; the cancellation of φ − nπ (`3.141592653589793` − π ≈ −1.2e−16) is paid
+/// for with bits, and an offset from an integer multiple (`pi-1e-100`) is the exact
+/// rational itself.
+pub fn phase_offset(phase: &ExactPhase, precision: Precision) -> Result<(Ball, bool), PhaseError> {
+    let (mut reverses, mut rest, offset) = phase.offset_parts()?;
+    let exponent = phase.to_f64().abs().max(1.0).log2().ceil() as u32;
+    // ψ = −π/2 exactly is taken as π/2 (n − 1 in place of n): the generic code reads a
+    // negative offset as one below π, and at −π/2 exactly it could not decide that.
+    if rest == Rational::from((-1, 2)) && *offset == 0 {
+        rest = Rational::from((1, 2));
+        reverses = !reverses;
+    }
+    if rest == 0 {
+        return Ok((Ball::from_rational(offset, precision), reverses));
+    }
+    let mut working = precision.in_bits() + exponent + PHASE_GUARD_BITS;
+    loop {
+        let at = Precision::bits(working);
+        let psi = Ball::from_rational(&rest, at) * &Ball::pi(at) + &Ball::from_rational(offset, at);
+        if relatively_within(&psi, precision.in_bits()) {
+            // SAFETY: `psi` is an initialised ball; the copy keeps its midpoint and radius.
+            let psi = unsafe { Ball::from_raw(psi.as_raw(), precision.in_bits()) };
+            return Ok((psi, reverses));
+        }
+        working = working.saturating_mul(2);
+        if working > MAX_PHASE_BITS {
+            return Err(PhaseError::TooLarge { phi: phase.to_f64() });
+        }
+    }
+}
+
+/// Whether the ball's width is at most 2^−`bits` of its smallest magnitude (a ball
+/// that contains zero is not).
+pub(crate) fn relatively_within(ball: &Ball, bits: u32) -> bool {
+    let (lower, upper) = ball.bounds(ball.precision().in_bits() + 64);
+    if lower.is_zero() || upper.is_zero() || lower.is_sign_negative() != upper.is_sign_negative() {
+        return false;
+    }
+    let width = Float::with_val(64, &upper - &lower);
+    let smallest = lower.get_exp().min(upper.get_exp()).unwrap_or(i32::MIN);
+    width.is_zero() || i64::from(width.get_exp().unwrap_or(i32::MAX)) + i64::from(bits) < i64::from(smallest)
 }
 
 /// The first working precision for `digits` digits: their bits and at least

@@ -13,22 +13,16 @@
 
 use std::time::Instant;
 
-use rug::float::Constant;
-use rug::{Float, Integer, Rational};
+use rug::Float;
 
 use super::coefficient::closed_form_coefficient;
 use super::series::{partial_sums, series_coefficients, SeriesError};
 use crate::ball::{watch, Ball};
-use crate::certified::MAX_BITS;
+use crate::certified::{phase_offset, MAX_BITS};
 use crate::inputs::{CaseText, InputError};
 use crate::phase::{ExactPhase, PhaseError};
 use crate::real::{Precision, Real};
 use crate::verified::decimal_interval;
-
-/// Bits a phase offset is computed with beyond the working precision and its exponent.
-const PHASE_GUARD_BITS: u32 = 64;
-/// The most bits the offset of a phase from its nearest multiple of π may need.
-const MAX_PHASE_BITS: u32 = 1 << 22;
 
 /// Why no enclosure narrow enough could be given.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -149,70 +143,9 @@ pub fn enclose<E>(
     Err(last)
 }
 
-/// A ball that contains the rational `q`.
-fn rational_ball(q: &Rational, precision: Precision) -> Ball {
-    let integer = |n: &Integer| match n.to_i64() {
-        Some(small) => Ball::from_i64(small, precision),
-        None => Ball::parse_decimal(&n.to_string(), precision).expect("an integer's digits read"),
-    };
-    integer(q.numer()) / &integer(q.denom())
-}
-
 /// A ball that contains the decimal `text` (checked to be a number by the caller).
 pub fn decimal_ball(text: &str, precision: Precision) -> Option<Ball> {
     Ball::parse_decimal(text, precision).ok()
-}
-
-/// ψ = φ − nπ for the integer n nearest φ/π, as a ball that contains the exact ψ with
-/// the working precision's relative accuracy, and whether n is odd. ψ lies in
-/// (−π/2, π/2]; the cancellation of φ − nπ (`3.141592653589793` − π ≈ −1.2e−16) is paid
-/// for with bits, and an offset from an integer multiple (`pi-1e-100`) is the exact
-/// rational itself.
-pub fn phase_offset(phase: &ExactPhase, precision: Precision) -> Result<(Ball, bool), PhaseError> {
-    // The range check.
-    phase.reduce(Precision::DOUBLE)?;
-    let (multiple, offset) = phase.parts();
-    let exponent = phase.to_f64().abs().max(1.0).log2().ceil() as u32;
-    let bits = exponent + PHASE_GUARD_BITS;
-    let turns = Float::with_val(bits, offset) / Float::with_val(bits, Constant::Pi) + Float::with_val(bits, multiple);
-    let nearest = turns.round().to_integer().unwrap_or_default();
-    let mut reverses = nearest.is_odd();
-    let mut rest: Rational = multiple.clone() - Rational::from(nearest);
-    // ψ = −π/2 exactly is taken as π/2 (n − 1 in place of n): the generic code reads a
-    // negative offset as one below π, and at −π/2 exactly it could not decide that.
-    if rest == Rational::from((-1, 2)) && *offset == 0 {
-        rest = Rational::from((1, 2));
-        reverses = !reverses;
-    }
-    if rest == 0 {
-        return Ok((rational_ball(offset, precision), reverses));
-    }
-    let mut working = precision.in_bits() + exponent + PHASE_GUARD_BITS;
-    loop {
-        let at = Precision::bits(working);
-        let psi = rational_ball(&rest, at) * &Ball::pi(at) + &rational_ball(offset, at);
-        if relatively_within(&psi, precision.in_bits()) {
-            // SAFETY: `psi` is an initialised ball; the copy keeps its midpoint and radius.
-            let psi = unsafe { Ball::from_raw(psi.as_raw(), precision.in_bits()) };
-            return Ok((psi, reverses));
-        }
-        working = working.saturating_mul(2);
-        if working > MAX_PHASE_BITS {
-            return Err(PhaseError::TooLarge { phi: phase.to_f64() });
-        }
-    }
-}
-
-/// Whether the ball's width is at most 2^−`bits` of its smallest magnitude (a ball
-/// that contains zero is not).
-fn relatively_within(ball: &Ball, bits: u32) -> bool {
-    let (lower, upper) = ball.bounds(ball.precision().in_bits() + 64);
-    if lower.is_zero() || upper.is_zero() || lower.is_sign_negative() != upper.is_sign_negative() {
-        return false;
-    }
-    let width = Float::with_val(64, &upper - &lower);
-    let smallest = lower.get_exp().min(upper.get_exp()).unwrap_or(i32::MIN);
-    width.is_zero() || i64::from(width.get_exp().unwrap_or(i32::MAX)) + i64::from(bits) < i64::from(smallest)
 }
 
 /// I(ρ, φ) enclosed: the closed form on balls that contain ρ and ψ. (Its comparisons
@@ -266,6 +199,8 @@ pub fn partial_sum_balls(case: &CaseText, order: usize, precision: Precision) ->
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::certified::relatively_within;
+    use rug::float::Constant;
 
     /// ψ = φ − nπ in MPFR at 3000 bits, from the phase's value computed directly.
     fn reference(k: i64, offset: &str) -> (Float, bool) {

@@ -118,7 +118,7 @@ fn checked_shape(rho: &str, phase: &str) -> Result<(Rational, ExactPhase), Exact
         source: ParseRealError { text: rho.to_string() },
     })?;
     let phase = ExactPhase::parse(phase)?;
-    phase.reduce(Precision::DOUBLE)?;
+    phase.reduce()?;
     Ok((exact_rho, phase))
 }
 
