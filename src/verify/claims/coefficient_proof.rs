@@ -23,10 +23,9 @@ use crate::real::{Precision, Real};
 use crate::verify::{ClaimReport, ProofSize};
 
 /// Claim 2 proven: I(ρ, φ) < 0 for every ρ > 0 and 0 < φ < π, by Arb balls on an adaptive
-/// subdivision of four charts whose closures take in ρ → 0, ρ → ∞ and φ → 0, π
-/// (this module); and I(ρ, 0) = 0 for ρ ≤ 1, where both terms of the closed
-/// form carry the factor sin φ (and at ρ = 1, the limit, I = O(|ρe^{iφ} − 1|) on the corner
-/// chart). Not proven (a box left undecided) is a failure, with the first such box named.
+/// subdivision of five charts whose closed rectangles take in ρ → 0, ρ → ∞ and φ → 0, π;
+/// and I(ρ, 0) = 0 for ρ ≤ 1, where both terms of the closed form carry the factor sin φ
+/// (and at ρ = 1, the limit, I = O(|ρe^{iφ} − 1|) on the corner chart). Not proven (a box left undecided) is a failure, with the first such box named.
 pub fn coefficient_is_negative() -> ClaimReport {
     let outcome = prove_claim();
     let proven = outcome.proven();
@@ -63,8 +62,8 @@ pub const BITS: u32 = 96;
 
 /// The corner rectangles cut out of the charts in ρ and φ = πu. Near w = 1: |ρ − 1| ≤ 2⁻¹⁰
 /// (in t = 1/ρ, t ≥ 1 − 2⁻¹⁰) and u ≤ 2⁻¹², inside the disc |w − 1| ≤ 2⁻⁹. Near w = −1, where
-/// the charts in ρ and φ cancel to 1/(1 − ρ): |ρ − 1| ≤ 1/15 (ρ ≥ 15/16, t ≥ 15/16) and
-/// u ≥ 63/64, inside the disc |w + 1| ≤ 1/8.
+/// the two terms of the chart in ρ, each of size 1/(1 − ρ), cancel to about −4/3:
+/// |ρ − 1| ≤ 1/15 (ρ ≥ 15/16, t ≥ 15/16) and u ≥ 63/64, inside the disc |w + 1| ≤ 1/8.
 const SLIP_ONSET_SIDE: f64 = 1.0 / 1024.0;
 const SLIP_ONSET_PHASE: f64 = 1.0 / 4096.0;
 const ANTI_PHASE_SIDE: f64 = 1.0 / 16.0;
@@ -77,7 +76,7 @@ pub const ANTI_PHASE_RADIUS: f64 = 1.0 / 8.0;
 /// Bisection stops (and the box is left unproven) below this width relative to the chart.
 const SMALLEST_WIDTH: f64 = 1.0 / (1u64 << 36) as f64;
 
-/// The four charts.
+/// The five charts.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Chart {
     /// ρ ∈ [0, 1], φ = πu, N = I/(ρ² sin²φ).
@@ -172,8 +171,8 @@ impl ProofOutcome {
 /// w = −1 + εe^{iπv} with v below this (ρ just below 1, φ just below π).
 pub const ANTI_PHASE_WEDGE: f64 = 3.0 / 8.0;
 
-/// The starting boxes: the four charts less the corner rectangles, the two corner
-/// discs, and the anti-phase wedge.
+/// The starting boxes: the charts in ρ and in 1/ρ less the corner rectangles, the two
+/// corner half-discs (the one at w = −1 in two parts: outside and inside the wedge).
 pub fn initial_cells() -> Vec<Cell> {
     let (near, nearer) = (1.0 - ANTI_PHASE_SIDE, 1.0 - SLIP_ONSET_SIDE);
     let (low, high) = (SLIP_ONSET_PHASE, 1.0 - ANTI_PHASE_PHASE);
@@ -526,11 +525,11 @@ fn wedge_slope(epsilon: &Ball, alpha: &Ball) -> Ball {
     let minus_sq_slope = e.clone() * &e.int(2) - &(cos.clone() * &e.int(4));
     let minus_slope = -(line.clone() / &minus);
     let denominator_slope = minus_slope.clone() - &e.int(1);
-    let four_e = e.int(4) - &e.square();
+    let four_less = e.int(4) - &e.square();
     let z_slope = e.square() * &e.int(3) - &e.int(12)
         + &(minus_sq.clone() * &e.int(27))
         + &(e.clone() * &minus_sq_slope * &e.int(27))
-        + &(minus_slope.clone() * &four_e * &e.int(11))
+        + &(minus_slope.clone() * &four_less * &e.int(11))
         - &(e.clone() * &minus * &e.int(22))
         - &(minus_sq.clone() * &minus_slope * &e.int(3));
     let ratio = sin.clone() * &e.int(2) / &line;
