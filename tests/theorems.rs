@@ -309,9 +309,9 @@ fn verify_command_runs_the_gate_and_reports_every_claim() {
     let report: serde_json::Value = serde_json::from_str(stdout.trim()).unwrap();
     assert_eq!(report["passed"], true);
     let claims = report["claims"].as_array().unwrap();
-    // 1, 2a–2c, 3 and 4 and 5 in f64, at 256 bits and simulated, 6a in f64 and at 256 bits, 6b, 6c,
-    // 7a–7c.
-    assert_eq!(claims.len(), 20);
+    // 1, 2 (proved), 2a–2c, 3 and 4 and 5 in f64, at 256 bits and simulated, 6a in f64 and at 256
+    // bits, 6b, 6c, 7a–7c.
+    assert_eq!(claims.len(), 21);
     let simulated = claims
         .iter()
         .filter(|claim| claim["claim"].as_str().unwrap().contains("simulated"))
@@ -403,4 +403,238 @@ fn small_amplitude_command_prints_i_and_verifies_digits() {
         stderr.contains("digits of I asked were certified") && stderr.lines().count() == 1,
         "{stderr}"
     );
+}
+
+mod claim_2_proof {
+    use microslip::ball::Ball;
+    use microslip::exact::coefficient::closed_form_coefficient;
+    use microslip::verify::claims::coefficient_proof::{
+        initial_cells, normalised, prove, prove_claim, Cell, Chart, Statement, ANTI_PHASE_RADIUS, SLIP_ONSET_RADIUS,
+    };
+    use rug::ops::Pow;
+    use rug::Float;
+
+    const BITS: u32 = 256;
+
+    fn f(x: f64) -> Float {
+        Float::with_val(BITS, x)
+    }
+
+    /// Reproducible points in [0, 1) (xorshift).
+    fn uniforms(seed: u64, count: usize) -> Vec<f64> {
+        let mut state = seed;
+        (0..count)
+            .map(|_| {
+                state ^= state << 13;
+                state ^= state >> 7;
+                state ^= state << 17;
+                (state >> 11) as f64 / (1u64 << 53) as f64
+            })
+            .collect()
+    }
+
+    /// (ρ, φ) of a chart point, at 256 bits.
+    fn polar(chart: Chart, x: &Float, y: f64) -> (Float, Float) {
+        let pi = Float::with_val(BITS, rug::float::Constant::Pi);
+        let angle = pi * f(y);
+        let centre: i32 = match chart {
+            Chart::BelowOne => return (x.clone(), angle),
+            Chart::AboveOne => return (1 / x.clone(), angle),
+            Chart::NearSlipOnset => 1,
+            Chart::NearAntiPhase | Chart::AntiPhaseWedge => -1,
+        };
+        let re = x.clone() * angle.clone().cos() + centre;
+        let im = x.clone() * angle.sin();
+        (re.clone().hypot(&im), im.atan2(&re))
+    }
+
+    /// I at a chart point divided by the chart's factor, from the closed form at 256 bits.
+    fn normalised_reference(chart: Chart, x: f64, y: f64) -> Float {
+        normalised_at(chart, &f(x), y)
+    }
+
+    fn normalised_at(chart: Chart, x: &Float, y: f64) -> Float {
+        let (rho, phi) = polar(chart, x, y);
+        let i = closed_form_coefficient(&rho, &phi);
+        let angle = Float::with_val(BITS, rug::float::Constant::Pi) * f(y);
+        match chart {
+            Chart::BelowOne => i / (rho * phi.sin()).square(),
+            Chart::AboveOne => i * x.clone().pow(3),
+            Chart::NearSlipOnset => i / (x.clone() * (angle.cos() + 1)),
+            Chart::NearAntiPhase => i / x.clone(),
+            Chart::AntiPhaseWedge => i / (x.clone() * angle.sin().square()),
+        }
+    }
+
+    fn point(chart: Chart, x: f64, y: f64) -> Ball {
+        normalised(&Cell::new(chart, (x, x), (y, y)), Statement::CLAIM)
+    }
+
+    fn assert_encloses(ball: &Ball, reference: &Float, label: &str) {
+        let (lower, upper) = ball.bounds(BITS);
+        let slack = Float::with_val(BITS, reference.abs_ref()) * f(1e-60) + f(1e-70);
+        assert!(
+            lower.clone() - &slack <= *reference && *reference <= upper.clone() + &slack,
+            "{label}: [{lower}, {upper}] misses {reference}"
+        );
+        let width = (upper - lower) / Float::with_val(BITS, reference.abs_ref());
+        assert!(width < 1e-20, "{label}: relative width {width}");
+    }
+
+    #[test]
+    fn each_chart_encloses_the_closed_form_divided_by_its_factor() {
+        let draws = uniforms(0x2026, 400);
+        for (k, pair) in draws.chunks(2).enumerate() {
+            let (a, b) = (pair[0], pair[1]);
+            let (chart, x, y) = match k % 4 {
+                0 => (Chart::BelowOne, a, b),
+                1 => (Chart::AboveOne, a.max(1e-6), b),
+                2 => (Chart::NearSlipOnset, a * SLIP_ONSET_RADIUS, b),
+                _ => (Chart::NearAntiPhase, a * ANTI_PHASE_RADIUS, 0.375 + 0.625 * b),
+            };
+            if x == 0.0 || b == 0.0 {
+                continue;
+            }
+            let label = format!("{chart:?} at ({x}, {y})");
+            assert_encloses(&point(chart, x, y), &normalised_reference(chart, x, y), &label);
+        }
+        // The limits the charts include: I/(ρ² sin²φ) → −8/3 as ρ → 0, I/ρ³ → −2/3 as ρ → ∞,
+        // I/(ε(1 + cos α)) → −(2cos²α − 11cos α + 13)/6 − sin α (π − α)/(2(1 + cos α)) at w → 1.
+        assert_encloses(&point(Chart::BelowOne, 0.0, 0.3), &(f(-8.0) / 3), "ρ = 0");
+        assert_encloses(&point(Chart::AboveOne, 0.0, 0.7), &(f(-2.0) / 3), "ρ = ∞");
+        let half = point(Chart::NearSlipOnset, 0.0, 0.5);
+        let pi = Float::with_val(BITS, rug::float::Constant::Pi);
+        assert_encloses(&half, &(f(-13.0) / 6 - pi / 4), "w → 1 at α = π/2");
+    }
+
+    /// F(0, α) = −(c + 5)/(6(1 + c)) + α/(2 sin α).
+    fn slice_value(c: &Float, s: &Float, alpha: &Float) -> Float {
+        let stick = Float::with_val(BITS, c + 5) / Float::with_val(BITS, c + 1) / 6;
+        Float::with_val(BITS, alpha / s) / 2 - stick
+    }
+
+    #[test]
+    fn the_wedge_slope_is_the_derivative_of_the_closed_form_and_the_slice_is_negative() {
+        let pi = Float::with_val(BITS, rug::float::Constant::Pi);
+        for (k, pair) in uniforms(7, 40).chunks(2).enumerate() {
+            let (x, y) = (pair[0] * ANTI_PHASE_RADIUS, (pair[1] * 0.375).max(1e-3));
+            let h = f(1e-25);
+            let derivative = (normalised_at(Chart::AntiPhaseWedge, &(f(x) + &h), y)
+                - normalised_at(Chart::AntiPhaseWedge, &(f(x) - &h), y))
+                / (h * 2);
+            let slope = point(Chart::AntiPhaseWedge, x, y);
+            let (lower, upper) = slope.bounds(BITS);
+            let slack = f(1e-40);
+            assert!(
+                lower - &slack <= derivative && derivative <= upper + &slack,
+                "case {k}: {derivative}"
+            );
+        }
+        // The slice ε = 0: F(0, α) = −(c + 5)/(6(1 + c)) + α/(2 sin α) = g(α/2)/(4 sin(α/2) cos(α/2)),
+        // g(t) = 2t − (2/3) sin t cos t − (4/3) tan t, with g' = −(4/3) sin⁴t/cos²t < 0 and g(0) = 0.
+        let g = |t: &Float| -> Float {
+            let (sin, cos, tan) = (t.clone().sin(), t.clone().cos(), t.clone().tan());
+            f(2.0) * t - sin * cos * 2 / 3 - tan * 4 / 3
+        };
+        for t in [1e-3, 0.05, 0.3, 0.58, 0.7] {
+            let (t, alpha) = (f(t), f(2.0 * t));
+            let (s, c) = (alpha.clone().sin(), alpha.clone().cos());
+            let slice = slice_value(&c, &s, &alpha);
+            let through_g: Float = g(&t) / (t.clone().sin() * t.clone().cos() * 4);
+            assert!(
+                ((slice.clone() - &through_g) / &slice).abs() < 1e-60,
+                "{slice} {through_g}"
+            );
+            assert!(slice < 0);
+            let tiny = f(2.0).pow(-80);
+            let derivative: Float = (g(&(t.clone() + &tiny)) - g(&(t.clone() - &tiny))) / (tiny * 2);
+            let closed: Float = -(t.clone().sin().square().square()) * 4 / (t.clone().cos().square() * 3);
+            assert!(((derivative - &closed) / &closed).abs() < 1e-30);
+            // And it is the limit ε → 0 of I/(ε sin²α).
+            let v = alpha / &pi;
+            let at_small: Float = normalised_reference(Chart::AntiPhaseWedge, 1e-40, v.to_f64());
+            let v_exact = f(v.to_f64()) * &pi;
+            let (s, c) = (v_exact.clone().sin(), v_exact.clone().cos());
+            let limit = slice_value(&c, &s, &v_exact);
+            assert!((at_small - limit).abs() < 1e-35);
+        }
+    }
+
+    #[test]
+    fn claim_2_is_proven_on_boxes_that_cover_the_half_plane() {
+        let outcome = prove_claim();
+        assert!(outcome.proven(), "{:?}", outcome.unproven.first());
+        assert!(outcome.boxes_proven > 1000 && outcome.boxes_evaluated >= outcome.boxes_proven);
+        // Every point of the half-plane lies in a starting cell: ρ log-uniform in
+        // [1e−6, 1e6] and crowded at 1, φ ∈ (0, π) crowded at 0 and π.
+        let cells = initial_cells();
+        let inside = |chart: Chart, x: f64, y: f64| {
+            cells
+                .iter()
+                .any(|c| c.chart == chart && c.x.0 <= x && x <= c.x.1 && c.y.0 <= y && y <= c.y.1)
+        };
+        let draws = uniforms(99, 40_000);
+        for pair in draws.chunks(4) {
+            let rho = match (pair[2] * 3.0) as u32 {
+                0 => 10f64.powf(12.0 * pair[0] - 6.0),
+                1 => 1.0 + (pair[0] - 0.5) * 10f64.powf(-8.0 * pair[1]),
+                _ => 0.5 + pair[0],
+            };
+            let u = match (pair[3] * 3.0) as u32 {
+                0 => 10f64.powf(-9.0 * pair[1]),
+                1 => 1.0 - 10f64.powf(-9.0 * pair[1]),
+                _ => pair[1],
+            };
+            if !(rho > 0.0 && u > 0.0 && u < 1.0) {
+                continue;
+            }
+            let (re, im) = (
+                rho * (std::f64::consts::PI * u).cos(),
+                rho * (std::f64::consts::PI * u).sin(),
+            );
+            let to_one = (re - 1.0).hypot(im);
+            let to_minus_one = (re + 1.0).hypot(im);
+            let covered = (rho <= 1.0 && inside(Chart::BelowOne, rho, u))
+                || (rho >= 1.0 && inside(Chart::AboveOne, 1.0 / rho, u))
+                || to_one < SLIP_ONSET_RADIUS * 0.999
+                || (to_minus_one < ANTI_PHASE_RADIUS * 0.999);
+            assert!(covered, "ρ = {rho}, φ = {u}π is in no chart");
+        }
+    }
+
+    #[test]
+    fn a_false_claim_is_refused() {
+        // I → 0 as ρ → 0 and as φ → 0, π: "I < −10⁻³" and "I + 10⁻³⁰ < 0" are false there.
+        let edge = Cell::new(Chart::BelowOne, (0.0, 1.0 / 1024.0), (0.25, 0.5));
+        assert!(prove(Statement::CLAIM, vec![edge], 10_000).proven());
+        for shift in [1e-30, 1e-3] {
+            let refused = prove(Statement { shift }, vec![edge], 10_000);
+            assert!(!refused.proven(), "I + {shift} < 0 was proven");
+            let whole = prove(Statement { shift }, initial_cells(), 20_000);
+            assert!(!whole.proven(), "I + {shift} < 0 was proven on the half-plane");
+        }
+    }
+
+    #[test]
+    fn verify_marks_the_proved_row_and_the_sampled_rows() {
+        let (code, stdout, stderr) = super::microslip(&["verify", "--quick", "--json", "--seed", "5"]);
+        assert_eq!(code, 0, "{stderr}");
+        let report: serde_json::Value = serde_json::from_str(stdout.trim()).unwrap();
+        let claims = report["claims"].as_array().unwrap();
+        let proved: Vec<_> = claims.iter().filter(|c| c["proved"] == true).collect();
+        assert_eq!(proved.len(), 1, "{claims:?}");
+        let row = proved[0];
+        assert!(row["claim"].as_str().unwrap().starts_with("2 I(ρ,φ) < 0"));
+        assert!(row["proof"]["boxes"].as_u64().unwrap() > 1000);
+        assert!(row["proof"]["seconds"].as_f64().unwrap() > 0.0);
+        assert!(claims.iter().all(|c| c["proved"] == true || c["proof"].is_null()));
+        let (code, stdout, _) = super::microslip(&["verify", "--quick", "--seed", "5"]);
+        assert_eq!(code, 0);
+        let line = stdout.lines().find(|l| l.starts_with("2 I(ρ,φ) < 0")).unwrap();
+        assert!(line.ends_with("proved"), "{line}");
+        assert!(
+            stdout.lines().filter(|l| l.ends_with("sampled")).count() >= 19,
+            "{stdout}"
+        );
+    }
 }

@@ -119,6 +119,10 @@ pub struct ClaimRow<'a> {
     pub worst_error: f64,
     pub tolerance: f64,
     pub passed: bool,
+    /// Proven over the whole domain (true), or checked on random draws (false).
+    pub proved: bool,
+    /// The proof's boxes and seconds, for a proved row.
+    pub proof: Option<microslip::verify::ProofSize>,
     pub note: &'a str,
 }
 

@@ -67,6 +67,8 @@ pub fn run(args: &VerifyArgs) -> Result<(String, bool), Failure> {
                     worst_error: r.worst_error,
                     tolerance: r.tolerance,
                     passed: r.passed,
+                    proved: r.proved(),
+                    proof: r.proof.filter(|_| r.proved()),
                     note: &r.note,
                 })
                 .collect(),
@@ -85,7 +87,13 @@ pub fn run(args: &VerifyArgs) -> Result<(String, bool), Failure> {
             r.cases,
             r.worst_error,
             r.tolerance,
-            if r.passed { "pass" } else { "FAIL" }
+            if r.proved() {
+                "proved"
+            } else if r.passed {
+                "sampled"
+            } else {
+                "FAIL"
+            }
         ));
         if !r.note.is_empty() {
             out.push_str(&format!("    {}\n", r.note));

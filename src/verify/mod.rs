@@ -34,6 +34,24 @@ pub struct ClaimReport {
     pub passed: bool,
     /// What was found: the first failure, or a measured figure.
     pub note: String,
+    /// For a claim proven over its whole domain rather than sampled: the proof's size.
+    pub proof: Option<ProofSize>,
+}
+
+impl ClaimReport {
+    /// Whether the claim is proven (every box of a rigorous subdivision decided), not sampled.
+    pub fn proved(&self) -> bool {
+        self.passed && self.proof.is_some()
+    }
+}
+
+/// The size of a proof by subdivision.
+#[derive(Clone, Copy, Debug, Serialize)]
+pub struct ProofSize {
+    /// Boxes evaluated (proven or split).
+    pub boxes: u64,
+    /// Wall-clock seconds.
+    pub seconds: f64,
 }
 
 /// How much of the gate to run.
@@ -58,7 +76,11 @@ pub fn gate(options: GateOptions) -> Vec<GateStep> {
             "small-amplitude coefficient",
             Box::new(move || {
                 let (homogeneous, in_phase) = claims::small_amplitude_coefficient(seed + 1, n(4, 100));
-                vec![homogeneous, in_phase]
+                let mut rows = Vec::new();
+                #[cfg(feature = "certified")]
+                rows.push(claims::coefficient_is_negative());
+                rows.extend([homogeneous, in_phase]);
+                rows
             }),
         ),
         (

@@ -10,6 +10,8 @@
 //! cases in `evaluator.rs`.
 
 mod coefficient;
+#[cfg(feature = "certified")]
+pub mod coefficient_proof;
 mod constant_term;
 mod cubic_law;
 mod evaluator;
@@ -20,6 +22,8 @@ mod roughness;
 mod simulation;
 
 pub use coefficient::small_amplitude_coefficient;
+#[cfg(feature = "certified")]
+pub use coefficient_proof::coefficient_is_negative;
 pub use constant_term::ConstantTerm;
 pub use cubic_law::{cubic_law, cubic_law_order, least_squares_slope, CubicLawCase};
 pub use evaluator::{check_claim, Claim, Evaluator, Failure, FourSegment, Measured, Outcome, Simulation, Value};
@@ -97,6 +101,7 @@ impl Tally {
                 tolerance,
                 passed: true,
                 note: String::new(),
+                proof: None,
             },
             unresolved: 0,
         }
