@@ -12,6 +12,7 @@
 
 use std::ffi::{c_int, c_void};
 use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::time::Instant;
 
 use flint_sys::acb::{acb_indeterminate, acb_init, acb_set};
 use flint_sys::acb_calc::{acb_calc_integrate, acb_calc_integrate_opt_init, acb_calc_integrate_opt_struct};
@@ -79,6 +80,9 @@ pub enum CertifiedError {
         relative_radius: f64,
         bits: u32,
     },
+    /// The deadline passed before the enclosure was narrow enough.
+    #[error("the time budget ran out before the enclosure of W was narrow enough: {reached} of the {asked} digits asked reached (last attempt at {bits} bits)")]
+    OutOfTime { asked: u32, reached: u32, bits: u32 },
 }
 
 /// The largest working precision [`certified_dissipation`] tries, in bits.
@@ -198,17 +202,36 @@ pub fn certified_dissipation<F>(case: F, digits: u32) -> Result<Certified, Certi
 where
     F: Fn(Precision) -> Result<(LoadCycle<Ball>, Box<dyn Compliance<Ball>>), String>,
 {
+    certified_dissipation_by(case, digits, None)
+}
+
+/// [`certified_dissipation`] that starts no attempt after `deadline` (an attempt itself
+/// cannot be interrupted): [`CertifiedError::OutOfTime`] then names the digits reached.
+pub fn certified_dissipation_by<F>(case: F, digits: u32, deadline: Option<Instant>) -> Result<Certified, CertifiedError>
+where
+    F: Fn(Precision) -> Result<(LoadCycle<Ball>, Box<dyn Compliance<Ball>>), String>,
+{
     let digits = digits.max(1);
     // Guard bits for the rounding of the integrand and the sum of the pieces.
     let mut bits = Precision::decimal_digits(digits).in_bits() + 24;
     let mut last_error = None;
+    let (mut reached, mut last_bits) = (0, 0);
+    let out_of_time = || deadline.is_some_and(|deadline| Instant::now() >= deadline);
     while bits <= MAX_BITS {
+        if out_of_time() {
+            return Err(CertifiedError::OutOfTime {
+                asked: digits,
+                reached,
+                bits: last_bits,
+            });
+        }
+        last_bits = bits;
         let (cycle, compliance) =
             case(Precision::bits(bits)).map_err(|reason| CertifiedError::Case { bits, reason })?;
         match enclose_dissipation(&cycle, compliance.as_ref(), bits) {
             Ok(enclosure) => {
                 if let Some((text, reached)) = certain_digits(&enclosure.total, digits) {
-                    if reached >= digits {
+                    if reached >= digits && !out_of_time() {
                         return Ok(Certified {
                             enclosure,
                             text,
@@ -216,7 +239,7 @@ where
                         });
                     }
                 }
-                let reached = certain_digits(&enclosure.total, digits).map_or(0, |(_, n)| n);
+                reached = certain_digits(&enclosure.total, digits).map_or(0, |(_, n)| n);
                 last_error = Some(CertifiedError::TooWide {
                     asked: digits,
                     reached,

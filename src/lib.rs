@@ -24,6 +24,7 @@ pub mod certified;
 pub mod compliance;
 pub mod cycle;
 pub mod dissipation;
+pub mod dissipation_answer;
 pub mod exact;
 #[cfg(feature = "cli")]
 pub mod figures;
