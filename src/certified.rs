@@ -80,13 +80,18 @@ pub enum CertifiedError {
         relative_radius: f64,
         bits: u32,
     },
-    /// The deadline passed before the enclosure was narrow enough.
-    #[error("the time budget ran out before the enclosure of W was narrow enough: {reached} of the {asked} digits asked reached (last attempt at {bits} bits)")]
+    /// The deadline passed, or would pass during the next attempt, before the enclosure
+    /// was narrow enough.
+    #[error("the time budget ran out before the enclosure of W was narrow enough: {reached} of the {asked} digits asked reached (working precision {bits} bits)")]
     OutOfTime { asked: u32, reached: u32, bits: u32 },
 }
 
 /// The largest working precision [`certified_dissipation`] tries, in bits.
 pub const MAX_BITS: u32 = 4096;
+
+/// The working precision of the probe by which [`certified_dissipation_by`] foretells
+/// the cost of a long first attempt, in bits.
+const PROBE_BITS: u32 = 64;
 
 /// Integrand evaluations Arb may spend on one piece, besides 16 per bit of precision
 /// (an ordinary piece needs a few hundred).
@@ -217,8 +222,19 @@ where
     let mut last_error = None;
     let (mut reached, mut last_bits) = (0, 0);
     let out_of_time = || deadline.is_some_and(|deadline| Instant::now() >= deadline);
+    // An attempt at twice the bits costs about four times the last: one that would end
+    // past the deadline is not started.
+    let mut next_cost = std::time::Duration::ZERO;
+    if deadline.is_some() && bits >= 4 * PROBE_BITS {
+        // A probe at a low precision foretells the first attempt's cost (quadratic in the bits).
+        let started = Instant::now();
+        if let Ok((cycle, compliance)) = case(Precision::bits(PROBE_BITS)) {
+            let _ = enclose_dissipation(&cycle, compliance.as_ref(), PROBE_BITS);
+        }
+        next_cost = started.elapsed() * (bits / PROBE_BITS).pow(2);
+    }
     while bits <= MAX_BITS {
-        if out_of_time() {
+        if deadline.is_some_and(|deadline| Instant::now() + next_cost >= deadline) {
             return Err(CertifiedError::OutOfTime {
                 asked: digits,
                 reached,
@@ -226,6 +242,7 @@ where
             });
         }
         last_bits = bits;
+        let started = Instant::now();
         let (cycle, compliance) =
             case(Precision::bits(bits)).map_err(|reason| CertifiedError::Case { bits, reason })?;
         match enclose_dissipation(&cycle, compliance.as_ref(), bits) {
@@ -251,6 +268,7 @@ where
             Err(error @ CertifiedError::Cycle(_)) => return Err(error),
             Err(error) => last_error = Some(error),
         }
+        next_cost = started.elapsed() * 4;
         bits *= 2;
     }
     Err(last_error.expect("at least one precision is tried"))

@@ -25,7 +25,7 @@ use crate::cycle::LoadCycle;
 use crate::dissipation::{dissipation, Dissipation, DissipationError, ExactZero, Method, Options, Segment, Segments};
 use crate::inputs::{Case, CaseText, InputError};
 use crate::real::{Precision, Real};
-use crate::reference::{checked_exact_zero, verified_dissipation, ReferenceError, MAX_DIGITS};
+use crate::reference::{check_case, checked_exact_zero, verified_dissipation, ReferenceError, MAX_DIGITS};
 use crate::verified::{resolved_digits, F64_DIGITS_FLOOR, F64_MOST_DIGITS};
 
 /// W as printed, with why the policy took the path it took.
@@ -271,6 +271,8 @@ pub fn exact_zero_answer(reason: ExactZero, digits: Option<u32>) -> Answer {
 
 /// `digits` digits: certified where an enclosure can be had, else by agreement.
 fn to_digits(case: &CaseText, digits: u32, deadline: Instant) -> Result<(Answer, Option<NoEnclosure>), ReferenceError> {
+    // The enclosure needs a case inside the theory, which it does not check itself.
+    check_case(case)?;
     let no_enclosure = match certified::answer(case, digits, deadline) {
         Ok(answer) => return Ok((answer, None)),
         Err(refusal) => refusal?,

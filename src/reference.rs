@@ -232,12 +232,19 @@ pub(crate) fn checked_exact_zero(case: &CaseText) -> Result<Option<ExactZero>, R
     let Some(reason) = case.exact_zero()? else {
         return Ok(None);
     };
+    check_case(case)?;
+    Ok(Some(reason))
+}
+
+/// Refuses a case outside the theory: its cycle is validated, and its compliance checked
+/// over the cycle's loads, in MPFR, as a computation of W checks them.
+pub(crate) fn check_case(case: &CaseText) -> Result<(), ReferenceError> {
     let Case { cycle, compliance } = case.read::<Float>(Precision::bits(128))?;
     let cycle = ValidCycle::new(cycle).map_err(DissipationError::from)?;
     let low = (cycle.mean_normal_load.clone() - &cycle.normal_amplitude).min_of(&cycle.permanent_stick_load());
     let high = cycle.mean_normal_load.clone() + &cycle.normal_amplitude;
     check_admissible(compliance.as_ref(), &low, &high).map_err(DissipationError::from)?;
-    Ok(Some(reason))
+    Ok(())
 }
 
 /// W for `case` to `digits` verified significant digits, within `budget`, by [`verify`];
