@@ -155,6 +155,9 @@ impl std::fmt::Display for Fallback {
 pub enum NoEnclosure {
     /// The library was built without the `certified` feature (no Arb).
     NotBuilt,
+    /// W has a closed form here (exactly in phase, or P1 = 0), which is not enclosed: the
+    /// four-segment enclosure cannot decide the boundary such a case sits on.
+    ClosedForm,
     /// The certified driver refused the case: undecided geometry, an integrand not
     /// analytic on a piece, or an enclosure too wide at the largest precision.
     #[cfg(feature = "certified")]
@@ -165,6 +168,9 @@ impl std::fmt::Display for NoEnclosure {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             NoEnclosure::NotBuilt => f.write_str("built without ball arithmetic (feature `certified`)"),
+            NoEnclosure::ClosedForm => {
+                f.write_str("W has a closed form here (exactly in phase, or P1 = 0), which is not enclosed")
+            }
             #[cfg(feature = "certified")]
             NoEnclosure::Refused(error) => write!(f, "{error}"),
         }
@@ -273,9 +279,15 @@ pub fn exact_zero_answer(reason: ExactZero, digits: Option<u32>) -> Answer {
 fn to_digits(case: &CaseText, digits: u32, deadline: Instant) -> Result<(Answer, Option<NoEnclosure>), ReferenceError> {
     // The enclosure needs a case inside the theory, which it does not check itself.
     check_case(case)?;
-    let no_enclosure = match certified::answer(case, digits, deadline) {
-        Ok(answer) => return Ok((answer, None)),
-        Err(refusal) => refusal?,
+    let closed_form = case
+        .read::<Float>(Precision::bits(64))
+        .is_ok_and(|Case { cycle, .. }| cycle.phase.is_zero() || cycle.normal_amplitude.is_zero());
+    let no_enclosure = match closed_form {
+        true => NoEnclosure::ClosedForm,
+        false => match certified::answer(case, digits, deadline) {
+            Ok(answer) => return Ok((answer, None)),
+            Err(refusal) => refusal?,
+        },
     };
     let budget = deadline.saturating_duration_since(Instant::now());
     let verified = verified_dissipation(case, digits, budget)?;
