@@ -6,10 +6,11 @@
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use microslip::accuracy::standard_cases;
 use microslip::dissipation::{dissipation, Options};
+use microslip::dissipation_answer::dissipation_answer;
 use microslip::inputs::{Case, CaseText};
 use microslip::quad::gauss_legendre::{clear_node_cache, compute_node_table, node_table};
 use microslip::real::{Precision, Real};
-use microslip::reference::{printable_dissipation, verified_dissipation};
+use microslip::reference::verified_dissipation;
 use microslip::simulate::{simulate, SimulationOptions};
 use rug::Float;
 use std::time::Duration;
@@ -226,7 +227,7 @@ fn bench_near_separation(c: &mut Criterion) {
         };
         let budget = Duration::from_secs(60);
         group.bench_function(format!("{distance}/command"), |b| {
-            b.iter(|| printable_dissipation(&text, None, budget).unwrap().digits)
+            b.iter(|| dissipation_answer(&text, None, budget).unwrap().digits())
         });
         group.bench_function(format!("{distance}/digits20"), |b| {
             b.iter(|| verified_dissipation(&text, 20, budget).unwrap().digits_verified)

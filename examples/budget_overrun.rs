@@ -1,10 +1,10 @@
 //! How far the library itself overruns a verified-digits budget (the command line's
-//! watchdogs cut a run at its budget regardless): `batch::case_dissipation` at 1000
+//! watchdogs cut a run at its budget regardless): `dissipation_answer::dissipation_report` at 1000
 //! digits with budgets of 1 and 2 s, timed to its own answer. Figures in proofs/stability.md.
 
 use std::time::{Duration, Instant};
 
-use microslip::batch::case_dissipation;
+use microslip::dissipation_answer::dissipation_report;
 use microslip::inputs::CaseText;
 
 fn main() {
@@ -22,9 +22,9 @@ fn main() {
         };
         for budget in [1, 2] {
             let started = Instant::now();
-            let outcome = case_dissipation(&case, Some(1000), Duration::from_secs(budget));
+            let outcome = dissipation_report(&case, Some(1000), Duration::from_secs(budget));
             let answer = match outcome {
-                Ok(result) => format!("W = {}…", &result.printed.total[..12]),
+                Ok(result) => format!("W = {}…", &result.total()[..12]),
                 Err(error) => error.to_string(),
             };
             println!(

@@ -156,7 +156,7 @@ pub struct Value {
     pub binary64: Option<f64>,
 }
 
-/// The significant digits of the outward-rounded ends of an enclosure.
+/// The fewest significant digits of the outward-rounded ends of an enclosure.
 const ENCLOSURE_DIGITS: usize = 20;
 
 impl Value {
@@ -171,14 +171,23 @@ impl Value {
 
     /// The value in [`lower`, `upper`], with at most `most` significant digits.
     pub fn within(lower: &Float, upper: &Float, most: u32) -> Self {
+        // Enough digits that the decimal ends are not wider than the digits printed.
+        let digits = ENCLOSURE_DIGITS.max(most as usize + 2);
         Value {
             decimal: decimal_interval(lower, upper, most),
             enclosure: Some((
-                outward(lower, rug::float::Round::Down),
-                outward(upper, rug::float::Round::Up),
+                outward(lower, digits, rug::float::Round::Down),
+                outward(upper, digits, rug::float::Round::Up),
             )),
             binary64: None,
         }
+    }
+
+    /// The value in [`value` − `radius`, `value` + `radius`], with at most `most`
+    /// significant digits.
+    pub fn about(value: &Float, radius: &Float, most: u32) -> Self {
+        let (lower, upper) = crate::verified::ends(value, &radius.clone().abs());
+        Value::within(&lower, &upper, most)
     }
 
     /// An f64 `value` with an absolute `bound` on its error.
@@ -187,8 +196,8 @@ impl Value {
         Value {
             decimal: decimal_f64(value, bound),
             enclosure: Some((
-                outward(&lower, rug::float::Round::Down),
-                outward(&upper, rug::float::Round::Up),
+                outward(&lower, ENCLOSURE_DIGITS, rug::float::Round::Down),
+                outward(&upper, ENCLOSURE_DIGITS, rug::float::Round::Up),
             )),
             binary64: Some(value),
         }
@@ -201,12 +210,12 @@ impl Value {
     }
 }
 
-/// `x` as a decimal of [`ENCLOSURE_DIGITS`] digits rounded in the direction `round`.
-fn outward(x: &Float, round: rug::float::Round) -> String {
+/// `x` as a decimal of `digits` significant digits rounded in the direction `round`.
+fn outward(x: &Float, digits: usize, round: rug::float::Round) -> String {
     if x.is_zero() || !x.is_finite() {
         return x.to_f64().to_string();
     }
-    let (negative, mantissa, exponent) = x.to_sign_string_exp_round(10, Some(ENCLOSURE_DIGITS), round);
+    let (negative, mantissa, exponent) = x.to_sign_string_exp_round(10, Some(digits), round);
     let (first, rest) = mantissa.split_at(1);
     let sign = if negative { "-" } else { "" };
     format!("{sign}{first}.{rest}e{}", exponent.unwrap_or(1) - 1)

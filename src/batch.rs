@@ -1,23 +1,16 @@
 //! W for many load cycles at once (parameter sweeps, design maps): a CSV of cases in,
-//! one result per case out, in input order, every case on the path a single run takes.
-//!
-//! [`case_dissipation`] is that path: verified or f64 digits as
-//! [`printable_dissipation`] gives them, and for a compliance from a table the f64
-//! value with the error the table introduces beside the quadrature's.
+//! one result per case out, in input order, every case on the path a single run takes
+//! ([`dissipation_report`]).
 
-use std::time::{Duration, Instant};
-
-use std::sync::Arc;
+use std::time::Duration;
 
 use rayon::prelude::*;
 
-use crate::compliance::{parse_spec_with, tables_in_spec, ComplianceTable, TableError, TableInterpolant};
+use crate::answer::{Answer, Provenance};
+use crate::compliance::{tables_in_spec, TableError};
 use crate::cycle::LoadCycle;
-use crate::dissipation::{dissipation, DissipationError, Method, Options};
-use crate::inputs::{Case, CaseText};
-use crate::real::Precision;
-use crate::reference::{printable_dissipation, PrintedDissipation, ReferenceError};
-use crate::verified::resolved_digits;
+use crate::dissipation_answer::{dissipation_report, tables_cover, DissipationAnswer};
+use crate::reference::ReferenceError;
 
 mod input;
 mod output;
@@ -25,146 +18,10 @@ mod output;
 pub use input::{read_input, BatchInput, InputRow, MAX_RECORD_BYTES};
 pub use output::{BatchRecord, JsonValue};
 
-/// Relative quadrature tolerance of W from a table: far below any table's own error,
-/// and reachable on the interpolant's piecewise-cubic v' in f64.
-pub const TABLE_QUADRATURE_TOLERANCE: f64 = 1e-12;
+pub use crate::dissipation_answer::{method_key, TableEstimate, TABLE_QUADRATURE_TOLERANCE};
 
-/// What |W[half table] − W[table]| is divided by to estimate the error of W[table], for
-/// a table of `rows` rows. For a construction of order p = [`TABLE_ORDER`] the quotient
-/// tends to 2^p − 1 = 15, but before the data are asymptotic it is smaller: over the
-/// scan of proofs/table-compliance.md it fell to 6 at 16 to 24 rows, to 1 at 9 rows,
-/// and below 1 for tables of up to 5 rows (halves of three rows, one parabola of node
-/// values, can be as close to the full table as its own error). The divisor keeps a
-/// factor of about two below the least quotient measured at each size.
-fn half_table_divisor(rows: usize) -> f64 {
-    match rows {
-        0..=5 => 0.25,
-        6..=12 => 0.5,
-        _ => 3.0,
-    }
-}
-
-/// What a table compliance adds to a result.
-#[derive(Clone, Debug, PartialEq)]
-pub struct TableEstimate {
-    /// Estimated absolute error of W due to the table: the larger |W\[half table\] − W\[table\]|
-    /// of the two half tables (plus the quadrature errors of the difference), scaled by
-    /// the order of the construction.
-    pub error: f64,
-    /// The largest relative change the smoothing fit made to the data (0 when none).
-    pub smoothing_residual: f64,
-    /// W before rounding to the printed digits.
-    pub unrounded: f64,
-}
-
-/// W as a single run prints it, and for table compliances the table's error.
-#[derive(Clone, Debug)]
-pub struct CaseDissipation {
-    /// W and its segments as printed.
-    pub printed: PrintedDissipation,
-    /// Present when the compliance has a table term.
-    pub table: Option<TableEstimate>,
-}
-
-/// Why a case gives no W.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum CaseError {
-    /// The case, the precision, or the quadrature.
-    #[error(transparent)]
-    Reference(#[from] ReferenceError),
-    /// A table of the compliance.
-    #[error(transparent)]
-    Table(#[from] TableError),
-    /// Verified digits asked for a table compliance.
-    #[error("verified digits are not computed for a table compliance: the table is measured data, known only to its error estimate, and the interpolant between its loads is one choice of many, so digits beyond the table error would not be digits of W (the f64 run reports W with that error)")]
-    DigitsForTable,
-    /// f64 cannot compute this cycle, and a table is not computed at other precisions.
-    #[error("{source} — but a table compliance is computed in f64 only, so this cycle cannot be computed from a table (where its loads are extreme, rescale the cycle and the table's loads together: W scales with the load scale)")]
-    TableInF64 { source: DissipationError },
-}
-
-impl From<DissipationError> for CaseError {
-    fn from(error: DissipationError) -> Self {
-        CaseError::Reference(ReferenceError::Dissipation(error))
-    }
-}
-
-/// W for one case: [`printable_dissipation`], or for a compliance with a table term, W
-/// in f64 from the table's interpolant, rounded to the digits that its quadrature
-/// error plus the table's error leave. Where they leave none, W (and a segment likewise)
-/// is the empty text and its digits 0: no digit of it is known.
-pub fn case_dissipation(case: &CaseText, digits: Option<u32>, budget: Duration) -> Result<CaseDissipation, CaseError> {
-    let tables = tables_in_spec(&case.compliance)?;
-    if tables.is_empty() {
-        return Ok(CaseDissipation {
-            printed: printable_dissipation(case, digits, budget)?,
-            table: None,
-        });
-    }
-    if digits.is_some() {
-        return Err(CaseError::DigitsForTable);
-    }
-    let deadline = Instant::now() + budget;
-    let Case { cycle, compliance } = case.read::<f64>(Precision::DOUBLE).map_err(ReferenceError::from)?;
-    cycle.validate().map_err(DissipationError::from)?;
-    tables_cover(&tables, &cycle)?;
-    let in_f64 = |error: DissipationError| match error {
-        DissipationError::IllConditioned { .. }
-        | DissipationError::NotConverged { .. }
-        | DissipationError::OutOfRange { .. }
-        | DissipationError::OutsideRange { .. } => CaseError::TableInF64 { source: error },
-        other => other.into(),
-    };
-    let options = Options {
-        relative_tolerance: Some(TABLE_QUADRATURE_TOLERANCE),
-        deadline: Some(deadline),
-        ..Options::default()
-    };
-    let result = dissipation(&cycle, compliance.as_ref(), &options).map_err(in_f64)?;
-    let segments = result.segments.named().map(|(_, value)| *value);
-    // The table error: how far W moves when the table loses its odd rows, or its even rows.
-    let divisor = half_table_divisor(tables.iter().map(|t| t.loads.len()).min().unwrap_or(0));
-    let (mut table_error, mut segment_shifts) = (0.0f64, [0.0f64; 4]);
-    for interpolant in [TableInterpolant::HalfTable, TableInterpolant::OtherHalfTable] {
-        let half = parse_spec_with::<f64>(&case.compliance, Precision::DOUBLE, interpolant)
-            .map_err(|e| ReferenceError::Input(e.into()))?;
-        let moved = dissipation(&cycle, half.as_ref(), &options).map_err(in_f64)?;
-        let uncertainty = moved.error_estimate + result.error_estimate;
-        table_error = table_error.max(((moved.total - result.total).abs() + uncertainty) / divisor);
-        for ((shift, value), half_value) in segment_shifts.iter_mut().zip(segments).zip(moved.segments.named()) {
-            *shift = shift.max(((half_value.1 - value).abs() + uncertainty) / divisor);
-        }
-    }
-    let segment_errors = segment_shifts.map(|shift| result.error_estimate + shift);
-    let mut printed = PrintedDissipation::within(&result, result.error_estimate + table_error, segment_errors);
-    if printed.digits == 0 {
-        printed.total = String::new();
-    }
-    for ((_, text), (value, error)) in printed
-        .segments
-        .iter_mut()
-        .zip(segments.into_iter().zip(segment_errors))
-    {
-        if resolved_digits(value, error) == 0 {
-            text.clear();
-        }
-    }
-    Ok(CaseDissipation {
-        printed,
-        table: Some(TableEstimate {
-            error: table_error,
-            smoothing_residual: tables.iter().map(|t| t.smoothing_residual).fold(0.0, f64::max),
-            unrounded: result.total,
-        }),
-    })
-}
-
-/// Refuses a valid cycle whose loads, from min(P_T, P0 − P1) to P0 + P1, leave a table.
-fn tables_cover(tables: &[Arc<ComplianceTable>], cycle: &LoadCycle<f64>) -> Result<(), TableError> {
-    let low = (cycle.mean_normal_load - cycle.normal_amplitude).min(cycle.permanent_stick_load());
-    let high = cycle.mean_normal_load + cycle.normal_amplitude;
-    tables.iter().try_for_each(|table| table.check_covers(low, high))
-}
+/// Why a case gives no W: the one error of every path to W.
+pub type CaseError = ReferenceError;
 
 /// Refuses a cycle that leaves a table of the compliance SPEC, naming the table's range
 /// (for computations that check the compliance themselves, as the simulation does). A
@@ -174,17 +31,6 @@ pub fn check_table_range(spec: &str, cycle: &LoadCycle<f64>) -> Result<(), Table
         return Ok(());
     }
     tables_cover(&tables_in_spec(spec)?, cycle)
-}
-
-/// A short machine-readable name of a method.
-pub fn method_key(method: Method) -> &'static str {
-    match method {
-        Method::FourSegment => "four-segment",
-        Method::InPhase => "in-phase",
-        Method::ConstantNormalLoad => "constant-normal-load",
-        Method::NoTangentialOscillation => "no-tangential-oscillation",
-        Method::Exact(_) => "exact",
-    }
 }
 
 /// A batch input that cannot be used at all.
@@ -204,18 +50,27 @@ pub enum BatchError {
 /// The columns a batch appends to its input's.
 pub const RESULT_COLUMNS: [&str; 6] = ["W", "digits", "error_estimate", "table_error", "method", "error"];
 
+/// The result fields of a JSON record beyond [`RESULT_COLUMNS`].
+const RECORD_ONLY_FIELDS: [&str; 3] = ["digits_certified", "provenance", "enclosure"];
+
 /// The result of one row, as the output columns print it.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct RowResult {
-    /// W as printed (empty on failure).
+    /// W as printed (empty on failure, and where not one digit is determined).
     pub total: String,
     /// Its significant digits.
     pub digits: Option<u32>,
+    /// The digits proven (by an enclosure, or exact); 0 for estimated digits.
+    pub digits_certified: Option<u32>,
+    /// Decimal ends of an interval that contains W (none for an exact value).
+    pub enclosure: Option<(String, String)>,
+    /// What vouches for W ([`crate::answer::Provenance::key`]; empty on failure).
+    pub provenance: String,
     /// The absolute quadrature error estimate of an f64 W.
     pub error_estimate: Option<f64>,
     /// The estimated absolute error due to a table compliance.
     pub table_error: Option<f64>,
-    /// How W was computed (with why MPFR, when f64 fell back to it).
+    /// How W was computed (with why not f64, or why no enclosure, where it applies).
     pub method: String,
     /// Why the row failed (empty when it succeeded).
     pub error: String,
@@ -225,6 +80,39 @@ impl RowResult {
     /// Did the row give a W?
     pub fn succeeded(&self) -> bool {
         self.error.is_empty()
+    }
+
+    /// The result of a row that gave `report`.
+    fn of(report: &DissipationAnswer) -> Self {
+        let DissipationAnswer {
+            answer,
+            fallback,
+            no_enclosure,
+            table,
+        } = report;
+        let Answer { value, provenance, .. } = answer;
+        let mut method = answer.method.map_or("", method_key).to_string();
+        if let Some(reason) = fallback {
+            method.push_str(&format!(" ({} in place of f64: {reason})", provenance.key()));
+        }
+        if let Some(why) = no_enclosure {
+            method.push_str(&format!(" (no enclosure: {why})"));
+        }
+        let error_estimate = match provenance {
+            Provenance::Estimate { error_estimate } => Some(*error_estimate),
+            _ => table.as_ref().map(|t| t.quadrature_error),
+        };
+        RowResult {
+            total: report.total(),
+            digits: Some(answer.digits()),
+            digits_certified: Some(answer.digits_certified()),
+            enclosure: value.enclosure.clone(),
+            provenance: provenance.key().to_string(),
+            error_estimate,
+            table_error: table.as_ref().map(|t| t.error),
+            method,
+            error: String::new(),
+        }
     }
 }
 
@@ -300,22 +188,8 @@ fn row_result(threads: &RowThreads, row: &InputRow, digits: Option<u32>, budget:
         Ok(case) => case.clone(),
         Err(problem) => return failed(problem.clone()),
     };
-    match threads.within_budget(budget, move || case_dissipation(&case, digits, budget)) {
-        Some(Ok(Ok(result))) => {
-            let printed = result.printed;
-            let mut method = method_key(printed.method).to_string();
-            if let Some(reason) = &printed.fallback {
-                method.push_str(&format!(" (verified in MPFR: {reason})"));
-            }
-            RowResult {
-                total: printed.total,
-                digits: Some(printed.digits),
-                error_estimate: printed.error_estimate,
-                table_error: result.table.map(|t| t.error),
-                method,
-                error: String::new(),
-            }
-        }
+    match threads.within_budget(budget, move || dissipation_report(&case, digits, budget)) {
+        Some(Ok(Ok(report))) => RowResult::of(&report),
         Some(Ok(Err(error))) => failed(error.to_string()),
         Some(Err(_)) => failed("internal error: the computation panicked (please report this case)".to_string()),
         None => failed(format!(
@@ -388,7 +262,8 @@ where
 
 /// The results as records, one per row in input order (the JSON lines output).
 pub fn records<'a>(header: &'a [String], rows: &'a [InputRow], results: &'a [RowResult]) -> Vec<BatchRecord<'a>> {
-    let keep = echoed(header);
+    let mut keep = echoed(header);
+    keep.retain(|&i| !RECORD_ONLY_FIELDS.contains(&header[i].as_str()));
     rows.iter()
         .zip(results)
         .map(|(row, result)| {
@@ -432,7 +307,9 @@ mod tests {
         assert!(lines[0]["error"].is_null() && lines[0]["table_error"].is_null());
         assert!(lines[1]["W"].is_null() && lines[1]["method"].is_null());
         assert!(lines[1]["error"].as_str().unwrap().contains("gross slip"));
-        assert_eq!(lines[0].as_object().unwrap().len(), 14);
+        assert_eq!(lines[0]["provenance"], "estimate");
+        assert_eq!(lines[0]["digits_certified"], 0);
+        assert_eq!(lines[0].as_object().unwrap().len(), 17);
     }
 
     #[test]

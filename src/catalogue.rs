@@ -13,10 +13,9 @@ use std::time::{Duration, Instant};
 use serde::{Deserialize, Serialize};
 
 use crate::batch::CaseError;
-use crate::compliance::tables_in_spec;
+use crate::dissipation_answer::dissipation_answer;
 use crate::files::{write_text_atomically, OutputError};
 use crate::inputs::CaseText;
-use crate::reference::verified_dissipation;
 
 /// One catalogue case and, once computed, its reference value.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -88,17 +87,15 @@ pub enum EntryError {
     NotReached(f64),
 }
 
-/// The reference value of `case` to `digits` verified digits, by `deadline`: a
-/// compliance with a table is refused, as verified digits of it are everywhere.
+/// The reference value of `case` to `digits` digits, by `deadline`, as
+/// [`dissipation_answer`] gives them (certified where an enclosure can be had): a
+/// compliance with a table is refused, as digits of it are everywhere.
 pub fn reference_value(case: &CaseText, digits: u32, deadline: Instant) -> Result<ReferenceValue, CaseError> {
-    if !tables_in_spec(&case.compliance)?.is_empty() {
-        return Err(CaseError::DigitsForTable);
-    }
     let budget = deadline.saturating_duration_since(Instant::now());
-    let verified = verified_dissipation(case, digits, budget).map_err(CaseError::Reference)?;
+    let answer = dissipation_answer(case, Some(digits), budget)?;
     Ok(ReferenceValue {
-        digits: verified.digits_verified,
-        w: verified.total,
+        digits: answer.digits(),
+        w: answer.value.decimal.to_string(),
     })
 }
 

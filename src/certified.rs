@@ -12,6 +12,7 @@
 
 use std::ffi::{c_int, c_void};
 use std::panic::{catch_unwind, AssertUnwindSafe};
+use std::time::Instant;
 
 use flint_sys::acb::{acb_get_mag, acb_indeterminate, acb_init, acb_set};
 use flint_sys::acb_calc::{acb_calc_integrate, acb_calc_integrate_opt_init, acb_calc_integrate_opt_struct};
@@ -88,10 +89,18 @@ pub enum CertifiedError {
         relative_radius: f64,
         bits: u32,
     },
+    /// The deadline passed, or would pass during the next attempt, before the enclosure
+    /// was narrow enough.
+    #[error("the time budget ran out before the enclosure of W was narrow enough: {reached} of the {asked} digits asked reached (working precision {bits} bits)")]
+    OutOfTime { asked: u32, reached: u32, bits: u32 },
 }
 
 /// The largest working precision [`certified_dissipation`] tries, in bits.
 pub const MAX_BITS: u32 = 4096;
+
+/// The working precision of the probe by which [`certified_dissipation_by`] foretells
+/// the cost of a long first attempt, in bits.
+const PROBE_BITS: u32 = 64;
 
 /// Integrand evaluations Arb may spend on one piece, besides 16 per bit of precision
 /// (an ordinary piece needs a few hundred).
@@ -319,6 +328,15 @@ pub fn certified_dissipation<F>(case: F, digits: u32) -> Result<Certified, Certi
 where
     F: Fn(Precision) -> Result<(LoadCycle<Ball>, Box<dyn Compliance<Ball>>), String>,
 {
+    certified_dissipation_by(case, digits, None)
+}
+
+/// [`certified_dissipation`] that starts no attempt after `deadline` (an attempt itself
+/// cannot be interrupted): [`CertifiedError::OutOfTime`] then names the digits reached.
+pub fn certified_dissipation_by<F>(case: F, digits: u32, deadline: Option<Instant>) -> Result<Certified, CertifiedError>
+where
+    F: Fn(Precision) -> Result<(LoadCycle<Ball>, Box<dyn Compliance<Ball>>), String>,
+{
     let digits = digits.max(1);
     // Guard bits for the rounding of the integrand and the sum of the pieces, and the
     // bits that a phase near a multiple of π costs, known before the first attempt.
@@ -330,7 +348,29 @@ where
     let extra = phase_bits(&cycle);
     let first = (digit_bits + extra).next_multiple_of(64);
     let mut bits = first;
+    let (mut reached, mut last_bits) = (0, 0);
+    let out_of_time = || deadline.is_some_and(|deadline| Instant::now() >= deadline);
+    // An attempt at twice the bits costs about four times the last: one that would end
+    // past the deadline is not started.
+    let mut next_cost = std::time::Duration::ZERO;
+    if deadline.is_some() && bits >= 4 * PROBE_BITS {
+        // A probe at a low precision foretells the first attempt's cost (quadratic in the bits).
+        let started = Instant::now();
+        if let Ok((cycle, compliance)) = case(Precision::bits(PROBE_BITS)) {
+            let _ = enclose_dissipation(&cycle, compliance.as_ref(), PROBE_BITS);
+        }
+        next_cost = started.elapsed() * (bits / PROBE_BITS).pow(2);
+    }
     loop {
+        if deadline.is_some_and(|deadline| Instant::now() + next_cost >= deadline) {
+            return Err(CertifiedError::OutOfTime {
+                asked: digits,
+                reached,
+                bits: last_bits,
+            });
+        }
+        last_bits = bits;
+        let started = Instant::now();
         let (cycle, compliance) =
             case(Precision::bits(bits)).map_err(|reason| CertifiedError::Case { bits, reason })?;
         // The digits' bits and 24 more (and the phase's), not the limb's spare bits; a
@@ -338,17 +378,20 @@ where
         let goal = (Precision::decimal_digits(digits).in_bits() + 24 + extra).min(first) + (bits - first);
         let error = match enclose_dissipation(&cycle, compliance.as_ref(), goal) {
             Ok(enclosure) => {
-                let reached = certain_digits(&enclosure.total, digits);
-                if let Some((text, reached)) = reached.clone().filter(|(_, reached)| *reached >= digits) {
-                    return Ok(Certified {
-                        enclosure,
-                        text,
-                        digits: reached,
-                    });
+                let certain = certain_digits(&enclosure.total, digits);
+                if let Some((text, enough)) = certain.clone().filter(|(_, n)| *n >= digits) {
+                    if !out_of_time() {
+                        return Ok(Certified {
+                            enclosure,
+                            text,
+                            digits: enough,
+                        });
+                    }
                 }
+                reached = certain.map_or(0, |(_, n)| n);
                 CertifiedError::TooWide {
                     asked: digits,
-                    reached: reached.map_or(0, |(_, n)| n),
+                    reached,
                     relative_radius: enclosure.total.relative_radius(),
                     bits,
                 }
@@ -357,6 +400,7 @@ where
             Err(error @ CertifiedError::Cycle(_)) => return Err(error),
             Err(error) => error,
         };
+        next_cost = started.elapsed() * 4;
         bits *= 2;
         if bits > MAX_BITS {
             return Err(error);

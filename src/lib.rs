@@ -26,6 +26,7 @@ pub mod compliance;
 pub mod cycle;
 mod decimal;
 pub mod dissipation;
+pub mod dissipation_answer;
 pub mod exact;
 #[cfg(feature = "cli")]
 pub mod figures;

@@ -496,7 +496,7 @@ fn rounds_alike(lower: &Float, upper: &Float, digits: u32) -> Option<String> {
 
 /// The ends of [`value` − `radius`, `value` + `radius`], rounded outwards (exact for f64
 /// operands: 64 bits more than either holds).
-fn ends(value: &Float, radius: &Float) -> (Float, Float) {
+pub(crate) fn ends(value: &Float, radius: &Float) -> (Float, Float) {
     let bits = value.prec().max(radius.prec()) + 64;
     let (lower, _) = Float::with_val_round(bits, value - radius, Round::Down);
     let (upper, _) = Float::with_val_round(bits, value + radius, Round::Up);

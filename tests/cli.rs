@@ -885,3 +885,175 @@ fn comments_cite_no_tracker_numbers() {
     }
     assert!(citations.is_empty(), "{}", citations.join("\n"));
 }
+
+/// `dissipation --json` with the acceptance case's flags replaced by `flags`.
+fn dissipation_json(flags: &[&str]) -> serde_json::Value {
+    let mut args = vec!["--json"];
+    args.extend(flags);
+    let (code, stdout, stderr) = on_case("dissipation", &args);
+    assert_eq!(code, 0, "{stderr}");
+    json(&stdout)
+}
+
+/// The case of the acceptance flags with `flags` replacing some, as decimal text.
+fn case_text(flags: &[(&str, &str)]) -> microslip::inputs::CaseText {
+    let value = |flag: &str| {
+        flags
+            .iter()
+            .chain(CASE_FLAGS.iter())
+            .find(|(f, _)| *f == flag)
+            .map(|(_, v)| v.to_string())
+    };
+    microslip::inputs::CaseText {
+        p0: value("--p0").unwrap(),
+        p1: value("--p1").unwrap(),
+        q0: value("--q0").unwrap_or_else(|| "0".into()),
+        q1: value("--q1").unwrap(),
+        phi: value("--phi").unwrap(),
+        friction: value("--friction").unwrap(),
+        lambda: value("--lambda"),
+        nu: None,
+        compliance: value("--compliance").unwrap(),
+    }
+}
+
+/// Whether the JSON `enclosure` of `report` contains `reference` (a decimal string).
+fn encloses(report: &serde_json::Value, reference: &str) -> bool {
+    let end = |i: usize| {
+        rug::Float::with_val(
+            400,
+            rug::Float::parse(report["enclosure"][i].as_str().unwrap()).unwrap(),
+        )
+    };
+    let value = rug::Float::with_val(400, rug::Float::parse(reference).unwrap());
+    end(0) <= value && value <= end(1)
+}
+
+#[test]
+fn digits_asked_are_proven_by_an_enclosure_and_f64_digits_say_they_are_estimated() {
+    use microslip::reference::verified_dissipation;
+    let budget = std::time::Duration::from_secs(120);
+    for flags in [
+        vec![],
+        vec![("--compliance", "power:c=0.5,beta=-0.5"), ("--phi", "0.3pi")],
+        vec![("--compliance", "hertz:r=2,estar=3"), ("--p1", "0.9"), ("--q1", "0.2")],
+        vec![("--compliance", "poly:p0=1,coeffs=2;-0.5"), ("--q0", "0.1")],
+    ] {
+        let args: Vec<&str> = flags.iter().flat_map(|(f, v)| [*f, *v]).collect();
+        let proven = dissipation_json(&[&args[..], &["--digits", "30"]].concat());
+        assert_eq!(proven["provenance"], "certified", "{proven}");
+        assert_eq!(proven["digits_certified"], 30, "{proven}");
+        // An independent reference: 60 digits by agreement of two MPFR precisions.
+        let reference = verified_dissipation(&case_text(&flags), 60, budget).unwrap().total;
+        assert!(encloses(&proven, &reference), "{proven} vs {reference}");
+        let w = proven["W"].as_str().unwrap();
+        let rounded = rug::Float::with_val(400, rug::Float::parse(&reference).unwrap()).to_string_radix(10, Some(30));
+        assert_eq!(
+            rug::Float::with_val(400, rug::Float::parse(w).unwrap()),
+            rug::Float::with_val(400, rug::Float::parse(&rounded).unwrap()),
+            "{w} vs {reference}"
+        );
+        let estimated = dissipation_json(&args);
+        assert_eq!(estimated["provenance"], "estimate", "{estimated}");
+        assert_eq!(estimated["digits_certified"], 0, "{estimated}");
+        assert!(encloses(&estimated, &reference), "{estimated} vs {reference}");
+    }
+    let (_, stdout, _) = on_case("dissipation", &["--digits", "30"]);
+    assert!(
+        stdout
+            .lines()
+            .next()
+            .unwrap()
+            .contains("30 significant digits, proven (rigorous enclosure at "),
+        "{stdout}"
+    );
+    let (_, stdout, _) = on_case("dissipation", &[]);
+    assert!(
+        stdout
+            .lines()
+            .next()
+            .unwrap()
+            .contains("estimated (f64, error estimate "),
+        "{stdout}"
+    );
+    assert!(stdout.contains("not proven"), "{stdout}");
+}
+
+#[test]
+fn a_phase_near_pi_gets_proven_relative_digits_without_digits_asked() {
+    let near_pi = dissipation_json(&["--q1", "0.2", "--phi", "3.141592653589793"]);
+    assert_eq!(near_pi["W"], "1.79304398627923e-33", "{near_pi}");
+    assert_eq!(near_pi["provenance"], "certified", "{near_pi}");
+    assert!(
+        near_pi["f64_fallback"].as_str().unwrap().contains("cancel"),
+        "{near_pi}"
+    );
+}
+
+#[test]
+fn the_misrounded_f64_reproducers_print_only_digits_of_w() {
+    use microslip::reference::verified_dissipation;
+    for flags in [
+        vec![
+            ("--p1", "0.82575"),
+            ("--q1", "0.25651"),
+            ("--phi", "1.7464"),
+            ("--friction", "1.217"),
+            ("--lambda", "1.78"),
+        ],
+        vec![
+            ("--p1", "0.3"),
+            ("--q0", "0.12526586642305143"),
+            ("--q1", "0.7650853137335195"),
+            ("--phi", "1"),
+            ("--friction", "0.8"),
+            ("--lambda", "1.2"),
+            ("--compliance", "power:c=1,beta=-3"),
+        ],
+    ] {
+        let args: Vec<&str> = flags.iter().flat_map(|(f, v)| [*f, *v]).collect();
+        let printed = dissipation_json(&args);
+        let digits = printed["digits"].as_u64().unwrap() as usize;
+        let reference = verified_dissipation(&case_text(&flags), 30, std::time::Duration::from_secs(120))
+            .unwrap()
+            .total;
+        let reference: f64 = reference.parse().unwrap();
+        let w = printed["W"].as_str().unwrap();
+        assert_eq!(w, format!("{:.*e}", digits - 1, reference), "{printed}");
+    }
+}
+
+#[test]
+fn an_exact_zero_is_one_answer_in_json_and_in_batch_rows() {
+    let zero = dissipation_json(&["--compliance", "const:c=0.8", "--digits", "25"]);
+    assert_eq!(zero["W"], "0");
+    assert_eq!(zero["provenance"], "exact");
+    assert_eq!(zero["method"], "exact");
+    assert!(
+        zero["precision_bits"].is_null() && zero["enclosure"].is_null(),
+        "{zero}"
+    );
+    assert_eq!(zero["digits_certified"], 25);
+    let directory = scratch("exact-zero-batch");
+    let input = directory.join("in.csv");
+    std::fs::write(
+        &input,
+        "p0,p1,q1,phi,friction,lambda,compliance\n1,0.4,0.5,0.4pi,1,1,const:c=0.8\n",
+    )
+    .unwrap();
+    let (code, stdout, stderr) = microslip(&[
+        "batch",
+        "--input",
+        input.to_str().unwrap(),
+        "--output",
+        "-",
+        "--format",
+        "jsonl",
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    let row = json(&stdout);
+    assert_eq!(
+        (row["W"].as_f64(), &row["method"], &row["provenance"]),
+        (Some(0.0), &zero["method"], &zero["provenance"])
+    );
+}

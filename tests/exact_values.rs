@@ -5,9 +5,9 @@
 
 use std::time::{Duration, Instant};
 
+use microslip::dissipation_answer::dissipation_report;
 use microslip::inputs::CaseText;
 use microslip::real::{Precision, Real};
-use microslip::reference::printable_dissipation;
 use rug::Float;
 
 mod common;
@@ -33,9 +33,9 @@ const PERSSON: &str = "persson:gamma=1,sigma=1";
 /// W as printed without --digits, as a 200-bit number, with the time it took.
 fn w(phi: &str) -> (Float, Duration) {
     let started = Instant::now();
-    let printed = printable_dissipation(&case(phi, PERSSON), None, Duration::from_secs(60))
+    let printed = dissipation_report(&case(phi, PERSSON), None, Duration::from_secs(60))
         .unwrap_or_else(|e| panic!("φ = {phi}: {e}"));
-    let value = Float::parse_decimal(&printed.total, Precision::bits(200)).unwrap();
+    let value = Float::parse_decimal(&printed.total(), Precision::bits(200)).unwrap();
     (value, started.elapsed())
 }
 

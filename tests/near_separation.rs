@@ -9,12 +9,14 @@
 
 use std::time::Duration;
 
+use microslip::answer::Provenance;
 use microslip::dissipation::{dissipation, DissipationError, Options, Segment, SegmentIntegrands};
+use microslip::dissipation_answer::dissipation_report;
 use microslip::inputs::{Case, CaseText};
 use microslip::quad::gauss_legendre::node_table;
 use microslip::quad::RuleError;
 use microslip::real::Precision;
-use microslip::reference::{printable_dissipation, verified_dissipation};
+use microslip::reference::verified_dissipation;
 use microslip::simulate::{simulate, SimulationOptions};
 use rug::Float;
 
@@ -147,10 +149,14 @@ fn assert_digits(label: &str, printed: &str, digits: u32, units: f64, reference:
 /// library call, each against the graded reference.
 fn check_against_reference(label: &str, text: &CaseText) {
     let reference = graded_reference(text);
-    let printed = printable_dissipation(text, None, Duration::from_secs(60)).unwrap_or_else(|e| panic!("{label}: {e}"));
+    let printed = dissipation_report(text, None, Duration::from_secs(60)).unwrap_or_else(|e| panic!("{label}: {e}"));
     // An f64 value prints the digits its estimate vouches for: right to a unit of the last.
-    let units = if printed.error_estimate.is_some() { 1.0 } else { 0.5 };
-    assert_digits(label, &printed.total, printed.digits, units, &reference);
+    let units = if matches!(printed.answer.provenance, Provenance::Estimate { .. }) {
+        1.0
+    } else {
+        0.5
+    };
+    assert_digits(label, &printed.total(), printed.answer.digits(), units, &reference);
     let verified = verified_dissipation(text, 20, Duration::from_secs(60)).unwrap_or_else(|e| panic!("{label}: {e}"));
     assert_digits(label, &verified.total, 20, 0.5, &reference);
     let Case { cycle, compliance } = text.read::<f64>(Precision::DOUBLE).unwrap();
@@ -219,14 +225,14 @@ fn the_issue_cases_are_positive_and_right() {
         check_against_reference(&format!("P1 = {p1}, Q1 = {q1}, φ = {phi}, {compliance}"), &text);
     }
     // The issue's independent value for the first.
-    let printed = printable_dissipation(
+    let printed = dissipation_report(
         &case("0.99999999998", "0", "1e-13", "0.4pi", "persson:gamma=1,sigma=1"),
         None,
         Duration::from_secs(60),
     )
     .unwrap();
-    let w: f64 = printed.total.parse().unwrap();
-    assert!((w / 8.44e-25 - 1.0).abs() < 1e-3, "{}", printed.total);
+    let w: f64 = printed.total().parse().unwrap();
+    assert!((w / 8.44e-25 - 1.0).abs() < 1e-3, "{}", printed.total());
 }
 
 #[test]
@@ -246,8 +252,8 @@ fn the_gross_slip_analogue_p_t_near_zero_is_right_too() {
 fn the_history_simulation_agrees_at_1e_3_of_separation() {
     for (q1, phi) in [("0.02", "0.5pi"), ("0.01", "0.5pi")] {
         let text = case("0.999", "0", q1, phi, "persson:gamma=1,sigma=1");
-        let printed = printable_dissipation(&text, None, Duration::from_secs(60)).unwrap();
-        let exact: f64 = printed.total.parse().unwrap();
+        let printed = dissipation_report(&text, None, Duration::from_secs(60)).unwrap();
+        let exact: f64 = printed.total().parse().unwrap();
         let Case { cycle, compliance } = text.read::<f64>(Precision::DOUBLE).unwrap();
         let simulated = simulate(&cycle, compliance.as_ref(), &SimulationOptions::default()).unwrap();
         let error = ((simulated.w_work - exact) / exact).abs();

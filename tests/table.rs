@@ -6,7 +6,7 @@ mod common;
 use std::path::PathBuf;
 use std::time::Duration;
 
-use microslip::batch::case_dissipation;
+use microslip::dissipation_answer::dissipation_report;
 use microslip::inputs::CaseText;
 
 /// A fresh directory for this test's files.
@@ -71,13 +71,13 @@ fn case(compliance: &str) -> CaseText {
 }
 
 fn analytic(spec: &str) -> f64 {
-    let result = case_dissipation(&case(spec), Some(20), Duration::from_secs(60)).expect("analytic W");
-    result.printed.total.parse().expect("W parses")
+    let result = dissipation_report(&case(spec), Some(20), Duration::from_secs(60)).expect("analytic W");
+    result.total().parse().expect("W parses")
 }
 
 /// (relative error of W, relative table-error estimate) for a sampled table.
 fn table_w(path: &str, exact: f64) -> (f64, f64) {
-    let result = case_dissipation(&case(&format!("table:{path}")), None, Duration::from_secs(60)).expect("table W");
+    let result = dissipation_report(&case(&format!("table:{path}")), None, Duration::from_secs(60)).expect("table W");
     let table = result.table.expect("a table estimate");
     ((table.unrounded - exact).abs() / exact, table.error / exact)
 }
@@ -395,15 +395,15 @@ fn the_closed_form_paths_take_tables_too() {
             phi: phi.into(),
             ..case(compliance)
         };
-        let exact = case_dissipation(&with("persson:gamma=1,sigma=1"), Some(20), Duration::from_secs(60))
-            .expect("analytic W")
-            .printed;
-        let exact_w: f64 = exact.total.parse().expect("W");
-        let result = case_dissipation(&with(&format!("table:{path}")), None, Duration::from_secs(60)).expect("table W");
+        let exact = dissipation_report(&with("persson:gamma=1,sigma=1"), Some(20), Duration::from_secs(60))
+            .expect("analytic W");
+        let exact_w: f64 = exact.total().parse().expect("W");
+        let result =
+            dissipation_report(&with(&format!("table:{path}")), None, Duration::from_secs(60)).expect("table W");
         let table = result.table.expect("table estimate");
-        assert_eq!(result.printed.method, exact.method, "P1 = {p1}, φ = {phi}");
+        assert_eq!(result.answer.method, exact.answer.method, "P1 = {p1}, φ = {phi}");
         assert!(
-            (table.unrounded - exact_w).abs() <= table.error + result.printed.error_estimate.unwrap_or(0.0),
+            (table.unrounded - exact_w).abs() <= table.error + table.quadrature_error,
             "P1 = {p1}, φ = {phi}: {} against {exact_w}, table estimate {:e}",
             table.unrounded,
             table.error

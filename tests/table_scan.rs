@@ -7,8 +7,8 @@
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
-use microslip::batch::case_dissipation;
 use microslip::cycle::LoadCycle;
+use microslip::dissipation_answer::dissipation_report;
 use microslip::inputs::CaseText;
 
 struct Family {
@@ -122,10 +122,9 @@ fn scan(name: &str, rows: &[usize]) -> (usize, f64) {
     for (c, cycle) in CYCLES.iter().enumerate() {
         let (low, high) = reach(cycle);
         for (f, family) in FAMILIES.iter().enumerate() {
-            let exact = case_dissipation(&case(cycle, family.spec), Some(20), Duration::from_secs(60))
+            let exact = dissipation_report(&case(cycle, family.spec), Some(20), Duration::from_secs(60))
                 .expect("analytic W")
-                .printed
-                .total;
+                .total();
             let exact_w: f64 = exact.parse().expect("W");
             for (column, values) in [("slope", family.slope), ("approach", family.approach)] {
                 for &n in rows {
@@ -138,7 +137,8 @@ fn scan(name: &str, rows: &[usize]) -> (usize, f64) {
                             if log { "log" } else { "uniform" }
                         );
                         let compliance = format!("table:{}", path.display());
-                        let result = match case_dissipation(&case(cycle, &compliance), None, Duration::from_secs(60)) {
+                        let result = match dissipation_report(&case(cycle, &compliance), None, Duration::from_secs(60))
+                        {
                             Ok(result) => result,
                             Err(error) => {
                                 failures.push(format!("{label}: refused: {error}"));
@@ -147,7 +147,7 @@ fn scan(name: &str, rows: &[usize]) -> (usize, f64) {
                         };
                         tables += 1;
                         let estimate = result.table.as_ref().expect("table estimate");
-                        let bound = estimate.error + result.printed.error_estimate.unwrap_or(0.0);
+                        let bound = estimate.error + estimate.quadrature_error;
                         let error = (estimate.unrounded - exact_w).abs();
                         worst = worst.min(bound / error);
                         eprintln!(
@@ -155,30 +155,27 @@ fn scan(name: &str, rows: &[usize]) -> (usize, f64) {
                             estimate.unrounded,
                             error / exact_w.abs(),
                             bound / error,
-                            result.printed.total,
-                            result.printed.digits
+                            result.total(),
+                            result.answer.digits()
                         );
                         if error > bound {
                             failures.push(format!("{label}: error {error:.2e} above the estimate {bound:.2e}"));
                         }
-                        let digits = result.printed.digits as usize;
+                        let digits = result.answer.digits() as usize;
                         let rounded = |value: f64| format!("{:.*e}", digits.max(1) - 1, value);
                         // Where W ± its error straddle a rounding boundary, the digit count is the
                         // printing rule's to lower (verified::resolved_digits), not the estimate's.
                         let straddles = rounded(estimate.unrounded - bound) != rounded(estimate.unrounded + bound);
                         if digits == 0 {
-                            if !result.printed.total.is_empty() {
-                                failures.push(format!(
-                                    "{label}: no digit resolved, yet '{}' printed",
-                                    result.printed.total
-                                ));
+                            if !result.total().is_empty() {
+                                failures.push(format!("{label}: no digit resolved, yet '{}' printed", result.total()));
                             }
                         } else if !straddles {
                             let expected = rounded(exact_w);
-                            if result.printed.total != expected {
+                            if result.total() != expected {
                                 failures.push(format!(
                                     "{label}: printed {} where the analytic W {exact} rounds to {expected}",
-                                    result.printed.total
+                                    result.total()
                                 ));
                             }
                         }

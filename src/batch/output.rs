@@ -95,6 +95,12 @@ pub struct BatchRecord<'a> {
     #[serde(rename = "W")]
     pub w: JsonValue<'a>,
     pub digits: Option<u32>,
+    /// The digits proven (by a rigorous enclosure, or exact): 0 for estimated ones.
+    pub digits_certified: Option<u32>,
+    /// What vouches for W: `exact`, `certified`, `agreement`, `estimate`, `table_error`.
+    pub provenance: JsonValue<'a>,
+    /// Decimal strings of an interval that contains W (null for an exact value).
+    pub enclosure: Option<[&'a str; 2]>,
     pub error_estimate: Option<f64>,
     pub table_error: Option<f64>,
     pub method: JsonValue<'a>,
@@ -119,6 +125,12 @@ impl<'a> BatchRecord<'a> {
             inputs: cells.into_iter().map(typed).collect(),
             w: JsonValue::decimal(&result.total),
             digits: result.digits,
+            digits_certified: result.digits_certified,
+            provenance: JsonValue::text(&result.provenance),
+            enclosure: result
+                .enclosure
+                .as_ref()
+                .map(|(lower, upper)| [lower.as_str(), upper.as_str()]),
             error_estimate: result.error_estimate,
             table_error: result.table_error,
             method: JsonValue::text(&result.method),

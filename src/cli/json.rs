@@ -11,22 +11,13 @@
 use serde::ser::SerializeMap;
 use serde::Serialize;
 
-use microslip::dissipation;
+use microslip::answer::{Provenance, Value};
+use microslip::dissipation::{self, Segment};
+use microslip::dissipation_answer::{method_key, DissipationAnswer};
 use microslip::inputs::CaseText;
 
 /// The four segment values as an object keyed by the segments' names, in cycle order.
 pub struct Segments<T>(dissipation::Segments<T>);
-
-impl<T: Clone> Segments<T> {
-    /// From the four values in the order EB, BC, CH, HE.
-    pub fn from_slice(values: &[T]) -> Option<Self> {
-        (values.len() == 4).then(|| {
-            Segments(dissipation::Segments::from_fn(|segment| {
-                values[segment as usize].clone()
-            }))
-        })
-    }
-}
 
 impl<T: Serialize> Serialize for Segments<T> {
     fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
@@ -47,15 +38,27 @@ pub struct DissipationReport<'a> {
     #[serde(rename = "W_f64")]
     pub w_f64: Option<f64>,
     pub digits: u32,
+    /// The digits proven or checked at a second precision (null for estimated ones).
     pub digits_verified: Option<u32>,
-    /// What vouches for the digits: `"estimate"` (f64's error estimate, not proven),
-    /// `"agreement"` (two precisions agree, not a proof), `"table_error"`, `"exact"`.
+    /// The digits proven: by a rigorous enclosure, or exact (0 for estimated ones).
+    pub digits_certified: u32,
+    /// What vouches for the digits ([`Provenance::key`]): `"exact"`, `"certified"`,
+    /// `"agreement"` (not a proof), `"estimate"` (f64's error estimate, not proven) or
+    /// `"table_error"`.
+    pub provenance: &'static str,
+    /// The same as `provenance`, under the name the JSON reports share.
     pub bound: &'static str,
-    pub precision_bits: u32,
-    /// The absolute error estimate of an f64 W (null for verified digits).
+    /// Decimal strings of an interval that contains W (null for an exact value).
+    pub enclosure: Option<[&'a str; 2]>,
+    /// The working precision of the value printed (53 for f64; null for an exact value).
+    pub precision_bits: Option<u32>,
+    /// The absolute error estimate of an f64 W (null otherwise).
     pub error_estimate: Option<f64>,
-    /// Why a run without --digits computed verified digits in MPFR instead of f64.
+    /// Why a run without --digits did not print f64.
     pub f64_fallback: Option<String>,
+    /// Why the digits rest on agreement of two precisions rather than an enclosure.
+    pub no_enclosure: Option<String>,
+    /// How W was computed ([`microslip::dissipation_answer::method_key`]).
     pub method: &'static str,
     /// Why W is exactly 0, where it is (the value is then exact, not rounded).
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -68,6 +71,67 @@ pub struct DissipationReport<'a> {
     pub table_error: Option<f64>,
     /// For a smoothed table: the largest relative move of the data (null otherwise).
     pub smoothing_residual: Option<f64>,
+}
+
+impl<'a> DissipationReport<'a> {
+    /// The report of W as the policy gave it, for the inputs `case`.
+    pub fn new(report: &'a DissipationAnswer, case: &'a CaseText) -> Self {
+        let answer = &report.answer;
+        let printed = |value: &Value| (value.digits() > 0).then(|| value.decimal.to_string());
+        let segments = answer.segments.as_ref();
+        let proven_or_checked = !matches!(
+            answer.provenance,
+            Provenance::Estimate { .. } | Provenance::Table { .. } | Provenance::Simulated { .. }
+        );
+        let error_estimate = match &answer.provenance {
+            Provenance::Estimate { error_estimate } => Some(*error_estimate),
+            _ => report.table.as_ref().map(|t| t.quadrature_error),
+        };
+        DissipationReport {
+            w: printed(&answer.value),
+            w_f64: answer.value.binary64,
+            digits: answer.digits(),
+            digits_verified: proven_or_checked.then(|| answer.digits()),
+            digits_certified: answer.digits_certified(),
+            provenance: answer.provenance.key(),
+            bound: answer.provenance.key(),
+            enclosure: answer
+                .value
+                .enclosure
+                .as_ref()
+                .map(|(lower, upper)| [lower.as_str(), upper.as_str()]),
+            precision_bits: answer.provenance.precision_bits(),
+            error_estimate,
+            f64_fallback: report.fallback.as_ref().map(ToString::to_string),
+            no_enclosure: report.no_enclosure.as_ref().map(ToString::to_string),
+            method: answer.method.map_or("", method_key),
+            exact: match &answer.provenance {
+                Provenance::Exact(reason) => Some(reason.reason()),
+                _ => None,
+            },
+            // Only a table's segment can have no known digit: null; elsewhere the interval.
+            segments: segments.map(|s| {
+                Segments(dissipation::Segments::from_fn(|segment| match report.table {
+                    Some(_) => printed(s.get(segment)),
+                    None => Some(s.get(segment).decimal.to_string()),
+                }))
+            }),
+            segments_f64: segments.and_then(|s| {
+                let values = dissipation::Segments::from_fn(|segment| s.get(segment).binary64);
+                Segment::ALL
+                    .iter()
+                    .all(|&segment| values.get(segment).is_some())
+                    .then(|| {
+                        Segments(dissipation::Segments::from_fn(|segment| {
+                            values.get(segment).unwrap_or(0.0)
+                        }))
+                    })
+            }),
+            inputs: case,
+            table_error: report.table.as_ref().map(|t| t.error),
+            smoothing_residual: report.table.as_ref().map(|t| t.smoothing_residual),
+        }
+    }
 }
 
 /// The inputs of `microslip simulate`: the case and the resolution asked for.

@@ -7,18 +7,16 @@
 
 use std::time::{Duration, Instant};
 
-use rug::ops::Pow;
 use rug::{Float, Rational};
 
 use super::coefficient::closed_form_coefficient;
 use super::series::{partial_sums, series_coefficients, SeriesError};
 use crate::answer::{Answer, ExactReason, Provenance, Value};
 use crate::compliance::slope_polynomial_degree;
-use crate::dissipation::Method;
 use crate::inputs::{parse_phase, Case, CaseText, InputError};
 use crate::phase::{decimal, ExactPhase, PhaseError};
 use crate::real::{ParseRealError, Precision, Real};
-use crate::reference::{printable_dissipation, ReferenceError};
+use crate::reference::ReferenceError;
 use crate::verified::{
     agreement_radius, verified_values, Decimal, OutOfBudget, VerifyError, F64_MOST_DIGITS, GUARD_DIGITS, MAX_DIGITS,
 };
@@ -372,50 +370,9 @@ pub struct PartialSums {
     pub differences: Vec<Answer>,
 }
 
-/// W as an [`Answer`], from [`printable_dissipation`]: exact by reason, f64 with its
-/// estimate, or agreed digits (their interval: the numbers that round to them).
+/// W as an [`Answer`], by the one policy for W ([`crate::dissipation_answer`]).
 fn dissipation_answer(case: &CaseText, digits: Option<u32>, budget: Duration) -> Result<Answer, ExactAnswerError> {
-    let w = printable_dissipation(case, digits, budget)?;
-    if let Method::Exact(reason) = w.method {
-        return Ok(exact(ExactReason::Zero(reason), digits));
-    }
-    let decimal = Decimal::Digits {
-        text: w.total.clone(),
-        digits: w.digits,
-    };
-    let (value, provenance) = match (w.error_estimate, w.binary64) {
-        (Some(error_estimate), Some(binary64)) => {
-            let mut value = Value::from_f64(binary64[0], error_estimate);
-            if w.digits > 0 {
-                value.decimal = decimal;
-            }
-            (value, Provenance::Estimate { error_estimate })
-        }
-        _ => {
-            let bits = Precision::decimal_digits(w.digits).in_bits() + 64;
-            let centre = Float::parse(&w.total).map(|parsed| Float::with_val(bits, parsed)).ok();
-            let mut value = match centre {
-                Some(centre) => {
-                    // Agreement vouches for the digits printed: the numbers that round to them.
-                    let exponent = w
-                        .total
-                        .rsplit_once('e')
-                        .and_then(|(_, e)| e.parse::<i32>().ok())
-                        .unwrap_or(0);
-                    let half = Float::with_val(bits, 10).pow(exponent - w.digits as i32 + 1) / 2u32;
-                    Value::within(&(centre.clone() - &half), &(centre + &half), w.digits)
-                }
-                None => Value {
-                    decimal: Decimal::Zero,
-                    enclosure: None,
-                    binary64: None,
-                },
-            };
-            value.decimal = decimal;
-            (value, Provenance::Agreement { bits: w.precision_bits })
-        }
-    };
-    Ok(answer(value, digits, provenance))
+    Ok(crate::dissipation_answer::dissipation_answer(case, digits, budget)?)
 }
 
 /// W_N − W from their intervals, with the weaker provenance of the two.

@@ -1,0 +1,595 @@
+//! W as one [`Answer`]: the one policy that decides how W is computed for printing, and
+//! says why wherever its first choice gave way.
+//!
+//! In order:
+//! 1. a compliance with a table: f64 from the table's interpolant, with the table's error
+//!    beside the quadrature's ([`Provenance::Table`]); digits beyond that error would not
+//!    be digits of W, so `--digits` is refused;
+//! 2. W exactly 0 for a reason read from the exact input ([`CaseText::exact_zero`]): at
+//!    once, at any `--digits` ([`Provenance::Exact`]);
+//! 3. with `--digits N`: a rigorous enclosure in ball arithmetic ([`Provenance::Certified`]),
+//!    or only where none can be had ([`NoEnclosure`] says why) two precisions agreeing
+//!    ([`Provenance::Agreement`], evidence, not proof);
+//! 4. without: f64 with the digits its error estimate determines ([`Provenance::Estimate`]),
+//!    or where f64 does not suffice ([`Fallback`] says why) [`F64_MOST_DIGITS`] digits by
+//!    step 3.
+
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use rug::Float;
+
+use crate::answer::{Answer, ExactReason, Provenance, Value};
+use crate::compliance::{parse_spec_with, tables_in_spec, Compliance, ComplianceTable, TableInterpolant};
+use crate::cycle::LoadCycle;
+use crate::dissipation::{dissipation, Dissipation, DissipationError, ExactZero, Method, Options, Segment, Segments};
+use crate::inputs::{Case, CaseText, InputError};
+use crate::real::{Precision, Real};
+use crate::reference::{check_case, checked_exact_zero, verified_dissipation, ReferenceError, MAX_DIGITS};
+use crate::verified::{resolved_digits, F64_DIGITS_FLOOR, F64_MOST_DIGITS};
+
+/// W as printed, with why the policy took the path it took.
+#[derive(Clone, Debug, PartialEq)]
+pub struct DissipationAnswer {
+    /// W and its segments, and what vouches for them.
+    pub answer: Answer,
+    /// Why a run without `--digits` did not print f64.
+    pub fallback: Option<Fallback>,
+    /// Why the digits rest on agreement of two precisions rather than an enclosure.
+    pub no_enclosure: Option<NoEnclosure>,
+    /// For a compliance with a table: the table's error and the quadrature's.
+    pub table: Option<TableEstimate>,
+}
+
+impl DissipationAnswer {
+    /// W as printed: empty where not one digit is determined (a table too coarse for it).
+    pub fn total(&self) -> String {
+        match self.answer.value.digits() {
+            0 => String::new(),
+            _ => self.answer.value.decimal.to_string(),
+        }
+    }
+}
+
+/// Why a run without `--digits` gave up f64 for [`F64_MOST_DIGITS`] digits at higher
+/// precision.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum Fallback {
+    /// f64 cannot hold a number of the case (1e-400, c=1e400).
+    CannotRead(InputError),
+    /// An intermediate of the compliance's formula leaves f64's range: its change of v'
+    /// about P0 differs from MPFR's at `load`.
+    ComplianceOverflow {
+        /// The load at which the two differ.
+        load: f64,
+        /// v'(P) − v'(P0) there in f64.
+        in_f64: f64,
+        /// The same in MPFR, to four digits.
+        in_mpfr: String,
+    },
+    /// A magnitude of the case lies outside what f64 carries through the integrals.
+    OutsideRange {
+        /// The quantity's name.
+        quantity: String,
+        /// Its value.
+        value: f64,
+        /// The least magnitude f64 carries.
+        low: f64,
+        /// The largest.
+        high: f64,
+    },
+    /// f64 fails: the result is out of its range or not finite, or the compliance looks
+    /// non-physical there.
+    F64Fails(DissipationError),
+    /// Rounding alone would move W by `expected` (relative).
+    IllConditioned {
+        /// What amplifies the rounding.
+        cause: String,
+        /// The relative change of W that rounding alone can cause.
+        expected: f64,
+    },
+    /// The f64 integrals did not converge.
+    NotConverged,
+    /// W ± its error estimate straddles rounding boundaries of more than its last digits.
+    Straddles {
+        /// The digits f64 determines.
+        resolved: u32,
+        /// Its error estimate.
+        error_estimate: f64,
+    },
+    /// The segments cancel to a W much smaller than themselves.
+    Cancellation {
+        /// The digits f64 determines.
+        resolved: u32,
+        /// The largest |segment|.
+        largest_segment: f64,
+    },
+}
+
+impl std::fmt::Display for Fallback {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            Fallback::CannotRead(error) => write!(f, "f64 cannot read the case: {error}"),
+            Fallback::ComplianceOverflow { load, in_f64, in_mpfr } => write!(
+                f,
+                "in f64 the compliance gives v'(P) − v'(P0) = {in_f64:.3e} at P = {load:.3e}, in MPFR {in_mpfr}: an intermediate of its formula leaves the range of f64"
+            ),
+            Fallback::OutsideRange {
+                quantity,
+                value,
+                low,
+                high,
+            } => write!(
+                f,
+                "{quantity} = {value:.1e} is outside the magnitudes f64 carries through the integrals without overflow or underflow ({low:.0e} to {high:.0e})"
+            ),
+            Fallback::F64Fails(error) => write!(f, "f64 fails here: {error}"),
+            Fallback::IllConditioned { cause, expected } => write!(
+                f,
+                "f64 is ill-conditioned here ({cause}): rounding alone would move W by ~{expected:.0e}"
+            ),
+            Fallback::NotConverged => f.write_str("the f64 integrals did not converge here"),
+            Fallback::Straddles {
+                resolved,
+                error_estimate,
+            } => write!(
+                f,
+                "f64 resolves {resolved} digits here: W ± its error estimate {error_estimate:.1e} straddles a rounding boundary of digit {}",
+                resolved + 1
+            ),
+            Fallback::Cancellation {
+                resolved,
+                largest_segment,
+            } => write!(
+                f,
+                "f64 resolves {resolved} digits here: its segments, up to {largest_segment:.1e}, cancel to W"
+            ),
+        }
+    }
+}
+
+/// Why digits rest on agreement of two precisions instead of a rigorous enclosure.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum NoEnclosure {
+    /// The library was built without the `certified` feature (no Arb).
+    NotBuilt,
+    /// W has a closed form here (exactly in phase, or P1 = 0), which is not enclosed: the
+    /// four-segment enclosure cannot decide the boundary such a case sits on.
+    ClosedForm,
+    /// The certified driver refused the case: undecided geometry, an integrand not
+    /// analytic on a piece, or an enclosure too wide at the largest precision.
+    #[cfg(feature = "certified")]
+    Refused(crate::certified::CertifiedError),
+}
+
+impl std::fmt::Display for NoEnclosure {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            NoEnclosure::NotBuilt => f.write_str("built without ball arithmetic (feature `certified`)"),
+            NoEnclosure::ClosedForm => {
+                f.write_str("W has a closed form here (exactly in phase, or P1 = 0), which is not enclosed")
+            }
+            #[cfg(feature = "certified")]
+            NoEnclosure::Refused(error) => write!(f, "{error}"),
+        }
+    }
+}
+
+/// What a table compliance adds to a result.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TableEstimate {
+    /// Estimated absolute error of W due to the table: the larger |W\[half table\] − W\[table\]|
+    /// of the two half tables (plus the quadrature errors of the difference), scaled by
+    /// the order of the construction.
+    pub error: f64,
+    /// The largest relative change the smoothing fit made to the data (0 when none).
+    pub smoothing_residual: f64,
+    /// W before rounding to the printed digits.
+    pub unrounded: f64,
+    /// The quadrature's absolute error estimate of W.
+    pub quadrature_error: f64,
+}
+
+/// A short machine-readable name of a method (batch rows, JSON).
+pub fn method_key(method: Method) -> &'static str {
+    method_names(method).0
+}
+
+/// How a method is described on W's line.
+pub fn method_description(method: Method) -> &'static str {
+    method_names(method).1
+}
+
+/// The one name table of [`Method`]: its key and its description.
+fn method_names(method: Method) -> (&'static str, &'static str) {
+    match method {
+        Method::FourSegment => (
+            "four-segment",
+            "four-segment integrals of v' − v'(P0) in the cycle angle",
+        ),
+        Method::InPhase => ("in-phase", "in-phase closed form (paper appendix)"),
+        Method::ConstantNormalLoad => ("constant-normal-load", "constant-normal-load closed form"),
+        Method::NoTangentialOscillation => ("no-tangential-oscillation", "no tangential oscillation (W = 0)"),
+        Method::Exact(_) => ("exact", "exact"),
+    }
+}
+
+/// W as printed: [`dissipation_report`] without the reasons.
+pub fn dissipation_answer(case: &CaseText, digits: Option<u32>, budget: Duration) -> Result<Answer, ReferenceError> {
+    dissipation_report(case, digits, budget).map(|report| report.answer)
+}
+
+/// W for printing by the policy of this module, within `budget`: with `digits` = Some(N),
+/// N certified digits (or by agreement where no enclosure can be had); without, f64
+/// where it suffices.
+pub fn dissipation_report(
+    case: &CaseText,
+    digits: Option<u32>,
+    budget: Duration,
+) -> Result<DissipationAnswer, ReferenceError> {
+    let deadline = Instant::now() + budget;
+    if let Some(digits) = digits.filter(|&d| d == 0 || d > MAX_DIGITS) {
+        return Err(ReferenceError::DigitsOutOfRange(digits));
+    }
+    let tables = tables_in_spec(&case.compliance)?;
+    if !tables.is_empty() {
+        if digits.is_some() {
+            return Err(ReferenceError::DigitsForTable);
+        }
+        return table_answer(case, &tables, deadline);
+    }
+    let plain = |answer| DissipationAnswer {
+        answer,
+        fallback: None,
+        no_enclosure: None,
+        table: None,
+    };
+    if let Some(reason) = checked_exact_zero(case)? {
+        return Ok(plain(exact_zero_answer(reason, digits)));
+    }
+    let fallback = match digits {
+        Some(_) => None,
+        None => match in_f64(case, deadline)? {
+            Ok(answer) => return Ok(plain(answer)),
+            Err(fallback) => Some(fallback),
+        },
+    };
+    let (answer, no_enclosure) = to_digits(case, digits.unwrap_or(F64_MOST_DIGITS), deadline)?;
+    Ok(DissipationAnswer {
+        fallback,
+        no_enclosure,
+        ..plain(answer)
+    })
+}
+
+/// W = 0 exactly, and every segment, for `reason`.
+pub fn exact_zero_answer(reason: ExactZero, digits: Option<u32>) -> Answer {
+    Answer {
+        value: Value::zero(),
+        segments: Some(Segments::from_fn(|_| Value::zero())),
+        digits_requested: digits,
+        provenance: Provenance::Exact(ExactReason::Zero(reason)),
+        method: Some(Method::Exact(reason)),
+    }
+}
+
+/// `digits` digits: certified where an enclosure can be had, else by agreement.
+fn to_digits(case: &CaseText, digits: u32, deadline: Instant) -> Result<(Answer, Option<NoEnclosure>), ReferenceError> {
+    // The enclosure needs a case inside the theory, which it does not check itself.
+    check_case(case)?;
+    let closed_form = case
+        .read::<Float>(Precision::bits(64))
+        .is_ok_and(|Case { cycle, .. }| cycle.phase.is_zero() || cycle.normal_amplitude.is_zero());
+    let no_enclosure = match closed_form {
+        true => NoEnclosure::ClosedForm,
+        false => match certified::answer(case, digits, deadline) {
+            Ok(answer) => return Ok((answer, None)),
+            Err(refusal) => refusal?,
+        },
+    };
+    let budget = deadline.saturating_duration_since(Instant::now());
+    let verified = verified_dissipation(case, digits, budget)?;
+    Ok((verified.answer, Some(no_enclosure)))
+}
+
+#[cfg(feature = "certified")]
+mod certified {
+    use std::time::Instant;
+
+    use crate::answer::{Answer, Provenance, Value};
+    use crate::ball::Ball;
+    use crate::certified::{certified_dissipation_by, CertifiedError};
+    use crate::dissipation::{DissipationError, Method, Segments};
+    use crate::inputs::{Case, CaseText};
+    use crate::reference::ReferenceError;
+
+    use super::NoEnclosure;
+
+    /// W to `digits` certified digits; `Err(Ok(why))` where no enclosure can be had and
+    /// agreement may serve, `Err(Err(error))` where nothing will (a cycle outside the
+    /// theory, the budget spent).
+    pub(super) fn answer(
+        case: &CaseText,
+        digits: u32,
+        deadline: Instant,
+    ) -> Result<Answer, Result<NoEnclosure, ReferenceError>> {
+        let read = |precision| {
+            let Case { cycle, compliance } = case.read::<Ball>(precision).map_err(|e| e.to_string())?;
+            Ok((cycle, compliance))
+        };
+        let certified = match certified_dissipation_by(read, digits, Some(deadline)) {
+            Ok(certified) => certified,
+            Err(CertifiedError::Cycle(error)) => return Err(Err(DissipationError::from(error).into())),
+            Err(error @ CertifiedError::OutOfTime { .. }) => return Err(Err(ReferenceError::Certified(error))),
+            Err(error) => return Err(Ok(NoEnclosure::Refused(error))),
+        };
+        let enclosure = &certified.enclosure;
+        let bits = enclosure.precision.in_bits();
+        let value = |ball: &Ball| {
+            let (lower, upper) = ball.bounds(bits);
+            Value::within(&lower, &upper, digits)
+        };
+        let total = value(&enclosure.total);
+        if total.digits() < digits {
+            // The one printing rule is stricter than the driver's where an end is a tie.
+            return Err(Ok(NoEnclosure::Refused(CertifiedError::TooWide {
+                asked: digits,
+                reached: total.digits(),
+                relative_radius: enclosure.total.relative_radius(),
+                bits,
+            })));
+        }
+        Ok(Answer {
+            value: total,
+            segments: Some(Segments::from_fn(|segment| value(enclosure.segments.get(segment)))),
+            digits_requested: Some(digits),
+            provenance: Provenance::Certified { bits },
+            method: Some(Method::FourSegment),
+        })
+    }
+}
+
+#[cfg(not(feature = "certified"))]
+mod certified {
+    use std::time::Instant;
+
+    use crate::answer::Answer;
+    use crate::inputs::CaseText;
+    use crate::reference::ReferenceError;
+
+    use super::NoEnclosure;
+
+    /// Without ball arithmetic there is no enclosure.
+    pub(super) fn answer(_: &CaseText, _: u32, _: Instant) -> Result<Answer, Result<NoEnclosure, ReferenceError>> {
+        Err(Ok(NoEnclosure::NotBuilt))
+    }
+}
+
+/// W in f64 with the digits its error estimate determines, or why f64 does not suffice.
+fn in_f64(case: &CaseText, deadline: Instant) -> Result<Result<Answer, Fallback>, ReferenceError> {
+    let Case { cycle, compliance } = match case.read::<f64>(Precision::DOUBLE) {
+        Ok(case) => case,
+        // A number f64 cannot hold (1e-400, c=1e400): MPFR reads the text exactly.
+        Err(error) if case.read::<Float>(Precision::bits(64)).is_ok() => return Ok(Err(Fallback::CannotRead(error))),
+        Err(error) => return Err(error.into()),
+    };
+    if let Some(fallback) = slope_change_differs_from_mpfr(case, &cycle, compliance.as_ref()) {
+        return Ok(Err(fallback));
+    }
+    let within_budget = Options {
+        deadline: Some(deadline),
+        ..Options::default()
+    };
+    let result = match dissipation(&cycle, compliance.as_ref(), &within_budget) {
+        Ok(result) => result,
+        Err(DissipationError::OutsideRange {
+            quantity,
+            value,
+            low,
+            high,
+            ..
+        }) => {
+            return Ok(Err(Fallback::OutsideRange {
+                quantity,
+                value,
+                low,
+                high,
+            }))
+        }
+        // Out of f64's range in the result, not finite, or a compliance f64 sees as
+        // non-physical (v' underflowing to 0, say): MPFR either computes it or says why not.
+        Err(
+            error @ (DissipationError::OutOfRange { .. }
+            | DissipationError::NotFinite { .. }
+            | DissipationError::Compliance(_)),
+        ) => return Ok(Err(Fallback::F64Fails(error))),
+        Err(DissipationError::IllConditioned { cause, expected, .. }) => {
+            return Ok(Err(Fallback::IllConditioned { cause, expected }))
+        }
+        Err(DissipationError::NotConverged { .. }) => return Ok(Err(Fallback::NotConverged)),
+        Err(other) => return Err(other.into()),
+    };
+    let segment_errors = Segments::from_fn(|_| result.error_estimate);
+    Ok(f64_suffices(&result).map(|()| estimated(&result, result.error_estimate, &segment_errors)))
+}
+
+/// Whether the digits f64 determines are enough to print: [`F64_DIGITS_FLOOR`] or more,
+/// or one fewer where only the rounding boundary of the next digit is straddled (every
+/// digit printed is still right, and MPFR would cost a thousand times more).
+fn f64_suffices(result: &Dissipation<f64>) -> Result<(), Fallback> {
+    let resolved = resolved_digits(result.total, result.error_estimate);
+    if resolved >= F64_DIGITS_FLOOR {
+        return Ok(());
+    }
+    // The digits the estimate's width alone would leave.
+    let width = (result.total.abs() / result.error_estimate).log10();
+    if width >= f64::from(F64_DIGITS_FLOOR) {
+        if resolved + 1 >= F64_DIGITS_FLOOR {
+            return Ok(());
+        }
+        return Err(Fallback::Straddles {
+            resolved,
+            error_estimate: result.error_estimate,
+        });
+    }
+    let largest_segment = result.segments.named().iter().map(|(_, v)| v.abs()).fold(0.0, f64::max);
+    Err(Fallback::Cancellation {
+        resolved,
+        largest_segment,
+    })
+}
+
+/// An f64 result as an estimated answer: W for the absolute `bound` on its error, each
+/// segment for its own in `segment_errors`.
+fn estimated(result: &Dissipation<f64>, bound: f64, segment_errors: &Segments<f64>) -> Answer {
+    let segments = &result.segments;
+    Answer {
+        value: Value::from_f64(result.total, bound),
+        segments: Some(Segments::from_fn(|segment| {
+            Value::from_f64(*segments.get(segment), *segment_errors.get(segment))
+        })),
+        digits_requested: None,
+        provenance: Provenance::Estimate {
+            error_estimate: result.error_estimate,
+        },
+        method: Some(result.method),
+    }
+}
+
+/// Interior loads of the cycle at which [`slope_change_differs_from_mpfr`] compares.
+const COMPARED_LOADS: i64 = 16;
+
+/// Why the f64 compliance is not to be trusted, if it is not: its change of v' about P0,
+/// the only function of it the integrals see, differs from the same change in MPFR at
+/// loads across the cycle by more than 1e-6 of the largest. That is what an overflow or
+/// underflow inside a compliance formula does (v' = a + b/(P + c) with c = 1e300 makes
+/// every change 0 in f64), and within f64 it may look like a legitimate linear v.
+fn slope_change_differs_from_mpfr(
+    case: &CaseText,
+    cycle: &LoadCycle<f64>,
+    compliance: &dyn Compliance<f64>,
+) -> Option<Fallback> {
+    let precise = case.read::<Float>(Precision::bits(64)).ok()?;
+    let p0 = cycle.mean_normal_load;
+    let low = (p0 - cycle.normal_amplitude).min(cycle.permanent_stick_load());
+    let high = p0 + cycle.normal_amplitude;
+    if !(low.is_finite() && high.is_finite() && low < high) {
+        return None;
+    }
+    let change = compliance.slope_change_about(&p0);
+    let precise_change = precise.compliance.slope_change_about(&precise.cycle.mean_normal_load);
+    // Compared in MPFR: an exact change below f64's range must not round to the f64 zero.
+    let pairs: Vec<(f64, f64, Float)> = (1..COMPARED_LOADS)
+        .map(|k| {
+            let offset = (low - p0) + (high - low) * (k as f64 / COMPARED_LOADS as f64);
+            let exact = precise_change(&Float::with_val(64, offset));
+            (p0 + offset, change(&offset), exact)
+        })
+        .collect();
+    let zero = Float::with_val(64, 0);
+    let largest = pairs
+        .iter()
+        .fold(zero, |acc, (_, _, exact)| acc.max(&exact.clone().abs()));
+    let tolerance = largest / 1_000_000u32;
+    let (load, in_f64, exact) = pairs.into_iter().find(|(_, value, exact)| {
+        // NaN on either side counts as a difference.
+        let difference = (Float::with_val(64, *value) - exact).abs();
+        difference.is_nan() || difference > tolerance
+    })?;
+    Some(Fallback::ComplianceOverflow {
+        load,
+        in_f64,
+        in_mpfr: exact.to_scientific(4),
+    })
+}
+
+/// Relative quadrature tolerance of W from a table: far below any table's own error,
+/// and reachable on the interpolant's piecewise-cubic v' in f64.
+pub const TABLE_QUADRATURE_TOLERANCE: f64 = 1e-12;
+
+/// What |W[half table] − W[table]| is divided by to estimate the error of W[table], for
+/// a table of `rows` rows. For a construction of order p = 4 the quotient tends to
+/// 2^p − 1 = 15, but before the data are asymptotic it is smaller: over the scan of
+/// proofs/table-compliance.md it fell to 6 at 16 to 24 rows, to 1 at 9 rows, and below 1
+/// for tables of up to 5 rows (halves of three rows, one parabola of node values, can be
+/// as close to the full table as its own error). The divisor keeps a factor of about two
+/// below the least quotient measured at each size.
+fn half_table_divisor(rows: usize) -> f64 {
+    match rows {
+        0..=5 => 0.25,
+        6..=12 => 0.5,
+        _ => 3.0,
+    }
+}
+
+/// W in f64 from the tables' interpolant, for the absolute error its quadrature error
+/// plus the table's error leave (each segment likewise for its own).
+fn table_answer(
+    case: &CaseText,
+    tables: &[Arc<ComplianceTable>],
+    deadline: Instant,
+) -> Result<DissipationAnswer, ReferenceError> {
+    let Case { cycle, compliance } = case.read::<f64>(Precision::DOUBLE)?;
+    cycle.validate().map_err(DissipationError::from)?;
+    tables_cover(tables, &cycle)?;
+    let in_f64 = |error: DissipationError| match error {
+        DissipationError::IllConditioned { .. }
+        | DissipationError::NotConverged { .. }
+        | DissipationError::OutOfRange { .. }
+        | DissipationError::OutsideRange { .. } => ReferenceError::TableInF64 { source: error },
+        other => other.into(),
+    };
+    let options = Options {
+        relative_tolerance: Some(TABLE_QUADRATURE_TOLERANCE),
+        deadline: Some(deadline),
+        ..Options::default()
+    };
+    let result = dissipation(&cycle, compliance.as_ref(), &options).map_err(in_f64)?;
+    // The table error: how far W moves when the table loses its odd rows, or its even rows.
+    let divisor = half_table_divisor(tables.iter().map(|t| t.loads.len()).min().unwrap_or(0));
+    let (mut table_error, mut segment_shifts) = (0.0f64, Segments::from_fn(|_| 0.0f64));
+    for interpolant in [TableInterpolant::HalfTable, TableInterpolant::OtherHalfTable] {
+        let half = parse_spec_with::<f64>(&case.compliance, Precision::DOUBLE, interpolant)
+            .map_err(|e| ReferenceError::Input(e.into()))?;
+        let moved = dissipation(&cycle, half.as_ref(), &options).map_err(in_f64)?;
+        let uncertainty = moved.error_estimate + result.error_estimate;
+        table_error = table_error.max(((moved.total - result.total).abs() + uncertainty) / divisor);
+        for segment in Segment::ALL {
+            let moved_by = (moved.segments.get(segment) - result.segments.get(segment)).abs();
+            let shift = segment_shifts.get_mut(segment);
+            *shift = shift.max((moved_by + uncertainty) / divisor);
+        }
+    }
+    let segment_errors = Segments::from_fn(|segment| result.error_estimate + segment_shifts.get(segment));
+    let smoothing_residual = tables.iter().map(|t| t.smoothing_residual).fold(0.0, f64::max);
+    let answer = Answer {
+        provenance: Provenance::Table {
+            table_error,
+            smoothing_residual,
+        },
+        ..estimated(&result, result.error_estimate + table_error, &segment_errors)
+    };
+    Ok(DissipationAnswer {
+        answer,
+        fallback: None,
+        no_enclosure: None,
+        table: Some(TableEstimate {
+            error: table_error,
+            smoothing_residual,
+            unrounded: result.total,
+            quadrature_error: result.error_estimate,
+        }),
+    })
+}
+
+/// Refuses a valid cycle whose loads, from min(P_T, P0 − P1) to P0 + P1, leave a table.
+pub(crate) fn tables_cover(
+    tables: &[Arc<ComplianceTable>],
+    cycle: &LoadCycle<f64>,
+) -> Result<(), crate::compliance::TableError> {
+    let low = (cycle.mean_normal_load - cycle.normal_amplitude).min(cycle.permanent_stick_load());
+    let high = cycle.mean_normal_load + cycle.normal_amplitude;
+    tables.iter().try_for_each(|table| table.check_covers(low, high))
+}
