@@ -51,6 +51,7 @@ pub struct Certified {
 }
 
 /// Why no enclosure (or none narrow enough) could be given.
+#[non_exhaustive]
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum CertifiedError {
     /// The cycle is not one the theory covers.
@@ -58,25 +59,43 @@ pub enum CertifiedError {
     Cycle(#[from] CycleError),
     /// The case could not be built at a precision.
     #[error("the case could not be read at {bits} bits: {reason}")]
-    Case { bits: u32, reason: String },
+    Case {
+        /// The working precision.
+        bits: u32,
+        /// Why the case could not be built.
+        reason: String,
+    },
     /// A comparison of the generic code was undecided on the input balls.
     #[error("at {bits} bits the cycle's geometry compares two numbers that overlap ({undecided} undecided comparisons); the input sits on a boundary between cases that no precision can resolve")]
-    Undecided { bits: u32, undecided: u64 },
+    Undecided {
+        /// The working precision.
+        bits: u32,
+        /// How many comparisons overlapped.
+        undecided: u64,
+    },
     /// A piece's enclosure is not finite (the integrand is singular on the piece, or
     /// Arb's subdivision gave up).
     #[error("at {bits} bits the {segment} integral has no finite enclosure: its integrand is not analytic on the piece [{start:.6e}, {end:.6e}]")]
     NotFinite {
+        /// The working precision.
         bits: u32,
+        /// The segment whose integral it is.
         segment: Segment,
+        /// The piece's first angle.
         start: f64,
+        /// The piece's last angle.
         end: f64,
     },
     /// The enclosure stayed wider than asked at the largest precision tried.
     #[error("the enclosure of W reached only {reached} of the {asked} digits asked (relative radius {relative_radius:.1e} at {bits} bits)")]
     TooWide {
+        /// The significant digits asked for.
         asked: u32,
+        /// The significant digits the enclosure determines.
         reached: u32,
+        /// The enclosure's radius relative to its midpoint.
         relative_radius: f64,
+        /// The largest working precision tried.
         bits: u32,
     },
 }

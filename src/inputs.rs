@@ -50,6 +50,7 @@ pub enum InputError {
     Number {
         /// The field of the case (`p0`, `phi`, …).
         field: &'static str,
+        /// Why it does not parse.
         #[source]
         source: ParseRealError,
     },
@@ -68,7 +69,12 @@ pub enum InputError {
     /// A decimal that f64 cannot hold: it overflows, or underflows to zero or to a
     /// subnormal (which keeps fewer than 53 bits). Higher precision reads it exactly.
     #[error("{quantity} = {text} lies outside the range of f64 (normal magnitudes 2.2e-308 to 1.8e308)")]
-    OutsideF64Range { quantity: &'static str, text: String },
+    OutsideF64Range {
+        /// The quantity's name.
+        quantity: &'static str,
+        /// The decimal as written.
+        text: String,
+    },
 }
 
 /// Whether `value`, read in f64 from the decimal `text`, lost it to the range of f64:

@@ -267,6 +267,7 @@ fn slope_change_differs_from_mpfr(
 }
 
 /// Why a verified value could not be produced.
+#[non_exhaustive]
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ReferenceError {
     /// The case's text is wrong.

@@ -35,13 +35,7 @@ fewer digits than W; the output names the bound: an f64 error estimate (not prov
 of two precisions with --digits (not a proof), a table's error, or exact.";
 
 fn method_name(method: Method) -> &'static str {
-    match method {
-        Method::FourSegment => "four-segment integrals of v' − v'(P0) in the cycle angle",
-        Method::InPhase => "in-phase closed form (paper appendix)",
-        Method::ConstantNormalLoad => "constant-normal-load closed form",
-        Method::NoTangentialOscillation => "no tangential oscillation (W = 0)",
-        Method::Exact(_) => "exact zero",
-    }
+    method.description()
 }
 
 /// Why W is exactly what is printed, where it is.

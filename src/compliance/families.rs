@@ -5,6 +5,15 @@ use crate::real::Real;
 
 /// v'(P) = C·P^β (β < 0 for a stiffening contact). Eq. (20) of the paper with the
 /// misprint corrected (errata item 1): the power law is on v', not on v.
+///
+/// ```
+/// use microslip::compliance::{Compliance, PowerLaw};
+///
+/// // v' = 2/√P: v'(4) = 1 and v''(4) = 2·(−½)·4^(−3/2) = −1/8.
+/// let v = PowerLaw { coefficient: 2.0, exponent: -0.5 };
+/// assert!((v.slope(&4.0) - 1.0).abs() < 1e-15);
+/// assert!((v.curvature(&4.0) + 0.125).abs() < 1e-15);
+/// ```
 #[derive(Clone, Debug)]
 pub struct PowerLaw<R> {
     /// The coefficient C.
@@ -124,6 +133,16 @@ impl<R: Real> Compliance<R> for PowerLaw<R> {
 
 /// Persson's rough-surface compliance v'(P) = γσ/P (Akarapu et al. 2011; paper Section 5.2),
 /// with σ the RMS roughness and γ a dimensionless constant of order one.
+///
+/// ```
+/// use microslip::compliance::{Compliance, Persson, PowerLaw};
+///
+/// // v' = γσ/P, the power law γσ·P⁻¹: at P = 3 with γσ = 3, v' = 1.
+/// let v = Persson { gamma: 1.5, sigma: 2.0 };
+/// assert!((v.slope(&3.0) - 1.0).abs() < 1e-15);
+/// let same = PowerLaw { coefficient: 3.0, exponent: -1.0 };
+/// assert!((v.curvature(&3.0) - same.curvature(&3.0)).abs() < 1e-15);
+/// ```
 #[derive(Clone, Debug)]
 pub struct Persson<R> {
     /// γ, dimensionless.
@@ -179,6 +198,16 @@ impl<R: Real> Compliance<R> for Persson<R> {
 
 /// A smooth elastic sphere of radius R pressed by load P (Hertz):
 /// v(P) = (9P²/(16·R·E*²))^(1/3), so v' = 1/(2E*·a(P)) with a the contact radius.
+///
+/// ```
+/// use microslip::compliance::{Compliance, Hertz};
+///
+/// // A 10 mm steel sphere: v'(P) = 1/(2E*·a(P)) with a(P) the contact radius.
+/// let sphere = Hertz { radius: 0.01, contact_modulus: 1.15e11 };
+/// let load = 10.0;
+/// let expected = 1.0 / (2.0 * 1.15e11 * sphere.contact_radius(&load));
+/// assert!((sphere.slope(&load) / expected - 1.0).abs() < 1e-14);
+/// ```
 #[derive(Clone, Debug)]
 pub struct Hertz<R> {
     /// Sphere radius R (relative radius for two spheres).
@@ -238,6 +267,15 @@ impl<R: Real> Compliance<R> for Hertz<R> {
 }
 
 /// v'(P) = Σₖ cₖ (P − P_ref)^k, a polynomial in the offset from a reference load.
+///
+/// ```
+/// use microslip::compliance::{Compliance, Polynomial};
+///
+/// // v' = 2 − ½(P − 1): v'(3) = 1, v'' = −½.
+/// let v = Polynomial { reference: 1.0, coefficients: vec![2.0, -0.5] };
+/// assert_eq!(v.slope(&3.0), 1.0);
+/// assert_eq!(v.curvature(&3.0), -0.5);
+/// ```
 #[derive(Clone, Debug)]
 pub struct Polynomial<R> {
     /// The reference load P_ref.
@@ -319,6 +357,15 @@ impl<R: Real> Compliance<R> for Polynomial<R> {
 }
 
 /// v'(P) = a + b/(P + c): a rational compliance (b > 0 stiffens).
+///
+/// ```
+/// use microslip::compliance::{Compliance, Rational};
+///
+/// // v' = 1 + 2/(P + 1): v'(1) = 2, v''(1) = −2/(1 + 1)² = −½.
+/// let v = Rational { constant: 1.0, numerator: 2.0, offset: 1.0 };
+/// assert_eq!(v.slope(&1.0), 2.0);
+/// assert_eq!(v.curvature(&1.0), -0.5);
+/// ```
 #[derive(Clone, Debug)]
 pub struct Rational<R> {
     /// The constant part a.
@@ -368,6 +415,15 @@ impl<R: Real> Compliance<R> for Rational<R> {
 }
 
 /// v'(P) = a·e^(−P/c) + d: an exponential-type compliance (a, c > 0 stiffens).
+///
+/// ```
+/// use microslip::compliance::{Compliance, Exponential};
+///
+/// // v' = e^(−P/2) + ½: v'(0) = 3/2, v''(0) = −½.
+/// let v = Exponential { amplitude: 1.0, decay_load: 2.0, constant: 0.5 };
+/// assert_eq!(v.slope(&0.0), 1.5);
+/// assert_eq!(v.curvature(&0.0), -0.5);
+/// ```
 #[derive(Clone, Debug)]
 pub struct Exponential<R> {
     /// The amplitude a.

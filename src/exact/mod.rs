@@ -5,6 +5,7 @@
 
 pub mod coefficient;
 pub mod polynomial_w;
+#[doc(hidden)]
 pub mod printing;
 pub mod series;
 pub mod trig;

@@ -11,6 +11,7 @@ use crate::real::Real;
 use super::polynomial_w::monomials_with_scale;
 
 /// Why the series could not be formed.
+#[non_exhaustive]
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SeriesError {
     /// ρ ≤ 0 or not finite.
