@@ -23,7 +23,7 @@
 //!   [`dissipation::MindlinDeresiewicz`]);
 //! - [`real`]: the number type every computation is generic over (`f64`, `rug::Float`
 //!   at any precision);
-//! - [`reference`] (verified digits by two precisions) and `certified` (feature
+//! - [`reference`](mod@reference) (verified digits by two precisions) and `certified` (feature
 //!   `certified`: proven digits from Arb ball arithmetic);
 //! - [`answer`]: a printed value with its digits, enclosure and provenance;
 //! - [`exact`]: the small-amplitude series and its exact coefficients;

@@ -118,16 +118,13 @@ impl<R: Real> Compliance<R> for PowerLaw<R> {
             self.exponent.to_scientific(6)
         )
     }
-    fn derivative(&self, order: usize, load: &R) -> Option<R> {
-        // v⁽ⁿ⁾ = C·β(β − 1)…(β − n + 2)·P^(β − n + 1) for n ≥ 1.
-        Some(match order {
-            0 => self.approach(load),
-            n => {
-                self.coefficient.clone()
-                    * &falling_factorial(&self.exponent, n - 1)
-                    * &load.powr(&(self.exponent.clone() - &load.int(n as i64 - 1)))
-            }
-        })
+    fn slope_derivative(&self, order: usize, load: &R) -> Option<R> {
+        // v'⁽ᵏ⁾ = C·β(β − 1)…(β − k + 1)·P^(β − k).
+        Some(
+            self.coefficient.clone()
+                * &falling_factorial(&self.exponent, order)
+                * &load.powr(&(self.exponent.clone() - &load.int(order as i64))),
+        )
     }
 }
 
@@ -183,17 +180,26 @@ impl<R: Real> Compliance<R> for Persson<R> {
             self.sigma.to_scientific(6)
         )
     }
-    fn derivative(&self, order: usize, load: &R) -> Option<R> {
-        // v⁽ⁿ⁾ = γσ (−1)ⁿ⁻¹ (n − 1)!/Pⁿ for n ≥ 1.
-        Some(match order {
-            0 => self.approach(load),
-            n => {
-                let factorial = falling_factorial(&load.int(n as i64 - 1), n - 1);
-                let sign = if n % 2 == 0 { -load.int(1) } else { load.int(1) };
-                self.gamma.clone() * &self.sigma * &factorial * &sign / &load.powi(n as i32)
-            }
-        })
+    fn slope_derivative(&self, order: usize, load: &R) -> Option<R> {
+        Some(logarithmic_derivative(
+            &(self.gamma.clone() * &self.sigma),
+            load,
+            order + 1,
+        ))
     }
+}
+
+/// The n-th derivative (n ≥ 1) of b·ln s with respect to s: b (−1)ⁿ⁻¹ (n − 1)!/sⁿ; with
+/// s = P + c that is v⁽ⁿ⁾ for v' = b/(P + c) (Persson's, and the rational family's
+/// non-constant part for n ≥ 2).
+fn logarithmic_derivative<R: Real>(numerator: &R, shifted_load: &R, n: usize) -> R {
+    let factorial = falling_factorial(&shifted_load.int(n as i64 - 1), n - 1);
+    let sign = if n % 2 == 0 {
+        -shifted_load.int(1)
+    } else {
+        shifted_load.int(1)
+    };
+    numerator.clone() * &factorial * &sign / &shifted_load.powi(n as i32)
 }
 
 /// A smooth elastic sphere of radius R pressed by load P (Hertz):
@@ -258,11 +264,8 @@ impl<R: Real> Compliance<R> for Hertz<R> {
             self.contact_modulus.to_scientific(6)
         )
     }
-    fn derivative(&self, order: usize, load: &R) -> Option<R> {
-        match order {
-            0 => Some(self.approach(load)),
-            n => self.as_power_law().derivative(n, load),
-        }
+    fn slope_derivative(&self, order: usize, load: &R) -> Option<R> {
+        self.as_power_law().slope_derivative(order, load)
     }
 }
 
@@ -339,18 +342,15 @@ impl<R: Real> Compliance<R> for Polynomial<R> {
             terms.join(", ")
         )
     }
-    fn derivative(&self, order: usize, load: &R) -> Option<R> {
-        if order == 0 {
-            return Some(self.approach(load));
-        }
-        // v⁽ⁿ⁾ = Σ_{k ≥ n−1} cₖ k!/(k − n + 1)! (P − P_ref)^(k − n + 1).
+    fn slope_derivative(&self, order: usize, load: &R) -> Option<R> {
+        // v'⁽ʲ⁾ = Σ_{k ≥ j} cₖ k!/(k − j)! (P − P_ref)^(k − j).
         let x = load.clone() - &self.reference;
         let derived: Vec<R> = self
             .coefficients
             .iter()
             .enumerate()
-            .skip(order - 1)
-            .map(|(k, c)| c.clone() * &falling_factorial(&x.int(k as i64), order - 1))
+            .skip(order)
+            .map(|(k, c)| c.clone() * &falling_factorial(&x.int(k as i64), order))
             .collect();
         Some(Self::horner(&derived, &x))
     }
@@ -400,16 +400,10 @@ impl<R: Real> Compliance<R> for Rational<R> {
             self.offset.to_scientific(6)
         )
     }
-    fn derivative(&self, order: usize, load: &R) -> Option<R> {
-        // v⁽ⁿ⁾ = b (−1)ⁿ⁻¹ (n − 1)!/(P + c)ⁿ for n ≥ 2.
+    fn slope_derivative(&self, order: usize, load: &R) -> Option<R> {
         Some(match order {
-            0 => self.approach(load),
-            1 => self.slope(load),
-            n => {
-                let factorial = falling_factorial(&load.int(n as i64 - 1), n - 1);
-                let sign = if n % 2 == 0 { -load.int(1) } else { load.int(1) };
-                self.numerator.clone() * &factorial * &sign / &(load.clone() + &self.offset).powi(n as i32)
-            }
+            0 => self.slope(load),
+            k => logarithmic_derivative(&self.numerator, &(load.clone() + &self.offset), k + 1),
         })
     }
 }
@@ -463,14 +457,13 @@ impl<R: Real> Compliance<R> for Exponential<R> {
             self.constant.to_scientific(6)
         )
     }
-    fn derivative(&self, order: usize, load: &R) -> Option<R> {
-        // v⁽ⁿ⁾ = a (−1/c)ⁿ⁻¹ e^(−P/c) for n ≥ 2.
+    fn slope_derivative(&self, order: usize, load: &R) -> Option<R> {
+        // v'⁽ᵏ⁾ = a (−1/c)ᵏ e^(−P/c) for k ≥ 1.
         Some(match order {
-            0 => self.approach(load),
-            1 => self.slope(load),
-            n => {
+            0 => self.slope(load),
+            k => {
                 let rate = -(load.int(1) / &self.decay_load);
-                self.amplitude.clone() * &rate.powi(n as i32 - 1) * &(-(load.clone() / &self.decay_load)).exp()
+                self.amplitude.clone() * &rate.powi(k as i32) * &(-(load.clone() / &self.decay_load)).exp()
             }
         })
     }

@@ -80,6 +80,15 @@ pub trait Compliance<R: Real>: Debug + Send + Sync {
     /// closed form exact at the working precision, for the small-amplitude series at
     /// every order. `None` for a compliance that cannot give it.
     fn derivative(&self, order: usize, load: &R) -> Option<R> {
+        match order {
+            0 => Some(self.approach(load)),
+            n => self.slope_derivative(n - 1, load),
+        }
+    }
+    /// The derivative of v' of order `order` at `load` (0: v', 1: v'', …): what a family
+    /// with closed-form derivatives gives [`Compliance::derivative`] beyond v itself.
+    /// `None` for a compliance that cannot give it.
+    fn slope_derivative(&self, order: usize, load: &R) -> Option<R> {
         let _ = (order, load);
         None
     }

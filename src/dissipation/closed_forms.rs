@@ -65,12 +65,12 @@ pub fn in_phase<R: Real>(
     compliance: &dyn Compliance<R>,
     options: &Options<R>,
 ) -> Result<Dissipation<R>, DissipationError> {
-    check_case(cycle, compliance, options)?;
     let f = &cycle.friction;
     let p1 = &cycle.normal_amplitude;
     let q1 = &cycle.tangential_amplitude;
     let zero = p1.int(0);
     if q1.clone() <= f.clone() * p1 {
+        check_case(cycle, compliance, options)?;
         return assemble(cycle, Parts::nothing(&zero), Method::InPhase, options);
     }
     let q = q1.clone() / f;
@@ -133,7 +133,6 @@ pub fn constant_normal_load<R: Real>(
     compliance: &dyn Compliance<R>,
     options: &Options<R>,
 ) -> Result<Dissipation<R>, DissipationError> {
-    check_case(cycle, compliance, options)?;
     let f = &cycle.friction;
     let zero = f.int(0);
     let q = cycle.tangential_amplitude.clone() / f;
@@ -157,13 +156,14 @@ pub fn constant_normal_load<R: Real>(
 
 /// ∫ w(x) v'(P0 + x) dx for each term, each split at the compliance's knots, integrated
 /// together; the values per term, in the order given. A term is the piece of its weight
-/// w(x), in the offset x = P − P0.
+/// w(x), in the offset x = P − P0. The case is checked (conditioning, admissibility) first.
 fn integrate_terms<'a, R: Real, const N: usize>(
     cycle: &ValidCycle<R>,
     compliance: &'a dyn Compliance<R>,
     options: &Options<R>,
     terms: [Piece<'a, R>; N],
 ) -> Result<([R; N], Integrated<R>), DissipationError> {
+    check_case(cycle, compliance, options)?;
     let zero = cycle.mean_normal_load.int(0);
     let slope = Rc::new(slope_at(
         compliance,
