@@ -12,7 +12,9 @@
 use rug::Float;
 
 use crate::dissipation::{ExactZero, Method, Segments};
-use crate::verified::{decimal_f64, decimal_interval, Decimal, F64_MOST_DIGITS};
+use crate::verified::{decimal_f64, decimal_interval, F64_MOST_DIGITS};
+
+pub use crate::verified::Decimal;
 
 /// What vouches for a printed value.
 #[derive(Clone, Debug, PartialEq)]
@@ -223,6 +225,25 @@ fn outward(x: &Float, digits: usize, round: rug::float::Round) -> String {
 
 /// One printed quantity: its value, its segments where it has them (W), and what
 /// vouches for them.
+///
+/// ```
+/// use microslip::answer::{Answer, Decimal, Provenance, Value};
+///
+/// // An f64 W with an error estimate of 1.4e-14: its interval
+/// // [0.40624757924580…, 0.40624757924583…] rounds alike to 13 digits, not to 14.
+/// let value = Value::from_f64(0.406247579245824, 1.4e-14);
+/// assert_eq!(value.decimal.to_string(), "4.062475792458e-1");
+/// let answer = Answer {
+///     value,
+///     segments: None,
+///     digits_requested: None,
+///     provenance: Provenance::Estimate { error_estimate: 1.4e-14 },
+///     method: None,
+/// };
+/// assert_eq!(answer.digits(), 13);
+/// assert_eq!(answer.digits_certified(), 0); // an estimate proves nothing
+/// assert!(!matches!(answer.value.decimal, Decimal::Zero));
+/// ```
 #[derive(Clone, Debug, PartialEq)]
 pub struct Answer {
     /// The value.

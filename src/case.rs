@@ -56,6 +56,7 @@ pub enum InputError {
     Number {
         /// The field of the case (`p0`, `phi`, …).
         field: &'static str,
+        /// The text that does not read as a number.
         #[source]
         source: ParseRealError,
     },
@@ -77,7 +78,12 @@ pub enum InputError {
     /// A decimal that f64 cannot hold: it overflows, or underflows to zero or to a
     /// subnormal (which keeps fewer than 53 bits). Higher precision reads it exactly.
     #[error("{quantity} = {text} lies outside the range of f64 (normal magnitudes 2.2e-308 to 1.8e308)")]
-    OutsideF64Range { quantity: &'static str, text: String },
+    OutsideF64Range {
+        /// The quantity, as the theory writes it.
+        quantity: &'static str,
+        /// The decimal as given.
+        text: String,
+    },
 }
 
 /// Reads a phase (see [`ExactPhase::parse`] for the forms), reduces it exactly modulo π, and

@@ -61,6 +61,7 @@ pub struct Certified {
 }
 
 /// Why no enclosure (or none narrow enough) could be given.
+#[non_exhaustive]
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum CertifiedError {
     /// The cycle is not one the theory covers.
@@ -68,31 +69,56 @@ pub enum CertifiedError {
     Cycle(#[from] CycleError),
     /// The case could not be built at a precision.
     #[error("the case could not be read at {bits} bits: {reason}")]
-    Case { bits: u32, reason: String },
+    Case {
+        /// The working precision.
+        bits: u32,
+        /// Why the case could not be built.
+        reason: String,
+    },
     /// A comparison of the generic code was undecided on the input balls.
     #[error("at {bits} bits the cycle's geometry compares two numbers that overlap ({undecided} undecided comparisons); the input sits on a boundary between cases that no precision can resolve")]
-    Undecided { bits: u32, undecided: u64 },
+    Undecided {
+        /// The working precision.
+        bits: u32,
+        /// How many comparisons overlapped.
+        undecided: u64,
+    },
     /// A piece's enclosure is not finite (the integrand is singular on the piece, or
     /// Arb's subdivision gave up).
     #[error("at {bits} bits the {integral} integral has no finite enclosure: its integrand is not analytic on the piece [{start:.6e}, {end:.6e}]")]
     NotFinite {
+        /// The working precision.
         bits: u32,
+        /// The integral's name: a segment, or a closed form's term.
         integral: &'static str,
+        /// The piece's first angle (or offset).
         start: f64,
+        /// The piece's last angle.
         end: f64,
     },
     /// The enclosure stayed wider than asked at the largest precision tried.
     #[error("the enclosure of W reached only {reached} of the {asked} digits asked (relative radius {relative_radius:.1e} at {bits} bits)")]
     TooWide {
+        /// The significant digits asked for.
         asked: u32,
+        /// The significant digits the enclosure determines.
         reached: u32,
+        /// The enclosure's radius relative to its midpoint.
         relative_radius: f64,
+        /// The largest working precision tried.
         bits: u32,
     },
     /// The deadline passed, or would pass during the next attempt, before the enclosure
     /// was narrow enough.
     #[error("the time budget ran out before the enclosure of W was narrow enough: {reached} of the {asked} digits asked reached (working precision {bits} bits)")]
-    OutOfTime { asked: u32, reached: u32, bits: u32 },
+    OutOfTime {
+        /// The significant digits asked for.
+        asked: u32,
+        /// The significant digits the last enclosure determined.
+        reached: u32,
+        /// The working precision of the last attempt.
+        bits: u32,
+    },
 }
 
 /// The largest working precision [`certified_dissipation`] tries, in bits.

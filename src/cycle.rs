@@ -20,6 +20,30 @@ use crate::real::Real;
 
 /// The loads of one harmonic cycle, with the friction coefficient and the
 /// tangential/normal compliance ratio of the contact.
+///
+/// Built field by field (every field is a named physical quantity), then validated once
+/// into a [`ValidCycle`], with the reason where the theory does not cover it:
+///
+/// ```
+/// use microslip::cycle::{CycleError, CycleKind, LoadCycle, ValidCycle};
+///
+/// let cycle = LoadCycle {
+///     mean_normal_load: 1.0,
+///     normal_amplitude: 0.4,
+///     mean_tangential_load: 0.0,
+///     tangential_amplitude: 0.5,
+///     phase: 0.4 * std::f64::consts::PI,
+///     friction: 1.0,
+///     compliance_ratio: 1.0,
+/// };
+/// let valid = ValidCycle::try_from(cycle.clone())?;
+/// assert_eq!(valid.kind(), CycleKind::Elliptic);
+///
+/// // |Q| reaches f·P (Q1 = 0.9 > f(P0 − P1) at θ = π): the whole contact slides.
+/// let sliding = LoadCycle { tangential_amplitude: 0.9, ..cycle };
+/// assert!(matches!(ValidCycle::new(sliding), Err(CycleError::GrossSlip { .. })));
+/// # Ok::<(), CycleError>(())
+/// ```
 #[derive(Clone, Debug)]
 pub struct LoadCycle<R> {
     /// P0, the mean normal load (compressive, > 0).
@@ -39,6 +63,7 @@ pub struct LoadCycle<R> {
 }
 
 /// Why a load cycle is not one the theory covers.
+#[non_exhaustive]
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum CycleError {
     /// An input is NaN or infinite.
@@ -132,6 +157,7 @@ pub fn compliance_ratio_from_poisson<R: Real>(nu: &R) -> Result<R, CycleError> {
 }
 
 /// Which of the degenerate cases, or the general one, a valid cycle is.
+#[non_exhaustive]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum CycleKind {
     /// Q1 = 0: no tangential oscillation, no dissipation.
@@ -142,6 +168,39 @@ pub enum CycleKind {
     InPhase,
     /// A true ellipse.
     Elliptic,
+}
+
+impl<R> LoadCycle<R> {
+    /// The same cycle with every quantity converted by `convert`, e.g. an f64 cycle
+    /// carried exactly to a higher precision.
+    ///
+    /// ```
+    /// use microslip::cycle::LoadCycle;
+    ///
+    /// let cycle = LoadCycle {
+    ///     mean_normal_load: 1.0,
+    ///     normal_amplitude: 0.4,
+    ///     mean_tangential_load: 0.0,
+    ///     tangential_amplitude: 0.5,
+    ///     phase: 1.25,
+    ///     friction: 1.0,
+    ///     compliance_ratio: 1.0,
+    /// };
+    /// let precise = cycle.map(|x| rug::Float::with_val(200, x));
+    /// assert_eq!(precise.normal_amplitude, 0.4); // the binary64 0.4, exactly
+    /// assert_eq!(precise.phase.prec(), 200);
+    /// ```
+    pub fn map<S>(self, convert: impl Fn(R) -> S) -> LoadCycle<S> {
+        LoadCycle {
+            mean_normal_load: convert(self.mean_normal_load),
+            normal_amplitude: convert(self.normal_amplitude),
+            mean_tangential_load: convert(self.mean_tangential_load),
+            tangential_amplitude: convert(self.tangential_amplitude),
+            phase: convert(self.phase),
+            friction: convert(self.friction),
+            compliance_ratio: convert(self.compliance_ratio),
+        }
+    }
 }
 
 impl<R: Real> LoadCycle<R> {
@@ -483,6 +542,15 @@ impl<R: Real> ValidCycle<R> {
     /// The loads.
     pub fn into_inner(self) -> LoadCycle<R> {
         self.cycle
+    }
+}
+
+impl<R: Real> TryFrom<LoadCycle<R>> for ValidCycle<R> {
+    type Error = CycleError;
+
+    /// [`ValidCycle::new`].
+    fn try_from(cycle: LoadCycle<R>) -> Result<Self, CycleError> {
+        ValidCycle::new(cycle)
     }
 }
 

@@ -1,25 +1,51 @@
 //! microslip: frictional (microslip) energy dissipation per cycle in elastic
 //! contacts of rough surfaces under oscillating normal and tangential loads.
 //!
-//! Read top-down: [`real`] (the number type), [`quad`] (quadrature rules),
-//! [`compliance`] (the contact's normal compliance v(P)), [`cycle`] (the load
-//! cycle and its ellipse), [`dissipation`] (W over the four segments, and the
-//! closed forms), and [`case`] (a case read once from its text, at any precision).
+//! A contact with normal compliance v(P) carries a normal load P = P0 + P1 cos θ and a
+//! tangential load Q = Q0 + Q1 cos(θ − φ); with friction coefficient f and
+//! tangential/normal compliance ratio λ, the energy W dissipated per cycle is a
+//! functional of v'(P) over the loads the cycle reaches.
 //!
-//! The default feature `cli` adds the tools around the library: the plots (`plot`,
-//! `figures`), the accuracy benchmark (`accuracy`) and the catalogue of reference
-//! values (`catalogue`). Built without it (no default features) the
-//! library needs no argument parser, plotting, progress display or JSON text.
+//! # Library use
+//!
+//! ```
+#![doc = include_str!("../examples/library_use.rs")]
+//! ```
+//!
+//! The surface, top-down:
+//! - [`cycle`]: the load cycle ([`cycle::LoadCycle`]) and its validated form
+//!   ([`cycle::ValidCycle`], which only a cycle the theory covers becomes);
+//! - [`compliance`]: the contact's normal compliance v(P) — the families
+//!   ([`compliance::PowerLaw`], [`compliance::Persson`], [`compliance::Hertz`], …), their
+//!   combinators, measured tables, and the SPEC text form ([`compliance::parse_spec`]);
+//! - [`dissipation`]: W over the four segments ([`dissipation::dissipation`]) and the
+//!   closed forms ([`dissipation::in_phase`], [`dissipation::constant_normal_load`],
+//!   [`dissipation::MindlinDeresiewicz`]);
+//! - [`real`]: the number type every computation is generic over (`f64`, `rug::Float`
+//!   at any precision);
+//! - [`reference`](mod@reference) (verified digits by two precisions) and `certified` (feature
+//!   `certified`: proven digits from Arb ball arithmetic);
+//! - [`answer`]: a printed value with its digits, enclosure and provenance;
+//! - [`exact`]: the small-amplitude series and its exact coefficients;
+//! - [`case`]: a case read once from its text ([`case::CaseText`] → [`case::CaseSpec`]) and
+//!   computed at any precision;
+//! - [`dissipation_answer`]: the one policy that picks how W is computed and vouched for;
+//! - [`simulate`]: the independent check by a time-stepped simulation;
+//! - [`verify`]: the theorem gate ([`verify::run`]).
+//!
+//! Modules hidden from this documentation (`quad`, `files`, `batch`, `verified`, `ball`,
+//! `phase`, and with feature `cli` `accuracy`, `catalogue`, `figures`, `plot`) are
+//! public only for the command line, the tests and the benches; they are not part of
+//! the API and change without notice.
+//!
+//! The default feature `cli` adds the tools around the library: the plots, the
+//! accuracy benchmark and the catalogue of reference values. Built without it (no
+//! default features) the library needs no argument parser, plotting, progress display
+//! or JSON text.
+#![warn(missing_docs)]
 
-#[cfg(feature = "cli")]
-pub mod accuracy;
 pub mod answer;
-#[cfg(feature = "certified")]
-pub mod ball;
-pub mod batch;
 pub mod case;
-#[cfg(feature = "cli")]
-pub mod catalogue;
 #[cfg(feature = "certified")]
 pub mod certified;
 pub mod compliance;
@@ -28,16 +54,35 @@ mod decimal;
 pub mod dissipation;
 pub mod dissipation_answer;
 pub mod exact;
-#[cfg(feature = "cli")]
-pub mod figures;
-pub mod files;
+#[doc(hidden)]
 pub mod inputs;
-pub mod phase;
-#[cfg(feature = "cli")]
-pub mod plot;
-pub mod quad;
 pub mod real;
 pub mod reference;
 pub mod simulate;
-pub mod verified;
 pub mod verify;
+
+#[cfg(feature = "cli")]
+#[doc(hidden)]
+pub mod accuracy;
+#[cfg(feature = "certified")]
+#[doc(hidden)]
+pub mod ball;
+#[doc(hidden)]
+pub mod batch;
+#[cfg(feature = "cli")]
+#[doc(hidden)]
+pub mod catalogue;
+#[cfg(feature = "cli")]
+#[doc(hidden)]
+pub mod figures;
+#[doc(hidden)]
+pub mod files;
+#[doc(hidden)]
+pub mod phase;
+#[cfg(feature = "cli")]
+#[doc(hidden)]
+pub mod plot;
+#[doc(hidden)]
+pub mod quad;
+#[doc(hidden)]
+pub mod verified;

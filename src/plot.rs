@@ -121,18 +121,22 @@ pub(crate) type Canvas<'a> = DrawingArea<SVGBackend<'a>, Shift>;
 /// A chart of two linear coordinates (log10 of the values on logarithmic axes).
 pub(crate) type Chart<'a, 'b> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<RangedCoordf64, RangedCoordf64>>;
 
-/// Draws an SVG of `size` pixels with `draw`, which draws the axes on the canvas and
-/// the data, legends and labels into the overlay (drawn last), and returns the layout
-/// of its charts.
+/// What a drawing returns: the layout of its charts.
+pub(crate) type Drawn = Result<Vec<ChartLayout>, Box<dyn std::error::Error>>;
+
+/// Draws an SVG of `size` pixels on a white background with `draw`, which draws the axes
+/// on the canvas and the data, legends and labels into the overlay (drawn last), and
+/// returns the layout of its charts.
 pub(crate) fn draw_svg(
     size: (u32, u32),
-    draw: impl FnOnce(&Canvas<'_>, &mut Overlay) -> Result<Vec<ChartLayout>, Box<dyn std::error::Error>>,
+    draw: impl FnOnce(&Canvas<'_>, &mut Overlay) -> Drawn,
 ) -> Result<Picture, PlotError> {
     register_font()?;
     let mut svg = String::new();
     let mut overlay = Overlay::default();
     let charts = {
         let root = SVGBackend::with_string(&mut svg, size).into_drawing_area();
+        root.fill(&WHITE).map_err(|e| PlotError::Draw(e.to_string()))?;
         let charts = draw(&root, &mut overlay).map_err(|e| PlotError::Draw(e.to_string()))?;
         root.present().map_err(|e| PlotError::Draw(e.to_string()))?;
         charts
@@ -275,12 +279,7 @@ pub fn cycle_picture(cycle: &LoadCycle<f64>, result: &SimulationResult) -> Resul
 const MARKER_RADIUS: f64 = 4.0;
 const LABEL_FONT: u32 = 16;
 
-fn draw_cycle(
-    root: &Canvas<'_>,
-    overlay: &mut Overlay,
-    scene: &Scene,
-) -> Result<Vec<ChartLayout>, Box<dyn std::error::Error>> {
-    root.fill(&WHITE)?;
+fn draw_cycle(root: &Canvas<'_>, overlay: &mut Overlay, scene: &Scene) -> Drawn {
     let (left, right) = root.split_horizontally(root.dim_in_pixel().0 / 2);
     Ok(vec![
         draw_ellipse(&left, overlay, scene)?,

@@ -48,6 +48,7 @@ pub struct VerifiedDissipation {
 }
 
 /// Why a verified value could not be produced.
+#[non_exhaustive]
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum ReferenceError {
     /// The case's text is wrong.
@@ -74,7 +75,10 @@ pub enum ReferenceError {
     DigitsForTable,
     /// f64 cannot compute this cycle, and a table is not computed at other precisions.
     #[error("{source} — but a table compliance is computed in f64 only, so this cycle cannot be computed from a table (where its loads are extreme, rescale the cycle and the table's loads together: W scales with the load scale)")]
-    TableInF64 { source: DissipationError },
+    TableInF64 {
+        /// Why f64 cannot compute the cycle.
+        source: DissipationError,
+    },
 }
 
 fn attempt(

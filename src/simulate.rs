@@ -84,6 +84,7 @@ pub struct LoopSample {
 }
 
 /// The dissipation per cycle of the steady state, measured two ways.
+#[non_exhaustive]
 #[derive(Clone, Debug)]
 pub struct SimulationResult {
     /// ∮ Q du over the last cycle (extrapolated when asked).
@@ -118,6 +119,7 @@ impl SimulationResult {
 }
 
 /// Why a simulation could not run.
+#[non_exhaustive]
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SimulationError {
     /// The cycle is outside the theory.
@@ -655,6 +657,30 @@ fn run(
 }
 
 /// W of the steady cycle by simulation (f64), extrapolated from three resolutions.
+///
+/// ```
+/// use microslip::compliance::Persson;
+/// use microslip::cycle::LoadCycle;
+/// use microslip::dissipation::{dissipation, Options};
+/// use microslip::simulate::{simulate, SimulationOptions};
+///
+/// let cycle = LoadCycle {
+///     mean_normal_load: 1.0,
+///     normal_amplitude: 0.4,
+///     mean_tangential_load: 0.0,
+///     tangential_amplitude: 0.5,
+///     phase: 0.4 * std::f64::consts::PI,
+///     friction: 1.0,
+///     compliance_ratio: 1.0,
+/// };
+/// let persson = Persson { gamma: 1.0, sigma: 1.0 };
+/// let coarse = SimulationOptions { elements: Some(100), steps: Some(400), ..SimulationOptions::default() };
+/// let simulated = simulate(&cycle, &persson, &coarse)?;
+/// let integrated = dissipation(&cycle, &persson, &Options::default())?.total;
+/// assert!((simulated.w_work / integrated - 1.0).abs() < 1e-3);
+/// assert!((simulated.w_friction / integrated - 1.0).abs() < 1e-3);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn simulate(
     cycle: &LoadCycle<f64>,
     compliance: &dyn Compliance<f64>,

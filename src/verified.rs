@@ -328,10 +328,20 @@ pub enum Decimal {
     /// Exactly zero: the interval is the point 0.
     Zero,
     /// The decimal in scientific notation (`5.25214879245e-1`) with its significant digits.
-    Digits { text: String, digits: u32 },
+    Digits {
+        /// The decimal as printed.
+        text: String,
+        /// Its significant digits.
+        digits: u32,
+    },
     /// Not one significant digit is determined: the interval, rounded outwards to two
     /// digits.
-    Undetermined { lower: String, upper: String },
+    Undetermined {
+        /// The interval's lower end, rounded down.
+        lower: String,
+        /// The interval's upper end, rounded up.
+        upper: String,
+    },
 }
 
 impl Decimal {

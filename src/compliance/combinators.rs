@@ -5,6 +5,19 @@ use super::{merged_breakpoints, Compliance, SlopeChange};
 use crate::real::Real;
 
 /// v = Σ vᵢ: compliances in series add.
+///
+/// ```
+/// use microslip::compliance::{Compliance, Persson, PowerLaw, Sum};
+///
+/// // 1/P + 2/√P at P = 4: ¼ + 1.
+/// let v = Sum {
+///     terms: vec![
+///         Box::new(Persson { gamma: 1.0, sigma: 1.0 }),
+///         Box::new(PowerLaw { coefficient: 2.0, exponent: -0.5 }),
+///     ],
+/// };
+/// assert_eq!(v.slope(&4.0), 1.25);
+/// ```
 #[derive(Debug)]
 pub struct Sum<R: Real> {
     /// The terms.
@@ -50,6 +63,13 @@ impl<R: Real> Compliance<R> for Sum<R> {
 }
 
 /// a·v: a scalar multiple.
+///
+/// ```
+/// use microslip::compliance::{Compliance, Persson, Scaled};
+///
+/// let v = Scaled { factor: 3.0, inner: Box::new(Persson { gamma: 1.0, sigma: 1.0 }) };
+/// assert_eq!(v.slope(&2.0), 1.5);
+/// ```
 #[derive(Debug)]
 pub struct Scaled<R: Real> {
     /// The multiplier a.
@@ -88,6 +108,15 @@ impl<R: Real> Compliance<R> for Scaled<R> {
 
 /// v + c·P, i.e. v' + c: a constant added to the incremental compliance
 /// (e.g. the bulk compliance of a finite body). It does not change the dissipation.
+///
+/// ```
+/// use microslip::compliance::{Compliance, Persson, Shifted};
+///
+/// // v' + ½: the slope moves, the curvature (and so the dissipation) does not.
+/// let v = Shifted { extra_slope: 0.5, inner: Box::new(Persson { gamma: 1.0, sigma: 1.0 }) };
+/// assert_eq!(v.slope(&2.0), 1.0);
+/// assert_eq!(v.curvature(&2.0), -0.25);
+/// ```
 #[derive(Debug)]
 pub struct Shifted<R: Real> {
     /// The constant c added to v'.
@@ -130,6 +159,14 @@ impl<R: Real> Compliance<R> for Shifted<R> {
 
 /// v_k(P) = k·v(P/k), so v_k'(P) = v'(P/k): the compliance of the same surface
 /// with every roughness height multiplied by k (lateral structure fixed).
+///
+/// ```
+/// use microslip::compliance::{Compliance, LoadScaled, PowerLaw};
+///
+/// // v_k'(P) = v'(P/k): with v' = 1/√P and k = 4, v_k'(16) = v'(4) = ½.
+/// let v = LoadScaled { factor: 4.0, inner: Box::new(PowerLaw { coefficient: 1.0, exponent: -0.5 }) };
+/// assert_eq!(v.slope(&16.0), 0.5);
+/// ```
 #[derive(Debug)]
 pub struct LoadScaled<R: Real> {
     /// The height factor k.

@@ -5,6 +5,15 @@ use crate::real::Real;
 
 /// v'(P) = C·P^β (β < 0 for a stiffening contact). Eq. (20) of the paper with the
 /// misprint corrected (errata item 1): the power law is on v', not on v.
+///
+/// ```
+/// use microslip::compliance::{Compliance, PowerLaw};
+///
+/// // v' = 2/√P: v'(4) = 1 and v''(4) = 2·(−½)·4^(−3/2) = −1/8.
+/// let v = PowerLaw { coefficient: 2.0, exponent: -0.5 };
+/// assert!((v.slope(&4.0) - 1.0).abs() < 1e-15);
+/// assert!((v.curvature(&4.0) + 0.125).abs() < 1e-15);
+/// ```
 #[derive(Clone, Debug)]
 pub struct PowerLaw<R> {
     /// The coefficient C.
@@ -109,21 +118,28 @@ impl<R: Real> Compliance<R> for PowerLaw<R> {
             self.exponent.to_scientific(6)
         )
     }
-    fn derivative(&self, order: usize, load: &R) -> Option<R> {
-        // v⁽ⁿ⁾ = C·β(β − 1)…(β − n + 2)·P^(β − n + 1) for n ≥ 1.
-        Some(match order {
-            0 => self.approach(load),
-            n => {
-                self.coefficient.clone()
-                    * &falling_factorial(&self.exponent, n - 1)
-                    * &load.powr(&(self.exponent.clone() - &load.int(n as i64 - 1)))
-            }
-        })
+    fn slope_derivative(&self, order: usize, load: &R) -> Option<R> {
+        // v'⁽ᵏ⁾ = C·β(β − 1)…(β − k + 1)·P^(β − k).
+        Some(
+            self.coefficient.clone()
+                * &falling_factorial(&self.exponent, order)
+                * &load.powr(&(self.exponent.clone() - &load.int(order as i64))),
+        )
     }
 }
 
 /// Persson's rough-surface compliance v'(P) = γσ/P (Akarapu et al. 2011; paper Section 5.2),
 /// with σ the RMS roughness and γ a dimensionless constant of order one.
+///
+/// ```
+/// use microslip::compliance::{Compliance, Persson, PowerLaw};
+///
+/// // v' = γσ/P, the power law γσ·P⁻¹: at P = 3 with γσ = 3, v' = 1.
+/// let v = Persson { gamma: 1.5, sigma: 2.0 };
+/// assert!((v.slope(&3.0) - 1.0).abs() < 1e-15);
+/// let same = PowerLaw { coefficient: 3.0, exponent: -1.0 };
+/// assert!((v.curvature(&3.0) - same.curvature(&3.0)).abs() < 1e-15);
+/// ```
 #[derive(Clone, Debug)]
 pub struct Persson<R> {
     /// γ, dimensionless.
@@ -164,21 +180,40 @@ impl<R: Real> Compliance<R> for Persson<R> {
             self.sigma.to_scientific(6)
         )
     }
-    fn derivative(&self, order: usize, load: &R) -> Option<R> {
-        // v⁽ⁿ⁾ = γσ (−1)ⁿ⁻¹ (n − 1)!/Pⁿ for n ≥ 1.
-        Some(match order {
-            0 => self.approach(load),
-            n => {
-                let factorial = falling_factorial(&load.int(n as i64 - 1), n - 1);
-                let sign = if n % 2 == 0 { -load.int(1) } else { load.int(1) };
-                self.gamma.clone() * &self.sigma * &factorial * &sign / &load.powi(n as i32)
-            }
-        })
+    fn slope_derivative(&self, order: usize, load: &R) -> Option<R> {
+        Some(logarithmic_derivative(
+            &(self.gamma.clone() * &self.sigma),
+            load,
+            order + 1,
+        ))
     }
+}
+
+/// The n-th derivative (n ≥ 1) of b·ln s with respect to s: b (−1)ⁿ⁻¹ (n − 1)!/sⁿ; with
+/// s = P + c that is v⁽ⁿ⁾ for v' = b/(P + c) (Persson's, and the rational family's
+/// non-constant part for n ≥ 2).
+fn logarithmic_derivative<R: Real>(numerator: &R, shifted_load: &R, n: usize) -> R {
+    let factorial = falling_factorial(&shifted_load.int(n as i64 - 1), n - 1);
+    let sign = if n % 2 == 0 {
+        -shifted_load.int(1)
+    } else {
+        shifted_load.int(1)
+    };
+    numerator.clone() * &factorial * &sign / &shifted_load.powi(n as i32)
 }
 
 /// A smooth elastic sphere of radius R pressed by load P (Hertz):
 /// v(P) = (9P²/(16·R·E*²))^(1/3), so v' = 1/(2E*·a(P)) with a the contact radius.
+///
+/// ```
+/// use microslip::compliance::{Compliance, Hertz};
+///
+/// // A 10 mm steel sphere: v'(P) = 1/(2E*·a(P)) with a(P) the contact radius.
+/// let sphere = Hertz { radius: 0.01, contact_modulus: 1.15e11 };
+/// let load = 10.0;
+/// let expected = 1.0 / (2.0 * 1.15e11 * sphere.contact_radius(&load));
+/// assert!((sphere.slope(&load) / expected - 1.0).abs() < 1e-14);
+/// ```
 #[derive(Clone, Debug)]
 pub struct Hertz<R> {
     /// Sphere radius R (relative radius for two spheres).
@@ -229,15 +264,21 @@ impl<R: Real> Compliance<R> for Hertz<R> {
             self.contact_modulus.to_scientific(6)
         )
     }
-    fn derivative(&self, order: usize, load: &R) -> Option<R> {
-        match order {
-            0 => Some(self.approach(load)),
-            n => self.as_power_law().derivative(n, load),
-        }
+    fn slope_derivative(&self, order: usize, load: &R) -> Option<R> {
+        self.as_power_law().slope_derivative(order, load)
     }
 }
 
 /// v'(P) = Σₖ cₖ (P − P_ref)^k, a polynomial in the offset from a reference load.
+///
+/// ```
+/// use microslip::compliance::{Compliance, Polynomial};
+///
+/// // v' = 2 − ½(P − 1): v'(3) = 1, v'' = −½.
+/// let v = Polynomial { reference: 1.0, coefficients: vec![2.0, -0.5] };
+/// assert_eq!(v.slope(&3.0), 1.0);
+/// assert_eq!(v.curvature(&3.0), -0.5);
+/// ```
 #[derive(Clone, Debug)]
 pub struct Polynomial<R> {
     /// The reference load P_ref.
@@ -301,24 +342,30 @@ impl<R: Real> Compliance<R> for Polynomial<R> {
             terms.join(", ")
         )
     }
-    fn derivative(&self, order: usize, load: &R) -> Option<R> {
-        if order == 0 {
-            return Some(self.approach(load));
-        }
-        // v⁽ⁿ⁾ = Σ_{k ≥ n−1} cₖ k!/(k − n + 1)! (P − P_ref)^(k − n + 1).
+    fn slope_derivative(&self, order: usize, load: &R) -> Option<R> {
+        // v'⁽ʲ⁾ = Σ_{k ≥ j} cₖ k!/(k − j)! (P − P_ref)^(k − j).
         let x = load.clone() - &self.reference;
         let derived: Vec<R> = self
             .coefficients
             .iter()
             .enumerate()
-            .skip(order - 1)
-            .map(|(k, c)| c.clone() * &falling_factorial(&x.int(k as i64), order - 1))
+            .skip(order)
+            .map(|(k, c)| c.clone() * &falling_factorial(&x.int(k as i64), order))
             .collect();
         Some(Self::horner(&derived, &x))
     }
 }
 
 /// v'(P) = a + b/(P + c): a rational compliance (b > 0 stiffens).
+///
+/// ```
+/// use microslip::compliance::{Compliance, Rational};
+///
+/// // v' = 1 + 2/(P + 1): v'(1) = 2, v''(1) = −2/(1 + 1)² = −½.
+/// let v = Rational { constant: 1.0, numerator: 2.0, offset: 1.0 };
+/// assert_eq!(v.slope(&1.0), 2.0);
+/// assert_eq!(v.curvature(&1.0), -0.5);
+/// ```
 #[derive(Clone, Debug)]
 pub struct Rational<R> {
     /// The constant part a.
@@ -353,21 +400,24 @@ impl<R: Real> Compliance<R> for Rational<R> {
             self.offset.to_scientific(6)
         )
     }
-    fn derivative(&self, order: usize, load: &R) -> Option<R> {
-        // v⁽ⁿ⁾ = b (−1)ⁿ⁻¹ (n − 1)!/(P + c)ⁿ for n ≥ 2.
+    fn slope_derivative(&self, order: usize, load: &R) -> Option<R> {
         Some(match order {
-            0 => self.approach(load),
-            1 => self.slope(load),
-            n => {
-                let factorial = falling_factorial(&load.int(n as i64 - 1), n - 1);
-                let sign = if n % 2 == 0 { -load.int(1) } else { load.int(1) };
-                self.numerator.clone() * &factorial * &sign / &(load.clone() + &self.offset).powi(n as i32)
-            }
+            0 => self.slope(load),
+            k => logarithmic_derivative(&self.numerator, &(load.clone() + &self.offset), k + 1),
         })
     }
 }
 
 /// v'(P) = a·e^(−P/c) + d: an exponential-type compliance (a, c > 0 stiffens).
+///
+/// ```
+/// use microslip::compliance::{Compliance, Exponential};
+///
+/// // v' = e^(−P/2) + ½: v'(0) = 3/2, v''(0) = −½.
+/// let v = Exponential { amplitude: 1.0, decay_load: 2.0, constant: 0.5 };
+/// assert_eq!(v.slope(&0.0), 1.5);
+/// assert_eq!(v.curvature(&0.0), -0.5);
+/// ```
 #[derive(Clone, Debug)]
 pub struct Exponential<R> {
     /// The amplitude a.
@@ -407,14 +457,13 @@ impl<R: Real> Compliance<R> for Exponential<R> {
             self.constant.to_scientific(6)
         )
     }
-    fn derivative(&self, order: usize, load: &R) -> Option<R> {
-        // v⁽ⁿ⁾ = a (−1/c)ⁿ⁻¹ e^(−P/c) for n ≥ 2.
+    fn slope_derivative(&self, order: usize, load: &R) -> Option<R> {
+        // v'⁽ᵏ⁾ = a (−1/c)ᵏ e^(−P/c) for k ≥ 1.
         Some(match order {
-            0 => self.approach(load),
-            1 => self.slope(load),
-            n => {
+            0 => self.slope(load),
+            k => {
                 let rate = -(load.int(1) / &self.decay_load);
-                self.amplitude.clone() * &rate.powi(n as i32 - 1) * &(-(load.clone() / &self.decay_load)).exp()
+                self.amplitude.clone() * &rate.powi(k as i32) * &(-(load.clone() / &self.decay_load)).exp()
             }
         })
     }

@@ -6,6 +6,20 @@
 //! as it is pressed); [`check_admissible`] tests that over a load range. The
 //! dissipation functional itself is linear in v' and accepts any smooth v', which
 //! the verification suite uses (e.g. v' = P − P0 for the small-amplitude coefficient).
+//!
+//! A compliance is a family's struct (generic over the number type), a combination of
+//! them, or the SPEC text the command line reads, at any precision:
+//!
+//! ```
+//! use microslip::compliance::{parse_spec, Compliance};
+//! use microslip::real::Precision;
+//!
+//! // v' = 2·(1/P) + ½: at P = 2, v' = 3/2 and v'' = −2/P² = −½.
+//! let v = parse_spec::<f64>("2*persson:gamma=1,sigma=1+const:c=0.5", Precision::DOUBLE)?;
+//! assert_eq!(v.slope(&2.0), 1.5);
+//! assert_eq!(v.curvature(&2.0), -0.5);
+//! # Ok::<(), microslip::compliance::SpecError>(())
+//! ```
 
 mod combinators;
 mod families;
@@ -66,6 +80,15 @@ pub trait Compliance<R: Real>: Debug + Send + Sync {
     /// closed form exact at the working precision, for the small-amplitude series at
     /// every order. `None` for a compliance that cannot give it.
     fn derivative(&self, order: usize, load: &R) -> Option<R> {
+        match order {
+            0 => Some(self.approach(load)),
+            n => self.slope_derivative(n - 1, load),
+        }
+    }
+    /// The derivative of v' of order `order` at `load` (0: v', 1: v'', …): what a family
+    /// with closed-form derivatives gives [`Compliance::derivative`] beyond v itself.
+    /// `None` for a compliance that cannot give it.
+    fn slope_derivative(&self, order: usize, load: &R) -> Option<R> {
         let _ = (order, load);
         None
     }
@@ -86,6 +109,7 @@ pub(crate) fn merged_breakpoints<R: Real>(lists: impl IntoIterator<Item = Vec<R>
 }
 
 /// Why a compliance is not physical over a load range.
+#[non_exhaustive]
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum AdmissibilityError {
     /// v' ≤ 0 somewhere: the contact would not resist the load.
@@ -131,6 +155,16 @@ pub enum AdmissibilityError {
 /// Checks v' > 0 and v'' ≤ 0 at 65 evenly spaced loads in [low, high] (both ends
 /// included). v'' is allowed a rounding-level excess over 0 so that a linear v
 /// (v'' = 0 exactly) computed with rounding error still passes.
+///
+/// ```
+/// use microslip::compliance::{check_admissible, AdmissibilityError, Persson, PowerLaw};
+///
+/// assert!(check_admissible(&Persson { gamma: 1.0, sigma: 1.0 }, &0.5, &1.5).is_ok());
+/// // v' = P softens as it is pressed (v'' = 1 > 0).
+/// let softening = PowerLaw { coefficient: 1.0, exponent: 1.0 };
+/// let refused = check_admissible(&softening, &0.5, &1.5);
+/// assert!(matches!(refused, Err(AdmissibilityError::PositiveCurvature { .. })));
+/// ```
 pub fn check_admissible<R: Real>(compliance: &dyn Compliance<R>, low: &R, high: &R) -> Result<(), AdmissibilityError> {
     const SAMPLES: i64 = 64;
     let (low_f, high_f) = (low.to_f64_lossy(), high.to_f64_lossy());

@@ -9,6 +9,7 @@ use crate::quad::Integrated;
 use crate::real::Real;
 
 /// How W was computed.
+#[non_exhaustive]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Method {
     /// The four-segment integrals in θ.
@@ -23,9 +24,29 @@ pub enum Method {
     Exact(ExactZero),
 }
 
+impl Method {
+    /// The formula, as the command line names it after W.
+    ///
+    /// ```
+    /// use microslip::dissipation::Method;
+    ///
+    /// assert_eq!(Method::InPhase.description(), "in-phase closed form (paper appendix)");
+    /// ```
+    pub fn description(self) -> &'static str {
+        match self {
+            Method::FourSegment => "four-segment integrals of v' − v'(P0) in the cycle angle",
+            Method::InPhase => "in-phase closed form (paper appendix)",
+            Method::ConstantNormalLoad => "constant-normal-load closed form",
+            Method::NoTangentialOscillation => "no tangential oscillation (W = 0)",
+            Method::Exact(_) => "exact zero",
+        }
+    }
+}
+
 /// Why W is exactly 0, decided from the exact input (the decimals and the phase as
 /// written, the compliance SPEC's structure), never from a rounded value
 /// (proofs/exact-values.md).
+#[non_exhaustive]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum ExactZero {
     /// v' is constant (v'' ≡ 0): a constant v' dissipates nothing (the constant-term theorem).
@@ -58,6 +79,7 @@ impl ExactZero {
 }
 
 /// The dissipation per cycle and how it was obtained.
+#[non_exhaustive]
 #[derive(Clone, Debug)]
 pub struct Dissipation<R> {
     /// W, the energy dissipated per cycle.

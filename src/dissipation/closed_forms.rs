@@ -34,17 +34,43 @@ use crate::real::Real;
 /// W4 = 2λfQ1/(Q1/f + P1) ∫_{P1}^{−Q1/f} (2x − P1 + Q1/f) v'(P0 + x) dx
 /// ```
 /// The phase is not checked: the formula is that of the line the ellipse collapses to.
+///
+/// ```
+/// use microslip::compliance::Persson;
+/// use microslip::cycle::{LoadCycle, ValidCycle};
+/// use microslip::dissipation::{four_segment, in_phase, Options};
+///
+/// let cycle = |phase: f64| LoadCycle {
+///     mean_normal_load: 1.0,
+///     normal_amplitude: 0.4,
+///     mean_tangential_load: 0.0,
+///     tangential_amplitude: 0.5,
+///     phase,
+///     friction: 1.0,
+///     compliance_ratio: 1.0,
+/// };
+/// let persson = Persson { gamma: 1.0, sigma: 1.0 };
+/// let closed = in_phase(&ValidCycle::new(cycle(0.0))?, &persson, &Options::default())?.total;
+/// // The four-segment integrals approach it as φ → 0 (W − W(0) = O(φ)).
+/// let near = four_segment(&cycle(1e-4), &persson, &Options::default())?.total;
+/// assert!((near / closed - 1.0).abs() < 1e-3);
+///
+/// // Q1 ≤ fP1: the load line stays inside the stick range and nothing slips.
+/// let stuck = LoadCycle { tangential_amplitude: 0.3, ..cycle(0.0) };
+/// assert_eq!(in_phase(&ValidCycle::new(stuck)?, &persson, &Options::default())?.total, 0.0);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn in_phase<R: Real>(
     cycle: &ValidCycle<R>,
     compliance: &dyn Compliance<R>,
     options: &Options<R>,
 ) -> Result<Dissipation<R>, DissipationError> {
-    check_case(cycle, compliance, options)?;
     let f = &cycle.friction;
     let p1 = &cycle.normal_amplitude;
     let q1 = &cycle.tangential_amplitude;
     let zero = p1.int(0);
     let Some(terms) = in_phase_terms(cycle) else {
+        check_case(cycle, compliance, options)?;
         return assemble(cycle, Parts::nothing(&zero), Method::InPhase, options);
     };
     let q = q1.clone() / f;
@@ -101,12 +127,34 @@ pub(crate) fn in_phase_segments<R: Real>(cycle: &LoadCycle<R>, [j1, j2, j4]: [R;
 /// W at constant normal load (P1 = 0; the phase is irrelevant):
 /// W = 4λf² ∫_{−Q1/f}^{0} (−Q1/f − 2x) v'(P0 + x) dx. By the symmetry Q → −Q the
 /// unloading (EB) and reloading (HE) halves carry W/2 each.
+///
+/// ```
+/// use microslip::compliance::Polynomial;
+/// use microslip::cycle::{LoadCycle, ValidCycle};
+/// use microslip::dissipation::{constant_normal_load, Options};
+///
+/// // v' = 1 − ½(P − P0): the integral above gives W = λ f² (Q1/f)³ · ½ · 2/3 = 0.009
+/// // for f = λ = 1 and Q1 = 0.3.
+/// let cycle = LoadCycle {
+///     mean_normal_load: 1.0,
+///     normal_amplitude: 0.0,
+///     mean_tangential_load: 0.0,
+///     tangential_amplitude: 0.3,
+///     phase: 0.0,
+///     friction: 1.0,
+///     compliance_ratio: 1.0,
+/// };
+/// let linear = Polynomial { reference: 1.0, coefficients: vec![1.0, -0.5] };
+/// let w = constant_normal_load(&ValidCycle::new(cycle)?, &linear, &Options::default())?;
+/// assert!((w.total - 0.009).abs() < 1e-16);
+/// assert!((w.segments.eb - w.segments.he).abs() < 1e-16);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn constant_normal_load<R: Real>(
     cycle: &ValidCycle<R>,
     compliance: &dyn Compliance<R>,
     options: &Options<R>,
 ) -> Result<Dissipation<R>, DissipationError> {
-    check_case(cycle, compliance, options)?;
     let f = &cycle.friction;
     let ([loop_integral], integrated) =
         integrate_terms(cycle, compliance, options, [constant_normal_load_term(cycle)])?;
@@ -142,13 +190,14 @@ pub(crate) fn constant_normal_load_segments<R: Real>(cycle: &LoadCycle<R>, loop_
 
 /// ∫ w(x) v'(P0 + x) dx for each term, each split at the compliance's knots, integrated
 /// together; the values per term, in the order given. A term is the piece of its weight
-/// w(x), in the offset x = P − P0.
+/// w(x), in the offset x = P − P0. The case is checked (conditioning, admissibility) first.
 fn integrate_terms<'a, R: Real, const N: usize>(
     cycle: &ValidCycle<R>,
     compliance: &'a dyn Compliance<R>,
     options: &Options<R>,
     terms: [Piece<'a, R>; N],
 ) -> Result<([R; N], Integrated<R>), DissipationError> {
+    check_case(cycle, compliance, options)?;
     let zero = cycle.mean_normal_load.int(0);
     let slope = Rc::new(slope_at(
         compliance,
@@ -233,6 +282,33 @@ pub enum HertzConfiguration {
 /// The Mindlin–Deresiewicz dissipation of a Hertz contact under constant normal
 /// load P0 and tangential amplitude Q1 (errata item 8):
 /// W = 9(2 − ν) f² P0² / (k G a) · [1 − (1 − q)^(5/3) − (5q/6)(1 + (1 − q)^(2/3))], q = Q1/(fP0).
+///
+/// ```
+/// use microslip::compliance::Hertz;
+/// use microslip::cycle::{LoadCycle, ValidCycle};
+/// use microslip::dissipation::{constant_normal_load, HertzConfiguration, MindlinDeresiewicz, Options};
+///
+/// let md = MindlinDeresiewicz {
+///     shear_modulus: 80.0,
+///     poisson_ratio: 0.3,
+///     configuration: HertzConfiguration::SphereOnRigidFlat,
+/// };
+/// let sphere = Hertz { radius: 1.0, contact_modulus: md.contact_modulus() };
+/// let (friction, p0, q1) = (0.5, 1.0, 0.25);
+/// let cycle = LoadCycle {
+///     mean_normal_load: p0,
+///     normal_amplitude: 0.0,
+///     mean_tangential_load: 0.0,
+///     tangential_amplitude: q1,
+///     phase: 0.0,
+///     friction,
+///     compliance_ratio: (2.0 - 0.3) / (2.0 * (1.0 - 0.3)),
+/// };
+/// let general = constant_normal_load(&ValidCycle::new(cycle)?, &sphere, &Options::default())?.total;
+/// let formula = md.dissipation(&friction, &p0, &q1, &sphere.contact_radius(&p0));
+/// assert!((general / formula - 1.0).abs() < 1e-12);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 #[derive(Clone, Debug)]
 pub struct MindlinDeresiewicz<R> {
     /// Shear modulus G.

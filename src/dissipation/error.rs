@@ -5,6 +5,7 @@ use crate::cycle::CycleError;
 use crate::quad::QuadError;
 
 /// Why W could not be computed.
+#[non_exhaustive]
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum DissipationError {
     /// The load cycle is outside the theory.

@@ -12,6 +12,31 @@ use crate::real::Real;
 
 /// W by the four-segment integrals whatever the cycle (also for P1 = 0 and for
 /// phases close to 0 or π, where it converges to the closed forms).
+///
+/// ```
+/// use microslip::compliance::Polynomial;
+/// use microslip::cycle::LoadCycle;
+/// use microslip::dissipation::{four_segment, Options};
+/// use microslip::exact::closed_form_coefficient;
+///
+/// // For a linear v' = 1 − (P − P0) the cubic law is exact: W = λ f² P1³ v'' I(ρ, φ),
+/// // ρ = Q1/(f P1), with I in closed form.
+/// let (p1, q1, phase) = (0.1, 0.05, 0.4 * std::f64::consts::PI);
+/// let cycle = LoadCycle {
+///     mean_normal_load: 1.0,
+///     normal_amplitude: p1,
+///     mean_tangential_load: 0.0,
+///     tangential_amplitude: q1,
+///     phase,
+///     friction: 1.0,
+///     compliance_ratio: 1.0,
+/// };
+/// let linear = Polynomial { reference: 1.0, coefficients: vec![1.0, -1.0] };
+/// let w = four_segment(&cycle, &linear, &Options::default())?.total;
+/// let cubic_law = -p1.powi(3) * closed_form_coefficient(&(q1 / p1), &phase);
+/// assert!((w / cubic_law - 1.0).abs() < 1e-12);
+/// # Ok::<(), microslip::dissipation::DissipationError>(())
+/// ```
 pub fn four_segment<R: Real>(
     cycle: &LoadCycle<R>,
     compliance: &dyn Compliance<R>,

@@ -58,6 +58,33 @@ use four_segment::four_segment_integrals;
 
 /// W for a valid cycle, by the closed form where the cycle is degenerate
 /// (Q1 = 0, P1 = 0, or in phase) and by the four-segment integrals otherwise.
+///
+/// ```
+/// use microslip::compliance::{Persson, Shifted};
+/// use microslip::cycle::LoadCycle;
+/// use microslip::dissipation::{dissipation, Method, Options};
+///
+/// let cycle = LoadCycle {
+///     mean_normal_load: 1.0,
+///     normal_amplitude: 0.4,
+///     mean_tangential_load: 0.0,
+///     tangential_amplitude: 0.5,
+///     phase: 0.4 * std::f64::consts::PI,
+///     friction: 1.0,
+///     compliance_ratio: 1.0,
+/// };
+/// let persson = Persson { gamma: 1.0, sigma: 1.0 };
+/// let w = dissipation(&cycle, &persson, &Options::default())?;
+/// assert_eq!(w.method, Method::FourSegment);
+/// let sum = w.segments.eb + w.segments.bc + w.segments.ch + w.segments.he;
+/// assert!((sum - w.total).abs() <= w.error_estimate);
+///
+/// // A constant added to v' dissipates nothing (the constant-term theorem).
+/// let stiffer = Shifted { extra_slope: 3.0, inner: Box::new(persson) };
+/// let shifted = dissipation(&cycle, &stiffer, &Options::default())?;
+/// assert!((shifted.total - w.total).abs() <= 2.0 * w.error_estimate);
+/// # Ok::<(), microslip::dissipation::DissipationError>(())
+/// ```
 pub fn dissipation<R: Real>(
     cycle: &LoadCycle<R>,
     compliance: &dyn Compliance<R>,

@@ -17,6 +17,17 @@ use crate::real::Real;
 /// I(ρ, φ), the coefficient of the cubic law W ≈ λ f² P1³ v''(P0) I, for ρ > 0 and
 /// any φ (period π; a phase in [−π/2, 0) is the offset below π, as [`PhaseTrig::reduced`]
 /// reads it). At ρ = 1, φ ≡ 0 it returns the limit 0.
+///
+/// ```
+/// use microslip::exact::closed_form_coefficient;
+///
+/// // Claim 2 of the paper: I < 0 for every ρ > 0 and 0 < φ < π; I(ρ, 0) = 0 for ρ ≤ 1.
+/// assert!(closed_form_coefficient(&0.5, &1.0) < 0.0);
+/// assert_eq!(closed_form_coefficient(&0.5, &0.0), 0.0);
+/// // Far beyond gross slip of the load line (ρ → ∞), I ≈ −⅔ρ³.
+/// let rho: f64 = 1e4;
+/// assert!((closed_form_coefficient(&rho, &1.0) / (-2.0 / 3.0 * rho.powi(3)) - 1.0).abs() < 1e-3);
+/// ```
 pub fn closed_form_coefficient<R: Real>(rho: &R, phase: &R) -> R {
     let one = rho.int(1);
     // (r, e) = (ρ, 1)/k with k = max(1, ρ); I = k³ J(r, e), J homogeneous of degree 3.

@@ -7,6 +7,7 @@ pub mod coefficient;
 #[cfg(feature = "certified")]
 pub mod enclosure;
 pub mod polynomial_w;
+#[doc(hidden)]
 pub mod printing;
 pub mod series;
 pub mod trig;

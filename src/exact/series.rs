@@ -11,6 +11,7 @@ use crate::real::Real;
 use super::polynomial_w::monomials_with_scale;
 
 /// Why the series could not be formed.
+#[non_exhaustive]
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum SeriesError {
     /// ρ ≤ 0 or not finite.
@@ -41,6 +42,20 @@ pub enum SeriesError {
 
 /// I₀ … I_`order` at (ρ, φ), each with a bound on the magnitudes of the terms it is
 /// summed from (its rounding error is a few ulps of that; I₀ = 0 is resolved to it).
+///
+/// ```
+/// use microslip::exact::{closed_form_coefficient, series_coefficients};
+///
+/// let (rho, phase) = (0.5, 1.0);
+/// let coefficients = series_coefficients(&rho, &phase, 2)?;
+/// // I₀ = 0 (a constant v' dissipates nothing), here to the rounding of the terms
+/// // it is summed from; I₁ is the cubic law's I(ρ, φ).
+/// let (constant_term, terms) = coefficients[0];
+/// assert!(constant_term.abs() <= 8.0 * f64::EPSILON * terms);
+/// let cubic = closed_form_coefficient(&rho, &phase);
+/// assert!((coefficients[1].0 / cubic - 1.0).abs() < 1e-13);
+/// # Ok::<(), microslip::exact::SeriesError>(())
+/// ```
 pub fn series_coefficients<R: Real>(rho: &R, phase: &R, order: usize) -> Result<Vec<(R, R)>, SeriesError> {
     let zero = rho.int(0);
     if !(rho.is_finite() && *rho > zero) {
@@ -66,6 +81,29 @@ pub fn series_coefficients<R: Real>(rho: &R, phase: &R, order: usize) -> Result<
 
 /// The partial sums W_N = λ f² Σ_{n=1}^{N} v⁽ⁿ⁺¹⁾(P0)/n! · P1ⁿ⁺² Iₙ, N = 1 … `order`,
 /// of the small-amplitude series of a cycle on a compliance (index N − 1).
+///
+/// ```
+/// use microslip::compliance::Polynomial;
+/// use microslip::cycle::LoadCycle;
+/// use microslip::dissipation::{dissipation, Options};
+/// use microslip::exact::partial_sums;
+///
+/// // v' quadratic in P − P0: the series ends at N = 2, so W_2 is W.
+/// let cycle = LoadCycle {
+///     mean_normal_load: 1.0,
+///     normal_amplitude: 0.2,
+///     mean_tangential_load: 0.0,
+///     tangential_amplitude: 0.15,
+///     phase: 1.0,
+///     friction: 1.0,
+///     compliance_ratio: 1.5,
+/// };
+/// let v = Polynomial { reference: 1.0, coefficients: vec![2.0, -1.0, -0.5] };
+/// let sums = partial_sums(&cycle, &v, 2)?;
+/// let w = dissipation(&cycle, &v, &Options::default())?;
+/// assert!((sums[1] - w.total).abs() <= w.error_estimate + 1e-16 * w.total.abs());
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
 pub fn partial_sums<R: Real>(
     cycle: &LoadCycle<R>,
     compliance: &dyn Compliance<R>,

@@ -11,7 +11,7 @@ use plotters::prelude::*;
 use super::{Curve, Figure, Panel, Style};
 use crate::plot::layout::{draw_legend, legend_size, Frame, LegendEntry, Obstacles, Swatch, CROSS};
 use crate::plot::overlay::{Overlay, Stroke};
-use crate::plot::{chart_with_legend, draw_svg, ticks, Canvas, ChartLayout, Format, Picture, PlotError};
+use crate::plot::{chart_with_legend, draw_svg, ticks, Canvas, ChartLayout, Drawn, Format, Picture, PlotError};
 
 const COLOURS: [RGBColor; 8] = [
     RGBColor(31, 119, 180),
@@ -82,12 +82,7 @@ pub fn slope_guide(panel: &Panel, number: u32) -> Option<([(f64, f64); 2], f64)>
 const POINT_RADIUS: f64 = 5.0;
 const GUIDE: RGBColor = RGBColor(90, 90, 90);
 
-fn draw(
-    root: &Canvas<'_>,
-    overlay: &mut Overlay,
-    figure: &Figure,
-) -> Result<Vec<ChartLayout>, Box<dyn std::error::Error>> {
-    root.fill(&WHITE)?;
+fn draw(root: &Canvas<'_>, overlay: &mut Overlay, figure: &Figure) -> Drawn {
     let (charts, notes) = root.split_vertically(root.dim_in_pixel().1 - 34);
     for (index, line) in figure.notes.iter().enumerate() {
         notes.draw(&Text::new(

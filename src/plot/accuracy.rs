@@ -93,7 +93,6 @@ fn draw(
     entries: &[LegendEntry],
     legend_w: f64,
 ) -> Result<ChartLayout, Box<dyn std::error::Error>> {
-    root.fill(&WHITE)?;
     let area = root.titled("accuracy against cost (all cases)", ("sans-serif", 20))?;
     let (x_min, x_max, y_min) = measurements.iter().map(point).fold(
         (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY),

@@ -4,7 +4,9 @@
 //! fails when any claim fails; the property tests in `tests/theorems.rs` run the
 //! same checks on shrinking cases drawn from the same families, with fixed seeds.
 
+#[doc(hidden)]
 pub mod claims;
+#[doc(hidden)]
 pub mod generators;
 pub mod small_amplitude;
 
@@ -18,6 +20,7 @@ use crate::real::Precision;
 use claims::{Claim, ConstantTerm, FourSegment, Invariants, Linearity, Roughness, Simulation};
 
 /// The outcome of one claim at one precision.
+#[non_exhaustive]
 #[derive(Clone, Debug, Serialize)]
 pub struct ClaimReport {
     /// The claim, numbered as in proofs/README.md.
@@ -67,6 +70,17 @@ pub struct GateOptions {
 pub type GateStep = (&'static str, Box<dyn Fn() -> Vec<ClaimReport> + Send + Sync>);
 
 /// The steps in claim order (independent of each other, so they may run in parallel).
+///
+/// ```
+/// use microslip::verify::{gate, GateOptions};
+///
+/// // One step of the quick gate: the cubic law W ∝ P1³ at small amplitude.
+/// let steps = gate(GateOptions { seed: 7, quick: true });
+/// let (name, check) = steps.iter().find(|(name, _)| *name == "cubic law").unwrap();
+/// for report in check() {
+///     assert!(report.passed, "{name}: {}", report.note);
+/// }
+/// ```
 pub fn gate(options: GateOptions) -> Vec<GateStep> {
     let GateOptions { seed, quick } = options;
     let n = move |quick_cases: usize, full_cases: usize| if quick { quick_cases } else { full_cases };
@@ -175,6 +189,13 @@ fn evaluated<C: Claim + Send + Sync + 'static>(
 /// Runs the whole gate on as many threads as rayon's pool has (one per core unless
 /// the pool was sized otherwise), and returns the reports in claim order;
 /// `progress(done, total, name)` is told each step's name as it finishes.
+///
+/// ```no_run
+/// use microslip::verify::{run, GateOptions};
+///
+/// let reports = run(GateOptions { seed: 1, quick: true }, |done, total, name| eprintln!("{done}/{total} {name}"));
+/// assert!(reports.iter().all(|report| report.passed));
+/// ```
 pub fn run(options: GateOptions, mut progress: impl FnMut(usize, usize, &str)) -> Vec<ClaimReport> {
     let steps = gate(options);
     let total = steps.len();

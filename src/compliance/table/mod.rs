@@ -64,21 +64,39 @@ pub enum TableInterpolant {
 pub const TABLE_ORDER: i32 = 4;
 
 /// A table that cannot be used, with the line of the file at fault where there is one.
+#[non_exhaustive]
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
 pub enum TableError {
     /// The file cannot be read or is not CSV.
     #[error("table '{path}': {problem}")]
-    File { path: String, problem: String },
+    File {
+        /// The table's file.
+        path: String,
+        /// What is wrong with it.
+        problem: String,
+    },
     /// One row (line of the file) is wrong.
     #[error("table '{path}' line {line}: {problem}")]
-    Row { path: String, line: u64, problem: String },
+    Row {
+        /// The table's file.
+        path: String,
+        /// The line of the file (1 is the first).
+        line: u64,
+        /// What is wrong with the row.
+        problem: String,
+    },
     /// The cycle reaches loads the table does not cover.
     #[error("table '{path}' covers loads [{first:e}, {last:e}], but the cycle reaches [{low:e}, {high:e}] (from the permanent-stick load P_T or P0 − P1 up to P0 + P1); a table compliance is never extrapolated: extend the table")]
     OutOfRange {
+        /// The table's file.
         path: String,
+        /// The table's first load.
         first: f64,
+        /// The table's last load.
         last: f64,
+        /// The lowest load the cycle reaches.
         low: f64,
+        /// The highest load the cycle reaches.
         high: f64,
     },
 }
