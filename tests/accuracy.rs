@@ -1,7 +1,7 @@
 //! The accuracy-against-cost report: the measurements, the Pareto front, the
 //! cheapest configuration per target, and the files the command writes.
 
-use std::process::Command;
+mod common;
 
 use microslip::accuracy::{
     cheapest_for, measure_case, pareto_front, reference_value, standard_cases, to_csv, Measurement,
@@ -67,11 +67,7 @@ fn gauss_legendre_in_theta_converges_geometrically_where_the_load_integral_does_
 #[test]
 fn accuracy_command_writes_the_csv_and_both_plots() {
     let dir = std::env::temp_dir().join(format!("microslip-accuracy-{}", std::process::id()));
-    let output = Command::new(env!("CARGO_BIN_EXE_microslip"))
-        .args(["accuracy", "--quick", "--out"])
-        .arg(&dir)
-        .output()
-        .unwrap();
+    let output = common::run(["accuracy", "--quick", "--out"]).arg(&dir).output();
     assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
     let stdout = String::from_utf8_lossy(&output.stdout);
     assert!(
@@ -94,14 +90,10 @@ fn accuracy_writes_all_three_files_or_none() {
     std::fs::create_dir_all(&dir).unwrap();
     // File size limited to 64 KiB, as a full disk would stop it: the CSV and the SVG fit,
     // the PNG does not (a write beyond the limit fails with "File too large").
-    let output = Command::new("bash")
-        .arg("-c")
-        .arg("trap '' XFSZ; ulimit -f 64; exec \"$0\" \"$@\"")
-        .arg(env!("CARGO_BIN_EXE_microslip"))
-        .args(["accuracy", "--quick", "--out"])
+    let output = common::run(["accuracy", "--quick", "--out"])
         .arg(&dir)
-        .output()
-        .unwrap();
+        .file_size_limit_kib(64)
+        .output();
     assert_eq!(
         output.status.code(),
         Some(1),

@@ -2,21 +2,12 @@
 //! prints it; bad rows reported in their row, unreadable input refused.
 
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
+
+mod common;
 
 fn microslip(args: &[&str], stdin: Option<&str>) -> Output {
-    use std::io::Write;
-    let mut child = Command::new(env!("CARGO_BIN_EXE_microslip"))
-        .args(args)
-        .stdin(std::process::Stdio::piped())
-        .stdout(std::process::Stdio::piped())
-        .stderr(std::process::Stdio::piped())
-        .spawn()
-        .expect("run microslip");
-    let mut input = child.stdin.take().expect("stdin");
-    input.write_all(stdin.unwrap_or("").as_bytes()).expect("write stdin");
-    drop(input);
-    child.wait_with_output().expect("wait")
+    common::run(args).stdin(stdin.unwrap_or("")).output()
 }
 
 fn scratch(name: &str) -> PathBuf {
@@ -323,19 +314,17 @@ fn all_rows_computed_exits_0_and_replaces_the_output_whole() {
         .collect();
     let input_path = dir.join("good.csv");
     std::fs::write(&input_path, good).expect("write");
-    let output = Command::new(env!("CARGO_BIN_EXE_microslip"))
-        .current_dir(env!("CARGO_MANIFEST_DIR"))
-        .args([
-            "batch",
-            "--input",
-            &path_text(&input_path),
-            "--output",
-            &path_text(&output_path),
-            "--format",
-            "jsonl",
-        ])
-        .output()
-        .expect("run");
+    let output = common::run([
+        "batch",
+        "--input",
+        &path_text(&input_path),
+        "--output",
+        &path_text(&output_path),
+        "--format",
+        "jsonl",
+    ])
+    .current_dir(env!("CARGO_MANIFEST_DIR"))
+    .output();
     assert_eq!(
         output.status.code(),
         Some(0),

@@ -8,7 +8,7 @@
 use std::io::Write;
 use std::os::unix::fs::FileTypeExt;
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Stdio};
+use std::process::{Child, Command};
 use std::time::{Duration, Instant};
 
 use proptest::prelude::*;
@@ -27,21 +27,18 @@ fn text(path: &Path) -> String {
     path.display().to_string()
 }
 
-fn spawn(args: &[&str], stdin: Stdio) -> Child {
-    Command::new(env!("CARGO_BIN_EXE_microslip"))
-        .args(args)
-        .stdin(stdin)
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("run microslip")
+fn spawn(args: &[&str]) -> Child {
+    common::run(args).spawn()
 }
 
 use common::Bounded as Outcome;
 
 /// Runs to the end with `input` on stdin, killed (and the test failed) after `limit`.
 fn run(args: &[&str], input: &[u8], limit: Duration) -> Outcome {
-    common::microslip_bounded(args, input, limit).unwrap_or_else(|why| panic!("{why}"))
+    common::run(args)
+        .stdin(input)
+        .within(limit)
+        .unwrap_or_else(|why| panic!("{why}"))
 }
 
 fn runner(seed: u8) -> TestRunner {
@@ -153,9 +150,31 @@ fn random_csv() -> impl Strategy<Value = RandomCsv> {
         })
 }
 
+/// The output formats of `batch --format`.
+#[derive(Clone, Copy, Debug)]
+enum Format {
+    Csv,
+    JsonLines,
+}
+
+impl Format {
+    /// Its name on the command line.
+    fn flag(self) -> &'static str {
+        match self {
+            Format::Csv => "csv",
+            Format::JsonLines => "jsonl",
+        }
+    }
+}
+
+/// Either format, shrinking to CSV.
+fn formats() -> impl Strategy<Value = Format> {
+    any::<bool>().prop_map(|jsonl| if jsonl { Format::JsonLines } else { Format::Csv })
+}
+
 /// The ids of the output, in order, from CSV or JSON lines.
-fn output_ids(bytes: &[u8], jsonl: bool) -> Vec<String> {
-    if jsonl {
+fn output_ids(bytes: &[u8], format: Format) -> Vec<String> {
+    if let Format::JsonLines = format {
         String::from_utf8_lossy(bytes)
             .lines()
             .map(|line| {
@@ -185,9 +204,8 @@ fn every_row_in_gives_one_row_out_in_order_and_a_column_named_twice_is_refused()
     let dir = scratch("random");
     let count = std::sync::atomic::AtomicUsize::new(0);
     runner(21)
-        .run(&(random_csv(), any::<bool>(), 0..3usize), |(csv, jsonl, target)| {
+        .run(&(random_csv(), formats(), 0..3usize), |(csv, format, target)| {
             let count = count.fetch_add(1, std::sync::atomic::Ordering::Relaxed);
-            let format = if jsonl { "jsonl" } else { "csv" };
             // Standard output, a file, or a link to a file.
             let file = dir.join(format!("out-{count}.txt"));
             let link = dir.join(format!("link-{count}.txt"));
@@ -197,7 +215,7 @@ fn every_row_in_gives_one_row_out_in_order_and_a_column_named_twice_is_refused()
                 1 => text(&file),
                 _ => text(&link),
             };
-            let args = ["batch", "--input", "-", "--output", &output, "--format", format];
+            let args = ["batch", "--input", "-", "--output", &output, "--format", format.flag()];
             let outcome = run(&args, csv.text().as_bytes(), Duration::from_secs(60));
             if let Some(i) = csv.duplicate {
                 one_line_refusal(
@@ -218,7 +236,7 @@ fn every_row_in_gives_one_row_out_in_order_and_a_column_named_twice_is_refused()
             } else {
                 std::fs::read(&file).expect("the output file")
             };
-            prop_assert_eq!(output_ids(&written, jsonl), csv.ids(), "{}", csv.text());
+            prop_assert_eq!(output_ids(&written, format), csv.ids(), "{}", csv.text());
             prop_assert!(std::fs::symlink_metadata(&link).expect("link").file_type().is_symlink());
             Ok(())
         })
@@ -259,7 +277,7 @@ fn devices_fifos_and_standard_output_are_written_in_place_and_never_replaced() {
             Duration::from_secs(60),
         );
         assert_eq!(outcome.code, 0, "{name}: {}", outcome.stderr);
-        assert_eq!(output_ids(&outcome.stdout, false), ["a", "#b"], "{name}");
+        assert_eq!(output_ids(&outcome.stdout, Format::Csv), ["a", "#b"], "{name}");
     }
     // A FIFO, through a link: the reader gets every row, and both stay what they were.
     let fifo = dir.join("fifo");
@@ -284,7 +302,10 @@ fn devices_fifos_and_standard_output_are_written_in_place_and_never_replaced() {
         Duration::from_secs(60),
     );
     assert_eq!(outcome.code, 0, "{}", outcome.stderr);
-    assert_eq!(output_ids(&reader.join().expect("reader"), true), ["a", "#b"]);
+    assert_eq!(
+        output_ids(&reader.join().expect("reader"), Format::JsonLines),
+        ["a", "#b"]
+    );
     assert!(std::fs::symlink_metadata(&fifo).expect("fifo").file_type().is_fifo());
     assert!(std::fs::symlink_metadata(&link).expect("link").file_type().is_symlink());
     std::fs::remove_dir_all(&dir).expect("clean up");
@@ -368,7 +389,7 @@ fn endless_input_is_refused_or_streamed_in_bounded_memory() {
     );
     refused(&outcome, "unclosed quote");
     // Endless rows on stdin: rows come out as they are computed, memory stays flat.
-    let mut child = spawn(&["batch", "--input", "-", "--output", "-"], Stdio::piped());
+    let mut child = spawn(&["batch", "--input", "-", "--output", "-"]);
     let mut stdin = child.stdin.take().expect("stdin");
     let feeder = std::thread::spawn(move || {
         let _ = stdin.write_all(b"id,p0,p1,q1,phi,friction,lambda,compliance\n");
@@ -430,7 +451,7 @@ fn no_batch_row_and_no_reference_run_outlasts_its_budget_by_a_second() {
     assert!(outcome.seconds < 2.0 * 1.0 + 1.0, "{} s", outcome.seconds);
     assert_ne!(outcome.code, 101);
     assert_ne!(outcome.code, 134);
-    assert_eq!(output_ids(&outcome.stdout, true), ["a", "#b"]);
+    assert_eq!(output_ids(&outcome.stdout, Format::JsonLines), ["a", "#b"]);
     let catalogue = dir.join("catalogue.json");
     let entry = |name: &str, p0: &str, compliance: &str| {
         serde_json::json!({"name": name, "description": "", "case": {

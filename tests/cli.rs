@@ -171,12 +171,7 @@ fn out_of_range_values_say_the_admitted_range() {
 #[test]
 fn a_closed_pipe_ends_the_program_quietly() {
     for args in [&["table"][..], &["verify", "--quick"][..]] {
-        let mut child = Command::new(env!("CARGO_BIN_EXE_microslip"))
-            .args(args)
-            .stdout(Stdio::piped())
-            .stderr(Stdio::piped())
-            .spawn()
-            .unwrap();
+        let mut child = common::run(args).spawn();
         // Close the reading end at once: the program's write meets a closed pipe.
         drop(child.stdout.take());
         let mut stderr = String::new();
@@ -192,11 +187,9 @@ fn a_write_error_on_stdout_is_one_line_and_exit_1() {
     if !Path::new("/dev/full").exists() {
         return;
     }
-    let output = Command::new(env!("CARGO_BIN_EXE_microslip"))
-        .arg("table")
-        .stdout(std::fs::OpenOptions::new().write(true).open("/dev/full").unwrap())
-        .output()
-        .unwrap();
+    let output = common::run(["table"])
+        .stdout_to(std::fs::OpenOptions::new().write(true).open("/dev/full").unwrap())
+        .output();
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert_eq!(output.status.code(), Some(1), "{stderr}");
     assert_eq!(stderr.trim_end().lines().count(), 1, "{stderr}");

@@ -354,26 +354,24 @@ fn differential(args: &[String], value_field: &str, units: f64, outcome: &Outcom
     Ok(())
 }
 
-/// The case that the flags of a successful run describe.
+/// The case that the flags of a successful run describe (a successful run gives every
+/// flag of a case; a later flag overrides an earlier one, as on the command line).
 fn case_text(case: &CaseFlags) -> CaseText {
-    let flag = |name: &str| {
-        case.flags
-            .iter()
-            .rev()
-            .find(|(flag, _)| flag == name)
-            .map(|(_, value)| value.clone())
-    };
-    CaseText {
-        p0: flag("--p0").unwrap_or_default(),
-        p1: flag("--p1").unwrap_or_default(),
-        q0: flag("--q0").unwrap_or_else(|| "0".to_string()),
-        q1: flag("--q1").unwrap_or_default(),
-        phi: flag("--phi").unwrap_or_default(),
-        friction: flag("--friction").unwrap_or_default(),
-        lambda: flag("--lambda"),
-        nu: flag("--nu"),
-        compliance: flag("--compliance").unwrap_or_default(),
-    }
+    case.flags
+        .iter()
+        .fold(common::case(), |text, (flag, value)| match flag.as_str() {
+            "--p0" => text.p0(value),
+            "--p1" => text.p1(value),
+            "--q0" => text.q0(value),
+            "--q1" => text.q1(value),
+            "--phi" => text.phi(value),
+            "--friction" => text.friction(value),
+            "--lambda" => text.lambda(value),
+            "--nu" => text.nu(value),
+            "--compliance" => text.compliance(value),
+            _ => text,
+        })
+        .text()
 }
 
 /// Bits of the independent reference.

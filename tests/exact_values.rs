@@ -15,17 +15,7 @@ use common::{case_args, microslip};
 
 /// The near-in-phase case: Persson, P0 = 1, P1 = 0.4, Q1 = 0.2 (ρ = 1/2), f = λ = 1.
 fn case(phi: &str, compliance: &str) -> CaseText {
-    CaseText {
-        p0: "1".into(),
-        p1: "0.4".into(),
-        q0: "0".into(),
-        q1: "0.2".into(),
-        phi: phi.into(),
-        friction: "1".into(),
-        lambda: Some("1".into()),
-        nu: None,
-        compliance: compliance.into(),
-    }
+    common::case().q1("0.2").phi(phi).compliance(compliance).text()
 }
 
 const PERSSON: &str = "persson:gamma=1,sigma=1";

@@ -1,7 +1,8 @@
 //! The paper's Figures 4–8: the facts each figure is read for, checked on the
 //! computed values, and the `microslip figures` command (proofs/figures.md).
 
-use std::process::Command;
+mod common;
+
 use std::sync::OnceLock;
 
 use microslip::accuracy::Measurement;
@@ -14,7 +15,7 @@ use microslip::figures::evaluate::{
     Point,
 };
 use microslip::figures::{compute, Figures, Progress, Style};
-use microslip::inputs::{Case, CaseText};
+use microslip::inputs::Case;
 use microslip::plot::layout::{Frame, Rect};
 use microslip::plot::{accuracy_picture, cycle_picture, Format};
 use microslip::real::{Precision, Real};
@@ -318,11 +319,7 @@ fn slope_helpers_recover_known_powers() {
 fn figures_command_writes_every_file_atomically_with_numeric_facts() {
     let dir = std::env::temp_dir().join(format!("microslip-figures-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
-    let output = Command::new(env!("CARGO_BIN_EXE_microslip"))
-        .args(["figures", "--out"])
-        .arg(&dir)
-        .output()
-        .unwrap();
+    let output = common::run(["figures", "--out"]).arg(&dir).output();
     assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
     let mut names: Vec<String> = std::fs::read_dir(&dir)
         .unwrap()
@@ -370,11 +367,7 @@ fn figures_command_writes_every_file_atomically_with_numeric_facts() {
 fn figures_command_refuses_an_unusable_directory_before_computing() {
     let file = std::env::temp_dir().join(format!("microslip-figures-file-{}", std::process::id()));
     std::fs::write(&file, b"not a directory").unwrap();
-    let output = Command::new(env!("CARGO_BIN_EXE_microslip"))
-        .args(["figures", "--out"])
-        .arg(&file)
-        .output()
-        .unwrap();
+    let output = common::run(["figures", "--out"]).arg(&file).output();
     std::fs::remove_file(&file).unwrap();
     assert_eq!(output.status.code(), Some(2));
     assert!(output.stdout.is_empty());
@@ -482,26 +475,15 @@ fn no_figure_legend_covers_a_curve_point_line_or_marker() {
 
 /// Simulated cycles of several shapes: the README's, a mean tangential load, φ past π.
 fn simulated_cycles() -> Vec<(LoadCycle<f64>, SimulationResult)> {
-    let case = |p1: &str, q0: &str, q1: &str, phi: &str| CaseText {
-        p0: "1".into(),
-        p1: p1.into(),
-        q0: q0.into(),
-        q1: q1.into(),
-        phi: phi.into(),
-        friction: "1".into(),
-        lambda: Some("1".into()),
-        nu: None,
-        compliance: "persson:gamma=1,sigma=1".into(),
-    };
     [
-        case("0.4", "0", "0.5", "0.4pi"),
-        case("0.3", "0.2", "0.3", "0.1pi"),
-        case("0.5", "-0.1", "0.4", "1.3pi"),
-        case("0.2", "0", "0.7", "0.5pi"),
+        common::case(),
+        common::case().p1("0.3").q0("0.2").q1("0.3").phi("0.1pi"),
+        common::case().p1("0.5").q0("-0.1").q1("0.4").phi("1.3pi"),
+        common::case().p1("0.2").q1("0.7").phi("0.5pi"),
     ]
-    .iter()
-    .map(|text| {
-        let Case { cycle, compliance } = text.read::<f64>(Precision::DOUBLE).unwrap();
+    .into_iter()
+    .map(|case| {
+        let Case { cycle, compliance } = case.text().read::<f64>(Precision::DOUBLE).unwrap();
         let options = SimulationOptions {
             elements: Some(100),
             steps: Some(400),
@@ -698,26 +680,16 @@ fn pngs_are_rendered_at_twice_the_old_size_and_anti_aliased() {
     assert!(greys.len() > 100, "{} grey levels", greys.len());
 }
 
-/// `microslip ARGS` with the file size limited to `kib` KiB (a write beyond it fails
-/// with "File too large" rather than a signal), as a full disk would stop it.
-fn run_with_file_limit(kib: u32, args: &[&str], out: &std::path::Path) -> std::process::Output {
-    Command::new("bash")
-        .arg("-c")
-        .arg(format!("trap '' XFSZ; ulimit -f {kib}; exec \"$0\" \"$@\""))
-        .arg(env!("CARGO_BIN_EXE_microslip"))
-        .args(args)
-        .arg(out)
-        .output()
-        .unwrap()
-}
-
 #[test]
 fn figures_that_cannot_be_written_exit_1_and_leave_no_file_of_the_run() {
     let dir = std::env::temp_dir().join(format!("microslip-figures-full-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&dir);
     std::fs::create_dir_all(&dir).unwrap();
     // 100 KiB: the CSVs, SVGs and the first PNG fit, Fig. 5's PNG does not.
-    let output = run_with_file_limit(100, &["figures", "--out"], &dir);
+    let output = common::run(["figures", "--out"])
+        .arg(&dir)
+        .file_size_limit_kib(100)
+        .output();
     assert_eq!(
         output.status.code(),
         Some(1),
@@ -732,11 +704,7 @@ fn figures_that_cannot_be_written_exit_1_and_leave_no_file_of_the_run() {
     assert!(left.is_empty(), "{left:?}");
     // A name taken by a directory is refused before anything is computed.
     std::fs::create_dir_all(dir.join("fig6.png")).unwrap();
-    let output = Command::new(env!("CARGO_BIN_EXE_microslip"))
-        .args(["figures", "--out"])
-        .arg(&dir)
-        .output()
-        .unwrap();
+    let output = common::run(["figures", "--out"]).arg(&dir).output();
     assert_eq!(output.status.code(), Some(2));
     let stderr = String::from_utf8_lossy(&output.stderr);
     assert!(

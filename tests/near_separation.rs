@@ -22,37 +22,33 @@ use rug::Float;
 
 const BITS: u32 = 256;
 
-fn case(p1: &str, q0: &str, q1: &str, phi: &str, compliance: &str) -> CaseText {
-    CaseText {
-        p0: "1".into(),
-        p1: p1.into(),
-        q0: q0.into(),
-        q1: q1.into(),
-        phi: phi.into(),
-        friction: "1".into(),
-        lambda: Some("1".into()),
-        nu: None,
-        compliance: compliance.into(),
-    }
+mod common;
+
+/// Which of the two phases with the same sin φ a scan case takes.
+#[derive(Clone, Copy)]
+enum Phase {
+    /// φ in (0, π/2].
+    Below,
+    /// π − φ, in [π/2, π).
+    Mirrored,
 }
 
 /// The cycle at distance d = (P0 − P1)/P0 = 10^−`nines` from separation with Q1 = ρ fP1, its phase
 /// chosen so that P_T is near d/2 (sin²φ = d(1 − ρ²)/ρ², capped at φ = 0.4π) and Q0
-/// centred between the two gross-slip limits. `mirrored` takes π − φ instead.
-fn scan_case(nines: usize, rho: f64, mirrored: bool, compliance: &str) -> CaseText {
+/// centred between the two gross-slip limits, or with π − φ when `Phase::Mirrored`.
+fn scan_case(nines: usize, rho: f64, phase: Phase, compliance: &str) -> CaseText {
     let (p1, d) = (format!("0.{}", "9".repeat(nines)), 10f64.powi(-(nines as i32)));
     let sin = (d * (1.0 - rho * rho)).sqrt() / rho;
     let mut phi = sin.min((0.4 * std::f64::consts::PI).sin()).asin();
-    if mirrored {
+    if let Phase::Mirrored = phase {
         phi = std::f64::consts::PI - phi;
     }
     let (phi, q1) = (format!("{phi:.17e}"), format!("{:.17e}", rho * (1.0 - d)));
-    let Case { cycle, .. } = case(&p1, "0", &q1, &phi, compliance)
-        .read::<Float>(Precision::bits(BITS))
-        .unwrap();
+    let case = common::case().p1(p1).q1(q1).phi(phi).compliance(compliance);
+    let Case { cycle, .. } = case.clone().text().read::<Float>(Precision::bits(BITS)).unwrap();
     let (plus, minus) = cycle.slip_line_amplitudes();
     let q0 = (plus - minus) / 2u32;
-    case(&p1, &q0.to_string_radix(10, Some(60)), &q1, &phi, compliance)
+    case.q0(q0.to_string_radix(10, Some(60))).text()
 }
 
 /// (W, error) by the graded subdivision with fixed 40- and 32-point rules.
@@ -178,8 +174,8 @@ fn check_against_reference(label: &str, text: &CaseText) {
 fn scan(nines: usize, compliances: &[&str]) {
     for (i, rho) in [1e-13, 1e-6, 1e-2, 0.5].into_iter().enumerate() {
         let compliance = compliances[i % compliances.len()];
-        let mirrored = i % 2 == 1;
-        let text = scan_case(nines, rho, mirrored, compliance);
+        let phase = if i % 2 == 1 { Phase::Mirrored } else { Phase::Below };
+        let text = scan_case(nines, rho, phase, compliance);
         check_against_reference(&format!("d = 1e-{nines}, Q1/fP1 = {rho:e}, {compliance}"), &text);
     }
 }
@@ -221,12 +217,12 @@ fn the_issue_cases_are_positive_and_right() {
         ("0.99999999992", "3e-12", "1.1", "power:c=1,beta=-1"),
         ("0.999999999999999", "3e-17", "1.1", "power:c=1,beta=-1"),
     ] {
-        let text = case(p1, "0", q1, phi, compliance);
+        let text = common::case().p1(p1).q1(q1).phi(phi).compliance(compliance).text();
         check_against_reference(&format!("P1 = {p1}, Q1 = {q1}, φ = {phi}, {compliance}"), &text);
     }
     // The issue's independent value for the first.
     let printed = dissipation_report(
-        &case("0.99999999998", "0", "1e-13", "0.4pi", "persson:gamma=1,sigma=1"),
+        &common::case().p1("0.99999999998").q1("1e-13").text(),
         None,
         Duration::from_secs(60),
     )
@@ -240,10 +236,7 @@ fn the_gross_slip_analogue_p_t_near_zero_is_right_too() {
     // P_T = P0 − (σ₊ + σ₋)/(2f) = 1e−6 … 1e−15: the slip loads P_S and P_K of EB and HE
     // reach P_T at B and E, where the same kind of peak forms.
     for p0 in ["1.000001", "1.0000000001", "1.000000000000001"] {
-        let text = CaseText {
-            p0: p0.into(),
-            ..case("0.6", "0", "0.8", "0.5pi", "persson:gamma=1,sigma=1")
-        };
+        let text = common::case().p0(p0).p1("0.6").q1("0.8").phi("0.5pi").text();
         check_against_reference(&format!("P0 = {p0}, P1 = 0.6, Q1 = 0.8, φ = π/2"), &text);
     }
 }
@@ -251,7 +244,7 @@ fn the_gross_slip_analogue_p_t_near_zero_is_right_too() {
 #[test]
 fn the_history_simulation_agrees_at_1e_3_of_separation() {
     for (q1, phi) in [("0.02", "0.5pi"), ("0.01", "0.5pi")] {
-        let text = case("0.999", "0", q1, phi, "persson:gamma=1,sigma=1");
+        let text = common::case().p1("0.999").q1(q1).phi(phi).text();
         let printed = dissipation_report(&text, None, Duration::from_secs(60)).unwrap();
         let exact: f64 = printed.total().parse().unwrap();
         let Case { cycle, compliance } = text.read::<f64>(Precision::DOUBLE).unwrap();
@@ -271,7 +264,7 @@ fn a_fixed_rule_reports_the_error_its_nodes_leave() {
     // A fixed Gauss–Legendre rule that misses a peak must say so in its estimate rather
     // than report a rounding-level error (which made a wrong W read as negative "beyond
     // its error estimate"). With the peak resolved, it is also right.
-    let text = case("0.99999999998", "0", "1e-13", "0.4pi", "persson:gamma=1,sigma=1");
+    let text = common::case().p1("0.99999999998").q1("1e-13").text();
     let reference = graded_reference(&text);
     let precision = Precision::bits(200);
     let Case { cycle, compliance } = text.read::<Float>(precision).unwrap();
@@ -294,7 +287,7 @@ fn a_fixed_rule_without_its_error_estimate_spends_only_its_own_points() {
     // The verification's check run compares its value with an independent one and needs no
     // estimate of its own: without the quarter-size rule it costs the rule's points alone,
     // gives the same value, and its estimate is the rounding floor only.
-    let text = case("0.4", "0", "0.5", "0.4pi", "persson:gamma=1,sigma=1");
+    let text = common::case().text();
     let precision = Precision::bits(200);
     let Case { cycle, compliance } = text.read::<Float>(precision).unwrap();
     let with = Options::default().with_fixed_rule(64, RuleError::QuarterRule);

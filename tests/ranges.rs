@@ -15,21 +15,18 @@ use rug::float::Constant;
 use rug::ops::Pow;
 use rug::Float;
 
+mod common;
+
 const BUDGET: Duration = Duration::from_secs(60);
 
 /// The first acceptance case (φ = 0.4π) with its loads multiplied by 10^k.
 fn case_at_scale(k: i32, compliance: &str) -> CaseText {
-    CaseText {
-        p0: format!("1e{k}"),
-        p1: format!("4e{}", k - 1),
-        q0: "0".to_string(),
-        q1: format!("5e{}", k - 1),
-        phi: "0.4pi".to_string(),
-        friction: "1".to_string(),
-        lambda: Some("1".to_string()),
-        nu: None,
-        compliance: compliance.to_string(),
-    }
+    common::case()
+        .p0(format!("1e{k}"))
+        .p1(format!("4e{}", k - 1))
+        .q1(format!("5e{}", k - 1))
+        .compliance(compliance)
+        .text()
 }
 
 /// Each compliance family, with its parameters scaled with the loads (10^k) where the
@@ -129,12 +126,7 @@ fn every_family_at_load_scales_from_1e_minus_300_to_1e300_prints_right_digits() 
 
 #[test]
 fn the_reported_large_load_case_is_computed_in_mpfr_not_printed_as_zero() {
-    let case = CaseText {
-        p0: "1e300".to_string(),
-        p1: "4e299".to_string(),
-        q1: "5e299".to_string(),
-        ..case_at_scale(0, "persson:gamma=1,sigma=1")
-    };
+    let case = common::case().p0("1e300").p1("4e299").q1("5e299").text();
     let printed = dissipation_report(&case, None, BUDGET).unwrap();
     assert_eq!(printed.total(), "4.06247579245824e299");
     assert!(printed
@@ -208,14 +200,8 @@ fn large_phases_print_the_digits_of_the_exactly_reduced_phase() {
         "1e50",
         "-7.77e99",
     ] {
-        let case = CaseText {
-            phi: phi.to_string(),
-            ..case_at_scale(0, "persson:gamma=1,sigma=1")
-        };
-        let reduced = CaseText {
-            phi: reduced_phase_text(phi),
-            ..case.clone()
-        };
+        let case = common::case().phi(phi).text();
+        let reduced = common::case().phi(reduced_phase_text(phi)).text();
         let reference = verified_dissipation(&reduced, 30, BUDGET).unwrap();
         let printed = dissipation_report(&case, None, BUDGET).unwrap();
         // 12 digits, or 11 where W ± its estimate straddles only the 12th digit's boundary.
@@ -235,10 +221,7 @@ fn large_phases_print_the_digits_of_the_exactly_reduced_phase() {
 
 #[test]
 fn phases_beyond_1e100_are_refused_with_the_bound() {
-    let case = CaseText {
-        phi: "1e101".to_string(),
-        ..case_at_scale(0, "persson:gamma=1,sigma=1")
-    };
+    let case = common::case().phi("1e101").text();
     let error = dissipation_report(&case, None, BUDGET).unwrap_err();
     assert!(error.to_string().contains("at most 1e100 rad"), "{error}");
     let error = case.read::<Float>(Precision::bits(100)).unwrap_err();
@@ -248,11 +231,11 @@ fn phases_beyond_1e100_are_refused_with_the_bound() {
 #[test]
 fn decimals_outside_f64_are_named_as_such_and_read_exactly_by_the_default_path() {
     for (field, text, quantity) in [("p0", "1e-400", "P0"), ("p0", "1e400", "P0"), ("q1", "5e-320", "Q1")] {
-        let mut case = case_at_scale(0, "persson:gamma=1,sigma=1");
-        match field {
-            "p0" => case.p0 = text.to_string(),
-            _ => case.q1 = text.to_string(),
+        let case = match field {
+            "p0" => common::case().p0(text),
+            _ => common::case().q1(text),
         }
+        .text();
         match case.read::<f64>(Precision::DOUBLE) {
             Err(error @ InputError::OutsideF64Range { .. }) => {
                 assert!(matches!(&error, InputError::OutsideF64Range { quantity: q, .. } if *q == quantity));
@@ -281,10 +264,7 @@ fn decimals_outside_f64_are_named_as_such_and_read_exactly_by_the_default_path()
     let printed = dissipation_report(&case, None, BUDGET).unwrap();
     assert_eq!(printed.total(), "4.06247579245824e399");
     // Text that is not a number is still refused as such.
-    let case = CaseText {
-        p0: "1e4oo".to_string(),
-        ..case_at_scale(0, "persson:gamma=1,sigma=1")
-    };
+    let case = common::case().p0("1e4oo").text();
     assert!(matches!(
         dissipation_report(&case, None, BUDGET),
         Err(ReferenceError::Input(InputError::Number { .. }))

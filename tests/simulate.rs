@@ -1,8 +1,6 @@
 //! The brute-force history simulation against the four-segment integrals, and its
 //! own consistency: two energy measures, two initial paths, Q0, a constant compliance.
 
-use std::process::Command;
-
 use microslip::compliance::{parse_spec, Polynomial};
 use microslip::cycle::LoadCycle;
 use microslip::dissipation::{dissipation, Method, Options};
@@ -29,7 +27,7 @@ fn simulation_agrees_with_the_four_segment_integrals_on_random_compliances_and_c
     // The issue asks 1e-5; the default resolution reaches 1e-6 (worst of 140 random cases
     // 8e-8, proofs/independent-simulation.md), and its own estimate bounds its error.
     runner(10, 41)
-        .run(&strategies::drawn(false), |case| {
+        .run(&strategies::drawn(strategies::Terms::Single), |case| {
             let Case { cycle, compliance } = case.0.read::<f64>(Precision::DOUBLE).unwrap();
             let exact = dissipation(&cycle, compliance.as_ref(), &Options::default())
                 .unwrap()
@@ -237,12 +235,10 @@ fn simulate_command_prints_json_and_writes_the_loop() {
     let dir = std::env::temp_dir().join(format!("microslip-simulate-{}", std::process::id()));
     std::fs::create_dir_all(&dir).unwrap();
     let csv = dir.join("loop.csv");
-    let output = Command::new(env!("CARGO_BIN_EXE_microslip"))
-        .args(common::case_args("simulate", &[]))
+    let output = common::run(common::case_args("simulate", &[]))
         .args(["--json", "--loop"])
         .arg(&csv)
-        .output()
-        .unwrap();
+        .output();
     assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
     let value: serde_json::Value = serde_json::from_slice(&output.stdout).unwrap();
     let w = value["W_f64"].as_f64().unwrap();
@@ -255,12 +251,10 @@ fn simulate_command_prints_json_and_writes_the_loop() {
     assert_eq!(value["elements"], 1600);
     for name in ["cycle.svg", "cycle.png"] {
         let picture = dir.join(name);
-        let drawn = Command::new(env!("CARGO_BIN_EXE_microslip"))
-            .args(common::case_args("simulate", &[("--phi", "1.4pi")]))
+        let drawn = common::run(common::case_args("simulate", &[("--phi", "1.4pi")]))
             .args(["--elements", "100", "--steps", "200", "--tolerance", "1e-3", "--plot"])
             .arg(&picture)
-            .output()
-            .unwrap();
+            .output();
         assert!(drawn.status.success(), "{}", String::from_utf8_lossy(&drawn.stderr));
         let bytes = std::fs::read(&picture).unwrap();
         assert!(bytes.len() > 10_000, "{name}: {} bytes", bytes.len());
@@ -276,10 +270,7 @@ fn simulate_command_prints_json_and_writes_the_loop() {
     let text = std::fs::read_to_string(&csv).unwrap();
     assert!(text.starts_with("theta,P,Q,u\n"));
     assert_eq!(text.lines().count(), 2 + 4800);
-    let bad = Command::new(env!("CARGO_BIN_EXE_microslip"))
-        .args(common::case_args("simulate", &[("--p1", "1.2"), ("--phi", "1")]))
-        .output()
-        .unwrap();
+    let bad = common::run(common::case_args("simulate", &[("--p1", "1.2"), ("--phi", "1")])).output();
     assert_eq!(bad.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&bad.stderr).contains("the contact separates"));
     std::fs::remove_dir_all(&dir).ok();

@@ -56,18 +56,9 @@ fn write_table(dir: &std::path::Path, name: &str, column: &str, rows: usize, f: 
     path.to_string_lossy().into_owned()
 }
 
+/// The acceptance case with compliance `compliance`.
 fn case(compliance: &str) -> CaseText {
-    CaseText {
-        p0: "1".into(),
-        p1: "0.4".into(),
-        q0: "0".into(),
-        q1: "0.5".into(),
-        phi: "0.4pi".into(),
-        friction: "1".into(),
-        lambda: Some("1".into()),
-        nu: None,
-        compliance: compliance.into(),
-    }
+    common::case().compliance(compliance).text()
 }
 
 fn analytic(spec: &str) -> f64 {
@@ -124,10 +115,7 @@ fn assert_accuracy(name: &str, errors: &[f64], order: f64) {
 fn run_cli(p1: &str, compliance: &str, extra: &[&str]) -> std::process::Output {
     let mut args = common::case_args("dissipation", &[("--p1", p1), ("--compliance", compliance)]);
     args.extend(extra.iter().map(|s| s.to_string()));
-    std::process::Command::new(env!("CARGO_BIN_EXE_microslip"))
-        .args(&args)
-        .output()
-        .expect("run microslip")
+    common::run(&args).output()
 }
 
 /// The one line a refused run prints, after checking exit code 2 and an empty stdout.
@@ -244,13 +232,11 @@ fn a_cycle_leaving_the_table_is_refused_with_the_range() {
         message.contains("covers loads [2e-1, 1.5e0]") && message.contains("never extrapolated"),
         "{message}"
     );
-    let output = std::process::Command::new(env!("CARGO_BIN_EXE_microslip"))
-        .args(common::case_args(
-            "simulate",
-            &[("--p1", "0.6"), ("--compliance", &format!("table:{path}"))],
-        ))
-        .output()
-        .expect("run");
+    let output = common::run(common::case_args(
+        "simulate",
+        &[("--p1", "0.6"), ("--compliance", &format!("table:{path}"))],
+    ))
+    .output();
     let message = refusal(&output);
     assert!(message.contains("covers loads [2e-1, 1.5e0]"), "{message}");
 }
@@ -390,11 +376,7 @@ fn the_closed_form_paths_take_tables_too() {
     let dir = scratch("closed-forms");
     let path = write_table(&dir, "persson", "slope", 80, FAMILIES[0].slope);
     for (p1, phi) in [("0.4", "0"), ("0.4", "pi"), ("0", "0.4pi")] {
-        let with = |compliance: &str| CaseText {
-            p1: p1.into(),
-            phi: phi.into(),
-            ..case(compliance)
-        };
+        let with = |compliance: &str| common::case().p1(p1).phi(phi).compliance(compliance).text();
         let exact = dissipation_report(&with("persson:gamma=1,sigma=1"), Some(20), Duration::from_secs(60))
             .expect("analytic W");
         let exact_w: f64 = exact.total().parse().expect("W");

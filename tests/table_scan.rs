@@ -11,6 +11,8 @@ use microslip::cycle::LoadCycle;
 use microslip::dissipation_answer::dissipation_report;
 use microslip::inputs::CaseText;
 
+mod common;
+
 struct Family {
     spec: &'static str,
     slope: fn(f64) -> f64,
@@ -62,17 +64,17 @@ const CYCLES: [[&str; 7]; 2] = [
 ];
 
 fn case(cycle: &[&str; 7], compliance: &str) -> CaseText {
-    CaseText {
-        p0: cycle[0].into(),
-        p1: cycle[1].into(),
-        q0: cycle[2].into(),
-        q1: cycle[3].into(),
-        phi: cycle[4].into(),
-        friction: cycle[5].into(),
-        lambda: Some(cycle[6].into()),
-        nu: None,
-        compliance: compliance.into(),
-    }
+    let [p0, p1, q0, q1, phi, friction, lambda] = *cycle;
+    common::case()
+        .p0(p0)
+        .p1(p1)
+        .q0(q0)
+        .q1(q1)
+        .phi(phi)
+        .friction(friction)
+        .lambda(lambda)
+        .compliance(compliance)
+        .text()
 }
 
 /// The loads the cycle reaches: min(P_T, P0 − P1) to P0 + P1.
@@ -97,17 +99,24 @@ fn scratch(name: &str) -> PathBuf {
     dir
 }
 
-/// A table of `rows` loads from `low` to `high` (log or uniform spacing), each value
-/// written to the 17 digits that give back its f64.
-fn write_table(path: &Path, column: &str, low: f64, high: f64, rows: usize, log: bool, f: fn(f64) -> f64) {
+/// How a table's loads are spaced.
+#[derive(Clone, Copy, Debug)]
+enum Spacing {
+    Logarithmic,
+    Uniform,
+}
+
+/// A table of `rows` loads from `low` to `high`, each value written to the 17 digits
+/// that give back its f64.
+fn write_table(path: &Path, column: &str, low: f64, high: f64, rows: usize, spacing: Spacing, f: fn(f64) -> f64) {
     let mut text = format!("load,{column}\n");
     for i in 0..rows {
         let fraction = i as f64 / (rows - 1) as f64;
-        let load = match (i, log) {
+        let load = match (i, spacing) {
             (0, _) => low,
             (i, _) if i == rows - 1 => high,
-            (_, true) => low * (high / low).powf(fraction),
-            (_, false) => low + (high - low) * fraction,
+            (_, Spacing::Logarithmic) => low * (high / low).powf(fraction),
+            (_, Spacing::Uniform) => low + (high - low) * fraction,
         };
         text.push_str(&format!("{load:e},{:e}\n", f(load)));
     }
@@ -128,14 +137,10 @@ fn scan(name: &str, rows: &[usize]) -> (usize, f64) {
             let exact_w: f64 = exact.parse().expect("W");
             for (column, values) in [("slope", family.slope), ("approach", family.approach)] {
                 for &n in rows {
-                    for log in [true, false] {
-                        let path = dir.join(format!("c{c}-f{f}-{column}-{n}-{log}.csv"));
-                        write_table(&path, column, low, high, n, log, values);
-                        let label = format!(
-                            "{} {column} {n} rows {} cycle {c}",
-                            family.spec,
-                            if log { "log" } else { "uniform" }
-                        );
+                    for spacing in [Spacing::Logarithmic, Spacing::Uniform] {
+                        let path = dir.join(format!("c{c}-f{f}-{column}-{n}-{spacing:?}.csv"));
+                        write_table(&path, column, low, high, n, spacing, values);
+                        let label = format!("{} {column} {n} rows {spacing:?} cycle {c}", family.spec);
                         let compliance = format!("table:{}", path.display());
                         let result = match dissipation_report(&case(cycle, &compliance), None, Duration::from_secs(60))
                         {

@@ -13,7 +13,8 @@ use microslip::dissipation::{dissipation, Options};
 use microslip::real::{Precision, Real};
 use microslip::verify::claims::{
     self, cubic_law_order, in_phase_limit_error, least_squares_slope, simulated_history_error, Claim, ConstantTerm,
-    Evaluator, Failure, FourSegment, Invariants, Linearity, Outcome, Roughness, Simulation, SIMULATION_TOLERANCE,
+    Evaluator, Failure, FourSegment, Invariants, Linearity, Outcome, Roughness, Simulation, Source,
+    SIMULATION_TOLERANCE,
 };
 use microslip::verify::small_amplitude::{coefficient, coefficient_at};
 use microslip::verify::ClaimReport;
@@ -25,6 +26,7 @@ use common::microslip;
 mod strategies;
 use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
 use rug::Float;
+use strategies::Terms::{Single, WithSums};
 
 /// A runner drawing from a fixed seed (ChaCha, no persistence: every run draws the same
 /// cases).
@@ -139,7 +141,7 @@ fn constant_term_contributes_nothing_in_f64() {
         &in_f64(),
         500,
         3,
-        strategies::constant_term_case(10.0, true),
+        strategies::constant_term_case(10.0, WithSums),
     );
 }
 
@@ -150,43 +152,55 @@ fn constant_term_contributes_nothing_at_256_bits() {
         &at_256_bits(),
         20,
         4,
-        strategies::constant_term_case(10.0, false),
+        strategies::constant_term_case(10.0, Single),
     );
 }
 
 #[test]
 fn dissipation_is_linear_in_the_compliance_in_f64_and_at_256_bits() {
-    claim_holds(&Linearity, &in_f64(), 500, 5, strategies::linearity_case(false, true));
+    claim_holds(
+        &Linearity,
+        &in_f64(),
+        500,
+        5,
+        strategies::linearity_case(Source::Segments, WithSums),
+    );
     claim_holds(
         &Linearity,
         &at_256_bits(),
         16,
         6,
-        strategies::linearity_case(false, false),
+        strategies::linearity_case(Source::Segments, Single),
     );
 }
 
 #[test]
 fn roughness_scaling_identities_hold_in_f64_and_at_256_bits() {
-    claim_holds(&Roughness, &in_f64(), 500, 7, strategies::roughness_case(true, true));
+    claim_holds(
+        &Roughness,
+        &in_f64(),
+        500,
+        7,
+        strategies::roughness_case(Source::Segments, WithSums),
+    );
     claim_holds(
         &Roughness,
         &at_256_bits(),
         12,
         8,
-        strategies::roughness_case(true, false),
+        strategies::roughness_case(Source::Segments, Single),
     );
 }
 
 #[test]
 fn invariants_hold_for_random_cycles_in_f64_and_at_256_bits() {
-    claim_holds(&Invariants, &in_f64(), 500, 9, strategies::invariants_case(true));
-    claim_holds(&Invariants, &at_256_bits(), 12, 10, strategies::invariants_case(false));
+    claim_holds(&Invariants, &in_f64(), 500, 9, strategies::invariants_case(WithSums));
+    claim_holds(&Invariants, &at_256_bits(), 12, 10, strategies::invariants_case(Single));
 }
 
 #[test]
 fn general_integrator_tends_to_the_in_phase_closed_form_for_random_cycles() {
-    holds(500, 11, 1e-5, strategies::drawn(true), |case| {
+    holds(500, 11, 1e-5, strategies::drawn(WithSums), |case| {
         in_phase_limit_error(&case.0)
     });
 }
@@ -210,10 +224,22 @@ fn the_simulated_history_obeys_the_constant_term_linearity_and_roughness_claims(
         &Simulation,
         6,
         17,
-        strategies::constant_term_case(3.0, false),
+        strategies::constant_term_case(3.0, Single),
     );
-    claim_holds(&Linearity, &Simulation, 6, 18, strategies::linearity_case(true, false));
-    claim_holds(&Roughness, &Simulation, 6, 19, strategies::roughness_case(false, false));
+    claim_holds(
+        &Linearity,
+        &Simulation,
+        6,
+        18,
+        strategies::linearity_case(Source::Simulation, Single),
+    );
+    claim_holds(
+        &Roughness,
+        &Simulation,
+        6,
+        19,
+        strategies::roughness_case(Source::Simulation, Single),
+    );
 }
 
 #[test]

@@ -27,10 +27,7 @@ impl Draw {
     /// The next 64 random bits.
     pub fn next_u64(&mut self) -> u64 {
         self.state = self.state.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.state;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
+        mix(self.state)
     }
 
     /// Uniform in [low, high), rounded to 6 significant digits so that the value prints
@@ -49,6 +46,29 @@ impl Draw {
     pub fn parameters(&mut self, ranges: &[Range]) -> Vec<f64> {
         ranges.iter().map(|range| self.uniform(range.low, range.high)).collect()
     }
+}
+
+/// SplitMix64's output function: a bijection of the 64-bit words that spreads every
+/// input bit over the whole word.
+fn mix(mut z: u64) -> u64 {
+    z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+    z ^ (z >> 31)
+}
+
+/// The seed of the stream named `name` in a run seeded `seed`: the run's seed mixed with
+/// a hash of the name (FNV-1a, the same on every platform and build). Each claim draws
+/// from its own named stream, so adding or reordering claims leaves every other claim's
+/// draws as they were.
+pub fn stream_seed(seed: u64, name: &str) -> u64 {
+    mix(seed ^ fnv1a(name))
+}
+
+/// The 64-bit FNV-1a hash of the text's bytes.
+fn fnv1a(text: &str) -> u64 {
+    text.bytes().fold(0xCBF2_9CE4_8422_2325, |hash, byte| {
+        (hash ^ u64::from(byte)).wrapping_mul(0x0000_0100_0000_01B3)
+    })
 }
 
 /// `value` rounded to 6 significant digits: a drawn number that prints exactly as the
@@ -269,6 +289,23 @@ mod tests {
             check_admissible(compliance.as_ref(), &0.05, &1.9).unwrap_or_else(|e| panic!("{spec}: {e}"));
         }
         assert!(seen.len() >= 5, "{seen:?}");
+    }
+
+    #[test]
+    fn the_generator_is_splitmix64_and_names_hash_by_fnv1a() {
+        // Published values: SplitMix64's first output from state 0, and FNV-1a of "" and "a".
+        assert_eq!(Draw::new(0x9E37_79B9_7F4A_7C15).next_u64(), 0xE220_A839_7B1D_CDAF);
+        assert_eq!(fnv1a(""), 0xCBF2_9CE4_8422_2325);
+        assert_eq!(fnv1a("a"), 0xAF63_DC4C_8601_EC8C);
+    }
+
+    #[test]
+    fn each_name_has_its_own_stream_and_a_name_draws_the_same_in_every_run_of_a_seed() {
+        let names = ["cubic law", "linearity at f64", "linearity at 256 bits", "series"];
+        let seeds: std::collections::BTreeSet<u64> = names.iter().map(|name| stream_seed(2026, name)).collect();
+        assert_eq!(seeds.len(), names.len());
+        assert_eq!(stream_seed(2026, "series"), stream_seed(2026, "series"));
+        assert_ne!(stream_seed(2026, "series"), stream_seed(2027, "series"));
     }
 
     #[test]

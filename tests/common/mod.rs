@@ -1,6 +1,7 @@
 //! What several test files share.
 
 use microslip::cycle::LoadCycle;
+use microslip::inputs::CaseText;
 use microslip::real::Real;
 
 /// The first acceptance case of the project: P0 = f = λ = 1, P1 = 0.4, Q1 = 0.5, Q0 = 0
@@ -19,6 +20,83 @@ pub fn acceptance_cycle<R: Real>(phase: R) -> LoadCycle<R> {
     }
 }
 
+/// A case as the library reads it, built from the acceptance case by naming what differs:
+/// `case().p1("0.6").phi("0.5pi").text()`.
+#[allow(dead_code)] // not every test binary builds cases
+#[derive(Clone, Debug)]
+pub struct CaseBuilder(CaseText);
+
+/// The acceptance case (P0 = f = λ = 1, P1 = 0.4, Q0 = 0, Q1 = 0.5, φ = 0.4π,
+/// v' = Persson with γ = σ = 1), to be changed where a test needs another.
+#[allow(dead_code)] // not every test binary builds cases
+pub fn case() -> CaseBuilder {
+    CaseBuilder(CaseText {
+        p0: "1".into(),
+        p1: "0.4".into(),
+        q0: "0".into(),
+        q1: "0.5".into(),
+        phi: "0.4pi".into(),
+        friction: "1".into(),
+        lambda: Some("1".into()),
+        nu: None,
+        compliance: PERSSON.into(),
+    })
+}
+
+/// The acceptance case's compliance: Persson's v' with γ = σ = 1.
+#[allow(dead_code)] // not every test binary builds cases
+pub const PERSSON: &str = "persson:gamma=1,sigma=1";
+
+/// Setters of the builder's text fields, one per field, each taking anything printable.
+macro_rules! text_fields {
+    ($($(#[$doc:meta])* $field:ident),+) => {$(
+        $(#[$doc])*
+        pub fn $field(mut self, value: impl std::fmt::Display) -> Self {
+            self.0.$field = value.to_string();
+            self
+        }
+    )+};
+}
+
+#[allow(dead_code)] // not every test binary uses every field
+impl CaseBuilder {
+    text_fields!(
+        /// P0.
+        p0,
+        /// P1.
+        p1,
+        /// Q0.
+        q0,
+        /// Q1.
+        q1,
+        /// φ, in radians or as a multiple of π (`0.4pi`).
+        phi,
+        /// f.
+        friction,
+        /// The compliance SPEC.
+        compliance
+    );
+
+    /// λ (in place of ν).
+    pub fn lambda(mut self, value: impl std::fmt::Display) -> Self {
+        self.0.lambda = Some(value.to_string());
+        self.0.nu = None;
+        self
+    }
+
+    /// ν (in place of λ).
+    pub fn nu(mut self, value: impl std::fmt::Display) -> Self {
+        self.0.nu = Some(value.to_string());
+        self.0.lambda = None;
+        self
+    }
+
+    /// The case's text.
+    pub fn text(self) -> CaseText {
+        self.0
+    }
+}
+
 /// The acceptance case as command-line flags and their values (v' = 1/P).
 #[allow(dead_code)] // not every test binary runs the command line
 pub const CASE_FLAGS: [(&str, &str); 7] = [
@@ -28,7 +106,7 @@ pub const CASE_FLAGS: [(&str, &str); 7] = [
     ("--phi", "0.4pi"),
     ("--friction", "1"),
     ("--lambda", "1"),
-    ("--compliance", "persson:gamma=1,sigma=1"),
+    ("--compliance", PERSSON),
 ];
 
 /// The arguments of `microslip <command>` on the acceptance case, each flag in
@@ -57,10 +135,7 @@ pub fn case_args(command: &str, overrides: &[(&str, &str)]) -> Vec<String> {
 /// `microslip args…`: the exit code, stdout and stderr.
 #[allow(dead_code)] // not every test binary runs the command line
 pub fn microslip<S: AsRef<std::ffi::OsStr>>(args: &[S]) -> (i32, String, String) {
-    let output = std::process::Command::new(env!("CARGO_BIN_EXE_microslip"))
-        .args(args)
-        .output()
-        .expect("the binary runs");
+    let output = run(args).output();
     (
         output.status.code().unwrap_or(-1),
         String::from_utf8_lossy(&output.stdout).into_owned(),
@@ -68,7 +143,29 @@ pub fn microslip<S: AsRef<std::ffi::OsStr>>(args: &[S]) -> (i32, String, String)
     )
 }
 
-/// What a run of [`microslip_bounded`] did.
+/// One run of the binary, built up before it starts: `run(args).stdin(…).output()`.
+#[allow(dead_code)] // not every test binary runs the command line
+pub struct Run {
+    args: Vec<std::ffi::OsString>,
+    input: Vec<u8>,
+    directory: Option<std::path::PathBuf>,
+    stdout: Option<std::fs::File>,
+    file_size_limit_kib: Option<u32>,
+}
+
+/// `microslip args…`, to be given more (arguments, stdin, a directory) and then run.
+#[allow(dead_code)] // not every test binary runs the command line
+pub fn run<S: AsRef<std::ffi::OsStr>>(args: impl IntoIterator<Item = S>) -> Run {
+    Run {
+        args: args.into_iter().map(|arg| arg.as_ref().to_os_string()).collect(),
+        input: Vec::new(),
+        directory: None,
+        stdout: None,
+        file_size_limit_kib: None,
+    }
+}
+
+/// What a run of the binary did.
 #[allow(dead_code)] // not every test binary runs the command line
 pub struct Bounded {
     pub code: i32,
@@ -78,61 +175,147 @@ pub struct Bounded {
     pub seconds: f64,
 }
 
+#[allow(dead_code)] // not every test binary uses every part of the runner
+impl Run {
+    /// One more argument.
+    pub fn arg(mut self, arg: impl AsRef<std::ffi::OsStr>) -> Self {
+        self.args.push(arg.as_ref().to_os_string());
+        self
+    }
+
+    /// More arguments.
+    pub fn args<S: AsRef<std::ffi::OsStr>>(mut self, args: impl IntoIterator<Item = S>) -> Self {
+        self.args
+            .extend(args.into_iter().map(|arg| arg.as_ref().to_os_string()));
+        self
+    }
+
+    /// The bytes on its stdin (none unless given; stdin is closed after them).
+    pub fn stdin(mut self, input: impl AsRef<[u8]>) -> Self {
+        self.input = input.as_ref().to_vec();
+        self
+    }
+
+    /// Run in `directory` rather than the test's.
+    pub fn current_dir(mut self, directory: impl AsRef<std::path::Path>) -> Self {
+        self.directory = Some(directory.as_ref().to_path_buf());
+        self
+    }
+
+    /// Its stdout written to `file` rather than captured.
+    pub fn stdout_to(mut self, file: std::fs::File) -> Self {
+        self.stdout = Some(file);
+        self
+    }
+
+    /// Files it writes limited to `kib` KiB, as a full disk would stop it: a write beyond
+    /// the limit fails with "File too large" rather than a signal.
+    pub fn file_size_limit_kib(mut self, kib: u32) -> Self {
+        self.file_size_limit_kib = Some(kib);
+        self
+    }
+
+    /// The command, with stdin, stdout and stderr piped (stdout to its file if given).
+    fn command(self) -> (std::process::Command, Vec<u8>) {
+        use std::process::{Command, Stdio};
+        let program = env!("CARGO_BIN_EXE_microslip");
+        let mut command = match self.file_size_limit_kib {
+            None => Command::new(program),
+            Some(kib) => {
+                let mut shell = Command::new("bash");
+                shell
+                    .arg("-c")
+                    .arg(format!("trap '' XFSZ; ulimit -f {kib}; exec \"$0\" \"$@\""))
+                    .arg(program);
+                shell
+            }
+        };
+        command.args(&self.args).stdin(Stdio::piped()).stderr(Stdio::piped());
+        match self.stdout {
+            Some(file) => command.stdout(file),
+            None => command.stdout(Stdio::piped()),
+        };
+        if let Some(directory) = &self.directory {
+            command.current_dir(directory);
+        }
+        (command, self.input)
+    }
+
+    /// Started, with stdin, stdout and stderr piped for the test to use (the input given
+    /// by [`Run::stdin`] is not written).
+    pub fn spawn(self) -> std::process::Child {
+        self.command().0.spawn().expect("the binary runs")
+    }
+
+    /// Run to its end: the exit status, stdout and stderr.
+    pub fn output(self) -> std::process::Output {
+        let (mut command, input) = self.command();
+        let mut child = command.spawn().expect("the binary runs");
+        let mut stdin = child.stdin.take().expect("piped stdin");
+        // The child may stop reading early (a refused header): a closed pipe is no error here.
+        let writer = std::thread::spawn(move || drop(std::io::Write::write_all(&mut stdin, &input)));
+        let output = child.wait_with_output().expect("the binary ends");
+        let _ = writer.join();
+        output
+    }
+
+    /// Run to its end, killed if it runs past `limit` (then why).
+    pub fn within(self, limit: std::time::Duration) -> Result<Bounded, String> {
+        use std::io::{Read, Write};
+        let described = format!("{:?}", self.args);
+        let started = std::time::Instant::now();
+        let (mut command, input) = self.command();
+        let mut child = command.spawn().map_err(|e| format!("spawn: {e}"))?;
+        let mut stdin = child.stdin.take().expect("piped stdin");
+        // The child may stop reading early (a refused header): a closed pipe is no error here.
+        let writer = std::thread::spawn(move || drop(stdin.write_all(&input)));
+        let stdout = child.stdout.take();
+        let mut stderr = child.stderr.take().expect("piped stderr");
+        let stdout_reader = std::thread::spawn(move || {
+            let mut bytes = Vec::new();
+            if let Some(mut stdout) = stdout {
+                let _ = stdout.read_to_end(&mut bytes);
+            }
+            bytes
+        });
+        let stderr_reader = std::thread::spawn(move || {
+            let mut text = String::new();
+            let _ = stderr.read_to_string(&mut text);
+            text
+        });
+        let status = loop {
+            if let Some(status) = child.try_wait().map_err(|e| e.to_string())? {
+                break status;
+            }
+            if started.elapsed() > limit {
+                let _ = child.kill();
+                let _ = child.wait();
+                return Err(format!(
+                    "still running after {:.1} s (limit {:.1} s): {described}",
+                    started.elapsed().as_secs_f64(),
+                    limit.as_secs_f64()
+                ));
+            }
+            std::thread::sleep(std::time::Duration::from_millis(5));
+        };
+        let _ = writer.join();
+        Ok(Bounded {
+            code: status.code().unwrap_or(-1),
+            stdout: stdout_reader.join().unwrap_or_default(),
+            stderr: stderr_reader.join().unwrap_or_default(),
+            seconds: started.elapsed().as_secs_f64(),
+        })
+    }
+}
+
 /// `microslip args…` with `input` on stdin, killed if it runs past `limit` (then why).
 #[allow(dead_code)] // not every test binary runs the command line
-pub fn microslip_bounded<S: AsRef<std::ffi::OsStr> + std::fmt::Debug>(
+pub fn microslip_bounded<S: AsRef<std::ffi::OsStr>>(
     args: &[S],
     input: &[u8],
     limit: std::time::Duration,
 ) -> Result<Bounded, String> {
-    use std::io::{Read, Write};
-    use std::process::Stdio;
-    let started = std::time::Instant::now();
-    let mut child = std::process::Command::new(env!("CARGO_BIN_EXE_microslip"))
-        .args(args)
-        .stdin(Stdio::piped())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .map_err(|e| format!("spawn: {e}"))?;
-    let mut stdin = child.stdin.take().expect("piped stdin");
-    let input = input.to_vec();
-    // The child may stop reading early (a refused header): a closed pipe is no error here.
-    let writer = std::thread::spawn(move || drop(stdin.write_all(&input)));
-    let mut stdout = child.stdout.take().expect("piped stdout");
-    let mut stderr = child.stderr.take().expect("piped stderr");
-    let stdout_reader = std::thread::spawn(move || {
-        let mut bytes = Vec::new();
-        let _ = stdout.read_to_end(&mut bytes);
-        bytes
-    });
-    let stderr_reader = std::thread::spawn(move || {
-        let mut text = String::new();
-        let _ = stderr.read_to_string(&mut text);
-        text
-    });
-    let status = loop {
-        if let Some(status) = child.try_wait().map_err(|e| e.to_string())? {
-            break status;
-        }
-        if started.elapsed() > limit {
-            let _ = child.kill();
-            let _ = child.wait();
-            return Err(format!(
-                "still running after {:.1} s (limit {:.1} s): {args:?}",
-                started.elapsed().as_secs_f64(),
-                limit.as_secs_f64()
-            ));
-        }
-        std::thread::sleep(std::time::Duration::from_millis(5));
-    };
-    let _ = writer.join();
-    Ok(Bounded {
-        code: status.code().unwrap_or(-1),
-        stdout: stdout_reader.join().unwrap_or_default(),
-        stderr: stderr_reader.join().unwrap_or_default(),
-        seconds: started.elapsed().as_secs_f64(),
-    })
+    run(args).stdin(input).within(limit)
 }
 
 /// A proptest runner with a fixed seed, so that a run is repeatable: `PROPTEST_CASES`

@@ -1,6 +1,6 @@
 //! Claim 3: the constant term of v' contributes nothing.
 
-use super::evaluator::{all_of, Claim, Evaluator, Measured, Outcome, Value};
+use super::evaluator::{all_of, Claim, ConstantSlope, Evaluator, Measured, Outcome, Value};
 use super::{random_case, read_case, CaseWith};
 use crate::compliance::{Compliance, Polynomial, Shifted};
 use crate::cycle::LoadCycle;
@@ -84,13 +84,13 @@ impl Claim for ConstantTerm {
                 rounding: 0.0,
             })
         } else {
-            evaluator.w(&cycle, &constant, true)
+            evaluator.w(&cycle, &constant, ConstantSlope::Kept)
         };
         // Raw values of either sign, without the non-negativity guard: a W that vanishes
         // in exact arithmetic is rounding noise here, which is what is measured.
         let [base, with_constant, only_constant] = all_of([
-            evaluator.w(&cycle, shifted.inner.as_ref(), true),
-            evaluator.w(&cycle, &shifted, true),
+            evaluator.w(&cycle, shifted.inner.as_ref(), ConstantSlope::Kept),
+            evaluator.w(&cycle, &shifted, ConstantSlope::Kept),
             only_constant,
         ])?;
         // In f64 the segment formulas are held to the size of the terms that cancel;

@@ -1,12 +1,12 @@
 //! How a claim computes W: by the four-segment integrals at a precision, or by the
-//! independent history simulation (which uses none of the segment formulas). A claim
-//! is written once, as a check of one case through an [`Evaluator`], and the gate runs
-//! it with each evaluator; [`check_claim`] is the one loop over drawn cases.
+//! independent history simulation (which uses none of the segment formulas; its
+//! evaluator lives with it, in `simulation.rs`). A claim is written once, as a check of
+//! one case through an [`Evaluator`], and the gate runs it with each evaluator;
+//! [`check_claim`] is the one loop over drawn cases.
 
 use std::fmt;
 use std::marker::PhantomData;
 
-use super::simulation::{refinement_note, simulate_within_tolerance, SIMULATED_IDENTITY_TOLERANCE};
 use super::{identity_tolerance, number, relative_estimate, unresolvable, Tally};
 use crate::compliance::Compliance;
 use crate::cycle::LoadCycle;
@@ -60,6 +60,26 @@ pub struct Measured {
 /// A case's outcome.
 pub type Outcome = Result<Measured, Failure>;
 
+/// Where an evaluator's W comes from.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Source {
+    /// The four-segment integrals.
+    Segments,
+    /// The history simulation, which uses none of the segment formulas.
+    Simulation,
+}
+
+/// Whether W is computed of v' as given or of v' less its constant slope (a constant in v'
+/// contributes nothing to W, claim 3, and removing it first spares the integrals from
+/// cancelling it).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ConstantSlope {
+    /// v' integrated as given: the segment formulas must cancel a constant themselves.
+    Kept,
+    /// The constant slope removed before integrating.
+    Removed,
+}
+
 /// A way of computing W for a cycle and a compliance.
 pub trait Evaluator {
     /// The number type it computes in.
@@ -68,19 +88,23 @@ pub trait Evaluator {
     /// Its working precision.
     fn precision(&self) -> Precision;
 
+    /// Where its W comes from.
+    fn source(&self) -> Source;
+
     /// Whether W comes from the history simulation rather than the segment formulas.
-    fn simulated(&self) -> bool;
+    fn simulated(&self) -> bool {
+        self.source() == Source::Simulation
+    }
 
     /// The largest relative error allowed in an identity between its W values.
     fn identity_tolerance(&self) -> f64;
 
-    /// W of `compliance` over `cycle`, with v' integrated as given when `raw` (no constant
-    /// removed first; the segment formulas must then cancel it themselves).
+    /// W of `compliance` over `cycle`, its constant slope kept or removed first.
     fn w(
         &self,
         cycle: &LoadCycle<Self::Number>,
         compliance: &dyn Compliance<Self::Number>,
-        raw: bool,
+        constant: ConstantSlope,
     ) -> Result<Value<Self::Number>, Failure>;
 
     /// A drawn number at the working precision.
@@ -116,20 +140,25 @@ impl<R: Real> Evaluator for FourSegment<R> {
         self.precision
     }
 
-    fn simulated(&self) -> bool {
-        false
+    fn source(&self) -> Source {
+        Source::Segments
     }
 
     fn identity_tolerance(&self) -> f64 {
         identity_tolerance(self.precision)
     }
 
-    fn w(&self, cycle: &LoadCycle<R>, compliance: &dyn Compliance<R>, raw: bool) -> Result<Value<R>, Failure> {
+    fn w(
+        &self,
+        cycle: &LoadCycle<R>,
+        compliance: &dyn Compliance<R>,
+        constant: ConstantSlope,
+    ) -> Result<Value<R>, Failure> {
         // The drawn compliances are admissible by construction; some identities evaluate
         // them a little beyond the loads they were drawn for.
         let options = Options {
             check_compliance: false,
-            remove_constant_slope: !raw,
+            remove_constant_slope: constant == ConstantSlope::Removed,
             ..Options::default()
         };
         match dissipation(cycle, compliance, &options) {
@@ -144,44 +173,6 @@ impl<R: Real> Evaluator for FourSegment<R> {
 
     fn note(&self, note: String) -> String {
         note
-    }
-}
-
-/// W by the history simulation (`simulate_within_tolerance`), in f64.
-#[derive(Clone, Copy, Debug, Default)]
-pub struct Simulation;
-
-impl Evaluator for Simulation {
-    type Number = f64;
-
-    fn precision(&self) -> Precision {
-        Precision::DOUBLE
-    }
-
-    fn simulated(&self) -> bool {
-        true
-    }
-
-    fn identity_tolerance(&self) -> f64 {
-        SIMULATED_IDENTITY_TOLERANCE
-    }
-
-    fn w(&self, cycle: &LoadCycle<f64>, compliance: &dyn Compliance<f64>, _raw: bool) -> Result<Value<f64>, Failure> {
-        match simulate_within_tolerance(cycle, compliance) {
-            Ok(result) => Ok(Value {
-                w: result.w_work,
-                rounding: 0.0,
-            }),
-            Err(error) => Err(Failure::Failed(error.to_string())),
-        }
-    }
-
-    fn note(&self, note: String) -> String {
-        if note.is_empty() {
-            refinement_note()
-        } else {
-            format!("{}; {note}", refinement_note())
-        }
     }
 }
 

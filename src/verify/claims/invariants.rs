@@ -1,7 +1,7 @@
 //! Claim 6: invariants of the construction — W ≥ 0, no dependence on Q0, period π in
 //! φ, and the in-phase limit.
 
-use super::evaluator::{all_of, tally_cases, Claim, Evaluator, Failure, Measured, Outcome};
+use super::evaluator::{all_of, tally_cases, Claim, ConstantSlope, Evaluator, Failure, Measured, Outcome};
 use super::{random_case, read_case, relative, CaseWith, Drawn, Tally};
 use crate::cycle::{LoadCycle, ValidCycle};
 use crate::dissipation::{dissipation, four_segment, in_phase, DissipationError, Options};
@@ -51,7 +51,7 @@ impl Claim for Invariants {
         let w = |change: &dyn Fn(&mut LoadCycle<E::Number>)| {
             let mut changed = cycle.clone();
             change(&mut changed);
-            evaluator.w(&changed, compliance.as_ref(), false)
+            evaluator.w(&changed, compliance.as_ref(), ConstantSlope::Removed)
         };
         let pi = E::Number::pi(evaluator.precision());
         let q0 = evaluator.number(case.value);

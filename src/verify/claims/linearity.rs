@@ -2,7 +2,7 @@
 
 use std::fmt;
 
-use super::evaluator::{all_of, Claim, Evaluator, Measured, Outcome};
+use super::evaluator::{all_of, Claim, ConstantSlope, Evaluator, Measured, Outcome, Source};
 use super::{describe, random_case, read_case, relative};
 use crate::compliance::{Compliance, Scaled, Sum};
 use crate::inputs::CaseText;
@@ -43,11 +43,10 @@ impl fmt::Display for LinearityCase {
 
 /// The loads v2' is drawn admissible over: the simulated bed reaches down to 0.9 P_T, so
 /// there from 0.8 P_T to P0 + P1; the integrals do not check v2', drawn over a fixed range.
-pub fn second_compliance_loads(case: &CaseText, simulated: bool) -> Loads {
-    let bed = if simulated {
-        read_case::<f64>(case, Precision::DOUBLE).ok()
-    } else {
-        None
+pub fn second_compliance_loads(case: &CaseText, source: Source) -> Loads {
+    let bed = match source {
+        Source::Simulation => read_case::<f64>(case, Precision::DOUBLE).ok(),
+        Source::Segments => None,
     };
     let (low, high) = match bed {
         Some((cycle, _)) => (0.8 * cycle.permanent_stick_load(), 1.0 + cycle.normal_amplitude),
@@ -64,7 +63,7 @@ impl Claim for Linearity {
 
     fn draw<E: Evaluator>(&self, draw: &mut Draw, evaluator: &E) -> LinearityCase {
         let case = random_case(draw);
-        let loads = second_compliance_loads(&case, evaluator.simulated());
+        let loads = second_compliance_loads(&case, evaluator.source());
         let second = compliance_spec(draw, loads.low, loads.high, loads.mean);
         let (a, b) = (draw.uniform(0.1, 3.0), draw.uniform(0.1, 3.0));
         LinearityCase { case, second, a, b }
@@ -80,8 +79,8 @@ impl Claim for Linearity {
         let (_, second) = read_case::<E::Number>(&other, precision)?;
         let (a, b) = (evaluator.number(case.a), evaluator.number(case.b));
         let (w1, w2) = (
-            evaluator.w(&cycle, first.as_ref(), false),
-            evaluator.w(&cycle, second.as_ref(), false),
+            evaluator.w(&cycle, first.as_ref(), ConstantSlope::Removed),
+            evaluator.w(&cycle, second.as_ref(), ConstantSlope::Removed),
         );
         let combined = Sum {
             terms: vec![
@@ -95,7 +94,7 @@ impl Claim for Linearity {
                 }),
             ],
         };
-        let [w1, w2, sum] = all_of([w1, w2, evaluator.w(&cycle, &combined, false)])?;
+        let [w1, w2, sum] = all_of([w1, w2, evaluator.w(&cycle, &combined, ConstantSlope::Removed)])?;
         let expected = w1.w * &a + &(w2.w * &b);
         Ok(Measured {
             error: relative(&sum.w, &expected),

@@ -7,7 +7,7 @@
 //! property tests can run the same check on shrinking cases; claims 3–5 compute W through
 //! an [`Evaluator`], the segment formulas or the history simulation. One file per claim;
 //! what they share (the tally, the random cycle) is here, the evaluators and the loop over
-//! cases in `evaluator.rs`.
+//! cases in `evaluator.rs` (the simulated one beside the simulation, in `simulation.rs`).
 
 mod coefficient;
 #[cfg(feature = "certified")]
@@ -26,13 +26,15 @@ pub use coefficient::small_amplitude_coefficient;
 pub use coefficient_proof::coefficient_is_negative;
 pub use constant_term::ConstantTerm;
 pub use cubic_law::{cubic_law, cubic_law_order, least_squares_slope, CubicLawCase};
-pub use evaluator::{check_claim, Claim, Evaluator, Failure, FourSegment, Measured, Outcome, Simulation, Value};
+pub use evaluator::{
+    check_claim, Claim, ConstantSlope, Evaluator, Failure, FourSegment, Measured, Outcome, Source, Value,
+};
 pub use exact::{closed_form_coefficient_claim, polynomial_dissipation_claim, series_claim};
 pub use invariants::{in_phase_limit, in_phase_limit_error, mean_tangential_margin, Invariants};
 pub use linearity::{second_compliance_loads, Linearity, LinearityCase};
 pub use roughness::{Roughness, RoughnessCase};
 pub use simulation::{
-    coefficient_against_simulation, simulated_history_error, simulation_agrees, SimulatedHistoryCase,
+    coefficient_against_simulation, simulated_history_error, simulation_agrees, SimulatedHistoryCase, Simulation,
     SIMULATION_TOLERANCE,
 };
 

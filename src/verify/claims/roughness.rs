@@ -2,7 +2,7 @@
 
 use std::fmt;
 
-use super::evaluator::{all_of, Claim, Evaluator, Measured, Outcome, Value};
+use super::evaluator::{all_of, Claim, ConstantSlope, Evaluator, Measured, Outcome, Value};
 use super::{describe, random_case, read_case, relative};
 use crate::compliance::{LoadScaled, Persson, PowerLaw};
 use crate::cycle::LoadCycle;
@@ -72,7 +72,7 @@ impl Claim for Roughness {
         let number = |x: f64| evaluator.number(x);
         let k = number(case.k);
         let w = |cycle: &LoadCycle<E::Number>, compliance: &dyn crate::compliance::Compliance<E::Number>| {
-            evaluator.w(cycle, compliance, false)
+            evaluator.w(cycle, compliance, ConstantSlope::Removed)
         };
         // The general identity W[v'(·/k)](L) = k² W[v'](L/k), on the drawn compliance. The
         // integrals, which do not need v' admissible, take L = the drawn loads; the simulated

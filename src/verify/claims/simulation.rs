@@ -1,10 +1,11 @@
 //! The checks against the independent history simulation (`crate::simulate`): the
 //! four-segment W (claim 6c) and the coefficient I(ρ, φ) (claim 2c), computed by a
-//! method that uses none of the segment formulas.
+//! method that uses none of the segment formulas; and the [`Simulation`] evaluator, which
+//! runs claims 3–5 with W from the simulation.
 
 use std::fmt;
 
-use super::evaluator::{tally_cases, Failure, Measured, Outcome};
+use super::evaluator::{tally_cases, ConstantSlope, Evaluator, Failure, Measured, Outcome, Source, Value};
 use super::{describe, gross_slip_amplitude, random_case, read_case, Tally};
 use crate::compliance::Compliance;
 use crate::compliance::Polynomial;
@@ -33,7 +34,7 @@ pub const SIMULATED_IDENTITY_TOLERANCE: f64 = 3.0 * SIMULATION_TOLERANCE;
 pub const LARGEST_SIMULATED_AMPLITUDE: f64 = 0.9;
 
 /// The note of a row whose every W comes from [`simulate_within_tolerance`].
-pub(super) fn refinement_note() -> String {
+fn refinement_note() -> String {
     format!("each simulation refined until its own estimate is within {SIMULATION_TOLERANCE:e}")
 }
 
@@ -41,7 +42,7 @@ pub(super) fn refinement_note() -> String {
 /// at most twice) while its own error estimate exceeds the tolerance: near in phase or
 /// anti-phase with a small Q1/(fP1), W is small against the energies stored in the bed
 /// and the coarse bed resolves it to only a few percent — and says so.
-pub(super) fn simulate_within_tolerance(
+fn simulate_within_tolerance(
     cycle: &LoadCycle<f64>,
     compliance: &dyn Compliance<f64>,
 ) -> Result<SimulationResult, SimulationError> {
@@ -60,6 +61,49 @@ pub(super) fn simulate_within_tolerance(
         }
     }
     result.ok_or(SimulationError::Resolution { elements: 0, steps: 0 })
+}
+
+/// W by the history simulation (`simulate_within_tolerance`), in f64.
+#[derive(Clone, Copy, Debug, Default)]
+pub struct Simulation;
+
+impl Evaluator for Simulation {
+    type Number = f64;
+
+    fn precision(&self) -> Precision {
+        Precision::DOUBLE
+    }
+
+    fn source(&self) -> Source {
+        Source::Simulation
+    }
+
+    fn identity_tolerance(&self) -> f64 {
+        SIMULATED_IDENTITY_TOLERANCE
+    }
+
+    fn w(
+        &self,
+        cycle: &LoadCycle<f64>,
+        compliance: &dyn Compliance<f64>,
+        _: ConstantSlope,
+    ) -> Result<Value<f64>, Failure> {
+        match simulate_within_tolerance(cycle, compliance) {
+            Ok(result) => Ok(Value {
+                w: result.w_work,
+                rounding: 0.0,
+            }),
+            Err(error) => Err(Failure::Failed(error.to_string())),
+        }
+    }
+
+    fn note(&self, note: String) -> String {
+        if note.is_empty() {
+            refinement_note()
+        } else {
+            format!("{}; {note}", refinement_note())
+        }
+    }
 }
 
 /// A cycle and compliance for claim 6c, and how the simulated cycle departs from it: Q0
