@@ -661,6 +661,9 @@ impl Real for Ball {
         let exact = |n: &rug::Integer| Ball::from_float(&Float::with_val(n.significant_bits().max(1), n), precision);
         exact(x.numer()) / exact(x.denom())
     }
+    fn enclose_pi_multiple(multiple: &rug::Rational, offset: &rug::Rational, precision: Precision) -> Option<Self> {
+        Some(crate::certified::enclose_pi_multiple(multiple, offset, precision))
+    }
     fn pi(precision: Precision) -> Self {
         let mut ball = Ball::zero(precision.in_bits());
         // SAFETY: initialised.

@@ -30,7 +30,7 @@ use crate::dissipation::closed_forms::{
 };
 use crate::dissipation::slope::knot_offsets;
 use crate::dissipation::{Segment, SegmentIntegrands, Segments};
-use crate::phase::{ExactPhase, PhaseError, MIRROR_BELOW};
+use crate::phase::{ExactPhase, PhaseError};
 use crate::quad::sinh_map::resolve_peaks;
 use crate::quad::Piece;
 use crate::real::{Precision, Real};
@@ -375,6 +375,7 @@ where
     let first = (digit_bits + extra).next_multiple_of(64);
     let mut bits = first;
     let (mut reached, mut last_bits) = (0, 0);
+    let mut gave_up_before = false;
     let out_of_time = || deadline.is_some_and(|deadline| Instant::now() >= deadline);
     // An attempt at twice the bits costs about four times the last: one that would end
     // past the deadline is not started.
@@ -424,8 +425,12 @@ where
             }
             // A cycle outside the theory stays outside at any precision.
             Err(error @ CertifiedError::Cycle(_)) => return Err(error),
+            // Arb gave up on a piece at two precisions in a row: its integrand has a
+            // singularity too near the piece for bisection, which more bits do not move.
+            Err(error @ CertifiedError::NotFinite { .. }) if gave_up_before => return Err(error),
             Err(error) => error,
         };
+        gave_up_before = matches!(error, CertifiedError::NotFinite { .. });
         next_cost = started.elapsed() * 4;
         bits *= 2;
         if bits > MAX_BITS {
@@ -457,23 +462,7 @@ fn phase_bits(cycle: &LoadCycle<Ball>) -> u32 {
 /// rational, x decimal), so that an offset of 10⁻³⁰⁰ from a multiple of π keeps its
 /// digits at any precision, and `3.141592653589793` is not π.
 pub fn cycle_phase(phase: &ExactPhase, precision: Precision) -> Result<(Ball, bool), PhaseError> {
-    let (offset_ball, reverses) = phase_offset(phase, precision)?;
-    let estimate = offset_ball.to_f64_lossy();
-    if !reverses {
-        return Ok((offset_ball, false));
-    }
-    if estimate.abs() < MIRROR_BELOW {
-        return Ok((offset_ball, true));
-    }
-    let pi = Ball::pi(precision);
-    Ok((
-        if estimate > 0.0 {
-            offset_ball - &pi
-        } else {
-            offset_ball + &pi
-        },
-        false,
-    ))
+    Ok(phase.reduce()?.cycle_phase::<Ball>(precision))
 }
 
 /// Bits a phase offset is computed with beyond the working precision and its exponent.
@@ -488,29 +477,35 @@ const MAX_PHASE_BITS: u32 = 1 << 22;
 /// rational itself.
 pub fn phase_offset(phase: &ExactPhase, precision: Precision) -> Result<(Ball, bool), PhaseError> {
     let (mut reverses, mut rest, offset) = phase.offset_parts()?;
-    let exponent = phase.to_f64().abs().max(1.0).log2().ceil() as u32;
     // ψ = −π/2 exactly is taken as π/2 (n − 1 in place of n): the generic code reads a
     // negative offset as one below π, and at −π/2 exactly it could not decide that.
     if rest == Rational::from((-1, 2)) && *offset == 0 {
         rest = Rational::from((1, 2));
         reverses = !reverses;
     }
-    if rest == 0 {
-        return Ok((Ball::from_rational(offset, precision), reverses));
+    Ok((enclose_pi_multiple(&rest, offset, precision), reverses))
+}
+
+/// A ball that contains mπ + x with the relative accuracy of `precision` (the working
+/// bits are raised while x cancels mπ; it is not zero unless m = x = 0, π being
+/// irrational), or as close to it as [`MAX_PHASE_BITS`] working bits give.
+pub fn enclose_pi_multiple(multiple: &Rational, offset: &Rational, precision: Precision) -> Ball {
+    if *multiple == 0 {
+        return Ball::from_rational(offset, precision);
     }
+    let exponent = (multiple.to_f64().abs() * std::f64::consts::PI + offset.to_f64().abs())
+        .max(1.0)
+        .log2()
+        .ceil() as u32;
     let mut working = precision.in_bits() + exponent + PHASE_GUARD_BITS;
     loop {
         let at = Precision::bits(working);
-        let psi = Ball::from_rational(&rest, at) * &Ball::pi(at) + &Ball::from_rational(offset, at);
-        if relatively_within(&psi, precision.in_bits()) {
+        let psi = Ball::from_rational(multiple, at) * &Ball::pi(at) + &Ball::from_rational(offset, at);
+        if relatively_within(&psi, precision.in_bits()) || working.saturating_mul(2) > MAX_PHASE_BITS {
             // SAFETY: `psi` is an initialised ball; the copy keeps its midpoint and radius.
-            let psi = unsafe { Ball::from_raw(psi.as_raw(), precision.in_bits()) };
-            return Ok((psi, reverses));
+            return unsafe { Ball::from_raw(psi.as_raw(), precision.in_bits()) };
         }
         working = working.saturating_mul(2);
-        if working > MAX_PHASE_BITS {
-            return Err(PhaseError::TooLarge { phi: phase.to_f64() });
-        }
     }
 }
 

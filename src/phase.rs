@@ -254,7 +254,8 @@ impl ReducedPhase {
 
     /// ψ at the precision.
     pub fn offset<R: Real>(&self, precision: Precision) -> R {
-        R::from_float(&self.offset_float(precision.in_bits()), precision)
+        R::enclose_pi_multiple(&self.multiple, &self.offset, precision)
+            .unwrap_or_else(|| R::from_float(&self.offset_float(precision.in_bits()), precision))
     }
 
     /// The phase a cycle is read with, and whether it is the mirror image's (Q0 to be
@@ -262,6 +263,19 @@ impl ReducedPhase {
     /// [`MIRROR_BELOW`] of ±π, where rounding ψ ± π would lose the offset's low bits: there
     /// ψ itself, for the mirror image (φ + π is the cycle with Q − Q0 reversed).
     pub fn cycle_phase<R: Real>(&self, precision: Precision) -> (R, bool) {
+        // A ball encloses ψ from its exact parts, and ψ ∓ π with a ball of π.
+        if let Some(offset) = R::enclose_pi_multiple(&self.multiple, &self.offset, precision) {
+            if !self.reverses || self.is_mirror_image() {
+                return (offset, self.reverses);
+            }
+            let pi = R::pi(precision);
+            let turned = if offset.to_f64_lossy() > 0.0 {
+                offset - &pi
+            } else {
+                offset + &pi
+            };
+            return (turned, false);
+        }
         let bits = precision.in_bits();
         let offset = self.offset_float(bits + GUARD_BITS);
         if !self.reverses {

@@ -86,6 +86,13 @@ pub trait Real:
     fn from_rational(x: &rug::Rational, precision: Precision) -> Self {
         Self::from_float(&rug::Float::with_val(precision.in_bits(), x), precision)
     }
+    /// An enclosure of mπ + x (m, x rational) with the precision's relative accuracy, for
+    /// a type that encloses values (a ball); `None` for a type that rounds (f64, MPFR),
+    /// which reads the phase rounded once from its exact reduction instead.
+    fn enclose_pi_multiple(multiple: &rug::Rational, offset: &rug::Rational, precision: Precision) -> Option<Self> {
+        let _ = (multiple, offset, precision);
+        None
+    }
     /// π at the precision.
     fn pi(precision: Precision) -> Self;
     /// The distance from 1 to the next larger number at the precision.

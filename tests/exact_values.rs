@@ -3,7 +3,7 @@
 //! zero prints at once as exact, the series' exact values are marked, and every way of
 //! writing a phase gives the same W.
 
-use std::time::{Duration, Instant};
+use std::time::Duration;
 
 use microslip::dissipation_answer::dissipation_report;
 use microslip::inputs::CaseText;
@@ -20,13 +20,13 @@ fn case(phi: &str, compliance: &str) -> CaseText {
 
 const PERSSON: &str = "persson:gamma=1,sigma=1";
 
-/// W as printed without --digits, as a 200-bit number, with the time it took.
-fn w(phi: &str) -> (Float, Duration) {
-    let started = Instant::now();
+/// W as printed without --digits, as a 200-bit number (how long it takes is measured by
+/// `bash benches/reproducers.sh`, not here).
+fn w(phi: &str) -> Float {
     let printed = dissipation_report(&case(phi, PERSSON), None, Duration::from_secs(60))
         .unwrap_or_else(|e| panic!("φ = {phi}: {e}"));
     let value = Float::parse_decimal(&printed.total(), Precision::bits(200)).unwrap();
-    (value, started.elapsed())
+    value
 }
 
 fn relative(a: &Float, b: &Float) -> f64 {
@@ -43,9 +43,7 @@ fn a_phase_near_a_multiple_of_pi_gives_w_its_relative_digits() {
         ("pi-1e-50", "pi-1e-20", "1e-50", "1e-20"),
         ("-pi+1e-50", "3pi+1e-20", "1e-50", "1e-20"),
     ] {
-        let (w_near, took) = w(near);
-        let (w_far, _) = w(far);
-        assert!(took < Duration::from_secs(2), "φ = {near}: {took:?}");
+        let (w_near, w_far) = (w(near), w(far));
         let square = |text: &str| Float::parse_decimal(text, Precision::bits(200)).unwrap().square();
         let (c_near, c_far) = (w_near / square(delta_near), w_far / square(delta_far));
         assert!(relative(&c_near, &c_far) < 1e-13, "{near}: {c_near} vs {far}: {c_far}");
@@ -84,8 +82,8 @@ fn decimal_approximations_of_pi_are_not_pi() {
     let bits = 300;
     let pi = Float::with_val(bits, rug::float::Constant::Pi);
     let tiny = Float::parse_decimal("1e-60", Precision::bits(bits)).unwrap();
-    let (c_pi, _) = w("pi-1e-30");
-    let (c_zero, _) = w("1e-30");
+    let c_pi = w("pi-1e-30");
+    let c_zero = w("1e-30");
     let (c_pi, c_zero) = (c_pi / &tiny, c_zero / &tiny);
     for decimal in ["3.141592653589793", "3.14159265358979323846", "-3.141592653589793"] {
         let value = Float::parse_decimal(decimal, Precision::bits(bits)).unwrap();
@@ -95,7 +93,7 @@ fn decimal_approximations_of_pi_are_not_pi() {
         } else {
             (value + &pi, &c_zero)
         };
-        let (printed, _) = w(decimal);
+        let printed = w(decimal);
         assert!(printed != 0, "φ = {decimal} printed W = 0");
         let expected = constant.clone() * offset.square();
         assert!(
@@ -104,7 +102,7 @@ fn decimal_approximations_of_pi_are_not_pi() {
         );
     }
     // The README case: W = 1.79304398627923e−33.
-    let (printed, _) = w("3.141592653589793");
+    let printed = w("3.141592653589793");
     assert!(
         relative(
             &printed,
@@ -137,13 +135,9 @@ fn every_exact_zero_prints_at_once_as_exact() {
             if !digits.is_empty() {
                 args.extend(["--digits".to_string(), digits.to_string()]);
             }
-            let started = Instant::now();
+            // A budget no computation could meet: an exact value is not computed.
+            args.extend(["--max-seconds".to_string(), "1e-6".to_string()]);
             let (code, stdout, stderr) = microslip(&args);
-            assert!(
-                started.elapsed() < Duration::from_secs(1),
-                "{args:?}: {:?}",
-                started.elapsed()
-            );
             assert_eq!(code, 0, "{args:?}: {stderr}");
             assert!(
                 stdout.starts_with("W = 0   (exact: ") && stdout.contains(reason),
@@ -189,7 +183,7 @@ fn values_that_are_not_exactly_zero_are_not_printed_as_zero() {
     let (code, stdout, _) = microslip(&case_args("dissipation", &[("--phi", "1e-8"), ("--q1", "0.2")]));
     assert_eq!(code, 0);
     let value: f64 = stdout.split_whitespace().nth(2).unwrap().parse().unwrap();
-    let (far, _) = w("1e-20");
+    let far = w("1e-20");
     let expected = far.to_f64() * 1e40 * 1e-16;
     assert!((value / expected - 1.0).abs() < 1e-7, "{value} vs {expected}");
 }
@@ -248,9 +242,8 @@ fn the_series_prints_its_exact_values_as_exact() {
         ("0", "0.4pi", PERSSON),
         ("0.04", "pi", PERSSON),
     ] {
-        let started = Instant::now();
-        let (code, stdout, stderr) = series(q1, phi, spec, "3", &[]);
-        assert!(started.elapsed() < Duration::from_secs(1));
+        // A budget no computation could meet: an exact value is not computed.
+        let (code, stdout, stderr) = series(q1, phi, spec, "3", &["--max-seconds", "1e-6"]);
         assert_eq!(code, 0, "{stderr}");
         assert!(
             stdout.starts_with("W = 0 and W_N = 0 for N = 1 … 3 (exact: "),
@@ -336,8 +329,8 @@ fn phases_written_every_way_give_the_same_w() {
 /// δ > 0, π for δ < 0, whatever k), never 0.
 #[test]
 fn property_w_over_the_offset_squared_tends_to_a_constant() {
-    let (near_zero, _) = w("1e-20");
-    let (near_pi, _) = w("pi-1e-20");
+    let near_zero = w("1e-20");
+    let near_pi = w("pi-1e-20");
     let scale = Float::parse_decimal("1e40", Precision::bits(200)).unwrap();
     let (c_zero, c_pi) = (near_zero * &scale, near_pi * &scale);
     let mut state: u64 = 0x2545_f491_4f6c_dd1d;
@@ -354,9 +347,8 @@ fn property_w_over_the_offset_squared_tends_to_a_constant() {
         let negative = next(2) == 1;
         let sign = if negative { "-" } else { "+" };
         let phi = format!("{k}pi{sign}{mantissa}e-{exponent}");
-        let (value, took) = w(&phi);
+        let value = w(&phi);
         assert!(value != 0, "φ = {phi} printed 0");
-        assert!(took < Duration::from_secs(2), "φ = {phi}: {took:?}");
         let delta = Float::parse_decimal(&format!("{mantissa}e-{exponent}"), Precision::bits(200)).unwrap();
         let ratio = value / delta.square();
         let expected = if negative { &c_pi } else { &c_zero };
