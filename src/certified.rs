@@ -488,7 +488,7 @@ pub fn phase_offset(phase: &ExactPhase, precision: Precision) -> Result<(Ball, b
 
 /// A ball that contains mπ + x with the relative accuracy of `precision` (the working
 /// bits are raised while x cancels mπ; it is not zero unless m = x = 0, π being
-/// irrational), or as close to it as [`MAX_PHASE_BITS`] working bits give.
+/// irrational), or as close to it as the largest working precision allowed (2²² bits) gives.
 pub fn enclose_pi_multiple(multiple: &Rational, offset: &Rational, precision: Precision) -> Ball {
     if *multiple == 0 {
         return Ball::from_rational(offset, precision);

@@ -25,8 +25,7 @@ const PERSSON: &str = "persson:gamma=1,sigma=1";
 fn w(phi: &str) -> Float {
     let printed = dissipation_report(&case(phi, PERSSON), None, Duration::from_secs(60))
         .unwrap_or_else(|e| panic!("φ = {phi}: {e}"));
-    let value = Float::parse_decimal(&printed.total(), Precision::bits(200)).unwrap();
-    value
+    Float::parse_decimal(&printed.total(), Precision::bits(200)).unwrap()
 }
 
 fn relative(a: &Float, b: &Float) -> f64 {

@@ -16,7 +16,8 @@ use std::time::Instant;
 use rug::Float;
 
 use super::coefficient::closed_form_coefficient;
-use super::series::{partial_sums, series_coefficients, SeriesError};
+use super::printing::ExactAnswerError;
+use super::series::{partial_sums, series_coefficients};
 use crate::ball::{watch, Ball};
 use crate::certified::{phase_offset, MAX_BITS};
 use crate::inputs::{CaseText, InputError};
@@ -162,28 +163,17 @@ pub fn coefficient_balls(
     phase: &ExactPhase,
     order: usize,
     precision: Precision,
-) -> Result<Vec<Ball>, BallInputError> {
+) -> Result<Vec<Ball>, ExactAnswerError> {
     let rho = decimal_ball(rho, precision).expect("ρ is checked to read before");
     let (psi, _) = phase_offset(phase, precision).map_err(InputError::from)?;
     let values = series_coefficients(&rho, &psi, order)?;
     Ok(values.into_iter().skip(1).map(|(value, _)| value).collect())
 }
 
-/// Why the series' inputs could not be read into balls, or the series failed.
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum BallInputError {
-    /// The case does not read.
-    #[error(transparent)]
-    Input(#[from] InputError),
-    /// The series failed.
-    #[error(transparent)]
-    Series(#[from] SeriesError),
-}
-
 /// W_1 … W_`order` of a case enclosed at a precision: the case's decimals as balls, its
 /// phase as the exact offset ψ from the nearest multiple nπ (with Q0 reversed for odd
 /// n: the mirror image, which has the same W).
-pub fn partial_sum_balls(case: &CaseText, order: usize, precision: Precision) -> Result<Vec<Ball>, BallInputError> {
+pub fn partial_sum_balls(case: &CaseText, order: usize, precision: Precision) -> Result<Vec<Ball>, ExactAnswerError> {
     let crate::inputs::Case { mut cycle, compliance } = case.read::<Ball>(precision)?;
     let (psi, reverses) =
         phase_offset(&ExactPhase::parse(&case.phi).map_err(InputError::from)?, precision).map_err(InputError::from)?;

@@ -77,15 +77,6 @@ pub enum ExactAnswerError {
 }
 
 #[cfg(feature = "certified")]
-impl From<super::enclosure::BallInputError> for ExactAnswerError {
-    fn from(error: super::enclosure::BallInputError) -> Self {
-        match error {
-            super::enclosure::BallInputError::Input(error) => ExactAnswerError::Input(error),
-            super::enclosure::BallInputError::Series(error) => ExactAnswerError::Series(error),
-        }
-    }
-}
-
 impl ExactAnswerError {
     /// Whether the input was fine and the run could not vouch for its result (exit 1),
     /// rather than refused (exit 2).
