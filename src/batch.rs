@@ -7,7 +7,7 @@ use std::time::Duration;
 use rayon::prelude::*;
 
 use crate::answer::{Answer, Provenance};
-use crate::compliance::{tables_in_spec, TableError};
+use crate::compliance::{ComplianceSpec, TableError};
 use crate::cycle::LoadCycle;
 use crate::dissipation_answer::{dissipation_report, tables_cover, DissipationAnswer};
 use crate::reference::ReferenceError;
@@ -26,11 +26,11 @@ pub type CaseError = ReferenceError;
 /// Refuses a cycle that leaves a table of the compliance SPEC, naming the table's range
 /// (for computations that check the compliance themselves, as the simulation does). A
 /// cycle outside the theory passes here: its own check says what is wrong.
-pub fn check_table_range(spec: &str, cycle: &LoadCycle<f64>) -> Result<(), TableError> {
+pub fn check_table_range(spec: &ComplianceSpec, cycle: &LoadCycle<f64>) -> Result<(), TableError> {
     if cycle.validate().is_err() {
         return Ok(());
     }
-    tables_cover(&tables_in_spec(spec)?, cycle)
+    tables_cover(&spec.tables(), cycle)
 }
 
 /// A batch input that cannot be used at all.

@@ -280,6 +280,11 @@ impl CaseSpec {
         self.compliance.is_constant_slope().then_some(ExactZero::ConstantSlope)
     }
 
+    /// P1 = 0 exactly: the normal load is constant (the Cattaneo–Mindlin closed form).
+    pub fn has_constant_normal_load(&self) -> bool {
+        self.normal_amplitude.value == 0
+    }
+
     /// The phase, reduced exactly modulo π.
     pub fn phase(&self) -> &ReducedPhase {
         &self.phase

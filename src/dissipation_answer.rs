@@ -5,7 +5,7 @@
 //! 1. a compliance with a table: f64 from the table's interpolant, with the table's error
 //!    beside the quadrature's ([`Provenance::Table`]); digits beyond that error would not
 //!    be digits of W, so `--digits` is refused;
-//! 2. W exactly 0 for a reason read from the exact input ([`CaseText::exact_zero`]): at
+//! 2. W exactly 0 for a reason read from the exact input ([`CaseSpec::exact_zero`]): at
 //!    once, at any `--digits` ([`Provenance::Exact`]);
 //! 3. with `--digits N`: a rigorous enclosure in ball arithmetic ([`Provenance::Certified`]),
 //!    or only where none can be had ([`NoEnclosure`] says why) two precisions agreeing
@@ -20,12 +20,12 @@ use std::time::{Duration, Instant};
 use rug::Float;
 
 use crate::answer::{Answer, ExactReason, Provenance, Value};
-use crate::compliance::{parse_spec_with, tables_in_spec, Compliance, ComplianceTable, TableInterpolant};
+use crate::case::{Case, CaseSpec, CaseText, InputError};
+use crate::compliance::{Compliance, ComplianceTable, TableInterpolant};
 use crate::cycle::LoadCycle;
 use crate::dissipation::{dissipation, Dissipation, DissipationError, ExactZero, Method, Options, Segment, Segments};
-use crate::inputs::{Case, CaseText, InputError};
 use crate::real::{Precision, Real};
-use crate::reference::{check_case, checked_exact_zero, verified_dissipation, ReferenceError, MAX_DIGITS};
+use crate::reference::{check_case, checked_exact_zero, verified_dissipation_of, ReferenceError, MAX_DIGITS};
 use crate::verified::{resolved_digits, F64_DIGITS_FLOOR, F64_MOST_DIGITS};
 
 /// W as printed, with why the policy took the path it took.
@@ -155,11 +155,9 @@ impl std::fmt::Display for Fallback {
 pub enum NoEnclosure {
     /// The library was built without the `certified` feature (no Arb).
     NotBuilt,
-    /// W has a closed form here (exactly in phase, or P1 = 0), which is not enclosed: the
-    /// four-segment enclosure cannot decide the boundary such a case sits on.
-    ClosedForm,
     /// The certified driver refused the case: undecided geometry, an integrand not
-    /// analytic on a piece, or an enclosure too wide at the largest precision.
+    /// analytic on a piece, an enclosure too wide at the largest precision, or not narrow
+    /// enough within its share of the budget.
     #[cfg(feature = "certified")]
     Refused(crate::certified::CertifiedError),
 }
@@ -168,9 +166,6 @@ impl std::fmt::Display for NoEnclosure {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             NoEnclosure::NotBuilt => f.write_str("built without ball arithmetic (feature `certified`)"),
-            NoEnclosure::ClosedForm => {
-                f.write_str("W has a closed form here (exactly in phase, or P1 = 0), which is not enclosed")
-            }
             #[cfg(feature = "certified")]
             NoEnclosure::Refused(error) => write!(f, "{error}"),
         }
@@ -233,7 +228,9 @@ pub fn dissipation_report(
     if let Some(digits) = digits.filter(|&d| d == 0 || d > MAX_DIGITS) {
         return Err(ReferenceError::DigitsOutOfRange(digits));
     }
-    let tables = tables_in_spec(&case.compliance)?;
+    // The case is read once; every precision below is computed from it.
+    let case = &case.spec()?;
+    let tables = case.compliance().tables();
     if !tables.is_empty() {
         if digits.is_some() {
             return Err(ReferenceError::DigitsForTable);
@@ -276,21 +273,15 @@ pub fn exact_zero_answer(reason: ExactZero, digits: Option<u32>) -> Answer {
 }
 
 /// `digits` digits: certified where an enclosure can be had, else by agreement.
-fn to_digits(case: &CaseText, digits: u32, deadline: Instant) -> Result<(Answer, Option<NoEnclosure>), ReferenceError> {
+fn to_digits(case: &CaseSpec, digits: u32, deadline: Instant) -> Result<(Answer, Option<NoEnclosure>), ReferenceError> {
     // The enclosure needs a case inside the theory, which it does not check itself.
     check_case(case)?;
-    let closed_form = case
-        .read::<Float>(Precision::bits(64))
-        .is_ok_and(|Case { cycle, .. }| cycle.phase.is_zero() || cycle.normal_amplitude.is_zero());
-    let no_enclosure = match closed_form {
-        true => NoEnclosure::ClosedForm,
-        false => match certified::answer(case, digits, deadline) {
-            Ok(answer) => return Ok((answer, None)),
-            Err(refusal) => refusal?,
-        },
+    let no_enclosure = match certified::answer(case, digits, deadline) {
+        Ok(answer) => return Ok((answer, None)),
+        Err(refusal) => refusal?,
     };
     let budget = deadline.saturating_duration_since(Instant::now());
-    let verified = verified_dissipation(case, digits, budget)?;
+    let verified = verified_dissipation_of(case, digits, budget)?;
     Ok((verified.answer, Some(no_enclosure)))
 }
 
@@ -300,9 +291,9 @@ mod certified {
 
     use crate::answer::{Answer, Provenance, Value};
     use crate::ball::Ball;
+    use crate::case::{Case, CaseSpec};
     use crate::certified::{certified_dissipation_by, CertifiedError};
     use crate::dissipation::{DissipationError, Method, Segments};
-    use crate::inputs::{Case, CaseText};
     use crate::reference::ReferenceError;
 
     use super::NoEnclosure;
@@ -311,18 +302,20 @@ mod certified {
     /// agreement may serve, `Err(Err(error))` where nothing will (a cycle outside the
     /// theory, the budget spent).
     pub(super) fn answer(
-        case: &CaseText,
+        case: &CaseSpec,
         digits: u32,
         deadline: Instant,
     ) -> Result<Answer, Result<NoEnclosure, ReferenceError>> {
         let read = |precision| {
-            let Case { cycle, compliance } = case.read::<Ball>(precision).map_err(|e| e.to_string())?;
+            let Case { cycle, compliance } = case.at::<Ball>(precision).map_err(|e| e.to_string())?;
             Ok((cycle, compliance))
         };
-        let certified = match certified_dissipation_by(read, digits, Some(deadline)) {
+        // The enclosure gets half of what is left: where it cannot be had in that time
+        // (Arb chasing a singularity near a piece), agreement answers in the other half.
+        let share = Instant::now() + deadline.saturating_duration_since(Instant::now()) / 2;
+        let certified = match certified_dissipation_by(read, digits, Some(share)) {
             Ok(certified) => certified,
             Err(CertifiedError::Cycle(error)) => return Err(Err(DissipationError::from(error).into())),
-            Err(error @ CertifiedError::OutOfTime { .. }) => return Err(Err(ReferenceError::Certified(error))),
             Err(error) => return Err(Ok(NoEnclosure::Refused(error))),
         };
         let enclosure = &certified.enclosure;
@@ -346,7 +339,14 @@ mod certified {
             segments: Some(Segments::from_fn(|segment| value(enclosure.segments.get(segment)))),
             digits_requested: Some(digits),
             provenance: Provenance::Certified { bits },
-            method: Some(Method::FourSegment),
+            // The cycle's kind, as the enclosure chose its formula.
+            method: Some(if case.has_constant_normal_load() {
+                Method::ConstantNormalLoad
+            } else if case.phase().is_in_phase() {
+                Method::InPhase
+            } else {
+                Method::FourSegment
+            }),
         })
     }
 }
@@ -356,23 +356,23 @@ mod certified {
     use std::time::Instant;
 
     use crate::answer::Answer;
-    use crate::inputs::CaseText;
+    use crate::case::CaseSpec;
     use crate::reference::ReferenceError;
 
     use super::NoEnclosure;
 
     /// Without ball arithmetic there is no enclosure.
-    pub(super) fn answer(_: &CaseText, _: u32, _: Instant) -> Result<Answer, Result<NoEnclosure, ReferenceError>> {
+    pub(super) fn answer(_: &CaseSpec, _: u32, _: Instant) -> Result<Answer, Result<NoEnclosure, ReferenceError>> {
         Err(Ok(NoEnclosure::NotBuilt))
     }
 }
 
 /// W in f64 with the digits its error estimate determines, or why f64 does not suffice.
-fn in_f64(case: &CaseText, deadline: Instant) -> Result<Result<Answer, Fallback>, ReferenceError> {
-    let Case { cycle, compliance } = match case.read::<f64>(Precision::DOUBLE) {
+fn in_f64(case: &CaseSpec, deadline: Instant) -> Result<Result<Answer, Fallback>, ReferenceError> {
+    let Case { cycle, compliance } = match case.at::<f64>(Precision::DOUBLE) {
         Ok(case) => case,
         // A number f64 cannot hold (1e-400, c=1e400): MPFR reads the text exactly.
-        Err(error) if case.read::<Float>(Precision::bits(64)).is_ok() => return Ok(Err(Fallback::CannotRead(error))),
+        Err(error) if case.at::<Float>(Precision::bits(64)).is_ok() => return Ok(Err(Fallback::CannotRead(error))),
         Err(error) => return Err(error.into()),
     };
     if let Some(fallback) = slope_change_differs_from_mpfr(case, &cycle, compliance.as_ref()) {
@@ -467,11 +467,11 @@ const COMPARED_LOADS: i64 = 16;
 /// underflow inside a compliance formula does (v' = a + b/(P + c) with c = 1e300 makes
 /// every change 0 in f64), and within f64 it may look like a legitimate linear v.
 fn slope_change_differs_from_mpfr(
-    case: &CaseText,
+    case: &CaseSpec,
     cycle: &LoadCycle<f64>,
     compliance: &dyn Compliance<f64>,
 ) -> Option<Fallback> {
-    let precise = case.read::<Float>(Precision::bits(64)).ok()?;
+    let precise = case.at::<Float>(Precision::bits(64)).ok()?;
     let p0 = cycle.mean_normal_load;
     let low = (p0 - cycle.normal_amplitude).min(cycle.permanent_stick_load());
     let high = p0 + cycle.normal_amplitude;
@@ -527,11 +527,11 @@ fn half_table_divisor(rows: usize) -> f64 {
 /// W in f64 from the tables' interpolant, for the absolute error its quadrature error
 /// plus the table's error leave (each segment likewise for its own).
 fn table_answer(
-    case: &CaseText,
+    case: &CaseSpec,
     tables: &[Arc<ComplianceTable>],
     deadline: Instant,
 ) -> Result<DissipationAnswer, ReferenceError> {
-    let Case { cycle, compliance } = case.read::<f64>(Precision::DOUBLE)?;
+    let Case { cycle, compliance } = case.at::<f64>(Precision::DOUBLE)?;
     cycle.validate().map_err(DissipationError::from)?;
     tables_cover(tables, &cycle)?;
     let in_f64 = |error: DissipationError| match error {
@@ -551,7 +551,9 @@ fn table_answer(
     let divisor = half_table_divisor(tables.iter().map(|t| t.loads.len()).min().unwrap_or(0));
     let (mut table_error, mut segment_shifts) = (0.0f64, Segments::from_fn(|_| 0.0f64));
     for interpolant in [TableInterpolant::HalfTable, TableInterpolant::OtherHalfTable] {
-        let half = parse_spec_with::<f64>(&case.compliance, Precision::DOUBLE, interpolant)
+        let half = case
+            .compliance()
+            .build_with::<f64>(Precision::DOUBLE, interpolant)
             .map_err(|e| ReferenceError::Input(e.into()))?;
         let moved = dissipation(&cycle, half.as_ref(), &options).map_err(in_f64)?;
         let uncertainty = moved.error_estimate + result.error_estimate;

@@ -14,11 +14,11 @@ use std::time::{Duration, Instant};
 use rug::Float;
 
 use crate::answer::{Answer, Provenance, Value};
+use crate::case::{Case, CaseSpec, CaseText, InputError};
 use crate::compliance::{check_admissible, TableError};
 use crate::cycle::ValidCycle;
 use crate::dissipation::{dissipation, Dissipation, DissipationError, ExactZero, Method, Options, Rules, Segments};
 use crate::dissipation_answer::exact_zero_answer;
-use crate::inputs::{Case, CaseText, InputError};
 use crate::quad::{FixedRule, RuleError};
 use crate::real::{Precision, Real};
 use crate::verified::{agreeing_digits, agreement_radius, verify, OutOfBudget, TwoPrecisions, Verified, GUARD_DIGITS};
@@ -82,20 +82,20 @@ pub enum ReferenceError {
 }
 
 fn attempt(
-    case: &CaseText,
+    case: &CaseSpec,
     precision: Precision,
     options: &Options<Float>,
 ) -> Result<Dissipation<Float>, ReferenceError> {
-    let Case { cycle, compliance } = case.read::<Float>(precision)?;
+    let Case { cycle, compliance } = case.at::<Float>(precision)?;
     Ok(dissipation(&cycle, compliance.as_ref(), options)?)
 }
 
 /// The digits that rounding inside the four-segment integrands costs on `case`: log10 of
 /// the product of its load rounding and slip-term cancellation amplifications (0 for a
 /// case that does not read).
-fn conditioning_digits(case: &CaseText) -> u32 {
+fn conditioning_digits(case: &CaseSpec) -> u32 {
     // In MPFR, whose range holds the amplification of a phase within 1e-300 of 0 or π.
-    let Ok(Case { cycle, .. }) = case.read::<Float>(Precision::bits(64)) else {
+    let Ok(Case { cycle, .. }) = case.at::<Float>(Precision::bits(64)) else {
         return 0;
     };
     let one = Float::with_val(64, 1);
@@ -113,7 +113,7 @@ fn conditioning_digits(case: &CaseText) -> u32 {
 /// first a single rule of twice each piece's points at the higher precision; if that does
 /// not agree (a piece that needed tanh–sinh, say), a full converged run there.
 struct FourSegmentW<'a> {
-    case: &'a CaseText,
+    case: &'a CaseSpec,
     /// The significant digits that must agree.
     required: u32,
     deadline: Instant,
@@ -204,10 +204,10 @@ impl TwoPrecisions for FourSegmentW<'_> {
     }
 }
 
-/// Why W is exactly 0 for a case the theory covers, if it is ([`CaseText::exact_zero`]);
+/// Why W is exactly 0 for a case the theory covers, if it is ([`CaseSpec::exact_zero`]);
 /// the cycle is validated and the compliance checked over its loads as for a computation.
-pub(crate) fn checked_exact_zero(case: &CaseText) -> Result<Option<ExactZero>, ReferenceError> {
-    let Some(reason) = case.exact_zero()? else {
+pub(crate) fn checked_exact_zero(case: &CaseSpec) -> Result<Option<ExactZero>, ReferenceError> {
+    let Some(reason) = case.exact_zero() else {
         return Ok(None);
     };
     check_case(case)?;
@@ -216,8 +216,8 @@ pub(crate) fn checked_exact_zero(case: &CaseText) -> Result<Option<ExactZero>, R
 
 /// Refuses a case outside the theory: its cycle is validated, and its compliance checked
 /// over the cycle's loads, in MPFR, as a computation of W checks them.
-pub(crate) fn check_case(case: &CaseText) -> Result<(), ReferenceError> {
-    let Case { cycle, compliance } = case.read::<Float>(Precision::bits(128))?;
+pub(crate) fn check_case(case: &CaseSpec) -> Result<(), ReferenceError> {
+    let Case { cycle, compliance } = case.at::<Float>(Precision::bits(128))?;
     let cycle = ValidCycle::new(cycle).map_err(DissipationError::from)?;
     let low = (cycle.mean_normal_load.clone() - &cycle.normal_amplitude).min_of(&cycle.permanent_stick_load());
     let high = cycle.mean_normal_load.clone() + &cycle.normal_amplitude;
@@ -226,9 +226,18 @@ pub(crate) fn check_case(case: &CaseText) -> Result<(), ReferenceError> {
 }
 
 /// W for `case` to `digits` verified significant digits, within `budget`, by [`verify`];
-/// an exact zero ([`CaseText::exact_zero`]) at once, as `0`.
+/// an exact zero ([`CaseSpec::exact_zero`]) at once, as `0`.
 pub fn verified_dissipation(
     case: &CaseText,
+    digits: u32,
+    budget: Duration,
+) -> Result<VerifiedDissipation, ReferenceError> {
+    verified_dissipation_of(&case.spec()?, digits, budget)
+}
+
+/// [`verified_dissipation`] of a case already read.
+pub fn verified_dissipation_of(
+    case: &CaseSpec,
     digits: u32,
     budget: Duration,
 ) -> Result<VerifiedDissipation, ReferenceError> {

@@ -98,7 +98,7 @@ pub fn run(args: &SimulateArgs) -> Result<String, Failure> {
         cycle.phase += std::f64::consts::PI;
         cycle.mean_tangential_load = -cycle.mean_tangential_load;
     }
-    batch::check_table_range(&args.case.compliance, &cycle)?;
+    batch::check_table_range(spec.compliance(), &cycle)?;
     let options = SimulationOptions {
         elements: args.elements,
         steps: args.steps,

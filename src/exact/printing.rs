@@ -12,7 +12,6 @@ use rug::{Float, Rational};
 use super::coefficient::closed_form_coefficient;
 use super::series::{partial_sums, series_coefficients, SeriesError};
 use crate::answer::{Answer, ExactReason, Provenance, Value};
-use crate::compliance::slope_polynomial_degree;
 use crate::inputs::{parse_phase, Case, CaseText, InputError};
 use crate::phase::{decimal, ExactPhase, PhaseError};
 use crate::real::{ParseRealError, Precision, Real};
@@ -429,8 +428,9 @@ pub fn partial_sum_answers(
     })?;
     #[cfg(not(feature = "certified"))]
     let enclosed = no_enclosure(case);
+    let spec = case.spec()?;
     let (sums, intervals) = certified_or_agreed(asked, digits, started + budget, enclosed, |precision| {
-        let Case { cycle, compliance } = case.read::<Float>(precision)?;
+        let Case { cycle, compliance } = spec.at::<Float>(precision)?;
         Ok(partial_sums(&cycle, compliance.as_ref(), order)?)
     })
     .map_err(|error| match error {
@@ -441,7 +441,7 @@ pub fn partial_sum_answers(
         }),
         other => other,
     })?;
-    let degree = slope_polynomial_degree(&case.compliance);
+    let degree = spec.compliance().slope_polynomial_degree();
     let differences = sums
         .iter()
         .zip(&intervals)

@@ -194,22 +194,3 @@ impl fmt::Display for ComplianceSpec {
 pub fn parse_spec<R: Real>(spec: &str, precision: Precision) -> Result<Box<dyn Compliance<R>>, SpecError> {
     ComplianceSpec::parse(spec)?.build(precision)
 }
-
-/// Parses a SPEC at the given precision, its tables (if any) evaluated by `interpolant`.
-// For the lead at merge: callers outside this module (src/batch.rs) move to
-// `ComplianceSpec::build_with`; then remove.
-pub fn parse_spec_with<R: Real>(
-    spec: &str,
-    precision: Precision,
-    interpolant: TableInterpolant,
-) -> Result<Box<dyn Compliance<R>>, SpecError> {
-    ComplianceSpec::parse(spec)?.build_with(precision, interpolant)
-}
-
-/// The tables a SPEC's `table:` terms name, read (once per process) and validated; a
-/// SPEC that does not parse otherwise names none here (its parser says why).
-// For the lead at merge: callers (src/batch.rs, src/catalogue.rs) move to
-// `ComplianceSpec::tables`; then remove.
-pub fn tables_in_spec(spec: &str) -> Result<Vec<Arc<ComplianceTable>>, TableError> {
-    parse::table_terms(spec)
-}

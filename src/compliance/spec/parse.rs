@@ -2,9 +2,8 @@
 //! parameters read as exact decimals, tables read once.
 
 use super::{Exact, SpecError, SpecReadError, Term};
-use crate::compliance::table::{cached_table, parse_table_term, ComplianceTable, TableError};
+use crate::compliance::table::{cached_table, parse_table_term, TableError};
 use crate::phase::decimal;
-use std::sync::Arc;
 
 /// The terms of a SPEC, or why it is not one.
 pub(super) fn terms(spec: &str) -> Result<Vec<Term>, SpecReadError> {
@@ -21,20 +20,6 @@ pub(super) fn terms(spec: &str) -> Result<Vec<Term>, SpecReadError> {
             })
         })
         .collect()
-}
-
-/// The tables of a SPEC's well-formed `table:` terms, whatever else is wrong with it.
-pub(super) fn table_terms(spec: &str) -> Result<Vec<Arc<ComplianceTable>>, TableError> {
-    let mut tables = Vec::new();
-    for term in split_terms(spec) {
-        let body = term.split_once('*').map_or(term, |(_, body)| body).trim();
-        if let Some(("table", text)) = body.split_once(':').map(|(f, t)| (f.trim(), t)) {
-            if let Ok((path, smoothing)) = parse_table_term(text) {
-                tables.push(cached_table(&path, smoothing)?);
-            }
-        }
-    }
-    Ok(tables)
 }
 
 /// Splits at each '+' that joins two terms, not at the sign of an exponent (1e+3).
