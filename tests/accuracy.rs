@@ -94,14 +94,7 @@ fn accuracy_writes_all_three_files_or_none() {
         .arg(&dir)
         .file_size_limit_kib(64)
         .output();
-    assert_eq!(
-        output.status.code(),
-        Some(1),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    assert!(output.stdout.is_empty());
-    let stderr = String::from_utf8_lossy(&output.stderr);
+    let stderr = common::failed_with_one(&output);
     assert_eq!(stderr.lines().count(), 1, "{stderr}");
     assert!(
         stderr.contains("accuracy.png") && stderr.contains("no file of this run was kept"),

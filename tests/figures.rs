@@ -690,14 +690,7 @@ fn figures_that_cannot_be_written_exit_1_and_leave_no_file_of_the_run() {
         .arg(&dir)
         .file_size_limit_kib(100)
         .output();
-    assert_eq!(
-        output.status.code(),
-        Some(1),
-        "{}",
-        String::from_utf8_lossy(&output.stderr)
-    );
-    assert!(output.stdout.is_empty());
-    let stderr = String::from_utf8_lossy(&output.stderr);
+    let stderr = common::failed_with_one(&output);
     assert_eq!(stderr.lines().count(), 1, "{stderr}");
     assert!(stderr.contains("no file of this run was kept"), "{stderr}");
     let left: Vec<_> = std::fs::read_dir(&dir).unwrap().collect();

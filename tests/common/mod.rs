@@ -318,6 +318,19 @@ pub fn microslip_bounded<S: AsRef<std::ffi::OsStr>>(
     run(args).stdin(input).within(limit)
 }
 
+/// The stderr of a run that failed with exit code 1 and printed nothing on stdout.
+#[allow(dead_code)] // not every test binary checks a failed run
+pub fn failed_with_one(output: &std::process::Output) -> String {
+    assert_eq!(
+        output.status.code(),
+        Some(1),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    assert!(output.stdout.is_empty());
+    String::from_utf8_lossy(&output.stderr).into_owned()
+}
+
 /// A proptest runner with a fixed seed, so that a run is repeatable: `PROPTEST_CASES`
 /// replaces `default_cases`, and `MICROSLIP_FUZZ_SEED` shifts the seed for a fresh draw.
 #[allow(dead_code)] // not every test binary runs property tests
