@@ -5,9 +5,9 @@
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use microslip::accuracy::standard_cases;
+use microslip::case::{Case, CaseText};
 use microslip::dissipation::{dissipation, Options};
 use microslip::dissipation_answer::dissipation_answer;
-use microslip::inputs::{Case, CaseText};
 use microslip::quad::gauss_legendre::{clear_node_cache, compute_node_table, node_table};
 use microslip::real::{Precision, Real};
 use microslip::reference::verified_dissipation;

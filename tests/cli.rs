@@ -889,7 +889,7 @@ fn dissipation_json(flags: &[&str]) -> serde_json::Value {
 }
 
 /// The case of the acceptance flags with `flags` replacing some, as decimal text.
-fn case_text(flags: &[(&str, &str)]) -> microslip::inputs::CaseText {
+fn case_text(flags: &[(&str, &str)]) -> microslip::case::CaseText {
     let value = |flag: &str| {
         flags
             .iter()
@@ -897,7 +897,7 @@ fn case_text(flags: &[(&str, &str)]) -> microslip::inputs::CaseText {
             .find(|(f, _)| *f == flag)
             .map(|(_, v)| v.to_string())
     };
-    microslip::inputs::CaseText {
+    microslip::case::CaseText {
         p0: value("--p0").unwrap(),
         p1: value("--p1").unwrap(),
         q0: value("--q0").unwrap_or_else(|| "0".into()),

@@ -13,8 +13,8 @@
 
 use std::time::{Duration, Instant};
 
+use microslip::case::{Case, CaseText};
 use microslip::dissipation::{dissipation, Options};
-use microslip::inputs::{Case, CaseText};
 use microslip::real::{Precision, Real};
 use proptest::prelude::*;
 use proptest::test_runner::{TestCaseError, TestRunner};

@@ -5,10 +5,10 @@
 
 use std::time::Duration;
 
+use microslip::case::{CaseText, InputError};
 use microslip::compliance::parse_spec;
 use microslip::dissipation::{dissipation, DissipationError, Options};
 use microslip::dissipation_answer::dissipation_report;
-use microslip::inputs::{CaseText, InputError};
 use microslip::real::{Precision, Real};
 use microslip::reference::{verified_dissipation, ReferenceError};
 use rug::float::Constant;

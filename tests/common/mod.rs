@@ -1,7 +1,7 @@
 //! What several test files share.
 
+use microslip::case::CaseText;
 use microslip::cycle::LoadCycle;
-use microslip::inputs::CaseText;
 use microslip::real::Real;
 
 /// The first acceptance case of the project: P0 = f = λ = 1, P1 = 0.4, Q1 = 0.5, Q0 = 0
