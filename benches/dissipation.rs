@@ -5,7 +5,7 @@
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use microslip::accuracy::standard_cases;
-use microslip::case::{Case, CaseText};
+use microslip::case::Case;
 use microslip::dissipation::{dissipation, Options};
 use microslip::dissipation_answer::dissipation_answer;
 use microslip::quad::gauss_legendre::{clear_node_cache, compute_node_table, node_table};
@@ -14,6 +14,10 @@ use microslip::reference::verified_dissipation;
 use microslip::simulate::{simulate, SimulationOptions};
 use rug::Float;
 use std::time::Duration;
+
+// The test builder of cases, shared with the tests.
+#[path = "../tests/common/mod.rs"]
+mod common;
 
 fn bench_dissipation(c: &mut Criterion) {
     for case in standard_cases(false) {
@@ -44,17 +48,7 @@ fn bench_dissipation(c: &mut Criterion) {
 /// The acceptance case with the general power law v' = P⁻¹ (`power:c=1,beta=-1`, the same
 /// compliance as Persson's with γσ = 1) in f64 with its error estimate. Goal: ≤ 10 µs.
 fn bench_power_law_f64(c: &mut Criterion) {
-    let text = CaseText {
-        p0: "1".into(),
-        p1: "0.4".into(),
-        q0: "0".into(),
-        q1: "0.5".into(),
-        phi: "0.4pi".into(),
-        friction: "1".into(),
-        lambda: Some("1".into()),
-        nu: None,
-        compliance: "power:c=1,beta=-1".into(),
-    };
+    let text = common::case().compliance("power:c=1,beta=-1").text();
     let Case { cycle, compliance } = text.read::<f64>(Precision::DOUBLE).unwrap();
     c.bench_function("dissipation/power-law-acceptance/f64", |b| {
         b.iter(|| {
@@ -80,17 +74,14 @@ fn bench_single_runs(c: &mut Criterion) {
         ("hertz", "0.1", "0.3", "0.3pi", "0.5", "1.2", "hertz:r=1,estar=1"),
     ];
     for (name, q0, q1, phi, friction, lambda, compliance) in cases {
-        let text = CaseText {
-            p0: "1".into(),
-            p1: "0.4".into(),
-            q0: q0.into(),
-            q1: q1.into(),
-            phi: phi.into(),
-            friction: friction.into(),
-            lambda: Some(lambda.into()),
-            nu: None,
-            compliance: compliance.into(),
-        };
+        let text = common::case()
+            .q0(q0)
+            .q1(q1)
+            .phi(phi)
+            .friction(friction)
+            .lambda(lambda)
+            .compliance(compliance)
+            .text();
         for digits in [15u32, 30, 50, 100] {
             let precision = Precision::decimal_digits(digits + 10);
             let Case { cycle, compliance } = text.read::<Float>(precision).unwrap();
@@ -177,17 +168,14 @@ fn bench_simulation(c: &mut Criterion) {
         ),
     ];
     for (name, p1, q1, phi, friction, lambda, compliance) in cases {
-        let text = CaseText {
-            p0: "1".into(),
-            p1: p1.into(),
-            q0: "0".into(),
-            q1: q1.into(),
-            phi: phi.into(),
-            friction: friction.into(),
-            lambda: Some(lambda.into()),
-            nu: None,
-            compliance: compliance.into(),
-        };
+        let text = common::case()
+            .p1(p1)
+            .q1(q1)
+            .phi(phi)
+            .friction(friction)
+            .lambda(lambda)
+            .compliance(compliance)
+            .text();
         let Case { cycle, compliance } = text.read::<f64>(Precision::DOUBLE).unwrap();
         group.bench_function(name, |b| {
             b.iter(|| {
@@ -214,17 +202,12 @@ fn bench_near_separation(c: &mut Criterion) {
         ("1e-10", "0.9999999999", "3e-12"),
         ("1e-15", "0.999999999999999", "3e-17"),
     ] {
-        let text = CaseText {
-            p0: "1".into(),
-            p1: p1.into(),
-            q0: "0".into(),
-            q1: q1.into(),
-            phi: "1.1".into(),
-            friction: "1".into(),
-            lambda: Some("1".into()),
-            nu: None,
-            compliance: "power:c=1,beta=-1".into(),
-        };
+        let text = common::case()
+            .p1(p1)
+            .q1(q1)
+            .phi("1.1")
+            .compliance("power:c=1,beta=-1")
+            .text();
         let budget = Duration::from_secs(60);
         group.bench_function(format!("{distance}/command"), |b| {
             b.iter(|| dissipation_answer(&text, None, budget).unwrap().digits())
