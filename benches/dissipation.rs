@@ -68,20 +68,23 @@ fn bench_single_runs(c: &mut Criterion) {
     group.sample_size(10);
     group.warm_up_time(Duration::from_millis(300));
     group.measurement_time(Duration::from_secs(1));
+    // Each case as it differs from the acceptance case.
     let cases = [
-        ("persson", "0", "0.5", "0.4pi", "1", "1", "persson:gamma=1,sigma=1"),
-        ("power", "0", "0.5", "0.4pi", "1", "1", "power:c=0.5,beta=-0.5"),
-        ("hertz", "0.1", "0.3", "0.3pi", "0.5", "1.2", "hertz:r=1,estar=1"),
+        ("persson", common::case()),
+        ("power", common::case().compliance("power:c=0.5,beta=-0.5")),
+        (
+            "hertz",
+            common::case()
+                .q0("0.1")
+                .q1("0.3")
+                .phi("0.3pi")
+                .friction("0.5")
+                .lambda("1.2")
+                .compliance("hertz:r=1,estar=1"),
+        ),
     ];
-    for (name, q0, q1, phi, friction, lambda, compliance) in cases {
-        let text = common::case()
-            .q0(q0)
-            .q1(q1)
-            .phi(phi)
-            .friction(friction)
-            .lambda(lambda)
-            .compliance(compliance)
-            .text();
+    for (name, case) in cases {
+        let text = case.text();
         for digits in [15u32, 30, 50, 100] {
             let precision = Precision::decimal_digits(digits + 10);
             let Case { cycle, compliance } = text.read::<Float>(precision).unwrap();
@@ -148,34 +151,20 @@ fn bench_simulation(c: &mut Criterion) {
     // The acceptance case, and the steep power law near separation that was the worst of
     // 40 random cases before the grids followed the slip fronts.
     let cases = [
-        (
-            "acceptance-persson",
-            "0.4",
-            "0.5",
-            "0.4pi",
-            "1",
-            "1",
-            "persson:gamma=1,sigma=1",
-        ),
+        ("acceptance-persson", common::case()),
         (
             "steep-power-law",
-            "0.8257076",
-            "0.117891",
-            "0.6973478pi",
-            "0.5950675",
-            "1.213117",
-            "power:c=2.589146,beta=-0.4994542 + power:c=0.2205953,beta=-1.971846",
+            common::case()
+                .p1("0.8257076")
+                .q1("0.117891")
+                .phi("0.6973478pi")
+                .friction("0.5950675")
+                .lambda("1.213117")
+                .compliance("power:c=2.589146,beta=-0.4994542 + power:c=0.2205953,beta=-1.971846"),
         ),
     ];
-    for (name, p1, q1, phi, friction, lambda, compliance) in cases {
-        let text = common::case()
-            .p1(p1)
-            .q1(q1)
-            .phi(phi)
-            .friction(friction)
-            .lambda(lambda)
-            .compliance(compliance)
-            .text();
+    for (name, case) in cases {
+        let text = case.text();
         let Case { cycle, compliance } = text.read::<f64>(Precision::DOUBLE).unwrap();
         group.bench_function(name, |b| {
             b.iter(|| {
