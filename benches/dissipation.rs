@@ -5,15 +5,19 @@
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use microslip::accuracy::standard_cases;
+use microslip::case::Case;
 use microslip::dissipation::{dissipation, Options};
 use microslip::dissipation_answer::dissipation_answer;
-use microslip::inputs::{Case, CaseText};
 use microslip::quad::gauss_legendre::{clear_node_cache, compute_node_table, node_table};
 use microslip::real::{Precision, Real};
 use microslip::reference::verified_dissipation;
 use microslip::simulate::{simulate, SimulationOptions};
 use rug::Float;
 use std::time::Duration;
+
+// The test builder of cases, shared with the tests.
+#[path = "../tests/common/mod.rs"]
+mod common;
 
 fn bench_dissipation(c: &mut Criterion) {
     for case in standard_cases(false) {
@@ -44,17 +48,7 @@ fn bench_dissipation(c: &mut Criterion) {
 /// The acceptance case with the general power law v' = P⁻¹ (`power:c=1,beta=-1`, the same
 /// compliance as Persson's with γσ = 1) in f64 with its error estimate. Goal: ≤ 10 µs.
 fn bench_power_law_f64(c: &mut Criterion) {
-    let text = CaseText {
-        p0: "1".into(),
-        p1: "0.4".into(),
-        q0: "0".into(),
-        q1: "0.5".into(),
-        phi: "0.4pi".into(),
-        friction: "1".into(),
-        lambda: Some("1".into()),
-        nu: None,
-        compliance: "power:c=1,beta=-1".into(),
-    };
+    let text = common::case().compliance("power:c=1,beta=-1").text();
     let Case { cycle, compliance } = text.read::<f64>(Precision::DOUBLE).unwrap();
     c.bench_function("dissipation/power-law-acceptance/f64", |b| {
         b.iter(|| {
@@ -74,23 +68,23 @@ fn bench_single_runs(c: &mut Criterion) {
     group.sample_size(10);
     group.warm_up_time(Duration::from_millis(300));
     group.measurement_time(Duration::from_secs(1));
+    // Each case as it differs from the acceptance case.
     let cases = [
-        ("persson", "0", "0.5", "0.4pi", "1", "1", "persson:gamma=1,sigma=1"),
-        ("power", "0", "0.5", "0.4pi", "1", "1", "power:c=0.5,beta=-0.5"),
-        ("hertz", "0.1", "0.3", "0.3pi", "0.5", "1.2", "hertz:r=1,estar=1"),
+        ("persson", common::case()),
+        ("power", common::case().compliance("power:c=0.5,beta=-0.5")),
+        (
+            "hertz",
+            common::case()
+                .q0("0.1")
+                .q1("0.3")
+                .phi("0.3pi")
+                .friction("0.5")
+                .lambda("1.2")
+                .compliance("hertz:r=1,estar=1"),
+        ),
     ];
-    for (name, q0, q1, phi, friction, lambda, compliance) in cases {
-        let text = CaseText {
-            p0: "1".into(),
-            p1: "0.4".into(),
-            q0: q0.into(),
-            q1: q1.into(),
-            phi: phi.into(),
-            friction: friction.into(),
-            lambda: Some(lambda.into()),
-            nu: None,
-            compliance: compliance.into(),
-        };
+    for (name, case) in cases {
+        let text = case.text();
         for digits in [15u32, 30, 50, 100] {
             let precision = Precision::decimal_digits(digits + 10);
             let Case { cycle, compliance } = text.read::<Float>(precision).unwrap();
@@ -157,37 +151,20 @@ fn bench_simulation(c: &mut Criterion) {
     // The acceptance case, and the steep power law near separation that was the worst of
     // 40 random cases before the grids followed the slip fronts.
     let cases = [
-        (
-            "acceptance-persson",
-            "0.4",
-            "0.5",
-            "0.4pi",
-            "1",
-            "1",
-            "persson:gamma=1,sigma=1",
-        ),
+        ("acceptance-persson", common::case()),
         (
             "steep-power-law",
-            "0.8257076",
-            "0.117891",
-            "0.6973478pi",
-            "0.5950675",
-            "1.213117",
-            "power:c=2.589146,beta=-0.4994542 + power:c=0.2205953,beta=-1.971846",
+            common::case()
+                .p1("0.8257076")
+                .q1("0.117891")
+                .phi("0.6973478pi")
+                .friction("0.5950675")
+                .lambda("1.213117")
+                .compliance("power:c=2.589146,beta=-0.4994542 + power:c=0.2205953,beta=-1.971846"),
         ),
     ];
-    for (name, p1, q1, phi, friction, lambda, compliance) in cases {
-        let text = CaseText {
-            p0: "1".into(),
-            p1: p1.into(),
-            q0: "0".into(),
-            q1: q1.into(),
-            phi: phi.into(),
-            friction: friction.into(),
-            lambda: Some(lambda.into()),
-            nu: None,
-            compliance: compliance.into(),
-        };
+    for (name, case) in cases {
+        let text = case.text();
         let Case { cycle, compliance } = text.read::<f64>(Precision::DOUBLE).unwrap();
         group.bench_function(name, |b| {
             b.iter(|| {
@@ -214,17 +191,12 @@ fn bench_near_separation(c: &mut Criterion) {
         ("1e-10", "0.9999999999", "3e-12"),
         ("1e-15", "0.999999999999999", "3e-17"),
     ] {
-        let text = CaseText {
-            p0: "1".into(),
-            p1: p1.into(),
-            q0: "0".into(),
-            q1: q1.into(),
-            phi: "1.1".into(),
-            friction: "1".into(),
-            lambda: Some("1".into()),
-            nu: None,
-            compliance: "power:c=1,beta=-1".into(),
-        };
+        let text = common::case()
+            .p1(p1)
+            .q1(q1)
+            .phi("1.1")
+            .compliance("power:c=1,beta=-1")
+            .text();
         let budget = Duration::from_secs(60);
         group.bench_function(format!("{distance}/command"), |b| {
             b.iter(|| dissipation_answer(&text, None, budget).unwrap().digits())

@@ -154,8 +154,9 @@ impl RowThreads {
     }
 
     /// `work()` on a row thread, or None when it has not answered within `budget` and
-    /// [`ROW_GRACE`]: the computation checks its deadline between steps, and a step that
-    /// outlasts it is left to finish on its own rather than hold the batch.
+    /// [`ROW_GRACE`]: the computation keeps its deadline itself, but a step already under
+    /// way (one Arb integration, a rule whose cost was predicted short) cannot be
+    /// stopped, and is left to finish on its own rather than hold the batch.
     fn within_budget<T: Send + 'static>(
         &self,
         budget: Duration,

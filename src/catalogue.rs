@@ -13,9 +13,9 @@ use std::time::{Duration, Instant};
 use serde::{Deserialize, Serialize};
 
 use crate::batch::CaseError;
+use crate::case::CaseText;
 use crate::dissipation_answer::dissipation_answer;
 use crate::files::{write_text_atomically, OutputError};
-use crate::inputs::CaseText;
 
 /// One catalogue case and, once computed, its reference value.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]

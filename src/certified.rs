@@ -30,7 +30,7 @@ use crate::dissipation::closed_forms::{
 };
 use crate::dissipation::slope::knot_offsets;
 use crate::dissipation::{Segment, SegmentIntegrands, Segments};
-use crate::phase::{ExactPhase, PhaseError};
+use crate::phase::{ExactPhase, PhaseError, ReducedPhase};
 use crate::quad::sinh_map::resolve_peaks;
 use crate::quad::Piece;
 use crate::real::{Precision, Real};
@@ -47,6 +47,8 @@ pub struct Enclosure {
     pub precision: Precision,
     /// How many pieces were integrated.
     pub pieces: usize,
+    /// The kind of cycle, which chose the formula enclosed.
+    pub kind: CycleKind,
 }
 
 /// W to a number of certified digits.
@@ -152,6 +154,7 @@ pub fn enclose_dissipation(
         segments: Segments::from_fn(|_| zero.clone()),
         precision,
         pieces: 0,
+        kind: valid.kind(),
     };
     let (sums, pieces) = match valid.kind() {
         // Q1 = 0 exactly: nothing slips back and forth, W = 0 exactly.
@@ -183,6 +186,7 @@ pub fn enclose_dissipation(
         segments,
         precision,
         pieces,
+        kind: valid.kind(),
     })
 }
 
@@ -475,15 +479,16 @@ const MAX_PHASE_BITS: u32 = 1 << 22;
 /// (−π/2, π/2]; the cancellation of φ − nπ (`3.141592653589793` − π ≈ −1.2e−16) is paid
 /// for with bits, and an offset from an integer multiple (`pi-1e-100`) is the exact
 /// rational itself.
-pub fn phase_offset(phase: &ExactPhase, precision: Precision) -> Result<(Ball, bool), PhaseError> {
-    let (mut reverses, mut rest, offset) = phase.offset_parts()?;
+pub fn phase_offset(phase: &ReducedPhase, precision: Precision) -> (Ball, bool) {
+    let (mut reverses, rest, offset) = phase.offset_parts();
+    let mut rest = rest.clone();
     // ψ = −π/2 exactly is taken as π/2 (n − 1 in place of n): the generic code reads a
     // negative offset as one below π, and at −π/2 exactly it could not decide that.
     if rest == Rational::from((-1, 2)) && *offset == 0 {
         rest = Rational::from((1, 2));
         reverses = !reverses;
     }
-    Ok((enclose_pi_multiple(&rest, offset, precision), reverses))
+    (enclose_pi_multiple(&rest, offset, precision), reverses)
 }
 
 /// A ball that contains mπ + x with the relative accuracy of `precision` (the working

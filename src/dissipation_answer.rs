@@ -339,14 +339,7 @@ mod certified {
             segments: Some(Segments::from_fn(|segment| value(enclosure.segments.get(segment)))),
             digits_requested: Some(digits),
             provenance: Provenance::Certified { bits },
-            // The cycle's kind, as the enclosure chose its formula.
-            method: Some(if case.has_constant_normal_load() {
-                Method::ConstantNormalLoad
-            } else if case.phase().is_in_phase() {
-                Method::InPhase
-            } else {
-                Method::FourSegment
-            }),
+            method: Some(Method::from(enclosure.kind)),
         })
     }
 }

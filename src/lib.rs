@@ -54,8 +54,6 @@ mod decimal;
 pub mod dissipation;
 pub mod dissipation_answer;
 pub mod exact;
-#[doc(hidden)]
-pub mod inputs;
 pub mod real;
 pub mod reference;
 pub mod simulate;

@@ -148,13 +148,6 @@ impl ExactPhase {
         .to_f64()
     }
 
-    /// φ = nπ + ψ with ψ = mπ + x ∈ [−π/2, π/2]: whether n is odd, and the exact m and x
-    /// (for arithmetic that encloses ψ from its exact parts); refused beyond [`MAX_PHASE`].
-    pub fn offset_parts(&self) -> Result<(bool, Rational, &Rational), PhaseError> {
-        let (reverses, multiple, _) = self.nearest_half_turns()?;
-        Ok((reverses, multiple, &self.offset))
-    }
-
     /// n = round(φ/π): whether it is odd, m = k − n, and the bits of φ's integer part.
     fn nearest_half_turns(&self) -> Result<(bool, Rational, u32), PhaseError> {
         let estimate = self.to_f64();
@@ -204,6 +197,12 @@ impl ReducedPhase {
     /// n is odd: φ = ψ + nπ describes the mirror image of the cycle at ψ.
     pub fn reverses(&self) -> bool {
         self.reverses
+    }
+
+    /// φ = nπ + ψ with ψ = mπ + x ∈ [−π/2, π/2]: whether n is odd, and the exact m and x
+    /// (for arithmetic that encloses ψ from its exact parts).
+    pub fn offset_parts(&self) -> (bool, &Rational, &Rational) {
+        (self.reverses, &self.multiple, &self.offset)
     }
 
     /// ψ as a multiple-precision number of `bits` bits, correctly rounded where ψ is exact

@@ -10,6 +10,11 @@ fn microslip(args: &[&str], stdin: Option<&str>) -> Output {
     common::run(args).stdin(stdin.unwrap_or("")).output()
 }
 
+/// `microslip batch` from the file `input` to the file `output`.
+fn batch_files(input: &Path, output: &Path) -> common::Run {
+    common::run(["batch", "--input", &path_text(input), "--output", &path_text(output)])
+}
+
 fn scratch(name: &str) -> PathBuf {
     let dir = std::env::temp_dir().join(format!("microslip-batch-{}-{name}", std::process::id()));
     std::fs::create_dir_all(&dir).expect("temp dir");
@@ -232,16 +237,7 @@ fn bad_rows_are_reported_in_their_row_and_the_others_computed() {
     let input_path = dir.join("input.csv");
     std::fs::write(&input_path, &input).expect("write");
     let output_path = dir.join("out.csv");
-    let output = microslip(
-        &[
-            "batch",
-            "--input",
-            &path_text(&input_path),
-            "--output",
-            &path_text(&output_path),
-        ],
-        None,
-    );
+    let output = batch_files(&input_path, &output_path).output();
     let stderr = common::failed_with_one(&output);
     assert!(stderr.contains("8 failed"), "{stderr}");
     let mut reader = csv::Reader::from_path(&output_path).expect("output");
@@ -307,17 +303,10 @@ fn all_rows_computed_exits_0_and_replaces_the_output_whole() {
         .collect();
     let input_path = dir.join("good.csv");
     std::fs::write(&input_path, good).expect("write");
-    let output = common::run([
-        "batch",
-        "--input",
-        &path_text(&input_path),
-        "--output",
-        &path_text(&output_path),
-        "--format",
-        "jsonl",
-    ])
-    .current_dir(env!("CARGO_MANIFEST_DIR"))
-    .output();
+    let output = batch_files(&input_path, &output_path)
+        .args(["--format", "jsonl"])
+        .current_dir(env!("CARGO_MANIFEST_DIR"))
+        .output();
     assert_eq!(
         output.status.code(),
         Some(0),
@@ -354,16 +343,7 @@ fn an_unreadable_input_exits_2_and_writes_nothing() {
         if let Some(text) = input {
             std::fs::write(&input_path, text).expect("write");
         }
-        let output = microslip(
-            &[
-                "batch",
-                "--input",
-                &path_text(&input_path),
-                "--output",
-                &path_text(&output_path),
-            ],
-            None,
-        );
+        let output = batch_files(&input_path, &output_path).output();
         assert_eq!(output.status.code(), Some(2), "{name}");
         assert!(output.stdout.is_empty(), "{name}");
         let stderr = String::from_utf8_lossy(&output.stderr);

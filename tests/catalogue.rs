@@ -5,9 +5,9 @@
 use std::path::Path;
 use std::time::Duration;
 
+use microslip::case::Case;
 use microslip::catalogue::{self, CatalogueEntry};
 use microslip::dissipation::{dissipation, DissipationError, Options};
-use microslip::inputs::Case;
 use microslip::real::Precision;
 use microslip::reference::{verified_dissipation, ReferenceError};
 

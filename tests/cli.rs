@@ -889,7 +889,7 @@ fn dissipation_json(flags: &[&str]) -> serde_json::Value {
 }
 
 /// The case of the acceptance flags with `flags` replacing some, as decimal text.
-fn case_text(flags: &[(&str, &str)]) -> microslip::inputs::CaseText {
+fn case_text(flags: &[(&str, &str)]) -> microslip::case::CaseText {
     let value = |flag: &str| {
         flags
             .iter()
@@ -897,7 +897,7 @@ fn case_text(flags: &[(&str, &str)]) -> microslip::inputs::CaseText {
             .find(|(f, _)| *f == flag)
             .map(|(_, v)| v.to_string())
     };
-    microslip::inputs::CaseText {
+    microslip::case::CaseText {
         p0: value("--p0").unwrap(),
         p1: value("--p1").unwrap(),
         q0: value("--q0").unwrap_or_else(|| "0".into()),
@@ -986,28 +986,11 @@ fn a_phase_near_pi_gets_proven_relative_digits_without_digits_asked() {
 #[test]
 fn the_misrounded_f64_reproducers_print_only_digits_of_w() {
     use microslip::reference::verified_dissipation;
-    for flags in [
-        vec![
-            ("--p1", "0.82575"),
-            ("--q1", "0.25651"),
-            ("--phi", "1.7464"),
-            ("--friction", "1.217"),
-            ("--lambda", "1.78"),
-        ],
-        vec![
-            ("--p1", "0.3"),
-            ("--q0", "0.12526586642305143"),
-            ("--q1", "0.7650853137335195"),
-            ("--phi", "1"),
-            ("--friction", "0.8"),
-            ("--lambda", "1.2"),
-            ("--compliance", "power:c=1,beta=-3"),
-        ],
-    ] {
+    for flags in common::MISROUNDED_F64_CASES {
         let args: Vec<&str> = flags.iter().flat_map(|(f, v)| [*f, *v]).collect();
         let printed = dissipation_json(&args);
         let digits = printed["digits"].as_u64().unwrap() as usize;
-        let reference = verified_dissipation(&case_text(&flags), 30, std::time::Duration::from_secs(120))
+        let reference = verified_dissipation(&case_text(flags), 30, std::time::Duration::from_secs(120))
             .unwrap()
             .total;
         let reference: f64 = reference.parse().unwrap();

@@ -13,8 +13,8 @@
 
 use std::time::{Duration, Instant};
 
+use microslip::case::{Case, CaseText};
 use microslip::dissipation::{dissipation, Options};
-use microslip::inputs::{Case, CaseText};
 use microslip::real::{Precision, Real};
 use proptest::prelude::*;
 use proptest::test_runner::{TestCaseError, TestRunner};
@@ -481,27 +481,7 @@ fn the_last_digit_of_w_is_rounded_correctly_where_f64_printed_it_wrong() {
     let flags = |list: &[(&str, &str)]| CaseFlags {
         flags: list.iter().map(|(f, v)| (f.to_string(), v.to_string())).collect(),
     };
-    let cases = [
-        flags(&[
-            ("--p0", "1"),
-            ("--p1", "0.82575"),
-            ("--q1", "0.25651"),
-            ("--phi", "1.7464"),
-            ("--friction", "1.217"),
-            ("--lambda", "1.78"),
-            ("--compliance", "persson:gamma=1,sigma=1"),
-        ]),
-        flags(&[
-            ("--p0", "1"),
-            ("--p1", "0.3"),
-            ("--q0", "0.12526586642305143"),
-            ("--q1", "0.7650853137335195"),
-            ("--phi", "1"),
-            ("--friction", "0.8"),
-            ("--lambda", "1.2"),
-            ("--compliance", "power:c=1,beta=-3"),
-        ]),
-    ];
+    let cases = common::MISROUNDED_F64_CASES.map(flags);
     // The values of the report (Arb): the first is printed to 12 digits, whose 12th is 5.
     let expected = ["5.25214879245e-1", "1.40180102085e4"];
     for (case, expected) in cases.iter().zip(expected) {

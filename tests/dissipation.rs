@@ -379,7 +379,7 @@ fn the_f64_error_estimate_bounds_the_f64_error_against_256_bits_on_random_cases(
     // 1e-60: the printing rule rounds the interval W ± estimate, so an estimate short of
     // the true error would print wrong digits. MICROSLIP_ESTIMATE_CASES=N draws N cases
     // (proofs/printing.md: 4,000); the worst ratio of error to estimate is printed.
-    use microslip::inputs::Case;
+    use microslip::case::Case;
     use proptest::prop_assert;
     use proptest::test_runner::{Config, RngAlgorithm, TestRng, TestRunner};
     let cases = std::env::var("MICROSLIP_ESTIMATE_CASES")

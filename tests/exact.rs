@@ -93,7 +93,7 @@ fn closed_form_coefficient_equals_the_quadrature_to_100_digits() {
     let precision = Precision::bits(420);
     for (rho_text, phi_text) in grid() {
         let rho = Float::parse_decimal(rho_text, precision).unwrap();
-        let (phi, _) = microslip::inputs::parse_phase::<Float>(phi_text, precision).unwrap();
+        let (phi, _) = microslip::case::parse_phase::<Float>(phi_text, precision).unwrap();
         let closed = closed_form_coefficient(&rho, &phi);
         let (quadrature, error) = coefficient_with_error(&rho, &phi, Options::default()).unwrap();
         let agreed = digits(&closed, &quadrature, &closed.clone().abs());
@@ -109,7 +109,7 @@ fn closed_form_coefficient_equals_the_quadrature_to_100_digits() {
 fn closed(rho: &str, phi: &str, bits: u32) -> Float {
     let precision = Precision::bits(bits);
     let rho = Float::parse_decimal(rho, precision).unwrap();
-    let (phi, _) = microslip::inputs::parse_phase::<Float>(phi, precision).unwrap();
+    let (phi, _) = microslip::case::parse_phase::<Float>(phi, precision).unwrap();
     closed_form_coefficient(&rho, &phi)
 }
 

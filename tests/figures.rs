@@ -6,6 +6,7 @@ mod common;
 use std::sync::OnceLock;
 
 use microslip::accuracy::Measurement;
+use microslip::case::Case;
 use microslip::compliance::Polynomial;
 use microslip::cycle::{CycleError, LoadCycle};
 use microslip::dissipation::{dissipation, Options};
@@ -15,7 +16,6 @@ use microslip::figures::evaluate::{
     Point,
 };
 use microslip::figures::{compute, Figures, Progress, Style};
-use microslip::inputs::Case;
 use microslip::plot::layout::{Frame, Rect};
 use microslip::plot::{accuracy_picture, cycle_picture, Format};
 use microslip::real::{Precision, Real};

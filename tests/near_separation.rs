@@ -10,9 +10,9 @@
 use std::time::Duration;
 
 use microslip::answer::Provenance;
+use microslip::case::{Case, CaseText};
 use microslip::dissipation::{dissipation, DissipationError, Options, Segment, SegmentIntegrands};
 use microslip::dissipation_answer::dissipation_report;
-use microslip::inputs::{Case, CaseText};
 use microslip::quad::gauss_legendre::node_table;
 use microslip::quad::RuleError;
 use microslip::real::Precision;

@@ -5,10 +5,10 @@
 
 use std::time::Duration;
 
+use microslip::case::{CaseText, InputError};
 use microslip::compliance::parse_spec;
 use microslip::dissipation::{dissipation, DissipationError, Options};
-use microslip::dissipation_answer::dissipation_report;
-use microslip::inputs::{CaseText, InputError};
+use microslip::dissipation_answer::{dissipation_report, DissipationAnswer};
 use microslip::real::{Precision, Real};
 use microslip::reference::{verified_dissipation, ReferenceError};
 use rug::float::Constant;
@@ -61,6 +61,14 @@ fn agrees(printed: &str, digits: u32, reference: &str) -> bool {
 }
 
 /// The default path against 30 verified digits: agreement, or an error both paths share.
+/// W of `case` on the default path, which has given up f64 for a reason containing `why`.
+fn computed_beyond_f64(case: &CaseText, why: &str) -> DissipationAnswer {
+    let printed = dissipation_report(case, None, BUDGET).unwrap();
+    let fallback = printed.fallback.as_ref().expect("f64 is given up").to_string();
+    assert!(fallback.contains(why), "{fallback}");
+    printed
+}
+
 fn check_default_path(case: &CaseText) -> Result<bool, String> {
     let reference = verified_dissipation(case, 30, BUDGET);
     match (dissipation_report(case, None, BUDGET), reference) {
@@ -127,14 +135,8 @@ fn every_family_at_load_scales_from_1e_minus_300_to_1e300_prints_right_digits() 
 #[test]
 fn the_reported_large_load_case_is_computed_in_mpfr_not_printed_as_zero() {
     let case = common::case().p0("1e300").p1("4e299").q1("5e299").text();
-    let printed = dissipation_report(&case, None, BUDGET).unwrap();
+    let printed = computed_beyond_f64(&case, "P0 = 1.0e300 is outside");
     assert_eq!(printed.total(), "4.06247579245824e299");
-    assert!(printed
-        .fallback
-        .as_ref()
-        .unwrap()
-        .to_string()
-        .contains("P0 = 1.0e300 is outside"));
     // The library in f64 refuses, naming what left the range.
     let read = case.read::<f64>(Precision::DOUBLE).unwrap();
     match dissipation(&read.cycle, read.compliance.as_ref(), &Options::default()) {
@@ -166,13 +168,7 @@ fn a_compliance_whose_formula_underflows_inside_f64_is_computed_in_mpfr() {
     // v' = 1 + 1e250/(P + 1e300): v' and the loads are ordinary, but the change of v'
     // over the cycle, about 1e-350, underflows to 0 in f64, where W would print as 0.
     let case = case_at_scale(0, "rational:a=1,b=1e250,c=1e300");
-    let printed = dissipation_report(&case, None, BUDGET).unwrap();
-    assert!(printed
-        .fallback
-        .as_ref()
-        .unwrap()
-        .to_string()
-        .contains("leaves the range of f64"));
+    let printed = computed_beyond_f64(&case, "leaves the range of f64");
     let reference = verified_dissipation(&case, 30, BUDGET).unwrap();
     assert!(agrees(&printed.total(), printed.answer.digits(), &reference.total));
     assert!(reference.value.total > 0);
@@ -246,13 +242,7 @@ fn decimals_outside_f64_are_named_as_such_and_read_exactly_by_the_default_path()
     }
     // With loads all 1e-400 the default path computes in MPFR and says why.
     let case = case_at_scale(-400, "persson:gamma=1,sigma=1");
-    let printed = dissipation_report(&case, None, BUDGET).unwrap();
-    assert!(printed
-        .fallback
-        .as_ref()
-        .unwrap()
-        .to_string()
-        .contains("P0 = 1e-400 lies outside the range of f64"));
+    let printed = computed_beyond_f64(&case, "P0 = 1e-400 lies outside the range of f64");
     assert_eq!(printed.total(), "4.06247579245824e-401");
     // A compliance parameter outside f64.
     let case = case_at_scale(0, "persson:gamma=1e400,sigma=1");

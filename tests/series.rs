@@ -395,8 +395,8 @@ fn coefficient_enclosures_contain_2000_bit_references() {
 /// several compliance families and phases near 0 and π.
 #[test]
 fn partial_sum_enclosures_contain_2000_bit_references() {
+    use microslip::case::{Case, CaseText};
     use microslip::exact::printing::partial_sum_answers;
-    use microslip::inputs::{Case, CaseText};
     let budget = std::time::Duration::from_secs(60);
     for (spec, phi) in [
         ("persson:gamma=1,sigma=1", "0.4pi"),

@@ -1,10 +1,10 @@
 //! The brute-force history simulation against the four-segment integrals, and its
 //! own consistency: two energy measures, two initial paths, Q0, a constant compliance.
 
+use microslip::case::Case;
 use microslip::compliance::{parse_spec, Polynomial};
 use microslip::cycle::LoadCycle;
 use microslip::dissipation::{dissipation, Method, Options};
-use microslip::inputs::Case;
 use microslip::real::Precision;
 use microslip::simulate::{simulate, InitialPath, SimulationOptions};
 use proptest::prelude::*;

@@ -6,8 +6,8 @@ mod common;
 use std::path::PathBuf;
 use std::time::Duration;
 
+use microslip::case::CaseText;
 use microslip::dissipation_answer::dissipation_report;
-use microslip::inputs::CaseText;
 
 /// A fresh directory for this test's files.
 fn scratch(name: &str) -> PathBuf {

@@ -7,9 +7,9 @@
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
+use microslip::case::CaseText;
 use microslip::cycle::LoadCycle;
 use microslip::dissipation_answer::dissipation_report;
-use microslip::inputs::CaseText;
 
 mod common;
 

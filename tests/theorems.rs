@@ -92,6 +92,20 @@ fn claim_holds<C: Claim, E: Evaluator>(
     });
 }
 
+/// `claim` on 500 cases in f64, whose compliances may be sums (seed `seed`), then on
+/// `wide_cases` cases at 256 bits with single compliances (seed `seed + 1`).
+fn claim_holds_in_f64_and_at_256_bits<C: Claim, S: Strategy<Value = C::Case>>(
+    claim: &C,
+    wide_cases: u32,
+    seed: u8,
+    strategy: impl Fn(strategies::Terms) -> S,
+) where
+    C::Case: Debug,
+{
+    claim_holds(claim, &in_f64(), 500, seed, strategy(WithSums));
+    claim_holds(claim, &at_256_bits(), wide_cases, seed + 1, strategy(Single));
+}
+
 fn in_f64() -> FourSegment<f64> {
     FourSegment::new(Precision::DOUBLE)
 }
@@ -158,44 +172,21 @@ fn constant_term_contributes_nothing_at_256_bits() {
 
 #[test]
 fn dissipation_is_linear_in_the_compliance_in_f64_and_at_256_bits() {
-    claim_holds(
-        &Linearity,
-        &in_f64(),
-        500,
-        5,
-        strategies::linearity_case(Source::Segments, WithSums),
-    );
-    claim_holds(
-        &Linearity,
-        &at_256_bits(),
-        16,
-        6,
-        strategies::linearity_case(Source::Segments, Single),
-    );
+    claim_holds_in_f64_and_at_256_bits(&Linearity, 16, 5, |terms| {
+        strategies::linearity_case(Source::Segments, terms)
+    });
 }
 
 #[test]
 fn roughness_scaling_identities_hold_in_f64_and_at_256_bits() {
-    claim_holds(
-        &Roughness,
-        &in_f64(),
-        500,
-        7,
-        strategies::roughness_case(Source::Segments, WithSums),
-    );
-    claim_holds(
-        &Roughness,
-        &at_256_bits(),
-        12,
-        8,
-        strategies::roughness_case(Source::Segments, Single),
-    );
+    claim_holds_in_f64_and_at_256_bits(&Roughness, 12, 7, |terms| {
+        strategies::roughness_case(Source::Segments, terms)
+    });
 }
 
 #[test]
 fn invariants_hold_for_random_cycles_in_f64_and_at_256_bits() {
-    claim_holds(&Invariants, &in_f64(), 500, 9, strategies::invariants_case(WithSums));
-    claim_holds(&Invariants, &at_256_bits(), 12, 10, strategies::invariants_case(Single));
+    claim_holds_in_f64_and_at_256_bits(&Invariants, 12, 9, strategies::invariants_case);
 }
 
 #[test]

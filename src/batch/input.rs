@@ -7,7 +7,7 @@ use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
 
 use super::BatchError;
-use crate::inputs::CaseText;
+use crate::case::CaseText;
 
 /// The longest record (a row, or the header, or a comment line) a batch reads, in
 /// bytes: a row of numbers and a SPEC is well under a kilobyte.

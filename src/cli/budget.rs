@@ -1,10 +1,13 @@
 //! The time budget as a promise to the user: whatever the library does inside one
 //! attempt, the command answers within `--max-seconds` and a moment.
 //!
-//! The library checks its deadline between refinements; a single refinement (one high
-//! precision rule, one tanh–sinh level) can still outlast it. The command therefore
-//! runs its work on a thread of its own and, once the budget and a short grace have
-//! passed without an answer, refuses with one line and ends the process.
+//! The library keeps its deadline itself: no Gauss–Legendre rule or tanh–sinh level
+//! starts whose predicted cost would end past it, and node tables check it at every
+//! node. What it cannot stop is a step already under way: one Arb integration of a
+//! certified attempt (started on a predicted cost, which is an estimate), or a prediction
+//! that falls short. The command therefore runs its work on a thread of its own and, once
+//! the budget and a short grace have passed without an answer, refuses with one line and
+//! ends the process.
 
 use std::sync::mpsc;
 use std::time::Duration;

@@ -6,7 +6,7 @@ use std::time::Duration;
 
 use clap::Args;
 
-use microslip::inputs::CaseText;
+use microslip::case::CaseText;
 
 use super::parse;
 use super::report::Failure;

@@ -12,9 +12,9 @@ use serde::ser::SerializeMap;
 use serde::Serialize;
 
 use microslip::answer::{Provenance, Value};
+use microslip::case::CaseText;
 use microslip::dissipation::{self, Segment};
 use microslip::dissipation_answer::{method_key, DissipationAnswer};
-use microslip::inputs::CaseText;
 
 /// The four segment values as an object keyed by the segments' names, in cycle order.
 pub struct Segments<T>(dissipation::Segments<T>);

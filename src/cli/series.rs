@@ -5,8 +5,8 @@ use clap::{ArgGroup, Args};
 use serde::Serialize;
 
 use microslip::answer::{Answer, Provenance};
+use microslip::case::CaseText;
 use microslip::exact::printing::{coefficient_answers, partial_sum_answers, ExactAnswerError};
-use microslip::inputs::CaseText;
 
 use super::case::Answer as AnswerArgs;
 use super::report::Failure;

@@ -4,7 +4,7 @@
 use super::error::DissipationError;
 use super::options::Options;
 use super::segment::Segments;
-use crate::cycle::ValidCycle;
+use crate::cycle::{CycleKind, ValidCycle};
 use crate::quad::Integrated;
 use crate::real::Real;
 
@@ -22,6 +22,18 @@ pub enum Method {
     NoTangentialOscillation,
     /// W = 0 exactly, for a reason read from the exact input rather than computed.
     Exact(ExactZero),
+}
+
+impl From<CycleKind> for Method {
+    /// The formula a valid cycle of this kind is computed by.
+    fn from(kind: CycleKind) -> Method {
+        match kind {
+            CycleKind::NoTangentialOscillation => Method::NoTangentialOscillation,
+            CycleKind::ConstantNormalLoad => Method::ConstantNormalLoad,
+            CycleKind::InPhase => Method::InPhase,
+            CycleKind::Elliptic => Method::FourSegment,
+        }
+    }
 }
 
 impl Method {

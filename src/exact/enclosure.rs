@@ -19,9 +19,9 @@ use super::coefficient::closed_form_coefficient;
 use super::printing::ExactAnswerError;
 use super::series::{partial_sums, series_coefficients};
 use crate::ball::{watch, Ball};
+use crate::case::{Case, CaseSpec};
 use crate::certified::{phase_offset, MAX_BITS};
-use crate::inputs::{CaseText, InputError};
-use crate::phase::{ExactPhase, PhaseError};
+use crate::phase::ReducedPhase;
 use crate::real::{Precision, Real};
 use crate::verified::decimal_interval;
 
@@ -151,21 +151,21 @@ pub fn decimal_ball(text: &str, precision: Precision) -> Option<Ball> {
 
 /// I(ρ, φ) enclosed: the closed form on balls that contain ρ and ψ. (Its comparisons
 /// choose between equal expressions; a σ₋ that may be 0 gives a non-finite ball.)
-pub fn coefficient_ball(rho: &str, phase: &ExactPhase, precision: Precision) -> Result<Ball, PhaseError> {
+pub fn coefficient_ball(rho: &str, phase: &ReducedPhase, precision: Precision) -> Ball {
     let rho = decimal_ball(rho, precision).expect("ρ is checked to read before");
-    let (psi, _) = phase_offset(phase, precision)?;
-    Ok(closed_form_coefficient(&rho, &psi))
+    let (psi, _) = phase_offset(phase, precision);
+    closed_form_coefficient(&rho, &psi)
 }
 
 /// I₁ … I_`order` enclosed at a precision (I₀ ≡ 0 is not computed).
 pub fn coefficient_balls(
     rho: &str,
-    phase: &ExactPhase,
+    phase: &ReducedPhase,
     order: usize,
     precision: Precision,
 ) -> Result<Vec<Ball>, ExactAnswerError> {
     let rho = decimal_ball(rho, precision).expect("ρ is checked to read before");
-    let (psi, _) = phase_offset(phase, precision).map_err(InputError::from)?;
+    let (psi, _) = phase_offset(phase, precision);
     let values = series_coefficients(&rho, &psi, order)?;
     Ok(values.into_iter().skip(1).map(|(value, _)| value).collect())
 }
@@ -173,16 +173,15 @@ pub fn coefficient_balls(
 /// W_1 … W_`order` of a case enclosed at a precision: the case's decimals as balls, its
 /// phase as the exact offset ψ from the nearest multiple nπ (with Q0 reversed for odd
 /// n: the mirror image, which has the same W).
-pub fn partial_sum_balls(case: &CaseText, order: usize, precision: Precision) -> Result<Vec<Ball>, ExactAnswerError> {
-    let crate::inputs::Case { mut cycle, compliance } = case.read::<Ball>(precision)?;
-    let (psi, reverses) =
-        phase_offset(&ExactPhase::parse(&case.phi).map_err(InputError::from)?, precision).map_err(InputError::from)?;
-    let q0 = decimal_ball(&case.q0, precision).ok_or_else(|| InputError::Number {
-        field: "q0",
-        source: crate::real::ParseRealError { text: case.q0.clone() },
-    })?;
+pub fn partial_sum_balls(case: &CaseSpec, order: usize, precision: Precision) -> Result<Vec<Ball>, ExactAnswerError> {
+    let Case { mut cycle, compliance } = case.at::<Ball>(precision)?;
+    let (psi, reverses) = phase_offset(case.phase(), precision);
+    // `at` reverses Q0 for the mirror image it reads near an odd multiple of π; here it
+    // is reversed for every odd n (negating a ball is exact).
+    if reverses != case.phase().is_mirror_image() {
+        cycle.mean_tangential_load = -cycle.mean_tangential_load;
+    }
     cycle.phase = psi;
-    cycle.mean_tangential_load = if reverses { -q0 } else { q0 };
     Ok(partial_sums(&cycle, compliance.as_ref(), order)?)
 }
 
@@ -190,6 +189,7 @@ pub fn partial_sum_balls(case: &CaseText, order: usize, precision: Precision) ->
 mod tests {
     use super::*;
     use crate::certified::relatively_within;
+    use crate::phase::ExactPhase;
     use rug::float::Constant;
 
     /// ψ = φ − nπ in MPFR at 3000 bits, from the phase's value computed directly.
@@ -212,14 +212,14 @@ mod tests {
             ("-3pi+0.25", -3, "0.25"),
             ("0.3", 0, "0.3"),
         ] {
-            let (psi, reverses) = phase_offset(&ExactPhase::parse(text).unwrap(), precision).unwrap();
+            let (psi, reverses) = phase_offset(&ExactPhase::parse(text).unwrap().reduce().unwrap(), precision);
             let (expected, odd) = reference(k, offset);
             assert!(psi.contains(&expected), "{text}: {psi:?} vs {expected}");
             assert_eq!(reverses, odd, "{text}");
             assert!(relatively_within(&psi, 190), "{text}: {psi:?}");
         }
         // −π/2 exactly is read as +π/2 from the next multiple: the same cycle, mirrored.
-        let (psi, reverses) = phase_offset(&ExactPhase::parse("-pi/2").unwrap(), precision).unwrap();
+        let (psi, reverses) = phase_offset(&ExactPhase::parse("-pi/2").unwrap().reduce().unwrap(), precision);
         let half_pi = Float::with_val(3000, Constant::Pi) / 2u32;
         assert!(psi.contains(&half_pi) && reverses, "{psi:?}");
     }

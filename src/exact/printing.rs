@@ -12,8 +12,8 @@ use rug::{Float, Rational};
 use super::coefficient::closed_form_coefficient;
 use super::series::{partial_sums, series_coefficients, SeriesError};
 use crate::answer::{Answer, ExactReason, Provenance, Value};
-use crate::inputs::{parse_phase, Case, CaseText, InputError};
-use crate::phase::{decimal, ExactPhase, PhaseError};
+use crate::case::{parse_phase, Case, CaseText, InputError};
+use crate::phase::{decimal, ExactPhase, PhaseError, ReducedPhase};
 use crate::real::{ParseRealError, Precision, Real};
 use crate::reference::ReferenceError;
 use crate::verified::{
@@ -100,14 +100,12 @@ pub fn vanishes_in_phase(rho: &str, phase: &str) -> bool {
 }
 
 /// ρ and φ checked: ρ a positive decimal, φ a phase within range.
-fn checked_shape(rho: &str, phase: &str) -> Result<(Rational, ExactPhase), ExactAnswerError> {
+fn checked_shape(rho: &str, phase: &str) -> Result<(Rational, ReducedPhase), ExactAnswerError> {
     let exact_rho = decimal(rho).ok_or_else(|| ExactAnswerError::Number {
         quantity: "ρ",
         source: ParseRealError { text: rho.to_string() },
     })?;
-    let phase = ExactPhase::parse(phase)?;
-    phase.reduce()?;
-    Ok((exact_rho, phase))
+    Ok((exact_rho, ExactPhase::parse(phase)?.reduce()?))
 }
 
 /// The digits asked for (without, [`F64_MOST_DIGITS`]), checked in range.
@@ -267,7 +265,7 @@ pub fn coefficient_answer(
     }
     #[cfg(feature = "certified")]
     let enclosed = enclosures("I", asked, false, started, budget, |precision| {
-        Ok::<_, PhaseError>(vec![super::enclosure::coefficient_ball(rho, &exact_phase, precision)?])
+        Ok::<_, ExactAnswerError>(vec![super::enclosure::coefficient_ball(rho, &exact_phase, precision)])
     })?;
     #[cfg(not(feature = "certified"))]
     let enclosed = no_enclosure(&exact_phase);
@@ -415,6 +413,7 @@ pub fn partial_sum_answers(
     let asked = digits_asked(digits)?;
     let started = Instant::now();
     let w = dissipation_answer(case, Some(asked), budget)?;
+    let spec = case.spec()?;
     if let Provenance::Exact(reason) = w.provenance {
         return Ok(PartialSums {
             sums: vec![exact(reason, digits); order],
@@ -424,11 +423,10 @@ pub fn partial_sum_answers(
     }
     #[cfg(feature = "certified")]
     let enclosed = enclosures("W_N", asked, true, started, budget, |precision| {
-        super::enclosure::partial_sum_balls(case, order, precision)
+        super::enclosure::partial_sum_balls(&spec, order, precision)
     })?;
     #[cfg(not(feature = "certified"))]
-    let enclosed = no_enclosure(case);
-    let spec = case.spec()?;
+    let enclosed = no_enclosure(&spec);
     let (sums, intervals) = certified_or_agreed(asked, digits, started + budget, enclosed, |precision| {
         let Case { cycle, compliance } = spec.at::<Float>(precision)?;
         Ok(partial_sums(&cycle, compliance.as_ref(), order)?)

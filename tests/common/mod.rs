@@ -1,7 +1,7 @@
 //! What several test files share.
 
+use microslip::case::CaseText;
 use microslip::cycle::LoadCycle;
-use microslip::inputs::CaseText;
 use microslip::real::Real;
 
 /// The first acceptance case of the project: P0 = f = λ = 1, P1 = 0.4, Q1 = 0.5, Q0 = 0
@@ -107,6 +107,31 @@ pub const CASE_FLAGS: [(&str, &str); 7] = [
     ("--friction", "1"),
     ("--lambda", "1"),
     ("--compliance", PERSSON),
+];
+
+/// The two cases whose f64 W was printed with a wrong last digit (Persson's v', and
+/// v' = P⁻³ with Q0 ≠ 0), as the flags of a whole case.
+#[allow(dead_code)] // not every test binary runs the reproducers
+pub const MISROUNDED_F64_CASES: [&[(&str, &str)]; 2] = [
+    &[
+        ("--p0", "1"),
+        ("--p1", "0.82575"),
+        ("--q1", "0.25651"),
+        ("--phi", "1.7464"),
+        ("--friction", "1.217"),
+        ("--lambda", "1.78"),
+        ("--compliance", PERSSON),
+    ],
+    &[
+        ("--p0", "1"),
+        ("--p1", "0.3"),
+        ("--q0", "0.12526586642305143"),
+        ("--q1", "0.7650853137335195"),
+        ("--phi", "1"),
+        ("--friction", "0.8"),
+        ("--lambda", "1.2"),
+        ("--compliance", "power:c=1,beta=-3"),
+    ],
 ];
 
 /// The arguments of `microslip <command>` on the acceptance case, each flag in

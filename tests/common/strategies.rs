@@ -9,7 +9,7 @@
 // Each test file uses the strategies its claims need.
 #![allow(dead_code)]
 
-use microslip::inputs::CaseText;
+use microslip::case::CaseText;
 use microslip::verify::claims::{
     mean_tangential_margin, second_compliance_loads, CaseWith, CubicLawCase, Drawn, LinearityCase, RoughnessCase,
     SimulatedHistoryCase, Source,

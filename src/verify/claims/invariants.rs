@@ -3,9 +3,9 @@
 
 use super::evaluator::{all_of, tally_cases, Claim, ConstantSlope, Evaluator, Failure, Measured, Outcome};
 use super::{random_case, read_case, relative, CaseWith, Drawn, Tally};
+use crate::case::CaseText;
 use crate::cycle::{LoadCycle, ValidCycle};
 use crate::dissipation::{dissipation, four_segment, in_phase, DissipationError, Options};
-use crate::inputs::CaseText;
 use crate::real::{Precision, Real};
 use crate::verify::generators::Draw;
 use crate::verify::ClaimReport;

@@ -4,8 +4,8 @@ use std::fmt;
 
 use super::evaluator::{all_of, Claim, ConstantSlope, Evaluator, Measured, Outcome, Source};
 use super::{describe, random_case, read_case, relative};
+use crate::case::CaseText;
 use crate::compliance::{Compliance, Scaled, Sum};
-use crate::inputs::CaseText;
 use crate::real::Precision;
 use crate::verify::generators::{compliance_spec, Draw, Loads};
 

@@ -4,9 +4,9 @@ use std::fmt;
 
 use super::evaluator::{all_of, Claim, ConstantSlope, Evaluator, Measured, Outcome, Value};
 use super::{describe, random_case, read_case, relative};
+use crate::case::CaseText;
 use crate::compliance::{LoadScaled, Persson, PowerLaw};
 use crate::cycle::LoadCycle;
-use crate::inputs::CaseText;
 use crate::real::Real;
 use crate::verify::generators::Draw;
 

@@ -7,11 +7,11 @@ use std::fmt;
 
 use super::evaluator::{tally_cases, ConstantSlope, Evaluator, Failure, Measured, Outcome, Source, Value};
 use super::{describe, gross_slip_amplitude, random_case, read_case, Tally};
+use crate::case::CaseText;
 use crate::compliance::Compliance;
 use crate::compliance::Polynomial;
 use crate::cycle::LoadCycle;
 use crate::dissipation::{dissipation, DissipationError, Options};
-use crate::inputs::CaseText;
 use crate::real::Precision;
 use crate::simulate::{simulate, SimulationError, SimulationOptions, SimulationResult};
 use crate::verify::generators::{shape, Draw};
