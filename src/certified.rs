@@ -368,15 +368,16 @@ where
     F: Fn(Precision) -> Result<(LoadCycle<Ball>, Box<dyn Compliance<Ball>>), String>,
 {
     let digits = digits.max(1);
-    // Guard bits for the rounding of the integrand and the sum of the pieces, and the
-    // bits that a phase near a multiple of π costs, known before the first attempt.
-    let digit_bits = first_precision(digits);
-    let (cycle, _) = case(Precision::bits(digit_bits)).map_err(|reason| CertifiedError::Case {
-        bits: digit_bits,
-        reason,
-    })?;
-    let extra = phase_bits(&cycle);
-    let first = (digit_bits + extra).next_multiple_of(64);
+    let read = |bits| case(Precision::bits(bits)).map_err(|reason| CertifiedError::Case { bits, reason });
+    // The digits' bits with guard bits for the rounding of the integrand and the sum of
+    // the pieces, and the bits that a phase near a multiple of π costs, known before the
+    // first attempt, rounded up once to whole limbs. The case read for the phase serves
+    // the first attempt where the phase costs no limb more.
+    let digit_bits = Precision::decimal_digits(digits).in_bits() + GUARD_BITS;
+    let likely = whole_limbs(digit_bits);
+    let mut first_read = Some(read(likely)?);
+    let extra = first_read.as_ref().map_or(0, |(cycle, _)| phase_bits(cycle));
+    let first = whole_limbs(digit_bits + extra);
     let mut bits = first;
     let (mut reached, mut last_bits) = (0, 0);
     let mut gave_up_before = false;
@@ -384,7 +385,7 @@ where
     // An attempt at twice the bits costs about four times the last: one that would end
     // past the deadline is not started.
     let mut next_cost = std::time::Duration::ZERO;
-    if deadline.is_some() && bits >= 4 * PROBE_BITS {
+    if deadline.is_some_and(|deadline| needs_probe(bits, deadline)) {
         // A probe at a low precision foretells the first attempt's cost (quadratic in the bits).
         let started = Instant::now();
         if let Ok((cycle, compliance)) = case(Precision::bits(PROBE_BITS)) {
@@ -402,11 +403,13 @@ where
         }
         last_bits = bits;
         let started = Instant::now();
-        let (cycle, compliance) =
-            case(Precision::bits(bits)).map_err(|reason| CertifiedError::Case { bits, reason })?;
-        // The digits' bits and 24 more (and the phase's), not the limb's spare bits; a
-        // retry adds what the precision gained.
-        let goal = (Precision::decimal_digits(digits).in_bits() + 24 + extra).min(first) + (bits - first);
+        let (cycle, compliance) = match first_read.take() {
+            Some(case) if bits == likely => case,
+            _ => read(bits)?,
+        };
+        // The digits' bits and [`GOAL_GUARD_BITS`] more (and the phase's), not the limb's
+        // spare bits; a retry adds what the precision gained.
+        let goal = (Precision::decimal_digits(digits).in_bits() + GOAL_GUARD_BITS + extra).min(first) + (bits - first);
         let error = match enclose_dissipation(&cycle, compliance.as_ref(), goal) {
             Ok(enclosure) => {
                 let certain = certain_digits(&enclosure.total, digits);
@@ -526,16 +529,32 @@ pub(crate) fn relatively_within(ball: &Ball, bits: u32) -> bool {
     width.is_zero() || i64::from(width.get_exp().unwrap_or(i32::MAX)) + i64::from(bits) < i64::from(smallest)
 }
 
-/// The first working precision for `digits` digits: their bits and at least
-/// [`GUARD_BITS`] for the rounding of the integrand and the sum of the pieces, rounded
-/// up to whole 64-bit limbs (Arb works limb by limb, so the bits up to the next limb
-/// cost nothing, and 15 digits fit one limb).
-fn first_precision(digits: u32) -> u32 {
-    (Precision::decimal_digits(digits).in_bits() + GUARD_BITS).next_multiple_of(64)
+/// `bits` rounded up to whole 64-bit limbs: Arb works limb by limb, so the bits up to
+/// the next limb cost nothing (15 digits and their guard bits fit one limb).
+fn whole_limbs(bits: u32) -> u32 {
+    bits.next_multiple_of(64)
 }
 
 /// The fewest guard bits of the first attempt.
 const GUARD_BITS: u32 = 12;
+
+/// The bits Arb aims at beyond the digits' own: the enclosure's radius then lies about
+/// 2^−12 of a unit of the last digit below it, so that an enclosure straddles a rounding
+/// boundary (and the next precision is tried) about once in a few thousand cases.
+const GOAL_GUARD_BITS: u32 = 12;
+
+/// Whether the cost of a first attempt at `bits` must be foretold by a probe before it
+/// starts: where the time left before `deadline` holds it even at [`PROBE_HORIZON`] per
+/// probe, quadratic in the bits, the probe (about a seventh of an ordinary attempt at
+/// 100 digits) would be wasted.
+fn needs_probe(bits: u32, deadline: Instant) -> bool {
+    bits >= 4 * PROBE_BITS
+        && deadline.saturating_duration_since(Instant::now()) < PROBE_HORIZON * (bits / PROBE_BITS).pow(2)
+}
+
+/// A pessimistic cost of one attempt at [`PROBE_BITS`] (an ordinary case takes about a
+/// millisecond, one 10⁻⁶ from separation 0.2 s).
+const PROBE_HORIZON: std::time::Duration = std::time::Duration::from_millis(100);
 
 /// One integral of W: ∫ from `start` to `end` of `integrand`, summed into `group`.
 struct CertifiedPiece<'a> {
