@@ -825,16 +825,7 @@ impl Real for Ball {
     }
     /// Arb's square, without the copy of `self` a product needs.
     fn square(&self) -> Self {
-        let mut result = Ball::zero(self.precision);
-        // SAFETY: initialised; a square is entire.
-        unsafe {
-            if self.is_real() {
-                arb_sqr(&mut result.raw.real, self.real_part(), self.slong_precision());
-            } else {
-                acb_sqr(&mut result.raw, &self.raw, self.slong_precision());
-            }
-        }
-        result
+        self.unary(arb_sqr, acb_sqr)
     }
     /// Exact: Arb shifts the exponents of midpoint and radius.
     fn times_power_of_two(self, exponent: i32) -> Self {
