@@ -144,10 +144,18 @@ impl Drop for Ball {
 }
 
 impl Clone for Ball {
+    /// A copy; of a real ball only the real part is copied (a fresh ball's imaginary part
+    /// is already the exact zero).
     fn clone(&self) -> Self {
         let mut copy = Ball::zero(self.precision);
         // SAFETY: both initialised.
-        unsafe { acb_set(&mut copy.raw, &self.raw) };
+        unsafe {
+            if self.is_real() {
+                arb_set(&mut copy.raw.real, self.real_part());
+            } else {
+                acb_set(&mut copy.raw, &self.raw);
+            }
+        }
         copy
     }
 }
@@ -178,6 +186,29 @@ impl Ball {
     /// The Arb ball, for FFI.
     pub(crate) fn as_raw(&self) -> &acb_struct {
         &self.raw
+    }
+
+    /// The Arb ball at `raw`, read in place (no copy) for the duration of `read`.
+    ///
+    /// # Safety
+    /// `raw` must point to an initialised `acb_struct` that nothing changes or frees
+    /// while `read` runs.
+    pub(crate) unsafe fn read_in_place<T>(raw: *const acb_struct, precision: u32, read: impl FnOnce(&Ball) -> T) -> T {
+        // A bitwise view of the caller's ball: only ever borrowed, and never cleared here
+        // (ManuallyDrop), so the caller keeps sole ownership of its limbs.
+        let view = std::mem::ManuallyDrop::new(Ball {
+            raw: std::ptr::read(raw),
+            precision,
+        });
+        read(&view)
+    }
+
+    /// Moves the ball into the Arb ball at `out` (whose old value is cleared), without a copy.
+    ///
+    /// # Safety
+    /// `out` must point to an initialised `acb_struct`.
+    pub(crate) unsafe fn move_into(mut self, out: *mut acb_struct) {
+        acb_swap(out, &mut self.raw);
     }
 
     /// A ball from an initialised Arb complex ball (taking it over).
@@ -364,12 +395,6 @@ impl Ball {
         unsafe { arf_get_d(&self.raw.real.mid, arf_rnd_t_ARF_RND_NEAR) }
     }
 
-    /// The ball times 2^exponent (exact).
-    fn times_power_of_two(self, exponent: i64) -> Ball {
-        // SAFETY: initialised; in place.
-        self.in_place(|raw, _| unsafe { acb_mul_2exp_si(raw, raw, exponent) })
-    }
-
     /// Applies an in-place Arb operation.
     fn in_place(mut self, operation: impl FnOnce(*mut acb_struct, i64)) -> Ball {
         let precision = self.slong_precision();
@@ -476,8 +501,15 @@ impl RemAssign<Ball> for Ball {
 impl Neg for Ball {
     type Output = Ball;
     fn neg(self) -> Ball {
-        // SAFETY: initialised; in place.
-        self.in_place(|raw, _| unsafe { acb_neg(raw, raw) })
+        let real = self.is_real();
+        // SAFETY: initialised; in place (a real ball's imaginary part stays the exact zero).
+        self.in_place(|raw, _| unsafe {
+            if real {
+                arb_neg(std::ptr::addr_of_mut!((*raw).real), std::ptr::addr_of!((*raw).real));
+            } else {
+                acb_neg(raw, raw)
+            }
+        })
     }
 }
 
@@ -671,11 +703,11 @@ impl Real for Ball {
         ball
     }
     fn epsilon(precision: Precision) -> Self {
-        Ball::from_i64(1, precision).times_power_of_two(1 - i64::from(precision.in_bits()))
+        Ball::from_i64(1, precision).times_power_of_two(1 - precision.in_bits() as i32)
     }
     fn smallest_full_precision(precision: Precision) -> Self {
         // Arb's exponents are unbounded; like MPFR, nothing physical comes near this.
-        Ball::from_i64(1, precision).times_power_of_two(-(1i64 << 28))
+        Ball::from_i64(1, precision).times_power_of_two(-(1 << 28))
     }
 
     fn sqrt(&self) -> Self {
@@ -790,6 +822,15 @@ impl Real for Ball {
         } else {
             result
         }
+    }
+    /// Arb's square, without the copy of `self` a product needs.
+    fn square(&self) -> Self {
+        self.unary(arb_sqr, acb_sqr)
+    }
+    /// Exact: Arb shifts the exponents of midpoint and radius.
+    fn times_power_of_two(self, exponent: i32) -> Self {
+        // SAFETY: initialised; in place.
+        self.in_place(|raw, _| unsafe { acb_mul_2exp_si(raw, raw, i64::from(exponent)) })
     }
     fn sin(&self) -> Self {
         self.unary(arb_sin, acb_sin)
@@ -928,6 +969,36 @@ mod tests {
         let exact = Float::with_val(1024, Float::parse("0.1").unwrap());
         assert!(tenth.contains(&exact));
         assert!(!tenth.contains(&Float::with_val(1024, 0.1f64)));
+    }
+
+    #[test]
+    fn real_shortcuts_enclose_the_exact_values() {
+        let exact = |text: &str| Float::with_val(1024, Float::parse(text).unwrap());
+        let tenth = ball("0.1", 64);
+        // Powers of two are exact shifts: the ball stays the one around 1/10.
+        let fifth = tenth.clone().times_power_of_two(1);
+        assert!(fifth.contains(&exact("0.2")) && fifth.is_real());
+        assert!(tenth.clone().times_power_of_two(-3).contains(&exact("0.0125")));
+        assert!(tenth.square().contains(&exact("0.01")));
+        let third = ball("1", 64) / &ball("-3", 64);
+        assert!(third.square().contains(&(Float::with_val(1024, 1) / 9u32)));
+        // Copies and negations of real balls stay real and keep the exact value inside.
+        let negative = -tenth.clone();
+        assert!(negative.is_real() && negative.contains(&exact("-0.1")));
+        assert!(tenth.clone().contains(&exact("0.1")));
+    }
+
+    #[test]
+    fn balls_are_read_in_place_and_moved_out_without_a_copy() {
+        let third = ball("1", 128) / &ball("3", 128);
+        let mut out = Ball::zero(128);
+        // SAFETY: both initialised; `third` is not changed while it is read.
+        let doubled = unsafe { Ball::read_in_place(third.as_raw(), 128, |x| x.clone() + x) };
+        // SAFETY: initialised.
+        unsafe { doubled.move_into(&mut out.raw) };
+        let exact_third: Float = Float::with_val(1024, 1) / 3;
+        assert!(out.contains(&(exact_third.clone() * 2)));
+        assert!(third.contains(&exact_third));
     }
 
     #[test]

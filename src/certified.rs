@@ -14,7 +14,7 @@ use std::ffi::{c_int, c_void};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::time::Instant;
 
-use flint_sys::acb::{acb_get_mag, acb_indeterminate, acb_init, acb_set};
+use flint_sys::acb::{acb_get_mag, acb_indeterminate, acb_init};
 use flint_sys::acb_calc::{acb_calc_integrate, acb_calc_integrate_opt_init, acb_calc_integrate_opt_struct};
 use flint_sys::acb_types::acb_struct;
 use flint_sys::arb_types::mag_struct;
@@ -636,12 +636,12 @@ unsafe extern "C" fn evaluate(
 ) -> c_int {
     // SAFETY: `param` is the `&CertifiedPiece` passed by `integrate_piece`, alive for the call.
     let piece = unsafe { &*(param as *const CertifiedPiece<'_>) };
-    // SAFETY: Arb passes an initialised ball.
-    let x = unsafe { Ball::from_raw(input, prec.clamp(2, i64::from(u32::MAX)) as u32) };
-    // SAFETY: `out` is an initialised ball Arb owns.
+    let precision = prec.clamp(2, i64::from(u32::MAX)) as u32;
+    // SAFETY: Arb passes an initialised ball it leaves alone during the call, and an
+    // initialised ball `out` it owns.
     unsafe {
-        match piece.value(&x, order != 0) {
-            Some(value) => acb_set(out, value.as_raw()),
+        match Ball::read_in_place(input, precision, |x| piece.value(x, order != 0)) {
+            Some(value) => value.move_into(out),
             None => acb_indeterminate(out),
         }
     }

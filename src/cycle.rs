@@ -702,8 +702,8 @@ impl<R: Real> EllipseGeometry<R> {
         LoadsAt {
             normal_offset: self.normal_amplitude.clone() * cos,
             normal_rate: -(self.normal_amplitude.clone() * sin),
-            tangential_offset: self.tangential_amplitude.clone() * &lag_cos,
-            tangential_rate: -(self.tangential_amplitude.clone() * &lag_sin),
+            tangential_offset: lag_cos * &self.tangential_amplitude,
+            tangential_rate: -(lag_sin * &self.tangential_amplitude),
         }
     }
 

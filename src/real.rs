@@ -176,6 +176,14 @@ pub trait Real:
     fn square(&self) -> Self {
         self.clone() * self
     }
+    /// `self` · 2^`exponent`, rounded once as the product with that power of two is (so
+    /// exact unless it over- or underflows): `x.times_power_of_two(1)` equals `x * 2`
+    /// and `x.times_power_of_two(-1)` equals `x / 2` in every type, where a type may
+    /// compute it without a multiplication (a ball shifts its exponents).
+    fn times_power_of_two(self, exponent: i32) -> Self {
+        let precision = self.precision();
+        self * Self::from_f64(2f64.powi(exponent), precision)
+    }
 }
 
 /// The one-argument functions both types provide under the same name.
@@ -347,6 +355,21 @@ mod tests {
             assert!(Float::parse_decimal(text, Precision::bits(64)).is_err(), "{text}");
         }
         assert!(f64::parse_decimal("abc", Precision::DOUBLE).is_err());
+    }
+
+    #[test]
+    fn powers_of_two_scale_as_the_product_and_quotient_do() {
+        // Halving and doubling round as x / 2 and x * 2 do, down to subnormals and at overflow.
+        for x in [0.1, -3.7, 1e-310, f64::MIN_POSITIVE, f64::MAX, 5e-324] {
+            assert_eq!(x.times_power_of_two(-1).to_bits(), (x / 2.0).to_bits(), "{x}");
+            assert_eq!(x.times_power_of_two(1).to_bits(), (x * 2.0).to_bits(), "{x}");
+            assert_eq!(x.times_power_of_two(-5).to_bits(), (x / 32.0).to_bits(), "{x}");
+        }
+        let p = Precision::bits(200);
+        let third = Float::from_i64(1, p) / Float::from_i64(3, p);
+        assert_eq!(third.clone().times_power_of_two(-1), third.clone() / 2);
+        assert_eq!(third.clone().times_power_of_two(7), third.clone() * 128);
+        assert_eq!(third.clone().times_power_of_two(7).prec(), 200);
     }
 
     #[test]

@@ -79,7 +79,7 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
     fn loads_and_normal_term(&self, sin_cos: &(R, R), slope: &dyn Fn(&R) -> R) -> (LoadsAt<R>, R) {
         let g = self.geometry;
         let loads = g.loads_at(sin_cos);
-        let term = g.friction.clone() * &slope(&loads.normal_offset) * &loads.normal_rate;
+        let term = slope(&loads.normal_offset) * &g.friction * &loads.normal_rate;
         (loads, term)
     }
 
@@ -104,15 +104,14 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
 
     pub(crate) fn integrand_with(&self, segment: Segment, s: &R, slope: &dyn Fn(&R) -> R) -> R {
         let g = self.geometry;
-        let two = s.int(2);
         match segment {
             Segment::EB | Segment::HE => {
                 // EB ends at B and HE at E (+2π): with h half the angle to that end,
                 // h = (s − (π − δ))/2, the slip load reads sin²h and sin 2h, and θ is that
                 // end plus 2h — one sin_cos serves both.
-                let (half_sin, half_cos) = ((s.clone() - &g.slip_angle) / &two).sin_cos();
-                let double_sin = half_sin.clone() * &half_cos * &two;
-                let double_cos = s.int(1) - &(half_sin.square() * &two);
+                let (half_sin, half_cos) = (s.clone() - &g.slip_angle).times_power_of_two(-1).sin_cos();
+                let double_sin = (half_sin.clone() * &half_cos).times_power_of_two(1);
+                let double_cos = s.int(1) - &half_sin.square().times_power_of_two(1);
                 let (end_sin, end_cos) = if segment == Segment::EB {
                     &g.theta_b_sin_cos
                 } else {
