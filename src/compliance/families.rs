@@ -449,6 +449,21 @@ impl<R: Real> Compliance<R> for Exponential<R> {
         }
         self.amplitude.clone() * &(-(reference.clone() / &self.decay_load)).exp() * &decay.exp_m1()
     }
+    fn slope_change_about<'a>(&'a self, reference: &R) -> SlopeChange<'a, R> {
+        // a·e^(−P0/c)·(e^(−x/c) − 1) for every offset: one analytic formula on both sides
+        // of x = −c (where `slope_change` switches forms, a switch that a ball around
+        // that point cannot decide), free of cancellation. It needs e^(−P0/c) well above
+        // the type's smallest full-precision number, so that e^(−x/c) ≤ e^(P0/c) for
+        // the positive loads P0 + x cannot overflow (c > 0); otherwise offset by offset.
+        let decay_at_reference = (-(reference.clone() / &self.decay_load)).exp();
+        let floor = R::smallest_full_precision(reference.precision());
+        if self.decay_load > reference.int(0) && decay_at_reference > floor {
+            let (scale, decay_load) = (self.amplitude.clone() * &decay_at_reference, self.decay_load.clone());
+            return Box::new(move |offset: &R| scale.clone() * &(-(offset.clone() / &decay_load)).exp_m1());
+        }
+        let reference = reference.clone();
+        Box::new(move |offset: &R| self.slope_change(&reference, offset))
+    }
     fn describe(&self) -> String {
         format!(
             "exponential v' = {}·exp(−P/{}) + {}",
