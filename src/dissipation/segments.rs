@@ -180,8 +180,9 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
     /// the offset x = P − P0): W is linear in v', so parts of v' can be integrated apart.
     pub fn pieces_with_slope(&self, slope: SlopeChange<'a, R>) -> SegmentPieces<'a, R> {
         let slope = Rc::new(slope);
-        let mut pieces = Vec::new();
-        let mut segments = Vec::new();
+        // Usually one or two pieces a segment.
+        let mut pieces = Vec::with_capacity(2 * Segment::ALL.len());
+        let mut segments = Vec::with_capacity(2 * Segment::ALL.len());
         for segment in Segment::ALL {
             let peaks = self.low_load_peaks(segment);
             for (start, end) in self.windows(segment) {
@@ -218,7 +219,8 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
         let (start, length) = self.extent(segment);
         let zero = length.int(0);
         let pi = length.pi_like();
-        let mut peaks = Vec::new();
+        // Six turns, twice for CH, and the slip load's peak.
+        let mut peaks = Vec::with_capacity(13);
         if g.normal_amplitude > zero {
             let margin = (g.mean_normal_load.clone() - &g.normal_amplitude) / &g.normal_amplitude;
             let width = acosh_one_plus(&margin);
@@ -312,14 +314,14 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
         let (start, length) = self.extent(segment);
         let zero = length.int(0);
         let pi = length.pi_like();
-        let mut breaks = vec![zero.clone()];
+        // At most two candidates for each of the six turns, and the two ends.
+        let mut breaks = Vec::with_capacity(14);
+        breaks.push(zero.clone());
         for k in -2..=3i64 {
             let lowest = pi.clone() * &pi.int(2 * k + 1);
-            let mut candidates = vec![lowest.clone() - start];
-            if segment == Segment::CH {
-                candidates.push(self.geometry.theta_c.clone() - &lowest);
-            }
-            breaks.extend(candidates.into_iter().filter(|s| *s > zero && s < length));
+            let mirror = (segment == Segment::CH).then(|| self.geometry.theta_c.clone() - &lowest);
+            let candidates = std::iter::once(lowest.clone() - start).chain(mirror);
+            breaks.extend(candidates.filter(|s| *s > zero && s < length));
         }
         breaks.push(length.clone());
         breaks.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
