@@ -866,6 +866,17 @@ impl Real for Ball {
         };
         Real::to_scientific(&mid, digits)
     }
+    fn real_span(&self) -> Option<(f64, f64)> {
+        // Outward to 53 bits, so each end is an f64 exactly.
+        let (lower, upper) = self.bounds(53);
+        Some((lower.to_f64(), upper.to_f64()))
+    }
+    fn union(&self, other: &Ball) -> Ball {
+        let mut result = Ball::zero(self.precision.max(other.precision));
+        // SAFETY: initialised.
+        unsafe { acb_union(&mut result.raw, &self.raw, &other.raw, result.slong_precision()) };
+        result
+    }
 }
 
 /// The digits of a real ball that every number in it rounds to: the longest decimal of
