@@ -183,8 +183,9 @@ fn a_case_that_cannot_be_computed_is_never_reproduced_and_a_table_gives_its_inte
     // A table's W is its interpolant's, proven to the digits asked: not the stored
     // Persson value its entry was copied from.
     let computed = differences[1].computed.as_ref().expect("the interpolant's W");
-    assert_eq!(computed.digits, 20);
-    assert_ne!(Some(computed), differences[1].stored.as_ref());
+    let stored = differences[1].stored.as_ref().expect("stored");
+    assert_eq!(computed.digits, stored.digits);
+    assert_ne!(computed.w, stored.w);
     let written = catalogue::regenerate(&[measured], 30, Duration::from_secs(60), |_, _| {}).expect("written");
     assert_eq!(written[0].reference.as_ref().expect("stored").digits, 30);
     // A run whose budget is spent leaves the remaining cases not computed, and says so.
