@@ -34,7 +34,8 @@ const UNITS_AND_DIGITS: &str = "W is energy per cycle in the units of load × ap
 only with the digits on which its whole error interval rounds alike, so a segment may carry \
 fewer digits than W; the output says whether the digits are proven (a rigorous enclosure with \
 --digits, or exact) or estimated (an f64 error estimate, a table's error, or agreement of two \
-precisions where no enclosure can be had).";
+precisions where no enclosure can be had). For a table compliance, --digits proves the digits of \
+its interpolant's W and states the table's own error beside them.";
 
 /// A library error, with the flag that may help where it applies: refused input exits 2,
 /// a result that could not be vouched for in time exits 1.
