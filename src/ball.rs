@@ -907,6 +907,30 @@ impl Real for Ball {
         };
         Real::to_scientific(&mid, digits)
     }
+    fn real_span(&self) -> Option<(f64, f64)> {
+        let (mut lower, mut upper) = (arf_struct::default(), arf_struct::default());
+        // SAFETY: the arf values are initialised and cleared here; each end is rounded
+        // outward to 53 bits, then read as the f64 it is (rounded outward again).
+        unsafe {
+            flint_sys::arf::arf_init(&mut lower);
+            flint_sys::arf::arf_init(&mut upper);
+            arb_get_lbound_arf(&mut lower, self.real_part(), 53);
+            arb_get_ubound_arf(&mut upper, self.real_part(), 53);
+            let span = (
+                arf_get_d(&lower, flint_sys::arf::arf_rnd_t_ARF_RND_FLOOR),
+                arf_get_d(&upper, flint_sys::arf::arf_rnd_t_ARF_RND_CEIL),
+            );
+            flint_sys::arf::arf_clear(&mut lower);
+            flint_sys::arf::arf_clear(&mut upper);
+            Some(span)
+        }
+    }
+    fn union(&self, other: &Ball) -> Ball {
+        let mut result = Ball::zero(self.precision.max(other.precision));
+        // SAFETY: initialised.
+        unsafe { acb_union(&mut result.raw, &self.raw, &other.raw, result.slong_precision()) };
+        result
+    }
 }
 
 /// The digits of a real ball that every number in it rounds to: the longest decimal of

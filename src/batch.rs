@@ -100,7 +100,8 @@ impl RowResult {
         }
         let error_estimate = match provenance {
             Provenance::Estimate { error_estimate } => Some(*error_estimate),
-            _ => table.as_ref().map(|t| t.quadrature_error),
+            Provenance::Table { .. } => table.as_ref().map(|t| t.quadrature_error),
+            _ => None,
         };
         RowResult {
             total: report.total(),

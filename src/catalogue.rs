@@ -88,8 +88,8 @@ pub enum EntryError {
 }
 
 /// The reference value of `case` to `digits` digits, by `deadline`, as
-/// [`dissipation_answer`] gives them (certified where an enclosure can be had): a
-/// compliance with a table is refused, as digits of it are everywhere.
+/// [`dissipation_answer`] gives them (certified where an enclosure can be had): for a
+/// compliance with a table, the digits of its interpolant's W.
 pub fn reference_value(case: &CaseText, digits: u32, deadline: Instant) -> Result<ReferenceValue, CaseError> {
     let budget = deadline.saturating_duration_since(Instant::now());
     let answer = dissipation_answer(case, Some(digits), budget)?;

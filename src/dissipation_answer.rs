@@ -3,8 +3,9 @@
 //!
 //! In order:
 //! 1. a compliance with a table: f64 from the table's interpolant, with the table's error
-//!    beside the quadrature's ([`Provenance::Table`]); digits beyond that error would not
-//!    be digits of W, so `--digits` is refused;
+//!    beside the quadrature's ([`Provenance::Table`]); with `--digits N`, N digits of W
+//!    for the interpolant by steps 2 and 3, the table's error stated beside them (a model
+//!    error: how far the physical contact's W may be from the interpolant's);
 //! 2. W exactly 0 for a reason read from the exact input ([`CaseSpec::exact_zero`]): at
 //!    once, at any `--digits` ([`Provenance::Exact`]);
 //! 3. with `--digits N`: a rigorous enclosure in ball arithmetic ([`Provenance::Certified`]),
@@ -232,10 +233,11 @@ pub fn dissipation_report(
     let case = &case.spec()?;
     let tables = case.compliance().tables();
     if !tables.is_empty() {
-        if digits.is_some() {
-            return Err(ReferenceError::DigitsForTable);
-        }
-        return table_answer(case, &tables, deadline);
+        let estimate = table_answer(case, &tables, deadline)?;
+        return match digits {
+            None => Ok(estimate),
+            Some(digits) => table_to_digits(case, estimate, digits, deadline),
+        };
     }
     let plain = |answer| DissipationAnswer {
         answer,
@@ -576,6 +578,27 @@ fn table_answer(
             unrounded: result.total,
             quadrature_error: result.error_estimate,
         }),
+    })
+}
+
+/// W of the tables' interpolant to `digits` digits, as for any compliance (exact by
+/// reason, certified, or by agreement), with the table's own error from `estimate`
+/// beside it: the digits are those of the smooth function integrated, the table error
+/// says how far the physical contact's W may be from it.
+fn table_to_digits(
+    case: &CaseSpec,
+    estimate: DissipationAnswer,
+    digits: u32,
+    deadline: Instant,
+) -> Result<DissipationAnswer, ReferenceError> {
+    let (answer, no_enclosure) = match checked_exact_zero(case)? {
+        Some(reason) => (exact_zero_answer(reason, Some(digits)), None),
+        None => to_digits(case, digits, deadline)?,
+    };
+    Ok(DissipationAnswer {
+        answer,
+        no_enclosure,
+        ..estimate
     })
 }
 

@@ -172,6 +172,18 @@ pub trait Real:
             other.clone()
         }
     }
+    /// The real interval this value stands for, rounded outward to f64: `None` for a
+    /// number (f64, MPFR), which stands for itself; for a ball, its real part. Code that
+    /// picks a formula by where a value lies takes every formula a ball may need.
+    fn real_span(&self) -> Option<(f64, f64)> {
+        None
+    }
+    /// A value that contains `self` and `other`: for a ball their union; a number, which
+    /// stands for itself alone and has no `real_span`, is kept.
+    fn union(&self, other: &Self) -> Self {
+        let _ = other;
+        self.clone()
+    }
     /// The square.
     fn square(&self) -> Self {
         self.clone() * self

@@ -70,9 +70,6 @@ pub enum ReferenceError {
     /// A table of the compliance.
     #[error(transparent)]
     Table(#[from] TableError),
-    /// Digits asked for a table compliance.
-    #[error("verified digits are not computed for a table compliance: the table is measured data, known only to its error estimate, and the interpolant between its loads is one choice of many, so digits beyond the table error would not be digits of W (the f64 run reports W with that error)")]
-    DigitsForTable,
     /// f64 cannot compute this cycle, and a table is not computed at other precisions.
     #[error("{source} — but a table compliance is computed in f64 only, so this cycle cannot be computed from a table (where its loads are extreme, rescale the cycle and the table's loads together: W scales with the load scale)")]
     TableInF64 {

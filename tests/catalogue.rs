@@ -163,7 +163,7 @@ fn an_unreachable_target_fails_and_says_how_many_digits_were_reached() {
 }
 
 #[test]
-fn a_case_that_cannot_be_computed_or_has_a_table_is_never_reproduced() {
+fn a_case_that_cannot_be_computed_is_never_reproduced_and_a_table_gives_its_interpolant() {
     let ordinary = entries().into_iter().find(|e| e.name == "persson-ordinary").unwrap();
     let mut not_a_number = ordinary.clone();
     not_a_number.name = "not-a-number".into();
@@ -179,20 +179,15 @@ fn a_case_that_cannot_be_computed_or_has_a_table_is_never_reproduced() {
     let differences = catalogue::check(&cases, 20, Duration::from_secs(60), |_, _| {});
     let names: Vec<&str> = differences.iter().map(|d| d.name.as_str()).collect();
     assert_eq!(names, ["not-a-number", "measured", "stored-but-failing"]);
-    assert!(differences.iter().all(|d| d.computed.is_err()));
-    assert!(
-        differences[1].to_string().contains("table compliance"),
-        "{}",
-        differences[1]
-    );
-    // Writing refuses the table rather than store digits it does not have.
-    let error = catalogue::regenerate(&[measured], 30, Duration::from_secs(60), |_, _| {}).unwrap_err();
-    assert!(
-        error
-            .to_string()
-            .starts_with("case 'measured': verified digits are not computed for a table"),
-        "{error}"
-    );
+    assert!(differences[0].computed.is_err() && differences[2].computed.is_err());
+    // A table's W is its interpolant's, proven to the digits asked: not the stored
+    // Persson value its entry was copied from.
+    let computed = differences[1].computed.as_ref().expect("the interpolant's W");
+    let stored = differences[1].stored.as_ref().expect("stored");
+    assert_eq!(computed.digits, stored.digits);
+    assert_ne!(computed.w, stored.w);
+    let written = catalogue::regenerate(&[measured], 30, Duration::from_secs(60), |_, _| {}).expect("written");
+    assert_eq!(written[0].reference.as_ref().expect("stored").digits, 30);
     // A run whose budget is spent leaves the remaining cases not computed, and says so.
     let spent = catalogue::check(&[ordinary], 50, Duration::ZERO, |_, _| {});
     assert!(

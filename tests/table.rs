@@ -6,8 +6,11 @@ mod common;
 use std::path::PathBuf;
 use std::time::Duration;
 
-use microslip::case::CaseText;
+use microslip::case::{Case, CaseText};
+use microslip::dissipation::{dissipation, Options};
 use microslip::dissipation_answer::dissipation_report;
+use microslip::real::Precision;
+use rug::Float;
 
 /// A fresh directory for this test's files.
 fn scratch(name: &str) -> PathBuf {
@@ -241,16 +244,159 @@ fn a_cycle_leaving_the_table_is_refused_with_the_range() {
     assert!(message.contains("covers loads [2e-1, 1.5e0]"), "{message}");
 }
 
-#[test]
-fn digits_are_refused_for_tables_with_the_reason() {
-    let dir = scratch("digits");
-    let path = persson_table(&dir, "good.csv", &format!("load,slope\n{}\n", good_rows().join("\n")));
-    let message = refusal(&run_cli("0.4", &format!("table:{path}"), &["--digits", "20"]));
+/// W of the table's interpolant at 300 bits by the library's own Gauss–Legendre
+/// quadrature in MPFR (split at the knots like every rule): an integration independent
+/// of Arb's.
+fn mpfr_w(case: &CaseText) -> Float {
+    let precision = Precision::bits(300);
+    let Case { cycle, compliance } = case
+        .spec()
+        .expect("case")
+        .at::<Float>(precision)
+        .expect("case at 300 bits");
+    let options = Options::default()
+        .with_tolerance(Float::with_val(300, Float::parse("1e-70").unwrap()))
+        .with_max_points(4096);
+    dissipation(&cycle, compliance.as_ref(), &options)
+        .expect("MPFR W")
+        .total
+}
+
+/// `digits` certified digits of the interpolant's W for `case`, checked against the
+/// MPFR integration and with the table's error stated beside them; the report.
+fn assert_certified_table(case: &CaseText, digits: u32) -> microslip::dissipation_answer::DissipationAnswer {
+    let report = dissipation_report(case, Some(digits), Duration::from_secs(120)).expect("table W to digits");
+    let answer = &report.answer;
+    assert_eq!(answer.provenance.key(), "certified", "{case:?}: {report:?}");
+    assert!(answer.value.digits() >= digits, "{case:?}: {report:?}");
+    let (lower, upper) = answer.value.enclosure.clone().expect("an enclosure");
+    let bound = |text: &str| Float::with_val(400, Float::parse(text).expect("a decimal"));
+    let exact = mpfr_w(case);
     assert!(
-        message.contains("verified digits are not computed for a table compliance")
-            && message.contains("drop --digits"),
-        "{message}"
+        bound(&lower) <= exact && exact <= bound(&upper),
+        "{case:?}: {} outside [{lower}, {upper}]",
+        exact.to_string_radix(10, Some(50))
     );
+    let table = report.table.as_ref().expect("the table's error beside the digits");
+    assert!(table.error > 0.0 && table.error.is_finite(), "{table:?}");
+    report
+}
+
+/// A table of `slope` at the loads `step`·k for k in `rows`: every load a dyadic
+/// rational, so that a knot can sit exactly at a load of the cycle.
+fn dyadic_table(
+    dir: &std::path::Path,
+    name: &str,
+    step: f64,
+    rows: std::ops::RangeInclusive<i32>,
+    slope: fn(f64) -> f64,
+) -> String {
+    let text: String = rows
+        .map(|k| step * f64::from(k))
+        .map(|p| format!("{p:e},{:e}\n", slope(p)))
+        .collect();
+    persson_table(dir, name, &format!("load,slope\n{text}"))
+}
+
+#[test]
+fn digits_of_a_table_are_proven_for_its_interpolant_with_the_table_error_beside() {
+    let example = format!("table:{}/tests/data/rough-surface.csv", env!("CARGO_MANIFEST_DIR"));
+    assert_certified_table(&case(&example), 30);
+    // Loads ≤ 0 in the table: v' as a cubic in P itself.
+    let dir = scratch("certified");
+    let quadratic = dyadic_table(&dir, "quadratic.csv", 0.25, -2..=10, |p| {
+        3.0 - 0.1 * (p + 1.0) * (p + 1.0)
+    });
+    assert_certified_table(&case(&format!("table:{quadratic}")), 40);
+    // The half tables give the model error; each is an interpolant of its own.
+    let report = assert_certified_table(&case(&example), 20);
+    assert!(report.table.expect("table").error < 1e-6);
+}
+
+#[test]
+fn knots_exactly_at_the_extreme_loads_and_the_permanent_stick_load_are_enclosed() {
+    let dir = scratch("knots");
+    // Knots at 0.5, 1 and 1.5 = P0 − P1, P0 and P0 + P1, exactly, in log–log and in P.
+    let log_log = dyadic_table(&dir, "persson.csv", 0.125, 1..=16, |p| 1.0 / p);
+    let linear = dyadic_table(&dir, "quadratic.csv", 0.25, -2..=10, |p| {
+        3.0 - 0.1 * (p + 1.0) * (p + 1.0)
+    });
+    for table in [&log_log, &linear] {
+        let at_extremes = common::case().p1("0.5").compliance(format!("table:{table}")).text();
+        assert_certified_table(&at_extremes, 30);
+        // In phase, P_T = P0 − (σ₊ + σ₋)/2f = 1 − (0.75 + 0.25)/2 = 0.5: a knot.
+        let at_stick = common::case()
+            .p1("0.25")
+            .phi("0")
+            .compliance(format!("table:{table}"))
+            .text();
+        assert_certified_table(&at_stick, 30);
+        // At φ = π/2, P_T = 1 − √(Q1² + f²P1²) = 0.5 too, but only as a limit of balls
+        // around cos φ: whether the slip load crosses the knot is a tie no precision
+        // decides, and two precisions agreeing answer, saying so.
+        let tie = common::case()
+            .q1("0.3")
+            .phi("0.5pi")
+            .compliance(format!("table:{table}"))
+            .text();
+        let report = dissipation_report(&tie, Some(20), Duration::from_secs(120)).expect("W");
+        assert_eq!(report.answer.provenance.key(), "agreement", "{report:?}");
+        assert!(report
+            .no_enclosure
+            .as_ref()
+            .expect("why")
+            .to_string()
+            .contains("overlap"));
+        let exact = mpfr_w(&tie);
+        let printed = Float::with_val(300, Float::parse(report.total()).expect("W"));
+        assert!(Float::with_val(300, &printed - &exact).abs() <= Float::with_val(300, &exact * 1e-19));
+    }
+}
+
+#[test]
+fn a_table_of_constant_slope_is_exactly_zero_at_any_digits() {
+    let dir = scratch("constant");
+    // v = 3P: v' ≡ 3 between and beyond the rows' rounding.
+    let text: String = (0..12)
+        .map(|i| 0.1 + 1.9 * f64::from(i) / 11.0)
+        .map(|p| format!("{p:e},{:e}\n", 3.0 * p))
+        .collect();
+    let path = persson_table(&dir, "v3p.csv", &format!("load,approach\n{text}"));
+    let report = dissipation_report(&case(&format!("table:{path}")), Some(40), Duration::from_secs(60)).expect("W");
+    assert_eq!(report.answer.provenance.key(), "exact", "{report:?}");
+    assert_eq!(report.total(), "0");
+    assert!(report.table.is_some());
+}
+
+#[test]
+fn digits_of_a_table_on_the_command_line_say_what_is_proven_and_what_is_not() {
+    let example = format!("table:{}/tests/data/rough-surface.csv", env!("CARGO_MANIFEST_DIR"));
+    let output = run_cli("0.4", &example, &["--digits", "25"]);
+    let text = String::from_utf8_lossy(&output.stdout);
+    assert_eq!(
+        output.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    let first = text.lines().next().expect("W's line");
+    assert!(
+        first.contains("25 significant digits, proven") && first.contains("for the table's interpolant"),
+        "{text}"
+    );
+    assert!(
+        text.contains("model error: the table itself is accurate to about"),
+        "{text}"
+    );
+    let output = run_cli("0.4", &example, &["--digits", "25", "--json"]);
+    let json: serde_json::Value = serde_json::from_slice(&output.stdout).expect("JSON");
+    assert_eq!(json["provenance"], "certified");
+    assert_eq!(json["digits_certified"], 25);
+    assert!(
+        json["enclosure"].is_array() && json["table_error"].as_f64().is_some_and(|e| e > 0.0),
+        "{json}"
+    );
+    assert!(json["error_estimate"].is_null(), "{json}");
 }
 
 /// v' = 1/P with relative noise of ±`size` at every other row.

@@ -34,7 +34,8 @@ const UNITS_AND_DIGITS: &str = "W is energy per cycle in the units of load × ap
 only with the digits on which its whole error interval rounds alike, so a segment may carry \
 fewer digits than W; the output says whether the digits are proven (a rigorous enclosure with \
 --digits, or exact) or estimated (an f64 error estimate, a table's error, or agreement of two \
-precisions where no enclosure can be had).";
+precisions where no enclosure can be had). For a table compliance, --digits proves the digits of \
+its interpolant's W and states the table's own error beside them.";
 
 /// A library error, with the flag that may help where it applies: refused input exits 2,
 /// a result that could not be vouched for in time exits 1.
@@ -45,7 +46,6 @@ fn reference_failure(error: ReferenceError, digits_given: bool) -> Failure {
             | DissipationError::IllConditioned { .. }
             | DissipationError::OutOfRange { .. },
         ) if !digits_given => "; try --digits N (digits in MPFR)",
-        ReferenceError::DigitsForTable => "; drop --digits",
         _ if !out_of_time(&error) => "",
         _ if digits_given => "; raise --max-seconds or ask for fewer --digits",
         _ => "; raise --max-seconds",
@@ -109,15 +109,20 @@ fn text(report: &DissipationAnswer) -> String {
         }
     }
     if let Some(table) = &report.table {
-        out.push_str(&format!(
-            "  error estimates: table {:.1e} (from the table without its odd rows, and without its even rows), quadrature {:.1e}{}\n",
-            table.error,
-            table.quadrature_error,
-            match table.smoothing_residual {
-                r if r > 0.0 => format!("; smoothing moved the data by up to {r:.1e} relative"),
-                _ => String::new(),
-            }
-        ));
+        let smoothing = match table.smoothing_residual {
+            r if r > 0.0 => format!("; smoothing moved the data by up to {r:.1e} relative"),
+            _ => String::new(),
+        };
+        out.push_str(&match answer.provenance.is_proven() {
+            true => format!(
+                "  model error: the table itself is accurate to about {:.1e} in W (from the table without its odd rows, and without its even rows; an estimate, not proven){smoothing}\n",
+                table.error,
+            ),
+            false => format!(
+                "  error estimates: table {:.1e} (from the table without its odd rows, and without its even rows), quadrature {:.1e}{smoothing}\n",
+                table.error, table.quadrature_error,
+            ),
+        });
     }
     out.trim_end().to_string()
 }
@@ -132,6 +137,12 @@ fn provenance(report: &DissipationAnswer) -> String {
         n => format!("{n} significant digits"),
     };
     let mut out = format!("{digits}, {}", answer.provenance);
+    if let (Some(table), true) = (&report.table, answer.provenance.is_proven()) {
+        out.push_str(&format!(
+            ", for the table's interpolant; W of the physical contact is known only to the table's error, about {:.1e}",
+            table.error
+        ));
+    }
     if let Some(why) = &report.no_enclosure {
         out.push_str(&format!("; no enclosure: {why}"));
     }

@@ -85,7 +85,8 @@ impl<'a> DissipationReport<'a> {
         );
         let error_estimate = match &answer.provenance {
             Provenance::Estimate { error_estimate } => Some(*error_estimate),
-            _ => report.table.as_ref().map(|t| t.quadrature_error),
+            Provenance::Table { .. } => report.table.as_ref().map(|t| t.quadrature_error),
+            _ => None,
         };
         DissipationReport {
             w: printed(&answer.value),

@@ -6,8 +6,7 @@ use std::time::Duration;
 
 use clap::Args;
 
-use microslip::batch::CaseError;
-use microslip::catalogue::{self, CatalogueEntry, CatalogueError, EntryError};
+use microslip::catalogue::{self, CatalogueEntry};
 use microslip::files::check_writable;
 
 use super::budget::within_or;
@@ -67,13 +66,7 @@ fn check_or_write(
         let digits = args.digits.unwrap_or(50);
         let updated = catalogue::regenerate(entries, digits, args.max_seconds, show);
         progress.finish();
-        let updated = updated.map_err(|error| match &error {
-            CatalogueError::Case {
-                source: EntryError::Case(CaseError::DigitsForTable),
-                ..
-            } => Failure::refused(format!("{error} (nothing written)")),
-            _ => Failure::failed(format!("{error} (nothing written)")),
-        })?;
+        let updated = updated.map_err(|error| Failure::failed(format!("{error} (nothing written)")))?;
         catalogue::save(&args.catalogue, &updated).map_err(|e| Failure::failed(e.to_string()))?;
         return Ok(format!(
             "{} reference values to {digits} verified digits written to {}",

@@ -6,8 +6,8 @@
 //! Each term contributes coefficients of the functions it is made of — P^β (power, Persson,
 //! and the monomials of a polynomial expanded about 0), 1/(P + c) (rational), exp(−P/c)
 //! (exp) — and constants, which do not matter. Two terms cancel where their coefficients of
-//! the same function sum to zero, exactly, in rationals. Hertz and tables are never constant
-//! (proofs/exact-values.md).
+//! the same function sum to zero, exactly, in rationals. Hertz is never constant, nor is
+//! a table unless its slopes are all equal (proofs/exact-values.md).
 
 use rug::ops::Pow;
 use rug::{Integer, Rational};
@@ -88,6 +88,8 @@ impl SlopeForm {
                 amplitude, decay_load, ..
             } => add(Shape::Decay(decay_load.value.clone()), amplitude.value.clone()),
             Term::Constant { .. } => {}
+            // A table whose slopes are all equal is interpolated by that constant.
+            Term::Table(table) if table.has_constant_slope() => {}
             Term::Hertz { .. } | Term::Table(_) => self.opaque = true,
             Term::Scaled { factor: scale, inner } => self.add_term(inner, &(scale.value.clone() * factor)),
         }

@@ -120,39 +120,73 @@ impl Piecewise {
         (value, derivative)
     }
 
-    /// The piece, its width and the fraction of it at `load`; None outside the table.
-    fn locate<R: Real>(&self, load: &R) -> Option<(usize, R, R)> {
-        let k = self.piece(load.to_f64_lossy())?;
+    /// The pieces whose formulas `load` needs, first and last: for a number, the piece
+    /// holding it; for a ball, every piece whose closed interval its real part meets
+    /// (the end pieces continued past the ends). None outside the table.
+    ///
+    /// A ball's value is the union of those pieces' values. Where the ball stands for
+    /// the real loads of an integration piece that ends at a knot, the loads lie in one
+    /// knot interval and that interval's formula is among the ones taken: the union
+    /// contains the interpolant at every real load of the ball and the analytic
+    /// continuation of that one formula at its complex points, which is what a rigorous
+    /// quadrature bound on a complex ball needs. A ball's midpoint would pick the formula
+    /// by rounding where the ball reaches across the knot.
+    fn pieces_at<R: Real>(&self, load: &R) -> Option<(usize, usize)> {
+        let Some((lower, upper)) = load.real_span() else {
+            let k = self.piece(load.to_f64_lossy())?;
+            return Some((k, k));
+        };
+        let (first, last) = self.range();
+        if lower.is_nan() || upper.is_nan() || !within_end(upper, first, -1.0) || !within_end(lower, last, 1.0) {
+            return None;
+        }
+        let pieces = self.loads.len() - 1;
+        let lowest = self.loads.partition_point(|&x| x < lower).clamp(1, pieces) - 1;
+        let highest = self.loads.partition_point(|&x| x <= upper).clamp(1, pieces) - 1;
+        Some((lowest, highest))
+    }
+
+    /// `formula(k, h, t)` of every piece k that `load` needs ([`Self::pieces_at`]), h the
+    /// piece's width and t the fraction of it at `load`, as one value; NaN outside the
+    /// table.
+    fn on_pieces<R: Real>(&self, load: &R, formula: impl Fn(usize, &R, &R) -> R) -> R {
+        let Some((lowest, highest)) = self.pieces_at(load) else {
+            return not_a_number(load);
+        };
         let at = |value: f64| R::from_f64(value, load.precision());
-        let start = at(self.x[k]);
-        let h = at(self.x[k + 1]) - &start;
-        let t = (self.coordinates.abscissa(load) - &start) / &h;
-        Some((k, h, t))
+        let abscissa = self.coordinates.abscissa(load);
+        (lowest..=highest)
+            .map(|k| {
+                let start = at(self.x[k]);
+                let h = at(self.x[k + 1]) - &start;
+                let t = (abscissa.clone() - &start) / &h;
+                formula(k, &h, &t)
+            })
+            .reduce(|union, value| union.union(&value))
+            .expect("at least one piece")
     }
 
     /// v' at `load` (NaN outside the table).
     pub fn slope<R: Real>(&self, load: &R) -> R {
-        let Some((k, h, t)) = self.locate(load) else {
-            return not_a_number(load);
-        };
-        let (y, _) = self.hermite(k, &t, &h);
-        match self.coordinates {
-            Coordinates::LogLog => y.exp(),
-            Coordinates::Linear => y,
-        }
+        self.on_pieces(load, |k, h, t| {
+            let (y, _) = self.hermite(k, t, h);
+            match self.coordinates {
+                Coordinates::LogLog => y.exp(),
+                Coordinates::Linear => y,
+            }
+        })
     }
 
     /// v'' at `load` (NaN outside the table). Mathematically ≤ 0 (each piece is
     /// monotone); a rounding-level positive value is returned as 0.
     pub fn curvature<R: Real>(&self, load: &R) -> R {
-        let Some((k, h, t)) = self.locate(load) else {
-            return not_a_number(load);
-        };
-        let (y, derivative) = self.hermite(k, &t, &h);
-        let curvature = match self.coordinates {
-            Coordinates::LogLog => derivative * &y.exp() / load,
-            Coordinates::Linear => derivative,
-        };
+        let curvature = self.on_pieces(load, |k, h, t| {
+            let (y, derivative) = self.hermite(k, t, h);
+            match self.coordinates {
+                Coordinates::LogLog => derivative * &y.exp() / load,
+                Coordinates::Linear => derivative,
+            }
+        });
         curvature.min_of(&load.int(0))
     }
 
@@ -238,6 +272,32 @@ mod tests {
             assert!((piecewise.slope(&load) - exact_slope).abs() <= 1e-14 * exact_slope);
             assert!((piecewise.curvature(&load) - exact_curvature).abs() <= 1e-13 * exact_curvature.abs());
             assert!((piecewise.integral(&load) - exact_integral).abs() <= 1e-14 * exact_integral);
+        }
+    }
+
+    #[cfg(feature = "certified")]
+    #[test]
+    fn a_ball_across_a_knot_takes_the_formulas_of_both_pieces() {
+        use crate::ball::Ball;
+        use crate::real::Precision;
+        let loads = vec![1.0, 2.0, 3.0, 4.0, 5.0];
+        let slopes: Vec<f64> = loads.iter().map(|p| 1.0 / p).collect();
+        let piecewise = Piecewise::new(Coordinates::Linear, loads, &slopes);
+        let ball = |x: f64| Ball::from_f64(x, Precision::bits(128));
+        // A number at a knot is in the piece that starts there, as always.
+        assert_eq!(piecewise.pieces_at(&2.0f64), Some((1, 1)));
+        assert_eq!(piecewise.pieces_at(&ball(2.5)), Some((1, 1)));
+        // A ball at the knot, or across it, needs both formulas; one past the last load
+        // by its radius continues the last piece.
+        assert_eq!(piecewise.pieces_at(&ball(2.0)), Some((0, 1)));
+        let across = ball(1.999).union(&ball(2.001));
+        assert_eq!(piecewise.pieces_at(&across), Some((0, 1)));
+        assert_eq!(piecewise.pieces_at(&ball(4.999).union(&ball(5.001))), Some((3, 3)));
+        assert_eq!(piecewise.pieces_at(&ball(5.5).union(&ball(6.0))), None);
+        // The union holds the interpolant on both sides of the knot.
+        let slope = piecewise.slope(&across);
+        for x in [1.999, 1.9995, 2.0, 2.0005, 2.001] {
+            assert!(slope.contains(&rug::Float::with_val(53, piecewise.slope(&x))), "{x}");
         }
     }
 

@@ -308,6 +308,13 @@ impl ComplianceTable {
         self.interpolant.range()
     }
 
+    /// Whether the interpolated v' is one constant (every node slope the same, as a
+    /// linear approach's are once rounding is removed): then v'' ≡ 0, in the half tables
+    /// too, and W is exactly 0.
+    pub fn has_constant_slope(&self) -> bool {
+        self.slopes.windows(2).all(|pair| pair[0] == pair[1])
+    }
+
     /// Refuses loads [low, high] that leave the table (by more than rounding of the load).
     pub fn check_covers(&self, low: f64, high: f64) -> Result<(), TableError> {
         let (first, last) = self.range();
