@@ -47,11 +47,24 @@ pub enum BatchError {
     DuplicateColumn { name: String, header: String },
 }
 
-/// The columns a batch appends to its input's.
-pub const RESULT_COLUMNS: [&str; 6] = ["W", "digits", "error_estimate", "table_error", "method", "error"];
+/// The columns a batch appends to its input's: the first six as they have always been,
+/// then what vouches for W (`provenance`, `digits_certified`) and the decimal ends of an
+/// interval that contains it (empty for an exact W).
+pub const RESULT_COLUMNS: [&str; 10] = [
+    "W",
+    "digits",
+    "error_estimate",
+    "table_error",
+    "method",
+    "error",
+    "provenance",
+    "digits_certified",
+    "enclosure_lower",
+    "enclosure_upper",
+];
 
 /// The result fields of a JSON record beyond [`RESULT_COLUMNS`].
-const RECORD_ONLY_FIELDS: [&str; 3] = ["digits_certified", "provenance", "enclosure"];
+const RECORD_ONLY_FIELDS: [&str; 1] = ["enclosure"];
 
 /// The result of one row, as the output columns print it.
 #[derive(Clone, Debug, Default, PartialEq)]
@@ -237,14 +250,20 @@ pub fn csv_header(header: &[String]) -> Result<Vec<u8>, BatchError> {
 /// The CSV lines of rows and their results.
 pub fn csv_rows(header: &[String], rows: &[InputRow], results: &[RowResult]) -> Result<Vec<u8>, BatchError> {
     let keep = echoed(header);
+    let count = |digits: Option<u32>| digits.map_or(String::new(), |d| d.to_string());
     csv_lines(rows.iter().zip(results).map(|(row, result)| {
+        let (lower, upper) = result.enclosure.clone().unwrap_or_default();
         keep.iter().map(|&i| row.cells[i].clone()).chain([
             result.total.clone(),
-            result.digits.map_or(String::new(), |d| d.to_string()),
+            count(result.digits),
             estimate_text(result.error_estimate),
             estimate_text(result.table_error),
             result.method.clone(),
             result.error.clone(),
+            result.provenance.clone(),
+            count(result.digits_certified),
+            lower,
+            upper,
         ])
     }))
 }

@@ -409,3 +409,114 @@ fn jsonl_gives_numbers_as_numbers_text_only_where_a_number_would_lose_digits_and
     assert_eq!(w.split('e').next().unwrap().replace(['.', '-'], "").len(), 25, "{w}");
     assert!(w.starts_with(&single["W"].as_str().unwrap()[..8]), "{w}");
 }
+
+/// W of a row's case at 400 bits by the library's quadrature to a 1e-100 tolerance: an
+/// independent value for the enclosures of f64 and 30-digit rows.
+fn reference_w(cells: &csv::StringRecord) -> rug::Float {
+    use microslip::dissipation::{dissipation, Options};
+    use microslip::real::Precision;
+    let text = common::case()
+        .p0(&cells[1])
+        .p1(&cells[2])
+        .q0(&cells[3])
+        .q1(&cells[4])
+        .phi(&cells[5])
+        .friction(&cells[6])
+        .lambda(&cells[7])
+        .compliance(&cells[9])
+        .text();
+    let case = text.read::<rug::Float>(Precision::bits(400)).expect("the case reads");
+    let tolerance = rug::Float::with_val(400, rug::Float::parse("1e-100").unwrap());
+    let options = Options::default().with_tolerance(tolerance).with_max_points(4096);
+    dissipation(&case.cycle, case.compliance.as_ref(), &options)
+        .unwrap_or_else(|e| panic!("{text:?}: {e}"))
+        .total
+}
+
+/// The CSV output appends `provenance`, `digits_certified`, `enclosure_lower` and
+/// `enclosure_upper` after the columns it has always had, as JSON lines give them: every
+/// point of the enclosure rounds to the W printed, and it holds an independent 400-bit W.
+#[test]
+fn csv_rows_carry_their_provenance_and_an_enclosure_that_rounds_to_w() {
+    let table = format!("table:{}/tests/data/rough-surface.csv", env!("CARGO_MANIFEST_DIR"));
+    let input = format!(
+        "{HEADER}\n\
+         persson,1,0.4,0,0.5,0.4pi,1,1,,\"persson:gamma=1,sigma=1\"\n\
+         hertz,1,0.3,0.1,0.35,1.1,0.9,1.4,,\"hertz:r=2,estar=3\"\n\
+         in-phase,2,0.5,0,0.9,0,0.8,1.2,,\"power:c=0.5,beta=-0.5\"\n\
+         constant,1,0.4,0,0.5,0.4pi,1,1,,const:c=2\n\
+         table,1,0.4,0,0.5,0.4pi,1,1,,{table}\n\
+         gross,1,0.4,0,2,0.4pi,1,1,,\"persson:gamma=1,sigma=1\"\n"
+    );
+    for digits in [None, Some("30")] {
+        let mut args = vec!["batch", "--input", "-", "--output", "-"];
+        args.extend(digits.iter().flat_map(|d| ["--digits", d]));
+        let csv_out = microslip(&args, Some(&input));
+        args.extend(["--format", "jsonl"]);
+        let lines = read_jsonl(&microslip(&args, Some(&input)).stdout);
+        let mut reader = csv::Reader::from_reader(csv_out.stdout.as_slice());
+        let header: Vec<String> = reader.headers().expect("header").iter().map(String::from).collect();
+        assert_eq!(
+            header.join(","),
+            format!("{HEADER},W,digits,error_estimate,table_error,method,error,provenance,digits_certified,enclosure_lower,enclosure_upper")
+        );
+        let rows: Vec<csv::StringRecord> = reader.records().map(|r| r.expect("a row")).collect();
+        assert_eq!(rows.len(), 6);
+        for (row, line) in rows.iter().zip(&lines) {
+            let cell = |name: &str| &row[header.iter().position(|h| h == name).unwrap()];
+            let (id, w, provenance) = (cell("id"), cell("W"), cell("provenance"));
+            let (lower, upper) = (cell("enclosure_lower"), cell("enclosure_upper"));
+            let context = format!("{id} with --digits {digits:?}: {row:?}");
+            // The CSV says what the JSON line says.
+            assert_eq!(line["provenance"].as_str().unwrap_or(""), provenance, "{context}");
+            assert_eq!(
+                line["digits_certified"]
+                    .as_u64()
+                    .map(|d| d.to_string())
+                    .unwrap_or_default(),
+                cell("digits_certified"),
+                "{context}"
+            );
+            let enclosure = line["enclosure"].as_array();
+            let ends = enclosure.map(|e| (e[0].as_str().unwrap(), e[1].as_str().unwrap()));
+            assert_eq!(ends.unwrap_or(("", "")), (lower, upper), "{context}");
+            match (id, digits) {
+                ("gross", _) | ("table", Some(_)) => {
+                    assert!(
+                        !cell("error").is_empty() && w.is_empty() && provenance.is_empty(),
+                        "{context}"
+                    );
+                    assert!(lower.is_empty() && cell("digits_certified").is_empty(), "{context}");
+                    continue;
+                }
+                ("constant", _) => {
+                    assert_eq!((provenance, lower, upper), ("exact", "", ""), "{context}");
+                    assert_eq!(cell("digits_certified"), cell("digits"), "{context}");
+                    continue;
+                }
+                ("table", None) => assert_eq!(provenance, "table_error", "{context}"),
+                (_, None) => assert_eq!((provenance, cell("digits_certified")), ("estimate", "0"), "{context}"),
+                (_, Some(_)) => {
+                    assert_eq!((provenance, cell("digits_certified")), ("certified", "30"), "{context}");
+                }
+            }
+            let printed_digits = w
+                .split('e')
+                .next()
+                .unwrap()
+                .chars()
+                .filter(char::is_ascii_digit)
+                .count();
+            assert_eq!(cell("digits"), printed_digits.to_string(), "{context}");
+            let (low, high) = (
+                common::read_decimal(lower).unwrap(),
+                common::read_decimal(upper).unwrap(),
+            );
+            common::every_point_rounds_to(w, &low, &high).unwrap_or_else(|e| panic!("{context}: {e}"));
+            if id != "table" {
+                let exact = reference_w(row);
+                assert!(low <= exact && exact <= high, "{context}: {exact:.40}");
+            }
+        }
+    }
+}

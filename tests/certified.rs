@@ -4,6 +4,8 @@
 //! (Gauss–Legendre to a 1e-140 tolerance) — across the families, their sums and the
 //! corners of the domain — and is narrow enough for the digits asked.
 
+mod common;
+
 use microslip::ball::{certain_digits, hull, watch, Ball};
 use microslip::certified::{certified_dissipation, cycle_phase, enclose_dissipation, CertifiedError};
 use microslip::compliance::{parse_spec, Compliance, Polynomial};
@@ -549,5 +551,110 @@ fn segment_enclosures_hold_the_exact_polynomial_w() {
             assert!(ball.relative_radius() < 1e-60, "{case:?} {segment}: {ball:?}");
         }
         checked += 1;
+    }
+}
+
+// The tests below read the catalogue and printed decimals through the shared test helpers.
+
+/// The Arb enclosure of W for a case given as text (the path the command line takes).
+fn text_enclosure(
+    text: &microslip::case::CaseText,
+    digits: u32,
+) -> Result<microslip::certified::Certified, CertifiedError> {
+    let spec = text.spec().unwrap_or_else(|e| panic!("{text:?}: {e}"));
+    let read = |precision| {
+        let case = spec.at::<Ball>(precision).map_err(|e| e.to_string())?;
+        Ok((case.cycle, case.compliance))
+    };
+    certified_dissipation(read, digits)
+}
+
+/// Every committed reference value of the catalogue (tests/data/catalogue.json: 50
+/// digits, written by `microslip reference --write`) is the rounding of every point of the
+/// case's Arb enclosure at 60 digits — the committed digits are proven, corners included
+/// (phases 1e-6 from 0 and π, in phase, P1 = 0, near gross slip, P_T near 0, 1e-6 from
+/// separation, amplitudes to 1e-12, friction 0.01 and 10).
+#[test]
+fn every_catalogue_value_lies_in_its_enclosure() {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/catalogue.json");
+    let entries = microslip::catalogue::load(std::path::Path::new(path)).unwrap();
+    assert_eq!(entries.len(), 21);
+    for entry in &entries {
+        let committed = entry
+            .reference
+            .as_ref()
+            .unwrap_or_else(|| panic!("{}: no value", entry.name));
+        let certified = text_enclosure(&entry.case, committed.digits + 10)
+            .unwrap_or_else(|e| panic!("{}: no enclosure: {e}", entry.name));
+        let (lower, upper) = certified
+            .enclosure
+            .total
+            .bounds(certified.enclosure.precision.in_bits());
+        common::every_point_rounds_to(&committed.w, &lower, &upper)
+            .unwrap_or_else(|wrong| panic!("{}: {wrong}", entry.name));
+    }
+}
+
+/// Scales a family's SPEC to loads of order `scale` = 10^k, so that the same shape of v'
+/// is met at every scale (Persson, Hertz and power laws need no change).
+fn scaled_spec(family: usize, k: i32) -> String {
+    match family {
+        0 => PERSSON.to_string(),
+        1 => "power:c=1,beta=-0.25".to_string(),
+        2 => "hertz:r=2,estar=0.5".to_string(),
+        3 => format!("rational:a=0.2e{},b=1,c=0.1e{k}", -k),
+        4 => format!("exp:a=1,c=3e{k},d=0.2"),
+        5 => format!("poly:p0=1e{k},coeffs=1;-0.2e{};0.01e{}", -k, -2 * k),
+        _ => format!("persson:gamma=1,sigma=0.5+power:c=0.5e{},beta=-0.75", k / 4),
+    }
+}
+
+/// Random cases over every family at load scales 1e-300 … 1e300, some with Q1 or P1 down
+/// to 1e-12 of P0 and some 1e-10 from gross slip: each enclosure at 40 digits holds the
+/// 500-bit reference of the library's own Gauss–Legendre quadrature (a 1e-140 tolerance,
+/// so more than 100 digits) and its 40 digits are the reference's, rounded.
+#[test]
+fn random_cases_at_the_corners_hold_their_100_digit_references() {
+    let mut draws = Draws(2026);
+    let mut certified = 0;
+    while certified < 14 {
+        let k = [-300, -120, 0, 150, 300][certified % 5];
+        let family = certified % 7;
+        let scale = |text: String| match text.split_once('e') {
+            Some((mantissa, exponent)) => format!("{mantissa}e{}", exponent.parse::<i32>().unwrap() + k),
+            None => format!("{text}e{k}"),
+        };
+        let p1_share = match certified % 3 {
+            0 => "1e-12".to_string(),
+            _ => draws.decimal(0.05, 0.9),
+        };
+        let friction = draws.decimal(0.3, 1.5);
+        let (q1_share, phi) = match certified % 4 {
+            // 1e-10 from gross slip at φ = π/2: Q1 = (1 − 1e-10) f √(1 − (P1/P0)²) P0.
+            0 => {
+                let f: f64 = friction.parse().unwrap();
+                let p: f64 = p1_share.parse().unwrap();
+                let p = Float::with_val(200, p);
+                let edge: Float = Float::with_val(200, 1 - p.square()).sqrt() * f;
+                let q: Float = edge * Float::with_val(200, 1 - Float::with_val(200, Float::parse("1e-10").unwrap()));
+                (q.to_string_radix(10, Some(30)), "0.5pi".to_string())
+            }
+            1 => ("1e-12".to_string(), draws.decimal(0.05, 3.1)),
+            _ => (draws.decimal(0.01, 1.2), draws.decimal(0.05, 3.1)),
+        };
+        let mut corner = case(
+            &scale("1".into()),
+            &scale(p1_share),
+            &scale(q1_share),
+            &phi,
+            &friction,
+            &scaled_spec(family, k),
+        );
+        corner.lambda = draws.decimal(1.0, 2.0);
+        if cycle_at::<Float>(&corner, Precision::bits(200)).validate().is_err() {
+            continue;
+        }
+        assert_certified(&corner, 40);
+        certified += 1;
     }
 }

@@ -11,11 +11,12 @@ use std::path::{Path, PathBuf};
 use serde::Serialize;
 
 use super::draw::figure_picture;
-use super::evaluate::LimitSlope;
+use super::evaluate::{LimitSlope, FIGURE_RELATIVE_ERROR};
 use super::sweeps::{compute, step_count, Facts, Figures, SweepError, FIG8_PHASES};
 use super::{Figure, Progress};
 use crate::files::csv_text;
 use crate::plot::{write_all_or_none, Format, PlotError};
+use crate::verified::decimal_f64;
 
 /// Why the figures could not be written.
 #[derive(Debug, thiserror::Error)]
@@ -108,7 +109,9 @@ fn write_error(path: &Path, error: impl std::fmt::Display) -> FiguresError {
 }
 
 /// One row per sample: panel, curve, abscissa, Ŵ, the precision used, and on the end
-/// sample of a curve that stops at gross slip the abscissa of the limit.
+/// sample of a curve that stops at gross slip the abscissa of the limit. Ŵ is printed by
+/// the one printing rule to the digits its bound determines: every sample is vouched for
+/// to [`FIGURE_RELATIVE_ERROR`] by its error estimate (an estimate, not a proof).
 pub fn figure_csv(figure: &Figure) -> Result<Vec<u8>, FiguresError> {
     let header = [
         "panel",
@@ -139,7 +142,7 @@ pub fn figure_csv(figure: &Figure) -> Result<Vec<u8>, FiguresError> {
                     panel.name.clone(),
                     curve.key.clone(),
                     format!("{x:.10e}"),
-                    format!("{w:.12e}"),
+                    decimal_f64(*w, w.abs() * FIGURE_RELATIVE_ERROR).to_string(),
                     bits.to_string(),
                     limit,
                 ]);

@@ -378,3 +378,46 @@ pub fn seeded_runner(seed: u8, default_cases: u32) -> proptest::test_runner::Tes
         TestRng::from_seed(RngAlgorithm::ChaCha, &[seed; 32]),
     )
 }
+
+/// A decimal read at 1024 bits (exact for the decimals tests print and compare).
+#[allow(dead_code)] // not every test binary reads printed digits
+pub fn read_decimal(text: &str) -> Result<rug::Float, String> {
+    rug::Float::parse(text.trim())
+        .map(|parsed| rug::Float::with_val(1024, parsed))
+        .map_err(|_| format!("{text:?} is not a number"))
+}
+
+/// The numbers that round to `printed`, a decimal in scientific notation whose
+/// significant digits are all printed: those within half a unit of its last digit.
+#[allow(dead_code)] // not every test binary reads printed digits
+pub fn half_unit_interval(printed: &str) -> Result<(rug::Float, rug::Float), String> {
+    let (mantissa, exponent) = printed
+        .split_once('e')
+        .ok_or_else(|| format!("{printed:?} is not scientific"))?;
+    let digits = mantissa.chars().filter(char::is_ascii_digit).count() as i64;
+    let exponent: i64 = exponent.parse().map_err(|_| format!("{printed:?} has no exponent"))?;
+    let value = read_decimal(printed)?;
+    let half_unit = read_decimal(&format!("5e{}", exponent - digits))?;
+    Ok((value.clone() - &half_unit, value + &half_unit))
+}
+
+/// Whether every point of [`lower`, `upper`] rounds to `printed`, a decimal in
+/// scientific notation whose significant digits are all printed: both ends lie within
+/// half a unit of its last digit.
+#[allow(dead_code)] // not every test binary checks printed digits
+pub fn every_point_rounds_to(printed: &str, lower: &rug::Float, upper: &rug::Float) -> Result<(), String> {
+    let (low, high) = half_unit_interval(printed)?;
+    let show = |x: &rug::Float| x.to_string_radix(10, Some(25));
+    if lower > upper {
+        return Err(format!("[{}, {}] is no interval", show(lower), show(upper)));
+    }
+    (low <= *lower && *upper <= high).then_some(()).ok_or_else(|| {
+        format!(
+            "{printed} printed, but [{}, {}] leaves [{}, {}]",
+            show(lower),
+            show(upper),
+            show(&low),
+            show(&high)
+        )
+    })
+}
