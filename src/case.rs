@@ -11,7 +11,7 @@
 use rug::Rational;
 use serde::{Deserialize, Serialize};
 
-use crate::compliance::{Compliance, ComplianceSpec, SpecError, SpecReadError, TableError};
+use crate::compliance::{Compliance, ComplianceSpec, SpecReadError};
 use crate::cycle::{compliance_ratio_from_poisson, CycleError, LoadCycle};
 use crate::decimal::{decimal, rounded};
 use crate::dissipation::ExactZero;
@@ -63,12 +63,10 @@ pub enum InputError {
     /// Neither or both of λ and ν.
     #[error("give exactly one of the compliance ratio λ and Poisson's ratio ν")]
     LambdaOrNu,
-    /// The compliance SPEC is wrong.
+    /// The compliance SPEC is wrong, or a table it names cannot be read or is not a
+    /// compliance.
     #[error(transparent)]
-    Spec(#[from] SpecError),
-    /// A table the compliance SPEC names cannot be read or is not a compliance.
-    #[error(transparent)]
-    Table(#[from] TableError),
+    Compliance(#[from] SpecReadError),
     /// ν is out of range or not finite.
     #[error(transparent)]
     Cycle(#[from] CycleError),
@@ -187,10 +185,7 @@ impl CaseText {
         };
         let phase = ExactPhase::parse(&self.phi)?.reduce()?;
         let mean_tangential_load = Field::read("q0", &self.q0)?;
-        let compliance = ComplianceSpec::read(&self.compliance).map_err(|error| match error {
-            SpecReadError::Spec(error) => InputError::Spec(error),
-            SpecReadError::Table(error) => InputError::Table(error),
-        })?;
+        let compliance = ComplianceSpec::read(&self.compliance)?;
         Ok(CaseSpec {
             mean_normal_load: Field::read("p0", &self.p0)?,
             normal_amplitude: Field::read("p1", &self.p1)?,
@@ -242,7 +237,7 @@ impl CaseSpec {
             friction: self.friction.at(precision)?,
             compliance_ratio,
         };
-        let compliance = self.compliance.build::<R>(precision)?;
+        let compliance = self.compliance.build::<R>(precision).map_err(SpecReadError::from)?;
         Ok(Case { cycle, compliance })
     }
 
@@ -314,6 +309,7 @@ fn quantity_of(flag: &'static str) -> &'static str {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::compliance::TableError;
     use rug::Float;
 
     #[test]
@@ -447,11 +443,11 @@ mod tests {
         ));
         assert!(matches!(
             text("1", "0.2", "1", "table:no-such-table.csv").spec(),
-            Err(InputError::Table(TableError::File { .. }))
+            Err(InputError::Compliance(SpecReadError::Table(TableError::File { .. })))
         ));
         assert!(matches!(
             text("1", "0.2", "1", "persson:gamma=0,sigma=1").spec(),
-            Err(InputError::Spec(_))
+            Err(InputError::Compliance(SpecReadError::Spec(_)))
         ));
         let mut both = text("1", "0.2", "1", persson);
         both.lambda = Some("1".into());
