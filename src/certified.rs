@@ -30,7 +30,7 @@ use crate::dissipation::closed_forms::{
 };
 use crate::dissipation::slope::knot_offsets;
 use crate::dissipation::{Segment, SegmentIntegrands, Segments};
-use crate::phase::{ExactPhase, PhaseError, ReducedPhase};
+use crate::phase::ReducedPhase;
 use crate::quad::sinh_map::resolve_peaks;
 use crate::quad::Piece;
 use crate::real::{Precision, Real};
@@ -461,15 +461,6 @@ fn phase_bits(cycle: &LoadCycle<Ball>) -> u32 {
     } else {
         0
     }
-}
-
-/// The phase a cycle on balls is read with, and whether it is its mirror image's (Q0
-/// to be negated), as [`crate::phase::ReducedPhase::cycle_phase`] gives it in the other
-/// types: an enclosure of the exact φ built from its exact parts φ = nπ + mπ + x (m
-/// rational, x decimal), so that an offset of 10⁻³⁰⁰ from a multiple of π keeps its
-/// digits at any precision, and `3.141592653589793` is not π.
-pub fn cycle_phase(phase: &ExactPhase, precision: Precision) -> Result<(Ball, bool), PhaseError> {
-    Ok(phase.reduce()?.cycle_phase::<Ball>(precision))
 }
 
 /// Bits a phase offset is computed with beyond the working precision and its exponent.

@@ -7,7 +7,7 @@
 mod common;
 
 use microslip::ball::{certain_digits, hull, watch, Ball};
-use microslip::certified::{certified_dissipation, cycle_phase, enclose_dissipation, CertifiedError};
+use microslip::certified::{certified_dissipation, enclose_dissipation, CertifiedError};
 use microslip::compliance::{parse_spec, Compliance, Polynomial};
 use microslip::cycle::LoadCycle;
 use microslip::dissipation::{dissipation, Options, Segment};
@@ -459,7 +459,7 @@ fn in_phase_without_slip_is_exactly_zero() {
     let precision = Precision::bits(128);
     for (q1, phi) in [("0.3", "0"), ("0.39", "pi"), ("0.1", "-3pi")] {
         let phase = ExactPhase::parse(phi).unwrap();
-        let (cycle_phase, _) = cycle_phase(&phase, precision).unwrap();
+        let (cycle_phase, _) = phase.reduce().unwrap().cycle_phase::<Ball>(precision);
         let (mut cycle, compliance) = ball_case(&case("1", "0.4", q1, "0", "1", PERSSON))(precision).unwrap();
         cycle.phase = cycle_phase;
         let enclosure = enclose_dissipation(&cycle, compliance.as_ref(), 128).unwrap();
@@ -484,7 +484,11 @@ fn phases_within_1e_minus_100_of_0_and_pi_keep_their_offset() {
         let base = case("1", "0.4", q1, "0", "1", PERSSON);
         let build = |precision: Precision| {
             let (mut cycle, compliance) = ball_case(&base)(precision)?;
-            cycle.phase = cycle_phase(&phase, precision).map_err(|e| e.to_string())?.0;
+            cycle.phase = phase
+                .reduce()
+                .map_err(|e| e.to_string())?
+                .cycle_phase::<Ball>(precision)
+                .0;
             Ok((cycle, compliance))
         };
         let certified = certified_dissipation(build, digits).unwrap_or_else(|e| panic!("{phi}: {e}"));
