@@ -216,6 +216,11 @@ impl Ball {
         Ball { raw, precision }
     }
 
+    /// The real part, to be changed in place.
+    pub(crate) fn real_mut(&mut self) -> &mut arb_struct {
+        &mut self.raw.real
+    }
+
     fn real_part(&self) -> &arb_struct {
         &self.raw.real
     }
@@ -367,7 +372,8 @@ impl Ball {
         result
     }
 
-    fn indeterminate(&self) -> Ball {
+    /// A ball that holds every complex number (not finite).
+    pub(crate) fn indeterminate(&self) -> Ball {
         let mut result = Ball::zero(self.precision);
         // SAFETY: initialised.
         unsafe { acb_indeterminate(&mut result.raw) };
