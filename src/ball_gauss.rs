@@ -5,8 +5,8 @@
 //! Arb's `acb_calc_integrate` takes its degrees from steps of about √2 (…, 16, 22, 32,
 //! 46, 64, 90, 128, …) and its ellipses from X = 2, 4, 8, 32, …, and bisects where X = 2
 //! does not fit a subinterval. Here the ellipses between are tried too (X = 3, 6) and the
-//! degree is the least of a grid with four steps an octave (…, 16, 20, 24, 28, 32, 40,
-//! …) that the bound allows; where X = 2 does not fit, the interval is bisected (so that
+//! degree is the least of a grid with eight steps an octave (…, 16, 18, 20, 22, …, 30,
+//! 32, 36, …) that the bound allows; where X = 2 does not fit, the interval is bisected (so that
 //! the degrees of a case stay few, and their node tables with them), and after
 //! [`OWN_DEPTH`] halvings what is left goes to Arb's bisection.
 
@@ -163,13 +163,13 @@ impl Mag {
     }
 }
 
-/// The least degree ≥ n on the grid: every n up to 8, then m·2^k with m = 4, 5, 6, 7
-/// (steps of 1/7 to 1/4), so that a thread keeps few node tables.
+/// The least degree ≥ n on the grid: every n up to 16, then m·2^k with 8 ≤ m ≤ 15 (steps
+/// of 1/15 to 1/8), so that a thread keeps few node tables.
 fn degree_at_least(n: u64) -> u64 {
-    if n <= 8 {
+    if n <= 16 {
         return n.max(1);
     }
-    let shift = 64 - n.leading_zeros() - 3;
+    let shift = 64 - n.leading_zeros() - 4;
     n.div_ceil(1 << shift) << shift
 }
 
@@ -443,14 +443,15 @@ mod tests {
     }
 
     #[test]
-    fn degrees_lie_on_a_grid_of_four_steps_an_octave() {
-        let degrees: Vec<u64> = [1, 8, 9, 10, 11, 13, 15, 17, 20, 21, 33, 90, 97]
+    fn degrees_lie_on_a_grid_of_eight_steps_an_octave() {
+        let degrees: Vec<u64> = [1, 8, 9, 13, 16, 17, 20, 21, 33, 90, 97, 1000]
             .map(degree_at_least)
             .to_vec();
-        assert_eq!(degrees, [1, 8, 10, 10, 12, 14, 16, 20, 20, 24, 40, 96, 112]);
-        for n in 1..2000 {
+        assert_eq!(degrees, [1, 8, 9, 13, 16, 18, 20, 22, 36, 96, 104, 1024]);
+        for n in 1..5000 {
             let d = degree_at_least(n);
-            assert!(d >= n && (d as f64) < 1.26 * n as f64 + 1.0);
+            assert!(d >= n && (d as f64) <= 1.125 * n as f64 + 1.0);
+            assert_eq!(degree_at_least(d), d);
         }
     }
 

@@ -5,8 +5,9 @@
 //! same generic code that runs in f64 and MPFR, here on Arb balls ([`Ball`]); every
 //! comparison that code makes must be decided, or the attempt is refused. Each piece
 //! (a segment split at its lowest loads and knots, narrow peaks mapped by s = c + w·sinh u)
-//! is integrated by Arb's `acb_calc_integrate`, which bounds the error of its
-//! Gauss–Legendre rules by the integrand's size on a complex ball around the piece; the
+//! is integrated by Gauss–Legendre rules whose error is bounded by the integrand's size
+//! on a complex ball around the piece (Arb's bound: `ball_gauss` at the fewest
+//! points it allows, Arb's `acb_calc_integrate` where that needs bisection); the
 //! integrand is the generic one, evaluated on that ball with every function required to
 //! be analytic there. W is λ times the sum of the piece enclosures.
 
@@ -724,7 +725,7 @@ impl Drop for Tolerance {
 }
 
 /// The enclosure of one piece's integral at `bits` of working precision: Gauss–Legendre
-/// rules at the fewest points their bounds allow ([`ball_gauss`]), Arb's adaptive
+/// rules at the fewest points their bounds allow (`ball_gauss`), Arb's adaptive
 /// bisection on what they leave.
 fn integrate_piece(piece: &CertifiedPiece<'_>, goal_bits: u32, tolerance: &Tolerance, bits: u32) -> Ball {
     let otherwise = |start: &Ball, end: &Ball| arb_bisection(piece, start, end, goal_bits, tolerance, bits);
