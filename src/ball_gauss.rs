@@ -1,13 +1,12 @@
-//! One Gauss–Legendre rule over a whole piece on Arb balls, its error bounded through the
-//! Bernstein ellipse, at the fewest points the bound allows (proofs/certified-digits.md,
-//! "The rule per piece").
+//! Gauss–Legendre rules on Arb balls at the fewest points their Bernstein-ellipse bound
+//! allows, one per piece or per half (proofs/certified-digits.md, "The rule per piece").
 //!
 //! Arb's `acb_calc_integrate` takes its degrees from steps of about √2 (…, 16, 22, 32,
 //! 46, 64, 90, 128, …) and its ellipses from X = 2, 4, 8, 32, …, and bisects where X = 2
-//! does not fit a subinterval. Here the ellipses between are tried too (X = 3, 6) and the
-//! degree is the least of a grid with eight steps an octave (…, 16, 18, 20, 22, …, 30,
-//! 32, 36, …) that the bound allows; where X = 2 does not fit, the interval is bisected (so that
-//! the degrees of a case stay few, and their node tables with them), and after
+//! does not fit a subinterval. Here the degree is the least of a grid of eight steps an
+//! octave (…, 16, 18, 20, …, 30, 32, 36, …) that the bound allows, and from 32 points up
+//! the ellipses X = 3, 4, 6, 8, 16 are tried too; where X = 2 does not fit, the interval
+//! is halved (so that the degrees of a case, and their node tables, stay few), and after
 //! [`OWN_DEPTH`] halvings what is left goes to Arb's bisection.
 
 use std::cell::RefCell;
