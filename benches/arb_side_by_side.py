@@ -5,8 +5,10 @@ The four segment integrals in the cycle angle (src/dissipation/segments.rs,
 proofs/four-segment.md) are integrated by python-flint's acb.integral (Arb's
 acb_calc_integrate: rigorous Gauss-Legendre error bounds with bisection), one call per
 segment, segment end points as balls, at 15, 30, 50 and 100 digits; beside it microslip's
-certified W through the same Arb routine but over its own pieces (split at the lowest
-loads, narrow peaks sinh-mapped), timed in process by `examples/certified_timing.rs`.
+certified W over its own pieces (split at the lowest loads, narrow peaks sinh-mapped), each
+by Gauss-Legendre rules on Arb's Bernstein-ellipse bound at the fewest points it allows and
+Arb's acb_calc_integrate where those need bisection (src/ball_gauss.rs), timed in process by
+`examples/certified_timing.rs`.
 Both enclosures must overlap.
 
 Usage: benches/arb_side_by_side.py   (optional dependency: python-flint; not run in CI).

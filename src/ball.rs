@@ -216,14 +216,23 @@ impl Ball {
         Ball { raw, precision }
     }
 
+    /// The real part, to be changed in place.
+    pub(crate) fn real_mut(&mut self) -> &mut arb_struct {
+        &mut self.raw.real
+    }
+
     fn real_part(&self) -> &arb_struct {
         &self.raw.real
     }
 
     /// Whether the imaginary part is exactly zero.
     pub fn is_real(&self) -> bool {
-        // SAFETY: initialised.
-        unsafe { acb_is_real(&self.raw) != 0 }
+        // FLINT's `acb_is_real` (`arb_is_zero` of the imaginary part), read in place: every
+        // arithmetic operation asks it, and FLINT's inline function costs a call from
+        // Rust. Zero is a special midpoint (size 0) with exponent 0 and a radius whose
+        // mantissa and exponent are 0 (`arf_is_zero`, `mag_is_zero`).
+        let imaginary = &self.raw.imag;
+        imaginary.mid.size == 0 && imaginary.mid.exp == 0 && imaginary.rad.man == 0 && imaginary.rad.exp == 0
     }
 
     /// Whether the (real) ball contains the MPFR number `x`.
@@ -367,7 +376,8 @@ impl Ball {
         result
     }
 
-    fn indeterminate(&self) -> Ball {
+    /// A ball that holds every complex number (not finite).
+    pub(crate) fn indeterminate(&self) -> Ball {
         let mut result = Ball::zero(self.precision);
         // SAFETY: initialised.
         unsafe { acb_indeterminate(&mut result.raw) };
@@ -993,6 +1003,43 @@ mod tests {
         let exact = Float::with_val(1024, Float::parse("0.1").unwrap());
         assert!(tenth.contains(&exact));
         assert!(!tenth.contains(&Float::with_val(1024, 0.1f64)));
+    }
+
+    #[test]
+    fn realness_is_read_as_flint_reads_it() {
+        let tenth = ball("0.1", 64);
+        let zero = ball("0", 64);
+        let complex = {
+            let mut z = ball("0", 64);
+            // SAFETY: initialised; the imaginary part set to a ball around 1/10.
+            unsafe { arb_set(&mut z.raw.imag, tenth.real_part()) };
+            z
+        };
+        let wide_zero = {
+            let mut z = ball("0", 64);
+            // SAFETY: initialised; the imaginary part [0 ± 1].
+            unsafe { arb_add_error_2exp_si(&mut z.raw.imag, 0) };
+            z
+        };
+        let infinite = {
+            let mut z = ball("0", 64);
+            // SAFETY: initialised; the imaginary part +∞.
+            unsafe { arb_pos_inf(&mut z.raw.imag) };
+            z
+        };
+        for b in [
+            &tenth,
+            &zero,
+            &complex,
+            &wide_zero,
+            &infinite,
+            &(tenth.clone() / &zero),
+            &zero.indeterminate(),
+        ] {
+            // SAFETY: initialised.
+            assert_eq!(b.is_real(), unsafe { acb_is_real(&b.raw) } != 0, "{b:?}");
+        }
+        assert!(tenth.is_real() && zero.is_real() && !complex.is_real() && !wide_zero.is_real());
     }
 
     #[test]

@@ -5,11 +5,13 @@
 //! same generic code that runs in f64 and MPFR, here on Arb balls ([`Ball`]); every
 //! comparison that code makes must be decided, or the attempt is refused. Each piece
 //! (a segment split at its lowest loads and knots, narrow peaks mapped by s = c + w·sinh u)
-//! is integrated by Arb's `acb_calc_integrate`, which bounds the error of its
-//! Gauss–Legendre rules by the integrand's size on a complex ball around the piece; the
+//! is integrated by Gauss–Legendre rules whose error is bounded by the integrand's size
+//! on a complex ball around the piece (Arb's bound: `ball_gauss` at the fewest
+//! points it allows, Arb's `acb_calc_integrate` where that needs bisection); the
 //! integrand is the generic one, evaluated on that ball with every function required to
 //! be analytic there. W is λ times the sum of the piece enclosures.
 
+use std::cell::Cell;
 use std::ffi::{c_int, c_void};
 use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::time::Instant;
@@ -18,9 +20,10 @@ use flint_sys::acb::{acb_get_mag, acb_indeterminate, acb_init};
 use flint_sys::acb_calc::{acb_calc_integrate, acb_calc_integrate_opt_init, acb_calc_integrate_opt_struct};
 use flint_sys::acb_types::acb_struct;
 use flint_sys::arb_types::mag_struct;
-use flint_sys::mag::{mag_clear, mag_init, mag_mul_2exp_si};
+use flint_sys::mag::{mag_clear, mag_init, mag_is_zero, mag_mul_2exp_si};
 
 use crate::ball::{certain_digits, watch, with_analytic, Ball, Doubts};
+use crate::ball_gauss;
 use std::rc::Rc;
 
 use crate::compliance::{Compliance, SlopeChange};
@@ -299,6 +302,7 @@ fn enclose_terms<const N: usize>(
                 end: piece.end,
                 integrand: piece.integrand,
                 bound: None,
+                evaluations: Cell::new(0),
             })
             .collect();
         outcome = Some(integrate_pieces(&pieces, N, goal_bits, bits));
@@ -563,6 +567,8 @@ struct CertifiedPiece<'a> {
     /// and divided) widen far more on a complex ball than one `acb_pow` does.
     /// `None` where the integrand serves for both.
     bound: Option<PieceIntegrand<'a>>,
+    /// Integrand evaluations so far, against the piece's budget ([`evaluation_limit`]).
+    evaluations: Cell<i64>,
 }
 
 type PieceIntegrand<'a> = Box<dyn Fn(&Ball) -> Ball + 'a>;
@@ -587,6 +593,7 @@ fn certified_pieces<'a>(
                     label: segment.name(),
                     integrand: piece_integrand(*integrands, segment, map.clone(), slope),
                     bound: Some(piece_integrand(*integrands, segment, map, bound_slope)),
+                    evaluations: Cell::new(0),
                     start: part.start,
                     end: part.end,
                 });
@@ -608,8 +615,9 @@ fn piece_integrand<'a>(
         None => Box::new(move |s: &Ball| integrands.integrand_with(segment, s, slope)),
         Some((center, width)) => Box::new(move |u: &Ball| {
             let (sinh, cosh) = u.sinh_cosh();
-            let s = center.clone() + &(width.clone() * &sinh);
-            integrands.integrand_with(segment, &s, slope) * &(width.clone() * &cosh)
+            // c + w·sinh u and w·cosh u, with no copies of c and w.
+            let s = sinh * &width + &center;
+            integrands.integrand_with(segment, &s, slope) * &(cosh * &width)
         }),
     }
 }
@@ -643,6 +651,7 @@ impl CertifiedPiece<'_> {
     /// The integrand on `x` (required to be analytic there where `analytic`), or `None`
     /// where the evaluation met an undecided comparison or a branch cut, or panicked.
     fn value(&self, x: &Ball, analytic: bool) -> Option<Ball> {
+        self.evaluations.set(self.evaluations.get() + 1);
         let integrand = match (&self.bound, analytic) {
             (Some(bound), true) => bound,
             _ => &self.integrand,
@@ -706,8 +715,48 @@ impl Drop for Tolerance {
     }
 }
 
-/// Arb's enclosure of one piece's integral at `bits` of working precision.
+/// The enclosure of one piece's integral at `bits` of working precision: Gauss–Legendre
+/// rules at the fewest points their bounds allow (`ball_gauss`), Arb's adaptive
+/// bisection on what they leave.
 fn integrate_piece(piece: &CertifiedPiece<'_>, goal_bits: u32, tolerance: &Tolerance, bits: u32) -> Ball {
+    let otherwise = |start: &Ball, end: &Ball| arb_bisection(piece, start, end, goal_bits, tolerance, bits);
+    // SAFETY: an initialised magnitude.
+    if unsafe { mag_is_zero(&tolerance.0) } != 0 {
+        // Arb's relative goal alone: no rule of this module can meet a zero tolerance.
+        return otherwise(&piece.start, &piece.end);
+    }
+    let rule = ball_gauss::Rule {
+        integrand: &|x: &Ball, analytic: bool| piece.value(x, analytic),
+        tolerance: &tolerance.0,
+        // Arb's own limit on the degree.
+        degree_limit: u64::from(goal_bits.min(bits) / 2 + 60),
+        otherwise: &otherwise,
+    };
+    rule.integrate(&piece.start, &piece.end, ball_gauss::OWN_DEPTH)
+}
+
+/// The integrand evaluations a piece may spend at `bits`: Arb's default, 1000·prec +
+/// prec², lets a piece that cannot be enclosed (an integrand undecided near a point) run
+/// for minutes at high precision.
+fn evaluation_limit(bits: u32) -> i64 {
+    EVALUATION_LIMIT + 16 * i64::from(bits)
+}
+
+/// Arb's enclosure of the integral of a piece's integrand over [start, end] at `bits` of
+/// working precision, within what is left of the piece's evaluations (not finite where
+/// nothing is).
+fn arb_bisection(
+    piece: &CertifiedPiece<'_>,
+    start: &Ball,
+    end: &Ball,
+    goal_bits: u32,
+    tolerance: &Tolerance,
+    bits: u32,
+) -> Ball {
+    let left = evaluation_limit(bits) - piece.evaluations.get();
+    if left <= 0 {
+        return start.indeterminate();
+    }
     let mut raw = acb_struct::default();
     let mut options = acb_calc_integrate_opt_struct::default();
     // SAFETY: `raw` is initialised before use and passes to the returned ball; `param`
@@ -715,15 +764,13 @@ fn integrate_piece(piece: &CertifiedPiece<'_>, goal_bits: u32, tolerance: &Toler
     unsafe {
         acb_init(&mut raw);
         acb_calc_integrate_opt_init(&mut options);
-        // Arb's default, 1000·prec + prec², lets a piece that cannot be enclosed (an
-        // integrand undecided near a point) run for minutes at high precision.
-        options.eval_limit = EVALUATION_LIMIT + 16 * i64::from(bits);
+        options.eval_limit = left;
         acb_calc_integrate(
             &mut raw,
             Some(evaluate),
             piece as *const CertifiedPiece<'_> as *mut c_void,
-            piece.start.as_raw(),
-            piece.end.as_raw(),
+            start.as_raw(),
+            end.as_raw(),
             i64::from(goal_bits),
             &tolerance.0,
             &options,

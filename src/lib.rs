@@ -65,6 +65,8 @@ pub mod accuracy;
 #[cfg(feature = "certified")]
 #[doc(hidden)]
 pub mod ball;
+#[cfg(feature = "certified")]
+mod ball_gauss;
 #[doc(hidden)]
 pub mod batch;
 #[cfg(feature = "cli")]

@@ -173,6 +173,15 @@ impl<R: Real> Compliance<R> for Persson<R> {
         let ratio = offset.clone() / reference;
         -(self.gamma.clone() * &self.sigma * &ratio / &(reference.clone() + offset))
     }
+    fn slope_change_about<'a>(&'a self, reference: &R) -> SlopeChange<'a, R> {
+        // `slope_change` with γσ formed once: the same operations on the same operands,
+        // so the same values in f64 and MPFR (a rounded product or sum commutes).
+        let (reference, product) = (reference.clone(), self.gamma.clone() * &self.sigma);
+        Box::new(move |offset: &R| {
+            let ratio = offset.clone() / &reference;
+            -(ratio * &product / &(offset.clone() + &reference))
+        })
+    }
     fn describe(&self) -> String {
         format!(
             "Persson v' = γσ/P with γ = {}, σ = {}",

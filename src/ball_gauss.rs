@@ -1,0 +1,470 @@
+//! Gauss–Legendre rules on Arb balls at the fewest points their Bernstein-ellipse bound
+//! allows, one per piece or per half (proofs/certified-digits.md, "The rule per piece").
+//!
+//! Arb's `acb_calc_integrate` takes its degrees from steps of about √2 (…, 16, 22, 32,
+//! 46, 64, 90, 128, …) and its ellipses from X = 2, 4, 8, 32, …, and bisects where X = 2
+//! does not fit a subinterval. Here the degree is the least of a grid of eight steps an
+//! octave (…, 16, 18, 20, …, 30, 32, 36, …) that the bound allows, and from 32 points up
+//! the ellipses X = 3, 4, 6, 8, 16 are tried too; where X = 2 does not fit, the interval
+//! is halved (so that the degrees of a case, and their node tables, stay few), and after
+//! [`OWN_DEPTH`] halvings what is left goes to Arb's bisection.
+
+use std::cell::RefCell;
+use std::collections::HashMap;
+use std::rc::Rc;
+
+use flint_sys::acb::{acb_init, acb_set_round};
+use flint_sys::acb_types::acb_struct;
+use flint_sys::arb::arb_add_error_mag;
+use flint_sys::arb_hypgeom::arb_hypgeom_legendre_p_ui_root;
+use flint_sys::arb_types::mag_struct;
+use flint_sys::mag::{
+    mag_add_lower, mag_clear, mag_cmp, mag_div, mag_get_d_log2_approx, mag_init, mag_is_finite, mag_mul,
+    mag_mul_2exp_si, mag_mul_lower, mag_mul_ui_lower, mag_one, mag_pow_ui_lower, mag_set, mag_set_d, mag_sqrt,
+    mag_sqrt_lower, mag_sub, mag_sub_lower,
+};
+
+use crate::ball::Ball;
+use crate::real::Real;
+
+/// The half axes X along the interval (in units of its half length) of the rectangles
+/// that hold the Bernstein ellipses tried, in turn while they fit and lower the degree:
+/// ρ = X + √(X² − 1), from 3.7 to 32. The first is Arb's first.
+const ELLIPSES: [f64; 6] = [2.0, 3.0, 4.0, 6.0, 8.0, 16.0];
+
+/// The least degree at which a larger ellipse is tried: an evaluation on a complex ball
+/// costs about four on real points, and the next ellipse saves a quarter of the points
+/// where it fits, so below 32 points a probe that fails (the usual case on a piece whose
+/// ends are the integrand's nearest singularities' neighbours) costs more than one that
+/// fits saves.
+const LEAST_DEGREE_TO_WIDEN: u64 = 32;
+
+/// How many times an interval is halved here before Arb's bisection takes what is left.
+pub(crate) const OWN_DEPTH: u32 = 3;
+
+/// An Arb magnitude (an upper or lower bound of a non-negative number), cleared on drop.
+struct Mag(mag_struct);
+
+impl Mag {
+    fn new() -> Mag {
+        let mut m = mag_struct::default();
+        // SAFETY: initialised here, cleared on drop.
+        unsafe { mag_init(&mut m) };
+        Mag(m)
+    }
+
+    fn of(x: f64) -> Mag {
+        let mut m = Mag::new();
+        // SAFETY: initialised. The ellipses' X are dyadic, so this is exact.
+        unsafe { mag_set_d(&mut m.0, x) };
+        m
+    }
+}
+
+impl Drop for Mag {
+    fn drop(&mut self) {
+        // SAFETY: initialised in `new`.
+        unsafe { mag_clear(&mut self.0) }
+    }
+}
+
+/// One Bernstein ellipse E_ρ about [−1, 1], held by the rectangle [−X, X] × [−Y, Y].
+struct Ellipse {
+    /// A lower bound of ρ = X + √(X² − 1).
+    rho: Mag,
+    /// X (exact).
+    x: Mag,
+    /// An upper bound of Y = √(X² − 1).
+    y: Mag,
+}
+
+impl Ellipse {
+    fn new(half_axis: f64) -> Ellipse {
+        let x = Mag::of(half_axis);
+        let (mut rho, mut y, mut one) = (Mag::new(), Mag::new(), Mag::new());
+        // SAFETY: all initialised; the lower and upper roundings keep ρ below and Y above
+        // their exact values.
+        unsafe {
+            mag_one(&mut one.0);
+            mag_mul_lower(&mut rho.0, &x.0, &x.0);
+            mag_sub_lower(&mut rho.0, &rho.0, &one.0);
+            mag_sqrt_lower(&mut rho.0, &rho.0);
+            mag_add_lower(&mut rho.0, &rho.0, &x.0);
+            mag_mul(&mut y.0, &x.0, &x.0);
+            mag_sub(&mut y.0, &y.0, &one.0);
+            mag_sqrt(&mut y.0, &y.0);
+        }
+        Ellipse { rho, x, y }
+    }
+
+    /// The rectangle mid + delta·([±X] + [±Y]i), which holds the ellipse mapped onto the piece.
+    fn around(&self, mid: &Ball, delta: &Ball) -> Ball {
+        let mut raw = acb_struct::default();
+        // SAFETY: initialised, then only its radii set; `wrap` takes it over.
+        unsafe {
+            acb_init(&mut raw);
+            mag_set(&mut raw.real.rad, &self.x.0);
+            mag_set(&mut raw.imag.rad, &self.y.0);
+        }
+        let unit = Ball::wrap(raw, mid.precision().in_bits());
+        unit * delta + mid
+    }
+
+    /// An upper bound of the error of the n-point rule for an integrand bounded by
+    /// `bound` / delta on the ellipse: (64/15)·bound/((ρ − 1)·ρ^(2n−1)) (Arb's bound, from
+    /// Trefethen, Approximation Theory and Approximation Practice, Thm 19.3).
+    fn error(&self, bound: &Mag, n: u64) -> Mag {
+        let (mut t, mut less) = (Mag::new(), Mag::new());
+        let mut error = Mag::new();
+        // SAFETY: all initialised; the denominator is rounded down, the quotient up.
+        unsafe {
+            mag_pow_ui_lower(&mut t.0, &self.rho.0, 2 * n - 1);
+            mag_one(&mut less.0);
+            mag_sub_lower(&mut less.0, &self.rho.0, &less.0);
+            mag_mul_lower(&mut t.0, &t.0, &less.0);
+            mag_mul_ui_lower(&mut t.0, &t.0, 15);
+            mag_div(&mut error.0, &bound.0, &t.0);
+            mag_mul_2exp_si(&mut error.0, &error.0, 6);
+        }
+        error
+    }
+
+    /// The least degree of [`degree_at_least`]'s grid, up to `limit`, whose error bound is
+    /// below `tolerance`, with that bound.
+    fn degree(&self, bound: &Mag, tolerance: &Mag, limit: u64) -> Option<(u64, Mag)> {
+        // SAFETY: initialised magnitudes.
+        let log2 = |m: &Mag| unsafe { mag_get_d_log2_approx(&m.0) };
+        let rho = log2(&self.rho);
+        let less = (self.x.to_f64() + (self.x.to_f64().powi(2) - 1.0).sqrt() - 1.0).log2();
+        // Solve (64/15)·bound/((ρ − 1)ρ^(2n−1)) = tolerance for n: a start, checked below.
+        let estimate = ((64.0f64 / 15.0).log2() + log2(bound) - less - log2(tolerance)) / (2.0 * rho) + 0.5;
+        let mut n = degree_at_least(if estimate.is_finite() {
+            estimate.max(1.0).ceil() as u64
+        } else {
+            1
+        });
+        while n <= limit {
+            let error = self.error(bound, n);
+            // SAFETY: initialised magnitudes.
+            if unsafe { mag_cmp(&error.0, &tolerance.0) } < 0 {
+                return Some((n, error));
+            }
+            n = degree_at_least(n + 1);
+        }
+        None
+    }
+}
+
+impl Mag {
+    fn to_f64(&self) -> f64 {
+        // SAFETY: initialised.
+        unsafe { flint_sys::mag::mag_get_d(&self.0) }
+    }
+}
+
+/// The least degree ≥ n on the grid: every n up to 16, then m·2^k with 8 ≤ m ≤ 15 (steps
+/// of 1/15 to 1/8), so that a thread keeps few node tables.
+fn degree_at_least(n: u64) -> u64 {
+    if n <= 16 {
+        return n.max(1);
+    }
+    let shift = 64 - n.leading_zeros() - 4;
+    n.div_ceil(1 << shift) << shift
+}
+
+/// How an interval's integral is enclosed.
+pub(crate) struct Rule<'a> {
+    /// `integrand(x, analytic)` encloses f on x (`analytic`: a complex ball on which f
+    /// must be shown holomorphic), `None` where it cannot.
+    pub integrand: &'a dyn Fn(&Ball, bool) -> Option<Ball>,
+    /// The absolute error each rule may have.
+    pub tolerance: &'a mag_struct,
+    /// The most points a rule may take.
+    pub degree_limit: u64,
+    /// Arb's adaptive bisection on an interval left over.
+    pub otherwise: &'a dyn Fn(&Ball, &Ball) -> Ball,
+}
+
+impl Rule<'_> {
+    /// The integral over [start, end]: one Gauss–Legendre rule where its error bound on
+    /// an ellipse from X = 2 meets the tolerance; else the sum over the two halves, down
+    /// to `depth` halvings; else Arb's bisection.
+    pub(crate) fn integrate(&self, start: &Ball, end: &Ball, depth: u32) -> Ball {
+        if let Some(value) = self.one_rule(start, end) {
+            return value;
+        }
+        if depth == 0 {
+            return (self.otherwise)(start, end);
+        }
+        let middle = (start.clone() + end).times_power_of_two(-1);
+        let first = self.integrate(start, &middle, depth - 1);
+        if !first.is_finite() {
+            // The piece has no finite enclosure; the other half cannot change that.
+            return first;
+        }
+        first + self.integrate(&middle, end, depth - 1)
+    }
+
+    /// One rule over [start, end] at the fewest points the bound allows, or `None`.
+    fn one_rule(&self, start: &Ball, end: &Ball) -> Option<Ball> {
+        let bits = start.precision().in_bits();
+        let delta = (end.clone() - start).times_power_of_two(-1);
+        let mid = (end.clone() + start).times_power_of_two(-1);
+        let mut tolerance = Mag::new();
+        // SAFETY: initialised.
+        unsafe { mag_set(&mut tolerance.0, self.tolerance) };
+        // A bound of |f| on the ellipse, times the half length, and the degree it allows.
+        let rule_on = |half_axis: f64| -> Option<(u64, Mag)> {
+            let ellipse = Ellipse::new(half_axis);
+            let value = (self.integrand)(&ellipse.around(&mid, &delta), true)?;
+            let (mut bound, mut half) = (Mag::new(), Mag::new());
+            // SAFETY: initialised.
+            unsafe {
+                flint_sys::acb::acb_get_mag(&mut bound.0, value.as_raw());
+                flint_sys::acb::acb_get_mag(&mut half.0, delta.as_raw());
+                mag_mul(&mut bound.0, &bound.0, &half.0);
+                if mag_is_finite(&bound.0) == 0 {
+                    return None;
+                }
+            }
+            ellipse.degree(&bound, &tolerance, self.degree_limit)
+        };
+        let mut best = rule_on(ELLIPSES[0])?;
+        for half_axis in &ELLIPSES[1..] {
+            if best.0 < LEAST_DEGREE_TO_WIDEN {
+                break;
+            }
+            match rule_on(*half_axis) {
+                Some(found) if found.0 < best.0 => best = found,
+                _ => break,
+            }
+        }
+        let (n, error) = best;
+        let table = nodes(n, bits);
+        let mut sum = start.int(0);
+        for k in 0..n as usize {
+            let (node, weight) = &table[k.min(n as usize - 1 - k)];
+            let offset = delta.clone() * node;
+            let x = if 2 * k < n as usize {
+                mid.clone() + &offset
+            } else {
+                mid.clone() - &offset
+            };
+            sum += (self.integrand)(&x, false)? * weight;
+        }
+        let mut value = sum * &delta;
+        if !value.is_real() {
+            return None;
+        }
+        // The integrand is real on the real interval, so the integral is real, and the
+        // rule's error is at most `error` in absolute value.
+        // SAFETY: `value` is an initialised real ball; only its radius grows.
+        unsafe { arb_add_error_mag(value.real_mut(), &error.0) };
+        Some(value)
+    }
+}
+
+type Table = Rc<Vec<(Ball, Ball)>>;
+/// Per degree the table at the highest precision computed; per (degree, bits) its rounding.
+type NodeCache = (HashMap<u64, (u32, Table)>, HashMap<(u64, u32), Table>);
+
+thread_local! {
+    /// Nodes and weights per degree at the highest precision computed, and rounded per
+    /// (degree, precision) as used.
+    static NODES: RefCell<NodeCache> = RefCell::default();
+}
+
+/// The nodes x_k ≥ 0 (k < (n + 1)/2, decreasing) of the n-point Gauss–Legendre rule on
+/// [−1, 1] and their weights, as balls rounded to `bits`; the rule's other nodes are −x_k.
+fn nodes(n: u64, bits: u32) -> Table {
+    NODES.with(|cache| {
+        let (exact, rounded) = &mut *cache.borrow_mut();
+        if let Some(table) = rounded.get(&(n, bits)) {
+            return Rc::clone(table);
+        }
+        let master = match exact.get(&n) {
+            Some((at, table)) if *at >= bits => Rc::clone(table),
+            held => {
+                let working = bits.max(held.map_or(0, |(at, _)| 2 * at + 30));
+                let table: Table = Rc::new((0..n.div_ceil(2)).map(|k| legendre_root(n, k, working)).collect());
+                exact.insert(n, (working, Rc::clone(&table)));
+                table
+            }
+        };
+        let table: Table = Rc::new(master.iter().map(|(x, w)| (round(x, bits), round(w, bits))).collect());
+        rounded.insert((n, bits), Rc::clone(&table));
+        table
+    })
+}
+
+/// The k-th root of the Legendre polynomial P_n (decreasing order) and its Gauss weight.
+fn legendre_root(n: u64, k: u64, bits: u32) -> (Ball, Ball) {
+    let (mut root, mut weight) = (acb_struct::default(), acb_struct::default());
+    // SAFETY: initialised, then the real parts set by Arb (imaginary parts stay exact 0);
+    // `wrap` takes them over.
+    unsafe {
+        acb_init(&mut root);
+        acb_init(&mut weight);
+        arb_hypgeom_legendre_p_ui_root(&mut root.real, &mut weight.real, n, k, i64::from(bits));
+    }
+    (Ball::wrap(root, bits), Ball::wrap(weight, bits))
+}
+
+/// `x` rounded to `bits` (a ball that contains it).
+fn round(x: &Ball, bits: u32) -> Ball {
+    let mut raw = acb_struct::default();
+    // SAFETY: initialised; `wrap` takes it over.
+    unsafe {
+        acb_init(&mut raw);
+        acb_set_round(&mut raw, x.as_raw(), i64::from(bits));
+    }
+    Ball::wrap(raw, bits)
+}
+
+#[cfg(test)]
+mod tests {
+    use std::cell::Cell;
+
+    use rug::float::Constant;
+    use rug::Float;
+
+    use super::*;
+    use crate::real::Precision;
+
+    const BITS: u32 = 128;
+
+    fn int(n: i64) -> Ball {
+        Ball::from_i64(n, Precision::bits(BITS))
+    }
+
+    /// 2^−bits, as an Arb magnitude.
+    fn tolerance(bits: i64) -> Mag {
+        let mut m = Mag::new();
+        // SAFETY: initialised.
+        unsafe {
+            mag_one(&mut m.0);
+            mag_mul_2exp_si(&mut m.0, &m.0, -bits);
+        }
+        m
+    }
+
+    /// The integral of `f` over [a, b] at a tolerance of 2^−100, with how often the rule
+    /// handed an interval to `otherwise` (which answers a ball that holds everything).
+    fn integral(f: &dyn Fn(&Ball) -> Ball, a: i64, b: i64) -> (Ball, u32) {
+        let handed = Cell::new(0);
+        let otherwise = |start: &Ball, _: &Ball| {
+            handed.set(handed.get() + 1);
+            start.indeterminate()
+        };
+        let tolerance = tolerance(100);
+        let rule = Rule {
+            integrand: &|x: &Ball, _| Some(f(x)),
+            tolerance: &tolerance.0,
+            degree_limit: 124,
+            otherwise: &otherwise,
+        };
+        let value = rule.integrate(&int(a), &int(b), OWN_DEPTH);
+        (value, handed.get())
+    }
+
+    fn assert_encloses(value: &Ball, exact: &Float, radius_below: f64) {
+        assert!(value.contains(exact), "{value:?} does not hold {exact}");
+        assert!(value.relative_radius() < radius_below, "{value:?} is too wide");
+    }
+
+    #[test]
+    fn one_rule_encloses_an_integral_with_distant_poles() {
+        // ∫₀¹ dx/(1 + x²) = π/4; the poles ±i lie outside the ellipse X = 2 about [0, 1].
+        let f = |x: &Ball| x.int(1) / &(x.square() + &x.int(1));
+        let (value, handed) = integral(&f, 0, 1);
+        let exact = Float::with_val(400, Constant::Pi) / 4u32;
+        assert_encloses(&value, &exact, 1e-29);
+        assert_eq!(handed, 0);
+    }
+
+    #[test]
+    fn a_pole_near_the_piece_is_met_by_halving() {
+        // ∫₀¹⁰ dx/(x + 3) = ln(13/3): the ellipse about [0, 10] holds the pole at −3, those
+        // about its halves do not.
+        let f = |x: &Ball| x.int(1) / &(x.clone() + &x.int(3));
+        let (value, handed) = integral(&f, 0, 10);
+        let exact = (Float::with_val(400, 13) / 3u32).ln();
+        assert_encloses(&value, &exact, 1e-29);
+        assert_eq!(handed, 0);
+    }
+
+    #[test]
+    fn an_integrand_never_analytic_goes_to_the_other_rule_in_every_part() {
+        // A callback that cannot show f holomorphic on any ellipse: each of the 2^depth
+        // parts goes to the other rule, whose answer (not finite here) is returned as is.
+        let handed = Cell::new(0);
+        let otherwise = |start: &Ball, end: &Ball| {
+            handed.set(handed.get() + 1);
+            end.clone() - start
+        };
+        let tolerance = tolerance(100);
+        let rule = Rule {
+            integrand: &|x: &Ball, analytic: bool| (!analytic).then(|| x.int(1)),
+            tolerance: &tolerance.0,
+            degree_limit: 124,
+            otherwise: &otherwise,
+        };
+        let value = rule.integrate(&int(0), &int(3), OWN_DEPTH);
+        assert_eq!(handed.get(), 1 << OWN_DEPTH);
+        assert!(value.contains(&Float::with_val(64, 3)));
+    }
+
+    #[test]
+    fn a_part_without_enclosure_stops_the_halving() {
+        // The first part handed over is not finite: the rest is not integrated.
+        let (value, handed) = integral(&|x: &Ball| x.int(1) / x, -1, 1);
+        assert!(!value.is_finite());
+        assert_eq!(handed, 1);
+    }
+
+    #[test]
+    fn the_error_bound_is_not_below_the_true_error() {
+        // ∫₋₁¹ eˣ dx = e − 1/e at the fewest points the bound allows for 2^−40: the ball,
+        // whose radius is that bound, must hold the exact value.
+        let tolerance = tolerance(40);
+        let otherwise = |start: &Ball, _: &Ball| start.indeterminate();
+        let rule = Rule {
+            integrand: &|x: &Ball, _| Some(x.exp()),
+            tolerance: &tolerance.0,
+            degree_limit: 124,
+            otherwise: &otherwise,
+        };
+        let value = rule.integrate(&int(-1), &int(1), 0);
+        let e = Float::with_val(400, 1).exp();
+        let exact = e.clone() - Float::with_val(400, 1) / e;
+        assert!(value.contains(&exact));
+        assert!(value.relative_radius() < 1e-11 && value.relative_radius() > 1e-20);
+    }
+
+    #[test]
+    fn degrees_lie_on_a_grid_of_eight_steps_an_octave() {
+        let degrees: Vec<u64> = [1, 8, 9, 13, 16, 17, 20, 21, 33, 90, 97, 1000]
+            .map(degree_at_least)
+            .to_vec();
+        assert_eq!(degrees, [1, 8, 9, 13, 16, 18, 20, 22, 36, 96, 104, 1024]);
+        for n in 1..5000 {
+            let d = degree_at_least(n);
+            assert!(d >= n && (d as f64) <= 1.125 * n as f64 + 1.0);
+            assert_eq!(degree_at_least(d), d);
+        }
+    }
+
+    #[test]
+    fn node_tables_are_the_gauss_legendre_rules() {
+        // The 3-point rule: nodes ±√(3/5), 0 and weights 5/9, 8/9, 5/9.
+        let table = nodes(3, 64);
+        let root = (Float::with_val(400, 3) / 5u32).sqrt();
+        assert!(table[0].0.contains(&root) && table[1].0.contains(&Float::new(400)));
+        assert!(table[0].1.contains(&(Float::with_val(400, 5) / 9u32)));
+        assert!(table[1].1.contains(&(Float::with_val(400, 8) / 9u32)));
+        // Rounded from a table at higher precision, still the same nodes.
+        let fine = nodes(3, 256);
+        let coarse = nodes(3, 64);
+        assert!(fine[0].0.contains(&root) && coarse[0].0.contains(&root));
+    }
+}
