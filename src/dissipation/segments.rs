@@ -449,21 +449,12 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
                 ((a, b), None)
             }
         };
-        let end_half = match segment {
-            Segment::EB => self.geometry.theta_b.clone().times_power_of_two(-1).sin_cos(),
-            Segment::HE => self.geometry.theta_e.clone().times_power_of_two(-1).sin_cos(),
-            Segment::BC | Segment::CH => (center.int(0), center.int(1)),
-        };
-        let map = BottomMap::new(center, margin);
+        let bottom = self.bottom(segment, center, low, margin);
         plans.push(PiecePlan {
             segment,
-            start: map.to_u(&mapped.0),
-            end: map.to_u(&mapped.1),
-            map: PieceMap::Bottom(Bottom {
-                map,
-                mirror: low == LowLoad::Mirror,
-                end_half,
-            }),
+            start: bottom.map.to_u(&mapped.0),
+            end: bottom.map.to_u(&mapped.1),
+            map: PieceMap::Bottom(bottom),
         });
         if let Some((start, end)) = rest {
             plans.push(PiecePlan {
@@ -472,6 +463,21 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
                 end,
                 map: PieceMap::Plain,
             });
+        }
+    }
+
+    /// The bottom map of `segment` about the lowest load `low` (P, or CH's mirror load) at
+    /// s = `center`, for δ = `margin`·P1.
+    fn bottom(&self, segment: Segment, center: R, low: LowLoad, margin: &R) -> Bottom<R> {
+        let end_half = match segment {
+            Segment::EB => self.geometry.theta_b.clone().times_power_of_two(-1).sin_cos(),
+            Segment::HE => self.geometry.theta_e.clone().times_power_of_two(-1).sin_cos(),
+            Segment::BC | Segment::CH => (center.int(0), center.int(1)),
+        };
+        Bottom {
+            map: BottomMap::new(center, margin),
+            mirror: low == LowLoad::Mirror,
+            end_half,
         }
     }
 
@@ -704,6 +710,60 @@ mod tests {
             // P = P0 + P1 cos θ meets each knot strictly inside (P0 − P1, P0 + P1) twice a cycle.
             let inside = knots.iter().filter(|&&k| (k - 1.0).abs() < 0.6).count();
             assert_eq!(normal_crossings, 2 * inside, "phase {phase}");
+        }
+    }
+
+    /// The bottom map's forms of every segment's angles (P's bottom, and CH's mirror
+    /// load's) against the integrand in s, on windows about lowest-load points whether
+    /// or not they lie in the segment (the integrands are analytic formulas in s).
+    #[test]
+    fn bottom_map_angles_are_the_angles_in_s() {
+        use crate::quad::gauss_legendre::node_table;
+        use crate::real::Precision;
+        let table = node_table::<f64>(64, Precision::DOUBLE);
+        let compliance = Persson { gamma: 1.0, sigma: 1.0 };
+        for phase in [0.3, 1.0, 2.5] {
+            let cycle = LoadCycle {
+                mean_normal_load: 1.0,
+                normal_amplitude: 0.6,
+                mean_tangential_load: 0.0,
+                tangential_amplitude: 0.3,
+                phase,
+                friction: 0.8,
+                compliance_ratio: 1.0,
+            };
+            let g = cycle.geometry().expect("valid cycle");
+            let integrands = SegmentIntegrands {
+                geometry: &g,
+                compliance: &compliance,
+                remove_constant_slope: true,
+            };
+            let margin = (g.mean_normal_load - g.normal_amplitude) / g.normal_amplitude;
+            let pi = std::f64::consts::PI;
+            for segment in Segment::ALL {
+                let (start, _) = integrands.extent(segment);
+                let lows = [LowLoad::Normal, LowLoad::Mirror];
+                for low in lows.into_iter().take(if segment == Segment::CH { 2 } else { 1 }) {
+                    for k in [-1.0, 1.0, 3.0] {
+                        let center = match low {
+                            LowLoad::Mirror => g.theta_c - k * pi,
+                            _ => k * pi - start,
+                        };
+                        let (a, b) = (center - 1.2, center + 0.9);
+                        let plain = integrands.plan_integrand(segment, PieceMap::Plain, integrands.prepared_slope());
+                        let bottom = integrands.bottom(segment, center, low, &margin);
+                        let (u_a, u_b) = (bottom.map.to_u(&a), bottom.map.to_u(&b));
+                        let mapped =
+                            integrands.plan_integrand(segment, PieceMap::Bottom(bottom), integrands.prepared_slope());
+                        let in_s = table.integrate(|s: &f64| plain(s), &a, &b);
+                        let in_u = table.integrate(|u: &f64| mapped(u), &u_a, &u_b);
+                        assert!(
+                            (in_s - in_u).abs() <= 1e-12 * in_s.abs().max(1e-3),
+                            "{segment} {low:?} k = {k}, φ = {phase}: {in_s} in s, {in_u} in u"
+                        );
+                    }
+                }
+            }
         }
     }
 
