@@ -89,9 +89,11 @@ enum LowLoad {
 /// integrated through the bottom map (proofs/certified-digits.md, "Near separation").
 const NEAR_SEPARATION: i64 = 1 << 10;
 
-/// How far from the lowest load, in θ, a bottom map reaches (sin α ≤ sin(π/4)); an
-/// ordinary piece takes the rest.
-const BOTTOM_REACH: i64 = 2;
+/// How far from the lowest load, in θ, a bottom map reaches: 1/[`BOTTOM_REACH`] rad, so
+/// that sin α ≤ sin(1/16) keeps the branch points of cos α (t sinh u = ±1) ln 16 beyond
+/// the piece in u; the sinh map takes the rest, where 1 + cos θ ≥ 1 − cos(1/8) no longer
+/// cancels much (measured: proofs/certified-digits.md, "Near separation").
+const BOTTOM_REACH: i64 = 8;
 
 /// A bottom map in one segment, with what the segment's integrand needs besides.
 #[derive(Clone, Debug)]
@@ -393,9 +395,9 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
                 for part in resolve_peaks(&start, &end, &peaks) {
                     let chosen = part.peak.map(|index| &lows[index]);
                     match (part.map, chosen, &margin) {
-                        (Some(_), Some((peak, low @ (LowLoad::Normal | LowLoad::Mirror))), Some(margin)) => {
-                            let center = peak.center.clone();
-                            self.push_bottom(&mut plans, segment, part.window, center, *low, margin);
+                        (Some(map), Some((peak, low @ (LowLoad::Normal | LowLoad::Mirror))), Some(margin)) => {
+                            let bottom = self.bottom(segment, peak.center.clone(), *low, margin);
+                            self.push_bottom(&mut plans, segment, part.window, bottom, map);
                         }
                         (map, ..) => plans.push(PiecePlan {
                             segment,
@@ -421,47 +423,47 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
         (margin < margin.ratio(1, NEAR_SEPARATION)).then_some(margin)
     }
 
-    /// The window (a, b) of `segment` with its lowest load at s = `center` toward one
-    /// end: the bottom map within π/2 of the centre, an ordinary piece beyond.
+    /// The window (a, b) of `segment` with its lowest load toward one end: the bottom
+    /// map `bottom` within [`BOTTOM_REACH`] of it, and beyond the sinh map `rest` about the
+    /// same point.
     fn push_bottom(
         &self,
         plans: &mut Vec<PiecePlan<R>>,
         segment: Segment,
         (a, b): (R, R),
-        center: R,
-        low: LowLoad,
-        margin: &R,
+        bottom: Bottom<R>,
+        rest: SinhMap<R>,
     ) {
-        let reach = center.pi_like() / &center.int(BOTTOM_REACH);
+        let center = bottom.map.center().clone();
+        let reach = center.ratio(1, BOTTOM_REACH);
         let toward_start = center.clone() * &center.int(2) < a.clone() + &b;
-        let (mapped, rest) = if toward_start {
-            let cut = center.clone() + &reach;
+        let (mapped, beyond) = if toward_start {
+            let cut = center + &reach;
             if cut < b {
                 ((a, cut.clone()), Some((cut, b)))
             } else {
                 ((a, b), None)
             }
         } else {
-            let cut = center.clone() - &reach;
+            let cut = center - &reach;
             if cut > a {
                 ((cut.clone(), b), Some((a, cut)))
             } else {
                 ((a, b), None)
             }
         };
-        let bottom = self.bottom(segment, center, low, margin);
         plans.push(PiecePlan {
             segment,
             start: bottom.map.to_u(&mapped.0),
             end: bottom.map.to_u(&mapped.1),
             map: PieceMap::Bottom(bottom),
         });
-        if let Some((start, end)) = rest {
+        if let Some((start, end)) = beyond {
             plans.push(PiecePlan {
                 segment,
-                start,
-                end,
-                map: PieceMap::Plain,
+                start: rest.to_u(&start),
+                end: rest.to_u(&end),
+                map: PieceMap::Sinh(rest),
             });
         }
     }
