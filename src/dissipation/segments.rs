@@ -90,10 +90,10 @@ enum LowLoad {
 const NEAR_SEPARATION: i64 = 1 << 10;
 
 /// How far from the lowest load, in θ, a bottom map reaches: 1/[`BOTTOM_REACH`] rad, so
-/// that sin α ≤ sin(1/16) keeps the branch points of cos α (t sinh u = ±1) ln 16 beyond
-/// the piece in u; the sinh map takes the rest, where 1 + cos θ ≥ 1 − cos(1/8) no longer
+/// that sin α ≤ sin(1/8) keeps the branch points of cos α (t sinh u = ±1) ln 8 beyond the
+/// piece in u; the sinh map takes the rest, where 1 + cos θ ≥ 1 − cos(1/4) no longer
 /// cancels much (measured: proofs/certified-digits.md, "Near separation").
-const BOTTOM_REACH: i64 = 8;
+const BOTTOM_REACH: i64 = 4;
 
 /// A bottom map in one segment, with what the segment's integrand needs besides.
 #[derive(Clone, Debug)]
