@@ -11,7 +11,8 @@ Arb's acb_calc_integrate where those need bisection (src/ball_gauss.rs), timed i
 `examples/certified_timing.rs`.
 Both enclosures must overlap.
 
-Usage: benches/arb_side_by_side.py   (optional dependency: python-flint; not run in CI).
+Usage: benches/arb_side_by_side.py [CASE ...]   (all cases by default; optional
+dependency: python-flint; not run in CI).
 Times are the best of repeated runs over 0.4 s, one thread.
 """
 
@@ -37,6 +38,7 @@ CASES = [
     ("power-sum", ("1", "0.4", "0.5", "0.4pi", "1", "1"),
      lambda P, a: P.pow(acb("-0.5"), analytic=a) + acb("0.5") * P.pow(acb("-1.5"), analytic=a)),
     ("near-separation", ("1", "0.999999", "0.0005", "0.5pi", "1", "1"), lambda P, a: 1 / P),
+    ("near-separation-1e-9", ("1", "0.999999999", "1e-5", "0.5pi", "1", "1"), lambda P, a: 1 / P),
     ("near-gross-slip", ("1", "0.4", "0.8886569", "1.5", "1", "1"), lambda P, a: 1 / P),
 ]
 
@@ -93,8 +95,9 @@ def best_of(run, seconds=0.4):
 
 
 def main():
+    cases = [c for c in CASES if not sys.argv[1:] or c[0] in sys.argv[1:]]
     microslip = subprocess.run(
-        ["cargo", "run", "--release", "--quiet", "--example", "certified_timing"] + [c[0] for c in CASES],
+        ["cargo", "run", "--release", "--quiet", "--example", "certified_timing"] + [c[0] for c in cases],
         check=True, capture_output=True, text=True).stdout
     ours = {}
     for line in microslip.splitlines():
@@ -104,7 +107,7 @@ def main():
     print(f"(load average {os.getloadavg()[0]:.1f} at the start)")
     print("| case | digits | Arb acb.integral, certified | microslip certified | microslip / Arb |")
     print("|---|---|---|---|---|")
-    for name, loads, slope in CASES:
+    for name, loads, slope in cases:
         for digits in (15, 30, 50, 100):
             ctx.dps = digits + 5
             seconds, w = best_of(lambda: arb_w(loads, slope))

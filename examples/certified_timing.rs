@@ -18,7 +18,7 @@ use microslip::real::{Precision, Real};
 
 type RealCase<R> = (LoadCycle<R>, Box<dyn Compliance<R>>);
 
-const NAMED: [(&str, &str); 6] = [
+const NAMED: [(&str, &str); 7] = [
     ("persson", "1,0.4,0.5,0.4pi,1,1,persson:gamma=1,sigma=1"),
     ("power", "1,0.4,0.5,0.4pi,1,1,power:c=0.5,beta=-0.5"),
     ("hertz", "1,0.4,0.5,0.4pi,1,1,hertz:r=1,estar=1"),
@@ -27,6 +27,10 @@ const NAMED: [(&str, &str); 6] = [
         "1,0.4,0.5,0.4pi,1,1,power:c=1,beta=-0.5+power:c=0.5,beta=-1.5",
     ),
     ("near-separation", "1,0.999999,0.0005,0.5pi,1,1,persson:gamma=1,sigma=1"),
+    (
+        "near-separation-1e-9",
+        "1,0.999999999,1e-5,0.5pi,1,1,persson:gamma=1,sigma=1",
+    ),
     ("near-gross-slip", "1,0.4,0.8886569,1.5,1,1,persson:gamma=1,sigma=1"),
 ];
 

@@ -848,6 +848,9 @@ impl Real for Ball {
     fn cos(&self) -> Self {
         self.unary(arb_cos, acb_cos)
     }
+    fn sinh_cosh(&self) -> (Self, Self) {
+        Ball::sinh_cosh(self)
+    }
     fn sin_cos(&self) -> (Self, Self) {
         self.pair(arb_sin_cos, acb_sin_cos)
     }

@@ -34,7 +34,6 @@ use crate::dissipation::closed_forms::{
 use crate::dissipation::slope::knot_offsets;
 use crate::dissipation::{Segment, SegmentIntegrands, Segments};
 use crate::phase::ReducedPhase;
-use crate::quad::sinh_map::resolve_peaks;
 use crate::quad::Piece;
 use crate::real::{Precision, Real};
 use rug::{Float, Rational};
@@ -573,53 +572,26 @@ struct CertifiedPiece<'a> {
 
 type PieceIntegrand<'a> = Box<dyn Fn(&Ball) -> Ball + 'a>;
 
-/// The pieces of the four segments, as [`SegmentIntegrands::pieces`] splits them, with
-/// the sinh map written through sinh and cosh so that it stays analytic on complex
-/// balls (the generic map branches on the sign of u).
+/// The pieces of the four segments, as [`SegmentIntegrands::pieces`] splits them (the
+/// sinh map is analytic on complex balls: Arb's sinh and cosh).
 fn certified_pieces<'a>(
     integrands: &SegmentIntegrands<'a, Ball>,
     slope: &'a (dyn Fn(&Ball) -> Ball + Send + Sync + 'a),
     bound_slope: &'a (dyn Fn(&Ball) -> Ball + Send + Sync + 'a),
 ) -> Vec<CertifiedPiece<'a>> {
-    let mut pieces = Vec::new();
-    for segment in Segment::ALL {
-        let peaks = integrands.low_load_peaks(segment);
-        for (start, end) in integrands.windows(segment) {
-            for part in resolve_peaks(&start, &end, &peaks) {
-                // The map's centre and width are its point and rate at u = 0.
-                let map = part.map.map(|map| map.point_and_rate(&part.start.int(0)));
-                pieces.push(CertifiedPiece {
-                    group: segment_index(segment),
-                    label: segment.name(),
-                    integrand: piece_integrand(*integrands, segment, map.clone(), slope),
-                    bound: Some(piece_integrand(*integrands, segment, map, bound_slope)),
-                    evaluations: Cell::new(0),
-                    start: part.start,
-                    end: part.end,
-                });
-            }
-        }
-    }
-    pieces
-}
-
-/// The integrand of `segment` with `slope`, in s, or in u through s = c + w·sinh u where
-/// `map` is (c, w).
-fn piece_integrand<'a>(
-    integrands: SegmentIntegrands<'a, Ball>,
-    segment: Segment,
-    map: Option<(Ball, Ball)>,
-    slope: &'a (dyn Fn(&Ball) -> Ball + Send + Sync + 'a),
-) -> PieceIntegrand<'a> {
-    match map {
-        None => Box::new(move |s: &Ball| integrands.integrand_with(segment, s, slope)),
-        Some((center, width)) => Box::new(move |u: &Ball| {
-            let (sinh, cosh) = u.sinh_cosh();
-            // c + w·sinh u and w·cosh u, with no copies of c and w.
-            let s = sinh * &width + &center;
-            integrands.integrand_with(segment, &s, slope) * &(cosh * &width)
-        }),
-    }
+    integrands
+        .plans()
+        .into_iter()
+        .map(|plan| CertifiedPiece {
+            group: segment_index(plan.segment),
+            label: plan.segment.name(),
+            integrand: integrands.plan_integrand(plan.segment, plan.map.clone(), slope),
+            bound: Some(integrands.plan_integrand(plan.segment, plan.map, bound_slope)),
+            evaluations: Cell::new(0),
+            start: plan.start,
+            end: plan.end,
+        })
+        .collect()
 }
 
 /// The integrand as Arb calls it: at `order` 0 an enclosure of f on the (real) ball,

@@ -184,6 +184,16 @@ pub trait Real:
         let _ = other;
         self.clone()
     }
+    /// (sinh x, cosh x), free of cancellation near x = 0 and accurate for large |x|.
+    fn sinh_cosh(&self) -> (Self, Self) {
+        // With m = e^|x| − 1: sinh|x| = (m + m/(1 + m))/2 and cosh x = 1 + m²/(2(1 + m)).
+        let m = self.abs().exp_m1();
+        let one_plus = m.clone() + &self.int(1);
+        let sinh_abs = (m.clone() + &(m.clone() / &one_plus)) / &self.int(2);
+        let cosh = m.square() / &(one_plus * &self.int(2)) + &self.int(1);
+        let sinh = if *self < self.int(0) { -sinh_abs } else { sinh_abs };
+        (sinh, cosh)
+    }
     /// The square.
     fn square(&self) -> Self {
         self.clone() * self

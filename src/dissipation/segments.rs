@@ -16,7 +16,8 @@ use super::segment::{Segment, Segments};
 use super::slope::{knot_offsets, slope_at};
 use crate::compliance::{Compliance, SlopeChange};
 use crate::cycle::{EllipseGeometry, LoadsAt};
-use crate::quad::sinh_map::{acosh_one_plus, asinh, resolve_peaks, Peak};
+use crate::quad::bottom_map::{BottomMap, BottomPoint};
+use crate::quad::sinh_map::{acosh_one_plus, asinh, resolve_peaks, Peak, SinhMap};
 use crate::quad::Piece;
 use crate::real::Real;
 
@@ -43,6 +44,85 @@ impl<'a, R: Real> SegmentPieces<'a, R> {
         }
         sums
     }
+}
+
+/// The angles one evaluation of a segment's integrand takes, with θ through its sine
+/// and cosine.
+enum SegmentAngle<R> {
+    /// BC.
+    Stick {
+        /// (sin θ, cos θ).
+        theta: (R, R),
+    },
+    /// CH.
+    Mirrored {
+        /// (sin θ, cos θ).
+        theta: (R, R),
+        /// cos θ_Y at the mirror angle θ_Y = 2θ_C − θ.
+        mirror_cos: R,
+        /// sin(θ − θ_C).
+        from_c_sin: R,
+    },
+    /// EB and HE, with h half the angle to the segment's end.
+    Slip {
+        /// (sin θ, cos θ).
+        theta: (R, R),
+        /// sin h.
+        half_sin: R,
+        /// sin 2h.
+        double_sin: R,
+    },
+}
+
+/// A load the integrand of a segment takes v' at, where it is least.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum LowLoad {
+    /// P at θ ≡ π.
+    Normal,
+    /// P_Y of CH at θ_C − s ≡ π.
+    Mirror,
+    /// The slip load P_S of EB or P_K of HE at the segment's end.
+    Slip,
+}
+
+/// Below this lowest load δ = P0 − P1, as a fraction of P1, the bottom of the cycle is
+/// integrated through the bottom map (proofs/certified-digits.md, "Near separation").
+const NEAR_SEPARATION: i64 = 1 << 10;
+
+/// How far from the lowest load, in θ, a bottom map reaches: 1/[`BOTTOM_REACH`] rad, so
+/// that sin α ≤ sin(1/8) keeps the branch points of cos α (t sinh u = ±1) ln 8 beyond the
+/// piece in u; the sinh map takes the rest, where 1 + cos θ ≥ 1 − cos(1/4) no longer
+/// cancels much (measured: proofs/certified-digits.md, "Near separation").
+const BOTTOM_REACH: i64 = 4;
+
+/// A bottom map in one segment, with what the segment's integrand needs besides.
+#[derive(Clone, Debug)]
+pub(crate) struct Bottom<R> {
+    map: BottomMap<R>,
+    /// Centred on the mirror load of CH rather than on P.
+    mirror: bool,
+    /// (sin, cos) of half the angle of the slip segment's end (B for EB, E for HE).
+    end_half: (R, R),
+}
+
+/// How one piece of a segment is integrated.
+#[derive(Clone, Debug)]
+pub(crate) enum PieceMap<R> {
+    /// In s.
+    Plain,
+    /// In u, through s = c + w sinh u.
+    Sinh(SinhMap<R>),
+    /// In u, through the bottom map.
+    Bottom(Bottom<R>),
+}
+
+/// One piece of a segment integral: its limits (in the variable of its map) and map.
+#[derive(Clone, Debug)]
+pub(crate) struct PiecePlan<R> {
+    pub segment: Segment,
+    pub start: R,
+    pub end: R,
+    pub map: PieceMap<R>,
 }
 
 /// The integrands of one cycle on one compliance.
@@ -103,6 +183,11 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
     }
 
     pub(crate) fn integrand_with(&self, segment: Segment, s: &R, slope: &dyn Fn(&R) -> R) -> R {
+        self.integrand_at(segment, self.angle_at(segment, s), slope)
+    }
+
+    /// The angles of `segment` at angle `s` from its start.
+    fn angle_at(&self, segment: Segment, s: &R) -> SegmentAngle<R> {
         let g = self.geometry;
         match segment {
             Segment::EB | Segment::HE => {
@@ -112,16 +197,115 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
                 let (half_sin, half_cos) = (s.clone() - &g.slip_angle).times_power_of_two(-1).sin_cos();
                 let double_sin = (half_sin.clone() * &half_cos).times_power_of_two(1);
                 let double_cos = s.int(1) - &half_sin.square().times_power_of_two(1);
-                let (end_sin, end_cos) = if segment == Segment::EB {
-                    &g.theta_b_sin_cos
-                } else {
-                    &g.theta_e_sin_cos
-                };
-                let theta_sin_cos = (
+                let (end_sin, end_cos) = self.slip_end_sin_cos(segment);
+                let theta = (
                     end_sin.clone() * &double_cos + &(end_cos.clone() * &double_sin),
                     end_cos.clone() * &double_cos - &(end_sin.clone() * &double_sin),
                 );
-                let (loads, normal) = self.loads_and_normal_term(&theta_sin_cos, slope);
+                SegmentAngle::Slip {
+                    theta,
+                    half_sin,
+                    double_sin,
+                }
+            }
+            Segment::BC => SegmentAngle::Stick {
+                theta: (g.theta_b.clone() + s).sin_cos(),
+            },
+            Segment::CH => {
+                // θ = θ_C + s, the mirror point θ_C − s; sin(θ − θ_E) = sin(π + s) = −sin s.
+                let s_sin_cos = s.sin_cos();
+                let theta = self.around_c(&s_sin_cos, true);
+                let mirror_cos = self.around_c(&s_sin_cos, false).1;
+                SegmentAngle::Mirrored {
+                    theta,
+                    mirror_cos,
+                    from_c_sin: s_sin_cos.0,
+                }
+            }
+        }
+    }
+
+    /// (sin, cos) of the end of a slip segment: B for EB, E for HE.
+    fn slip_end_sin_cos(&self, segment: Segment) -> &'a (R, R) {
+        if segment == Segment::EB {
+            &self.geometry.theta_b_sin_cos
+        } else {
+            &self.geometry.theta_e_sin_cos
+        }
+    }
+
+    /// The angles of `segment` at a point of a bottom map: θ = (2k + 1)π + 2α for the
+    /// load the map is centred on, every sine and cosine formed as sums of products
+    /// of sin α and cos α with the geometry's constants, so that the loads near the
+    /// bottom never come from the cosine of an angle near π.
+    fn angle_near_bottom(&self, segment: Segment, bottom: &Bottom<R>, point: &BottomPoint<R>) -> SegmentAngle<R> {
+        let g = self.geometry;
+        let centred = (point.half_sin.clone(), point.half_cos.clone());
+        // The mirror load's θ_Y = θ_C − s = (2k + 1)π − 2α: its half-angle is −α.
+        let (half, mirror_half) = if bottom.mirror {
+            let mirror = (-centred.0, centred.1);
+            (self.reflect(&mirror), Some(mirror))
+        } else {
+            let mirror = (segment == Segment::CH).then(|| self.reflect(&centred));
+            (centred, mirror)
+        };
+        let (half_sin, half_cos) = &half;
+        // sin θ = −sin 2α, cos θ = −cos 2α = −1 + 2 sin²α.
+        let theta = (
+            -(half_sin.clone() * half_cos).times_power_of_two(1),
+            half_sin.square().times_power_of_two(1) - &half_sin.int(1),
+        );
+        match segment {
+            Segment::BC => SegmentAngle::Stick { theta },
+            Segment::CH => {
+                let mirror_sin = mirror_half.map_or_else(|| half_sin.int(0), |(sin, _)| sin);
+                let mirror_cos = mirror_sin.square().times_power_of_two(1) - &half_sin.int(1);
+                let (c_sin, c_cos) = &g.theta_c_sin_cos;
+                let from_c_sin = theta.0.clone() * c_cos - &(theta.1.clone() * c_sin);
+                SegmentAngle::Mirrored {
+                    theta,
+                    mirror_cos,
+                    from_c_sin,
+                }
+            }
+            Segment::EB | Segment::HE => {
+                // h = (θ − θ_end)/2 ≡ π/2 + α − θ_end/2 (mod π): sin h = cos(α − θ_end/2),
+                // cos h = −sin(α − θ_end/2); the common sign of both is immaterial.
+                let (end_sin, end_cos) = &bottom.end_half;
+                let half_slip_sin = half_cos.clone() * end_cos + &(half_sin.clone() * end_sin);
+                let half_slip_cos = half_cos.clone() * end_sin - &(half_sin.clone() * end_cos);
+                let double_sin = (half_slip_sin.clone() * &half_slip_cos).times_power_of_two(1);
+                SegmentAngle::Slip {
+                    theta,
+                    half_sin: half_slip_sin,
+                    double_sin,
+                }
+            }
+        }
+    }
+
+    /// The half-angle of the other load of CH from one's: the normal load's
+    /// θ = π + 2α and the mirror load's θ_Y = 2θ_C − θ = π + 2β give β ≡ θ_C − π − α
+    /// (mod π), and the same map takes β back to α.
+    fn reflect(&self, half: &(R, R)) -> (R, R) {
+        let (c_sin, c_cos) = &self.geometry.theta_c_sin_cos;
+        let (sin, cos) = half;
+        (
+            c_cos.clone() * sin - &(c_sin.clone() * cos),
+            -(c_cos.clone() * cos + &(c_sin.clone() * sin)),
+        )
+    }
+
+    /// The integrand of `segment` at the angles `angle`.
+    fn integrand_at(&self, segment: Segment, angle: SegmentAngle<R>, slope: &dyn Fn(&R) -> R) -> R {
+        let g = self.geometry;
+        match angle {
+            SegmentAngle::Slip {
+                theta,
+                half_sin,
+                double_sin,
+            } => {
+                let (loads, normal) = self.loads_and_normal_term(&theta, slope);
                 if segment == Segment::EB {
                     let reverse = slope(&g.reverse_slip_offset(&half_sin)) * &g.sum_amplitude * &double_sin;
                     loads.tangential_offset * &(reverse - &normal)
@@ -130,17 +314,18 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
                     loads.tangential_offset * &(normal - &forward)
                 }
             }
-            Segment::BC => {
-                let loads = g.loads_at(&(g.theta_b.clone() + s).sin_cos());
+            SegmentAngle::Stick { theta } => {
+                let loads = g.loads_at(&theta);
                 loads.tangential_offset * &slope(&loads.normal_offset) * &loads.tangential_rate
             }
-            Segment::CH => {
-                // θ = θ_C + s, the mirror point θ_C − s; sin(θ − θ_E) = sin(π + s) = −sin s.
-                let s_sin_cos = s.sin_cos();
-                let (loads, normal) = self.loads_and_normal_term(&self.around_c(&s_sin_cos, true), slope);
-                let mirror_cos = self.around_c(&s_sin_cos, false).1;
+            SegmentAngle::Mirrored {
+                theta,
+                mirror_cos,
+                from_c_sin,
+            } => {
+                let (loads, normal) = self.loads_and_normal_term(&theta, slope);
                 let mirror_offset = g.normal_amplitude.clone() * &mirror_cos;
-                let forward = slope(&mirror_offset) * &g.difference_amplitude * &s_sin_cos.0;
+                let forward = slope(&mirror_offset) * &g.difference_amplitude * &from_c_sin;
                 loads.tangential_offset * &(normal + &forward)
             }
         }
@@ -180,32 +365,142 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
     /// the offset x = P − P0): W is linear in v', so parts of v' can be integrated apart.
     pub fn pieces_with_slope(&self, slope: SlopeChange<'a, R>) -> SegmentPieces<'a, R> {
         let slope = Rc::new(slope);
+        let plans = self.plans();
+        let mut pieces = Vec::with_capacity(plans.len());
+        let mut segments = Vec::with_capacity(plans.len());
+        for plan in plans {
+            let slope = Rc::clone(&slope);
+            pieces.push(Piece {
+                label: plan.segment.name(),
+                integrand: self.plan_integrand(plan.segment, plan.map, move |x: &R| (*slope)(x)),
+                start: plan.start,
+                end: plan.end,
+            });
+            segments.push(plan.segment);
+        }
+        SegmentPieces { pieces, segments }
+    }
+
+    /// The pieces of the four segment integrals, segment by segment in cycle order:
+    /// each window split where a narrow peak needs its own map, and near separation
+    /// the bottom of the cycle (|θ − π| ≤ π/2) through the bottom map.
+    pub(crate) fn plans(&self) -> Vec<PiecePlan<R>> {
         // Usually one or two pieces a segment.
-        let mut pieces = Vec::with_capacity(2 * Segment::ALL.len());
-        let mut segments = Vec::with_capacity(2 * Segment::ALL.len());
+        let mut plans = Vec::with_capacity(2 * Segment::ALL.len());
+        let margin = self.separation_margin();
         for segment in Segment::ALL {
-            let peaks = self.low_load_peaks(segment);
+            let lows = self.low_loads(segment);
+            let peaks: Vec<Peak<R>> = lows.iter().map(|(peak, _)| peak.clone()).collect();
             for (start, end) in self.windows(segment) {
                 for part in resolve_peaks(&start, &end, &peaks) {
-                    let (integrands, slope) = (*self, Rc::clone(&slope));
-                    let integrand: Box<dyn Fn(&R) -> R + 'a> = match part.map {
-                        None => Box::new(move |s: &R| integrands.integrand_with(segment, s, slope.as_ref())),
-                        Some(map) => Box::new(move |u: &R| {
-                            let (s, rate) = map.point_and_rate(u);
-                            integrands.integrand_with(segment, &s, slope.as_ref()) * &rate
+                    let chosen = part.peak.map(|index| &lows[index]);
+                    match (part.map, chosen, &margin) {
+                        (Some(map), Some((peak, low @ (LowLoad::Normal | LowLoad::Mirror))), Some(margin)) => {
+                            let bottom = self.bottom(segment, peak.center.clone(), *low, margin);
+                            self.push_bottom(&mut plans, segment, part.window, bottom, map);
+                        }
+                        (map, ..) => plans.push(PiecePlan {
+                            segment,
+                            start: part.start,
+                            end: part.end,
+                            map: map.map_or(PieceMap::Plain, PieceMap::Sinh),
                         }),
-                    };
-                    pieces.push(Piece {
-                        label: segment.name(),
-                        integrand,
-                        start: part.start,
-                        end: part.end,
-                    });
-                    segments.push(segment);
+                    }
                 }
             }
         }
-        SegmentPieces { pieces, segments }
+        plans
+    }
+
+    /// δ/P1 = (P0 − P1)/P1 where it is below 1/[`NEAR_SEPARATION`].
+    fn separation_margin(&self) -> Option<R> {
+        let g = self.geometry;
+        let zero = g.normal_amplitude.int(0);
+        if g.normal_amplitude <= zero {
+            return None;
+        }
+        let margin = (g.mean_normal_load.clone() - &g.normal_amplitude) / &g.normal_amplitude;
+        (margin < margin.ratio(1, NEAR_SEPARATION)).then_some(margin)
+    }
+
+    /// The window (a, b) of `segment` with its lowest load toward one end: the bottom
+    /// map `bottom` within [`BOTTOM_REACH`] of it, and beyond the sinh map `rest` about the
+    /// same point.
+    fn push_bottom(
+        &self,
+        plans: &mut Vec<PiecePlan<R>>,
+        segment: Segment,
+        (a, b): (R, R),
+        bottom: Bottom<R>,
+        rest: SinhMap<R>,
+    ) {
+        let center = bottom.map.center().clone();
+        let reach = center.ratio(1, BOTTOM_REACH);
+        let toward_start = center.clone() * &center.int(2) < a.clone() + &b;
+        let (mapped, beyond) = if toward_start {
+            let cut = center + &reach;
+            if cut < b {
+                ((a, cut.clone()), Some((cut, b)))
+            } else {
+                ((a, b), None)
+            }
+        } else {
+            let cut = center - &reach;
+            if cut > a {
+                ((cut.clone(), b), Some((a, cut)))
+            } else {
+                ((a, b), None)
+            }
+        };
+        plans.push(PiecePlan {
+            segment,
+            start: bottom.map.to_u(&mapped.0),
+            end: bottom.map.to_u(&mapped.1),
+            map: PieceMap::Bottom(bottom),
+        });
+        if let Some((start, end)) = beyond {
+            plans.push(PiecePlan {
+                segment,
+                start: rest.to_u(&start),
+                end: rest.to_u(&end),
+                map: PieceMap::Sinh(rest),
+            });
+        }
+    }
+
+    /// The bottom map of `segment` about the lowest load `low` (P, or CH's mirror load) at
+    /// s = `center`, for δ = `margin`·P1.
+    fn bottom(&self, segment: Segment, center: R, low: LowLoad, margin: &R) -> Bottom<R> {
+        let end_half = match segment {
+            Segment::EB => self.geometry.theta_b.clone().times_power_of_two(-1).sin_cos(),
+            Segment::HE => self.geometry.theta_e.clone().times_power_of_two(-1).sin_cos(),
+            Segment::BC | Segment::CH => (center.int(0), center.int(1)),
+        };
+        Bottom {
+            map: BottomMap::new(center, margin),
+            mirror: low == LowLoad::Mirror,
+            end_half,
+        }
+    }
+
+    /// The integrand of one piece of `segment` in the variable of `map`, with `slope`.
+    pub(crate) fn plan_integrand<S>(&self, segment: Segment, map: PieceMap<R>, slope: S) -> Box<dyn Fn(&R) -> R + 'a>
+    where
+        S: Fn(&R) -> R + 'a,
+    {
+        let integrands = *self;
+        match map {
+            PieceMap::Plain => Box::new(move |s: &R| integrands.integrand_with(segment, s, &slope)),
+            PieceMap::Sinh(map) => Box::new(move |u: &R| {
+                let (s, rate) = map.point_and_rate(u);
+                integrands.integrand_with(segment, &s, &slope) * &rate
+            }),
+            PieceMap::Bottom(bottom) => Box::new(move |u: &R| {
+                let point = bottom.map.point(u);
+                let angle = integrands.angle_near_bottom(segment, &bottom, &point);
+                integrands.integrand_at(segment, angle, &slope) * &point.rate
+            }),
+        }
     }
 
     /// The narrow peaks of segment `index` (in s), where a load that v' is taken at is
@@ -214,7 +509,7 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
     /// for EB P_S = P_T + σ₊ sin²h/f at B, of half-width 2 asinh(√(fP_T/σ₊)), and for HE
     /// P_K likewise at E with σ₋. A compliance singular at P = 0 makes these peaks as
     /// narrow as √((P0 − P1)/P0) near separation and √(P_T/P0) near gross slip.
-    pub(crate) fn low_load_peaks(&self, segment: Segment) -> Vec<Peak<R>> {
+    fn low_loads(&self, segment: Segment) -> Vec<(Peak<R>, LowLoad)> {
         let g = self.geometry;
         let (start, length) = self.extent(segment);
         let zero = length.int(0);
@@ -226,24 +521,36 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
             let width = acosh_one_plus(&margin);
             for k in -2..=3i64 {
                 let lowest = pi.clone() * &pi.int(2 * k + 1);
-                peaks.push(Peak {
-                    center: lowest.clone() - start,
-                    width: width.clone(),
-                });
-                if segment == Segment::CH {
-                    peaks.push(Peak {
-                        center: g.theta_c.clone() - &lowest,
+                let center = lowest.clone() - start;
+                peaks.push((
+                    Peak {
+                        center,
                         width: width.clone(),
-                    });
+                    },
+                    LowLoad::Normal,
+                ));
+                if segment == Segment::CH {
+                    let center = g.theta_c.clone() - &lowest;
+                    peaks.push((
+                        Peak {
+                            center,
+                            width: width.clone(),
+                        },
+                        LowLoad::Mirror,
+                    ));
                 }
             }
         }
         if let Some(amplitude) = self.slip_amplitude(segment).filter(|a| **a > zero) {
             let ratio = g.permanent_stick_load() * &g.friction / amplitude;
-            peaks.push(Peak {
-                center: length.clone(),
-                width: asinh(&ratio.max_of(&zero).sqrt()) * &zero.int(2),
-            });
+            let width = asinh(&ratio.max_of(&zero).sqrt()) * &zero.int(2);
+            peaks.push((
+                Peak {
+                    center: length.clone(),
+                    width,
+                },
+                LowLoad::Slip,
+            ));
         }
         peaks
     }
@@ -405,6 +712,60 @@ mod tests {
             // P = P0 + P1 cos θ meets each knot strictly inside (P0 − P1, P0 + P1) twice a cycle.
             let inside = knots.iter().filter(|&&k| (k - 1.0).abs() < 0.6).count();
             assert_eq!(normal_crossings, 2 * inside, "phase {phase}");
+        }
+    }
+
+    /// The bottom map's forms of every segment's angles (P's bottom, and CH's mirror
+    /// load's) against the integrand in s, on windows about lowest-load points whether
+    /// or not they lie in the segment (the integrands are analytic formulas in s).
+    #[test]
+    fn bottom_map_angles_are_the_angles_in_s() {
+        use crate::quad::gauss_legendre::node_table;
+        use crate::real::Precision;
+        let table = node_table::<f64>(64, Precision::DOUBLE);
+        let compliance = Persson { gamma: 1.0, sigma: 1.0 };
+        for phase in [0.3, 1.0, 2.5] {
+            let cycle = LoadCycle {
+                mean_normal_load: 1.0,
+                normal_amplitude: 0.6,
+                mean_tangential_load: 0.0,
+                tangential_amplitude: 0.3,
+                phase,
+                friction: 0.8,
+                compliance_ratio: 1.0,
+            };
+            let g = cycle.geometry().expect("valid cycle");
+            let integrands = SegmentIntegrands {
+                geometry: &g,
+                compliance: &compliance,
+                remove_constant_slope: true,
+            };
+            let margin = (g.mean_normal_load - g.normal_amplitude) / g.normal_amplitude;
+            let pi = std::f64::consts::PI;
+            for segment in Segment::ALL {
+                let (start, _) = integrands.extent(segment);
+                let lows = [LowLoad::Normal, LowLoad::Mirror];
+                for low in lows.into_iter().take(if segment == Segment::CH { 2 } else { 1 }) {
+                    for k in [-1.0, 1.0, 3.0] {
+                        let center = match low {
+                            LowLoad::Mirror => g.theta_c - k * pi,
+                            _ => k * pi - start,
+                        };
+                        let (a, b) = (center - 1.2, center + 0.9);
+                        let plain = integrands.plan_integrand(segment, PieceMap::Plain, integrands.prepared_slope());
+                        let bottom = integrands.bottom(segment, center, low, &margin);
+                        let (u_a, u_b) = (bottom.map.to_u(&a), bottom.map.to_u(&b));
+                        let mapped =
+                            integrands.plan_integrand(segment, PieceMap::Bottom(bottom), integrands.prepared_slope());
+                        let in_s = table.integrate(|s: &f64| plain(s), &a, &b);
+                        let in_u = table.integrate(|u: &f64| mapped(u), &u_a, &u_b);
+                        assert!(
+                            (in_s - in_u).abs() <= 1e-12 * in_s.abs().max(1e-3),
+                            "{segment} {low:?} k = {k}, φ = {phase}: {in_s} in s, {in_u} in u"
+                        );
+                    }
+                }
+            }
         }
     }
 

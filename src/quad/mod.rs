@@ -4,8 +4,10 @@
 //! rules of doubling degree ([`gauss_legendre`]), with tanh–sinh ([`tanh_sinh`]) where
 //! they stall; both rules' nodes and weights are computed once and cached at the highest precision
 //! asked for, lower precisions being rounded from them.
-//! `sinh_map` is the change of variable that lets the rules resolve a narrow peak.
+//! `sinh_map` is the change of variable that lets the rules resolve a narrow peak, and
+//! `bottom_map` the one that resolves the lowest load of a cycle near separation.
 
+pub mod bottom_map;
 mod cache;
 pub mod engine;
 pub mod gauss_legendre;

@@ -37,6 +37,10 @@ pub struct Resolved<R> {
     pub end: R,
     /// The change of variable to apply, if any.
     pub map: Option<SinhMap<R>>,
+    /// The sub-interval in s.
+    pub window: (R, R),
+    /// The index in the peaks given of the one whose centre the map takes.
+    pub peak: Option<usize>,
 }
 
 /// Peaks narrower than this fraction of the interval, and that near it, are mapped.
@@ -55,17 +59,10 @@ impl<R: Real> SinhMap<R> {
 
     /// (s, ds/du) = (c + w·sinh u, w·cosh u).
     pub fn point_and_rate(&self, u: &R) -> (R, R) {
-        // With m = e^|u| − 1: sinh|u| = (m + m/(1 + m))/2 and cosh u = 1 + m²/(2(1 + m)),
-        // both free of cancellation near u = 0.
-        let m = u.abs().exp_m1();
-        let one_plus = m.clone() + &u.int(1);
-        let sinh_abs = (m.clone() + &(m.clone() / &one_plus)) / &u.int(2);
-        let cosh = m.square() / &(one_plus * &u.int(2)) + &u.int(1);
-        let sinh = if *u < u.int(0) { -sinh_abs } else { sinh_abs };
-        (
-            self.peak.center.clone() + &(self.peak.width.clone() * &sinh),
-            self.peak.width.clone() * &cosh,
-        )
+        let (sinh, cosh) = u.sinh_cosh();
+        // The same operations as c + w·sinh u and w·cosh u (both commute exactly), with
+        // no copies of c and w.
+        (sinh * &self.peak.width + &self.peak.center, cosh * &self.peak.width)
     }
 }
 
@@ -102,8 +99,10 @@ pub fn resolve_peaks<R: Real>(a: &R, b: &R, peaks: &[Peak<R>]) -> Vec<Resolved<R
     let limit = length.clone() / &length.int(NARROW);
     let middle = (a.clone() + b) / &a.int(2);
     let zero = a.int(0);
-    let (mut toward_start, mut toward_end): (Option<Peak<R>>, Option<Peak<R>>) = (None, None);
-    for peak in peaks {
+    // The peak each end's map takes, with the index of the one whose centre it keeps.
+    let mut toward_start: Option<(Peak<R>, usize)> = None;
+    let mut toward_end: Option<(Peak<R>, usize)> = None;
+    for (index, peak) in peaks.iter().enumerate() {
         let outside = (a.clone() - &peak.center)
             .max_of(&(peak.center.clone() - b))
             .max_of(&zero);
@@ -117,26 +116,29 @@ pub fn resolve_peaks<R: Real>(a: &R, b: &R, peaks: &[Peak<R>]) -> Vec<Resolved<R
             (&mut toward_end, false)
         };
         *side = Some(match side.take() {
-            None => peak.clone(),
-            Some(held) => {
-                let inner = if (peak.center > held.center) == start_side {
-                    &peak.center
+            None => (peak.clone(), index),
+            Some((held, held_index)) => {
+                let (inner, inner_index) = if (peak.center > held.center) == start_side {
+                    (&peak.center, index)
                 } else {
-                    &held.center
+                    (&held.center, held_index)
                 };
-                Peak {
+                let merged = Peak {
                     center: inner.clone(),
                     width: held.width.min_of(&peak.width),
-                }
+                };
+                (merged, inner_index)
             }
         });
     }
-    let mapped = |start: &R, end: &R, peak: Peak<R>| {
+    let mapped = |start: &R, end: &R, (peak, index): (Peak<R>, usize)| {
         let map = SinhMap::new(peak);
         Resolved {
             start: map.to_u(start),
             end: map.to_u(end),
             map: Some(map),
+            window: (start.clone(), end.clone()),
+            peak: Some(index),
         }
     };
     match (toward_start, toward_end) {
@@ -144,11 +146,13 @@ pub fn resolve_peaks<R: Real>(a: &R, b: &R, peaks: &[Peak<R>]) -> Vec<Resolved<R
             start: a.clone(),
             end: b.clone(),
             map: None,
+            window: (a.clone(), b.clone()),
+            peak: None,
         }],
         (Some(peak), None) => vec![mapped(a, b, peak)],
         (None, Some(peak)) => vec![mapped(a, b, peak)],
         (Some(first), Some(last)) => {
-            let split = (first.center.clone() + &last.center) / &a.int(2);
+            let split = (first.0.center.clone() + &last.0.center) / &a.int(2);
             vec![mapped(a, &split, first), mapped(&split, b, last)]
         }
     }
@@ -219,6 +223,7 @@ mod tests {
         ];
         let parts = resolve_peaks(&0.0, &2.0, &peaks);
         assert_eq!(parts.len(), 2);
+        assert_eq!((parts[0].peak, parts[1].peak), (Some(0), Some(1)));
         let (first, last) = (parts[0].map.as_ref().unwrap(), parts[1].map.as_ref().unwrap());
         assert_eq!((first.peak.center, first.peak.width), (-1e-9, 1e-6));
         assert_eq!((last.peak.center, last.peak.width), (2.0, 1e-5));
