@@ -667,6 +667,19 @@ mod tests {
         }
     }
 
+    /// A cycle clear of separation and gross slip (P0 = 1, P1 = 0.6, Q1 = 0.3, f = 0.8).
+    fn cycle_at(phase: f64) -> LoadCycle<f64> {
+        LoadCycle {
+            mean_normal_load: 1.0,
+            normal_amplitude: 0.6,
+            mean_tangential_load: 0.0,
+            tangential_amplitude: 0.3,
+            phase,
+            friction: 0.8,
+            compliance_ratio: 1.0,
+        }
+    }
+
     #[test]
     fn knot_crossings_are_where_a_load_of_the_integrand_meets_a_knot() {
         let knots: Vec<f64> = (0..40).map(|i| 0.3 + 0.04 * i as f64).collect();
@@ -675,16 +688,7 @@ mod tests {
             knots: knots.clone(),
         };
         for phase in [0.1, 0.4, 0.7, 0.95].map(|x| x * std::f64::consts::PI) {
-            let cycle = LoadCycle {
-                mean_normal_load: 1.0,
-                normal_amplitude: 0.6,
-                mean_tangential_load: 0.0,
-                tangential_amplitude: 0.3,
-                phase,
-                friction: 0.8,
-                compliance_ratio: 1.0,
-            };
-            let g = cycle.geometry().expect("valid cycle");
+            let g = cycle_at(phase).geometry().expect("valid cycle");
             let integrands = SegmentIntegrands {
                 geometry: &g,
                 compliance: &compliance,
@@ -725,16 +729,7 @@ mod tests {
         let table = node_table::<f64>(64, Precision::DOUBLE);
         let compliance = Persson { gamma: 1.0, sigma: 1.0 };
         for phase in [0.3, 1.0, 2.5] {
-            let cycle = LoadCycle {
-                mean_normal_load: 1.0,
-                normal_amplitude: 0.6,
-                mean_tangential_load: 0.0,
-                tangential_amplitude: 0.3,
-                phase,
-                friction: 0.8,
-                compliance_ratio: 1.0,
-            };
-            let g = cycle.geometry().expect("valid cycle");
+            let g = cycle_at(phase).geometry().expect("valid cycle");
             let integrands = SegmentIntegrands {
                 geometry: &g,
                 compliance: &compliance,
