@@ -1,7 +1,8 @@
 //! Certified W per case, timed in process: `cargo run --release --example certified_timing
 //! [CASE …]` prints one line per case and digit count (15, 30, 50, 100) with the best of
 //! several runs, the digits and the working precision. CASE is a name below or
-//! `p0,p1,q1,phi,f,lambda,SPEC` (phi as a multiple of π when it ends in `pi`).
+//! `p0,p1,q1,phi,f,lambda,SPEC` (read as the command line reads a case; phi as a multiple
+//! of π when it ends in `pi`).
 //! `--digits N` times N digits only; `--once` runs each case once (for callgrind);
 //! `--f64` times the default f64 run and one Arb enclosure at 53 bits instead.
 //! benches/arb_side_by_side.py runs it beside Arb's own `acb.integral`.
@@ -10,8 +11,9 @@ use std::time::{Duration, Instant};
 
 use microslip::ball::certain_digits;
 use microslip::ball::Ball;
+use microslip::case::{Case, CaseText};
 use microslip::certified::{certified_dissipation, enclose_dissipation};
-use microslip::compliance::{parse_spec, Compliance};
+use microslip::compliance::Compliance;
 use microslip::cycle::LoadCycle;
 use microslip::dissipation::{dissipation, Options};
 use microslip::real::{Precision, Real};
@@ -34,30 +36,30 @@ const NAMED: [(&str, &str); 7] = [
     ("near-gross-slip", "1,0.4,0.8886569,1.5,1,1,persson:gamma=1,sigma=1"),
 ];
 
-fn number<R: Real>(text: &str, precision: Precision) -> Result<R, String> {
-    let parse = |t: &str| R::parse_decimal(t, precision).map_err(|e| e.to_string());
-    match text.strip_suffix("pi") {
-        Some(multiple) => Ok(parse(multiple)? * &R::pi(precision)),
-        None => parse(text),
-    }
-}
-
+/// The case as the command line reads it: its text parsed once into a `CaseSpec`, then
+/// read at each precision.
 fn case<R: Real>(fields: &str) -> impl Fn(Precision) -> Result<RealCase<R>, String> + '_ {
     move |precision| {
         let parts: Vec<&str> = fields.splitn(7, ',').collect();
         let [p0, p1, q1, phi, f, lambda, spec] = parts[..] else {
             return Err(format!("'{fields}': expected p0,p1,q1,phi,f,lambda,SPEC"));
         };
-        let cycle = LoadCycle {
-            mean_normal_load: number(p0, precision)?,
-            normal_amplitude: number(p1, precision)?,
-            mean_tangential_load: R::from_i64(0, precision),
-            tangential_amplitude: number(q1, precision)?,
-            phase: number(phi, precision)?,
-            friction: number(f, precision)?,
-            compliance_ratio: number(lambda, precision)?,
+        let text = CaseText {
+            p0: p0.into(),
+            p1: p1.into(),
+            q0: "0".into(),
+            q1: q1.into(),
+            phi: phi.into(),
+            friction: f.into(),
+            lambda: Some(lambda.into()),
+            nu: None,
+            compliance: spec.into(),
         };
-        Ok((cycle, parse_spec(spec, precision).map_err(|e| e.to_string())?))
+        let Case { cycle, compliance } = text
+            .spec()
+            .and_then(|spec| spec.at::<R>(precision))
+            .map_err(|e| e.to_string())?;
+        Ok((cycle, compliance))
     }
 }
 

@@ -648,6 +648,10 @@ fn branch_cut(
     result
 }
 
+/// Bits beyond the working precision with which an exact input is read (see
+/// [`Real::from_rational`] for balls).
+const INPUT_GUARD_BITS: u32 = 64;
+
 impl Real for Ball {
     fn precision(&self) -> Precision {
         Precision::bits(self.precision)
@@ -699,9 +703,15 @@ impl Real for Ball {
         Ok(ball)
     }
     fn from_rational(x: &rug::Rational, precision: Precision) -> Self {
-        // Numerator and denominator exactly, then one ball division: a ball containing x.
-        let exact = |n: &rug::Integer| Ball::from_float(&Float::with_val(n.significant_bits().max(1), n), precision);
-        exact(x.numer()) / exact(x.denom())
+        // Numerator and denominator exactly, then one ball division: a ball containing x,
+        // its midpoint rounded INPUT_GUARD_BITS below the working precision, so that a
+        // difference of two close inputs (P0 − P1 near separation) keeps its relative
+        // accuracy; operations on it still work at `precision`.
+        let guarded = Precision::bits(precision.in_bits() + INPUT_GUARD_BITS);
+        let exact = |n: &rug::Integer| Ball::from_float(&Float::with_val(n.significant_bits().max(1), n), guarded);
+        let mut ball = exact(x.numer()) / exact(x.denom());
+        ball.precision = precision.in_bits();
+        ball
     }
     fn enclose_pi_multiple(multiple: &rug::Rational, offset: &rug::Rational, precision: Precision) -> Option<Self> {
         Some(crate::certified::enclose_pi_multiple(multiple, offset, precision))
