@@ -989,17 +989,12 @@ pub fn certain_digits(ball: &Ball, max_digits: u32) -> Option<(String, u32)> {
 
 /// The smallest ball that contains both real balls.
 pub fn hull(a: &Ball, b: &Ball) -> Ball {
-    let mut result = Ball::zero(a.precision.max(b.precision));
-    // SAFETY: initialised.
-    unsafe {
-        arb_union(
-            &mut result.raw.real,
-            a.real_part(),
-            b.real_part(),
-            result.slong_precision(),
-        )
-    };
-    result
+    // At the higher of the two precisions (the union is symmetric).
+    if a.precision >= b.precision {
+        a.real_binary(b, arb_union)
+    } else {
+        b.real_binary(a, arb_union)
+    }
 }
 
 #[cfg(test)]

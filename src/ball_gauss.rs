@@ -9,9 +9,7 @@
 //! is halved (so that the degrees of a case, and their node tables, stay few), and after
 //! [`OWN_DEPTH`] halvings what is left goes to Arb's bisection.
 
-use std::cell::RefCell;
-use std::collections::HashMap;
-use std::rc::Rc;
+use std::sync::Arc;
 
 use flint_sys::acb::{acb_init, acb_set_round};
 use flint_sys::acb_types::acb_struct;
@@ -25,7 +23,8 @@ use flint_sys::mag::{
 };
 
 use crate::ball::Ball;
-use crate::real::Real;
+use crate::quad::cache::{cached, Table};
+use crate::real::{Precision, Real};
 
 /// The half axes X along the interval (in units of its half length) of the rectangles
 /// that hold the Bernstein ellipses tried, in turn while they fit and lower the degree:
@@ -40,7 +39,7 @@ const ELLIPSES: [f64; 6] = [2.0, 3.0, 4.0, 6.0, 8.0, 16.0];
 const LEAST_DEGREE_TO_WIDEN: u64 = 32;
 
 /// How many times an interval is halved here before Arb's bisection takes what is left.
-pub(crate) const OWN_DEPTH: u32 = 3;
+pub(crate) const OWN_DEPTH: u32 = 6;
 
 /// An Arb magnitude (an upper or lower bound of a non-negative number), cleared on drop.
 struct Mag(mag_struct);
@@ -240,10 +239,10 @@ impl Rule<'_> {
             }
         }
         let (n, error) = best;
-        let table = nodes(n, bits);
+        let table = nodes(n, bits)?;
         let mut sum = start.int(0);
         for k in 0..n as usize {
-            let (node, weight) = &table[k.min(n as usize - 1 - k)];
+            let (node, weight) = &table.nodes[k.min(n as usize - 1 - k)];
             let offset = delta.clone() * node;
             let x = if 2 * k < n as usize {
                 mid.clone() + &offset
@@ -264,36 +263,43 @@ impl Rule<'_> {
     }
 }
 
-type Table = Rc<Vec<(Ball, Ball)>>;
-/// Per degree the table at the highest precision computed; per (degree, bits) its rounding.
-type NodeCache = (HashMap<u64, (u32, Table)>, HashMap<(u64, u32), Table>);
-
-thread_local! {
-    /// Nodes and weights per degree at the highest precision computed, and rounded per
-    /// (degree, precision) as used.
-    static NODES: RefCell<NodeCache> = RefCell::default();
+/// The nodes x_k ≥ 0 (k < (n + 1)/2, decreasing) of an n-point Gauss–Legendre rule on
+/// [−1, 1] and their weights, as Arb's enclosures; the rule's other nodes are −x_k.
+struct BallRule {
+    bits: u32,
+    nodes: Vec<(Ball, Ball)>,
 }
 
-/// The nodes x_k ≥ 0 (k < (n + 1)/2, decreasing) of the n-point Gauss–Legendre rule on
-/// [−1, 1] and their weights, as balls rounded to `bits`; the rule's other nodes are −x_k.
-fn nodes(n: u64, bits: u32) -> Table {
-    NODES.with(|cache| {
-        let (exact, rounded) = &mut *cache.borrow_mut();
-        if let Some(table) = rounded.get(&(n, bits)) {
-            return Rc::clone(table);
+impl Table for BallRule {
+    fn precision(&self) -> Precision {
+        Precision::bits(self.bits)
+    }
+
+    fn rounded(&self, precision: Precision) -> Self {
+        let bits = precision.in_bits();
+        BallRule {
+            bits,
+            nodes: self
+                .nodes
+                .iter()
+                .map(|(x, w)| (round(x, bits), round(w, bits)))
+                .collect(),
         }
-        let master = match exact.get(&n) {
-            Some((at, table)) if *at >= bits => Rc::clone(table),
-            held => {
-                let working = bits.max(held.map_or(0, |(at, _)| 2 * at + 30));
-                let table: Table = Rc::new((0..n.div_ceil(2)).map(|k| legendre_root(n, k, working)).collect());
-                exact.insert(n, (working, Rc::clone(&table)));
-                table
-            }
-        };
-        let table: Table = Rc::new(master.iter().map(|(x, w)| (round(x, bits), round(w, bits))).collect());
-        rounded.insert((n, bits), Rc::clone(&table));
-        table
+    }
+
+    fn bytes(&self) -> usize {
+        2 * self.nodes.len() * (std::mem::size_of::<Ball>() + self.bits.div_ceil(8) as usize)
+    }
+}
+
+/// The n-point rule at `bits`, from the node cache every computation shares (rounded
+/// down from a table at a higher precision where it holds one).
+fn nodes(n: u64, bits: u32) -> Option<Arc<BallRule>> {
+    cached(n as usize, Precision::bits(bits), || {
+        Some(BallRule {
+            bits,
+            nodes: (0..n.div_ceil(2)).map(|k| legendre_root(n, k, bits)).collect(),
+        })
     })
 }
 
@@ -329,7 +335,6 @@ mod tests {
     use rug::Float;
 
     use super::*;
-    use crate::real::Precision;
 
     const BITS: u32 = 128;
 
@@ -457,14 +462,15 @@ mod tests {
     #[test]
     fn node_tables_are_the_gauss_legendre_rules() {
         // The 3-point rule: nodes ±√(3/5), 0 and weights 5/9, 8/9, 5/9.
-        let table = nodes(3, 64);
+        let table = nodes(3, 64).unwrap().nodes.clone();
         let root = (Float::with_val(400, 3) / 5u32).sqrt();
         assert!(table[0].0.contains(&root) && table[1].0.contains(&Float::new(400)));
         assert!(table[0].1.contains(&(Float::with_val(400, 5) / 9u32)));
         assert!(table[1].1.contains(&(Float::with_val(400, 8) / 9u32)));
         // Rounded from a table at higher precision, still the same nodes.
-        let fine = nodes(3, 256);
-        let coarse = nodes(3, 64);
-        assert!(fine[0].0.contains(&root) && coarse[0].0.contains(&root));
+        let fine = nodes(3, 256).unwrap();
+        let coarse = nodes(3, 64).unwrap();
+        assert!(fine.nodes[0].0.contains(&root) && coarse.nodes[0].0.contains(&root));
+        assert_eq!((fine.bits, coarse.bits), (256, 64));
     }
 }

@@ -373,14 +373,16 @@ where
     let digits = digits.max(1);
     let read = |bits| case(Precision::bits(bits)).map_err(|reason| CertifiedError::Case { bits, reason });
     // The digits' bits with guard bits for the rounding of the integrand and the sum of
-    // the pieces, and the bits that a phase near a multiple of π costs, known before the
-    // first attempt, rounded up once to whole limbs. The case read for the phase serves
-    // the first attempt where the phase costs no limb more.
+    // the pieces (more near separation), and the bits that a phase near a multiple of π
+    // costs, known before the first attempt, rounded up once to whole limbs. The case
+    // read for them serves the first attempt where they cost no limb more.
     let digit_bits = Precision::decimal_digits(digits).in_bits() + GUARD_BITS;
     let likely = whole_limbs(digit_bits);
     let mut first_read = Some(read(likely)?);
-    let extra = first_read.as_ref().map_or(0, |(cycle, _)| phase_bits(cycle));
-    let first = whole_limbs(digit_bits + extra);
+    let (extra, guard) = first_read.as_ref().map_or((0, GUARD_BITS), |(cycle, _)| {
+        (phase_bits(cycle), separation_guard_bits(cycle).max(GUARD_BITS))
+    });
+    let first = whole_limbs(digit_bits - GUARD_BITS + guard + extra);
     let mut bits = first;
     let (mut reached, mut last_bits) = (0, 0);
     let mut gave_up_before = false;
@@ -465,6 +467,33 @@ fn phase_bits(cycle: &LoadCycle<Ball>) -> u32 {
         0
     }
 }
+
+/// The guard bits a cycle near separation needs in place of [`GUARD_BITS`]: the
+/// integrands about the lowest load δ = P0 − P1 amplify the working precision's rounding
+/// by about P1/δ, so an enclosure there is about log2(P1/δ) + 2 bits wider than the
+/// working precision (proofs/certified-digits.md, "Near separation: the first
+/// precision"), and 3 bits more let it round to the digits. Zero unless
+/// δ < P1/[`SEPARATION_START`]; a cycle with P1 = 0 or δ ≤ 0 (refused later) costs
+/// nothing here.
+fn separation_guard_bits(cycle: &LoadCycle<Ball>) -> u32 {
+    // Only an estimate of a starting precision: undecided comparisons here do no harm.
+    let ((amplitude, lowest), _) = watch(|| {
+        let p1 = cycle.normal_amplitude.to_f64_lossy();
+        (
+            p1,
+            (cycle.mean_normal_load.clone() - &cycle.normal_amplitude).to_f64_lossy(),
+        )
+    });
+    let ratio = amplitude / lowest;
+    if ratio.is_finite() && lowest > 0.0 && ratio > f64::from(SEPARATION_START) {
+        (ratio.log2().ceil() as u32 + 5).min(MAX_BITS)
+    } else {
+        0
+    }
+}
+
+/// P1/δ above which [`separation_guard_bits`] replaces the ordinary guard bits.
+const SEPARATION_START: u32 = 1 << 10;
 
 /// Bits a phase offset is computed with beyond the working precision and its exponent.
 const PHASE_GUARD_BITS: u32 = 64;

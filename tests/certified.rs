@@ -484,6 +484,24 @@ fn near_separation_is_certified() {
 }
 
 #[test]
+fn near_separation_the_first_precision_pays_the_bits_rounding_loses() {
+    // δ = 1e−9 of P1: the integrands about the lowest load lose about log2(P1/δ) + 2 bits
+    // to rounding, so 50 digits need 256 bits there, not the 192 of an ordinary case. The
+    // driver starts at 256 (and ends there), rather than failing at 192 first.
+    let case = case("1", "0.999999999", "1e-5", "0.5pi", "1", PERSSON);
+    let certified = certified_dissipation(ball_case(&case), 50).unwrap();
+    assert_eq!(certified.enclosure.precision.in_bits(), 256);
+    assert!(certified.enclosure.total.contains(&reference(&case)));
+    let (cycle, compliance) = ball_case(&case)(Precision::bits(192)).unwrap();
+    let coarse = enclose_dissipation(&cycle, compliance.as_ref(), 179).unwrap();
+    let reached = certain_digits(&coarse.total, 50).map_or(0, |(_, n)| n);
+    assert!(reached < 50, "192 bits reach {reached} digits");
+    // An ordinary case still starts (and ends) at 192 bits for 50 digits.
+    let ordinary = certified_dissipation(ball_case(&acceptance()), 50).unwrap();
+    assert_eq!(ordinary.enclosure.precision.in_bits(), 192);
+}
+
+#[test]
 fn no_tangential_oscillation_is_exactly_zero() {
     let case = case("1", "0.4", "0", "0.4pi", "1", PERSSON);
     let certified = certified_dissipation(ball_case(&case), 50).unwrap();

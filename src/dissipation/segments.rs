@@ -383,7 +383,8 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
 
     /// The pieces of the four segment integrals, segment by segment in cycle order:
     /// each window split where a narrow peak needs its own map, and near separation
-    /// the bottom of the cycle (|θ − π| ≤ π/2) through the bottom map.
+    /// the bottom of the cycle (within 1/[`BOTTOM_REACH`] rad of θ ≡ π) through the
+    /// bottom map.
     pub(crate) fn plans(&self) -> Vec<PiecePlan<R>> {
         // Usually one or two pieces a segment.
         let mut plans = Vec::with_capacity(2 * Segment::ALL.len());
@@ -412,15 +413,17 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
         plans
     }
 
-    /// δ/P1 = (P0 − P1)/P1 where it is below 1/[`NEAR_SEPARATION`].
-    fn separation_margin(&self) -> Option<R> {
+    /// δ/P1 = (P0 − P1)/P1, the lowest load relative to the amplitude, where P1 > 0.
+    fn normal_margin(&self) -> Option<R> {
         let g = self.geometry;
         let zero = g.normal_amplitude.int(0);
-        if g.normal_amplitude <= zero {
-            return None;
-        }
-        let margin = (g.mean_normal_load.clone() - &g.normal_amplitude) / &g.normal_amplitude;
-        (margin < margin.ratio(1, NEAR_SEPARATION)).then_some(margin)
+        (g.normal_amplitude > zero).then(|| (g.mean_normal_load.clone() - &g.normal_amplitude) / &g.normal_amplitude)
+    }
+
+    /// [`Self::normal_margin`] where it is below 1/[`NEAR_SEPARATION`].
+    fn separation_margin(&self) -> Option<R> {
+        self.normal_margin()
+            .filter(|margin| *margin < margin.ratio(1, NEAR_SEPARATION))
     }
 
     /// The window (a, b) of `segment` with its lowest load toward one end: the bottom
@@ -516,8 +519,7 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
         let pi = length.pi_like();
         // Six turns, twice for CH, and the slip load's peak.
         let mut peaks = Vec::with_capacity(13);
-        if g.normal_amplitude > zero {
-            let margin = (g.mean_normal_load.clone() - &g.normal_amplitude) / &g.normal_amplitude;
+        if let Some(margin) = self.normal_margin() {
             let width = acosh_one_plus(&margin);
             for k in -2..=3i64 {
                 let lowest = pi.clone() * &pi.int(2 * k + 1);

@@ -8,7 +8,7 @@
 //! `bottom_map` the one that resolves the lowest load of a cycle near separation.
 
 pub mod bottom_map;
-mod cache;
+pub(crate) mod cache;
 pub mod engine;
 pub mod gauss_legendre;
 pub mod sinh_map;
