@@ -187,6 +187,9 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
     }
 
     /// The angles of `segment` at angle `s` from its start.
+    // Inlined into each piece's integrand, as `integrand_at` is: as calls they cost an f64
+    // run about 15 % (proofs/certified-digits.md, "The f64 default in process").
+    #[inline(always)]
     fn angle_at(&self, segment: Segment, s: &R) -> SegmentAngle<R> {
         let g = self.geometry;
         match segment {
@@ -297,6 +300,7 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
     }
 
     /// The integrand of `segment` at the angles `angle`.
+    #[inline(always)]
     fn integrand_at(&self, segment: Segment, angle: SegmentAngle<R>, slope: &dyn Fn(&R) -> R) -> R {
         let g = self.geometry;
         match angle {
