@@ -471,8 +471,8 @@ fn phase_bits(cycle: &LoadCycle<Ball>) -> u32 {
 /// The guard bits a cycle near separation needs in place of [`GUARD_BITS`]: the
 /// integrands about the lowest load δ = P0 − P1 amplify the working precision's rounding
 /// by about P1/δ, so an enclosure there is about log2(P1/δ) + 2 bits wider than the
-/// working precision (proofs/certified-digits.md, "Near separation: the first
-/// precision"), and 3 bits more let it round to the digits. Zero unless
+/// working precision (proofs/certified-digits.md, "The first precision and the
+/// halvings"), and 3 bits more let it round to the digits. Zero unless
 /// δ < P1/[`SEPARATION_START`]; a cycle with P1 = 0 or δ ≤ 0 (refused later) costs
 /// nothing here.
 fn separation_guard_bits(cycle: &LoadCycle<Ball>) -> u32 {
