@@ -989,12 +989,7 @@ pub fn certain_digits(ball: &Ball, max_digits: u32) -> Option<(String, u32)> {
 
 /// The smallest ball that contains both real balls.
 pub fn hull(a: &Ball, b: &Ball) -> Ball {
-    // At the higher of the two precisions (the union is symmetric).
-    if a.precision >= b.precision {
-        a.real_binary(b, arb_union)
-    } else {
-        b.real_binary(a, arb_union)
-    }
+    a.union(b)
 }
 
 #[cfg(test)]

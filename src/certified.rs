@@ -32,7 +32,7 @@ use crate::dissipation::closed_forms::{
     constant_normal_load_segments, constant_normal_load_term, in_phase_segments, in_phase_terms, weighted_pieces,
 };
 use crate::dissipation::slope::knot_offsets;
-use crate::dissipation::{Segment, SegmentIntegrands, Segments};
+use crate::dissipation::{Segment, SegmentIntegrands, Segments, NEAR_SEPARATION};
 use crate::phase::ReducedPhase;
 use crate::quad::Piece;
 use crate::real::{Precision, Real};
@@ -376,13 +376,13 @@ where
     // the pieces (more near separation), and the bits that a phase near a multiple of π
     // costs, known before the first attempt, rounded up once to whole limbs. The case
     // read for them serves the first attempt where they cost no limb more.
-    let digit_bits = Precision::decimal_digits(digits).in_bits() + GUARD_BITS;
-    let likely = whole_limbs(digit_bits);
+    let digit_bits = Precision::decimal_digits(digits).in_bits();
+    let likely = whole_limbs(digit_bits + GUARD_BITS);
     let mut first_read = Some(read(likely)?);
     let (extra, guard) = first_read.as_ref().map_or((0, GUARD_BITS), |(cycle, _)| {
         (phase_bits(cycle), separation_guard_bits(cycle).max(GUARD_BITS))
     });
-    let first = whole_limbs(digit_bits - GUARD_BITS + guard + extra);
+    let first = whole_limbs(digit_bits + guard + extra);
     let mut bits = first;
     let (mut reached, mut last_bits) = (0, 0);
     let mut gave_up_before = false;
@@ -414,7 +414,7 @@ where
         };
         // The digits' bits and [`GOAL_GUARD_BITS`] more (and the phase's), not the limb's
         // spare bits; a retry adds what the precision gained.
-        let goal = (Precision::decimal_digits(digits).in_bits() + GOAL_GUARD_BITS + extra).min(first) + (bits - first);
+        let goal = (digit_bits + GOAL_GUARD_BITS + extra).min(first) + (bits - first);
         let error = match enclose_dissipation(&cycle, compliance.as_ref(), goal) {
             Ok(enclosure) => {
                 let certain = certain_digits(&enclosure.total, digits);
@@ -472,9 +472,9 @@ fn phase_bits(cycle: &LoadCycle<Ball>) -> u32 {
 /// integrands about the lowest load δ = P0 − P1 amplify the working precision's rounding
 /// by about P1/δ, so an enclosure there is about log2(P1/δ) + 2 bits wider than the
 /// working precision (proofs/certified-digits.md, "The first precision and the
-/// halvings"), and 3 bits more let it round to the digits. Zero unless
-/// δ < P1/[`SEPARATION_START`]; a cycle with P1 = 0 or δ ≤ 0 (refused later) costs
-/// nothing here.
+/// halvings"), and 3 bits more let it round to the digits. Zero above the δ at which the
+/// bottom map takes over (δ < P1/[`NEAR_SEPARATION`]); a cycle with P1 = 0 or δ ≤ 0
+/// (refused later) costs nothing here.
 fn separation_guard_bits(cycle: &LoadCycle<Ball>) -> u32 {
     // Only an estimate of a starting precision: undecided comparisons here do no harm.
     let ((amplitude, lowest), _) = watch(|| {
@@ -485,15 +485,12 @@ fn separation_guard_bits(cycle: &LoadCycle<Ball>) -> u32 {
         )
     });
     let ratio = amplitude / lowest;
-    if ratio.is_finite() && lowest > 0.0 && ratio > f64::from(SEPARATION_START) {
+    if ratio.is_finite() && lowest > 0.0 && ratio > NEAR_SEPARATION as f64 {
         (ratio.log2().ceil() as u32 + 5).min(MAX_BITS)
     } else {
         0
     }
 }
-
-/// P1/δ above which [`separation_guard_bits`] replaces the ordinary guard bits.
-const SEPARATION_START: u32 = 1 << 10;
 
 /// Bits a phase offset is computed with beyond the working precision and its exponent.
 const PHASE_GUARD_BITS: u32 = 64;

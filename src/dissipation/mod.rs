@@ -47,6 +47,8 @@ pub use error::DissipationError;
 pub use four_segment::four_segment;
 pub use options::{Options, Rules};
 pub use segment::{Segment, Segments};
+#[cfg(feature = "certified")]
+pub(crate) use segments::NEAR_SEPARATION;
 pub use segments::{SegmentIntegrands, SegmentPieces};
 
 use crate::compliance::Compliance;

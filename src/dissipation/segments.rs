@@ -87,7 +87,7 @@ enum LowLoad {
 
 /// Below this lowest load δ = P0 − P1, as a fraction of P1, the bottom of the cycle is
 /// integrated through the bottom map (proofs/certified-digits.md, "Near separation").
-const NEAR_SEPARATION: i64 = 1 << 10;
+pub(crate) const NEAR_SEPARATION: i64 = 1 << 10;
 
 /// How far from the lowest load, in θ, a bottom map reaches: 1/[`BOTTOM_REACH`] rad, so
 /// that sin α ≤ sin(1/8) keeps the branch points of cos α (t sinh u = ±1) ln 8 beyond the
