@@ -86,7 +86,9 @@ impl<'a> Parameters<'a> {
         Ok(Parameters { family, pairs })
     }
 
-    fn expect(&self, keys: &[&str]) -> Result<(), String> {
+    /// The values of exactly these keys, in this order: a key the family does not take, or
+    /// one it needs and is not given, is an error naming what the family takes.
+    fn take<const N: usize>(&self, keys: [&'static str; N]) -> Result<[Parameter<'a>; N], String> {
         if let Some((unknown, _)) = self.pairs.iter().find(|(k, _)| !keys.contains(k)) {
             return Err(format!(
                 "{} has no parameter '{unknown}' (it takes {})",
@@ -101,25 +103,35 @@ impl<'a> Parameters<'a> {
                 keys.join(", ")
             ));
         }
-        Ok(())
+        Ok(keys.map(|key| Parameter {
+            family: self.family,
+            key,
+            text: self.pairs.iter().find(|(k, _)| *k == key).map_or("", |(_, text)| text),
+        }))
+    }
+}
+
+/// One parameter of a family: its key (for messages) and its text.
+struct Parameter<'a> {
+    family: &'a str,
+    key: &'static str,
+    text: &'a str,
+}
+
+impl Parameter<'_> {
+    fn value(&self) -> Result<Exact, String> {
+        number(self.key, self.text)
     }
 
-    fn text(&self, key: &str) -> &'a str {
-        self.pairs
-            .iter()
-            .find(|(k, _)| *k == key)
-            .map(|(_, v)| *v)
-            .unwrap_or("")
+    /// A list written with ';' between its numbers.
+    fn list(&self) -> Result<Vec<Exact>, String> {
+        self.text.split(';').map(|c| number(self.key, c.trim())).collect()
     }
 
-    fn value(&self, key: &'static str) -> Result<Exact, String> {
-        number(key, self.text(key))
-    }
-
-    fn positive(&self, key: &'static str) -> Result<Exact, String> {
-        let value = self.value(key)?;
+    fn positive(&self) -> Result<Exact, String> {
+        let value = self.value()?;
         if value.value <= 0 {
-            return Err(format!("{} needs {key} > 0, got {}", self.family, self.text(key)));
+            return Err(format!("{} needs {} > 0, got {}", self.family, self.key, self.text));
         }
         Ok(value)
     }
@@ -157,59 +169,52 @@ fn family_term(family: &str, parameters: &str) -> Result<Term, TermError> {
     let params = Parameters::parse(family, parameters)?;
     let term = match family {
         "power" => {
-            params.expect(&["c", "beta"])?;
+            let [coefficient, exponent] = params.take(["c", "beta"])?;
             Term::Power {
-                coefficient: params.value("c")?,
-                exponent: params.value("beta")?,
+                coefficient: coefficient.value()?,
+                exponent: exponent.value()?,
             }
         }
         "persson" => {
-            params.expect(&["gamma", "sigma"])?;
+            let [gamma, sigma] = params.take(["gamma", "sigma"])?;
             Term::Persson {
-                gamma: params.positive("gamma")?,
-                sigma: params.positive("sigma")?,
+                gamma: gamma.positive()?,
+                sigma: sigma.positive()?,
             }
         }
         "hertz" => {
-            params.expect(&["r", "estar"])?;
+            let [radius, contact_modulus] = params.take(["r", "estar"])?;
             Term::Hertz {
-                radius: params.positive("r")?,
-                contact_modulus: params.positive("estar")?,
+                radius: radius.positive()?,
+                contact_modulus: contact_modulus.positive()?,
             }
         }
         "poly" => {
-            params.expect(&["p0", "coeffs"])?;
-            let coefficients = params
-                .text("coeffs")
-                .split(';')
-                .map(|c| number("coeffs", c.trim()))
-                .collect::<Result<Vec<_>, _>>()?;
+            let [reference, coefficients] = params.take(["p0", "coeffs"])?;
             Term::Polynomial {
-                reference: params.value("p0")?,
-                coefficients,
+                reference: reference.value()?,
+                coefficients: coefficients.list()?,
             }
         }
         "rational" => {
-            params.expect(&["a", "b", "c"])?;
+            let [constant, numerator, offset] = params.take(["a", "b", "c"])?;
             Term::Rational {
-                constant: params.value("a")?,
-                numerator: params.value("b")?,
-                offset: params.value("c")?,
+                constant: constant.value()?,
+                numerator: numerator.value()?,
+                offset: offset.value()?,
             }
         }
         "exp" => {
-            params.expect(&["a", "c", "d"])?;
+            let [amplitude, decay_load, constant] = params.take(["a", "c", "d"])?;
             Term::Exponential {
-                amplitude: params.value("a")?,
-                decay_load: params.positive("c")?,
-                constant: params.value("d")?,
+                amplitude: amplitude.value()?,
+                decay_load: decay_load.positive()?,
+                constant: constant.value()?,
             }
         }
         "const" => {
-            params.expect(&["c"])?;
-            Term::Constant {
-                slope: params.value("c")?,
-            }
+            let [slope] = params.take(["c"])?;
+            Term::Constant { slope: slope.value()? }
         }
         "" => return Err(TermError::Problem("a term names no family".to_string())),
         other => {
