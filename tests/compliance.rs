@@ -4,10 +4,11 @@
 use std::path::PathBuf;
 
 use microslip::compliance::{
-    cached_table, parse_spec, Compliance, ComplianceSpec, Exponential, Hertz, LoadScaled, Persson, Polynomial,
-    PowerLaw, Rational, Scaled, Shifted, Sum, TableCompliance, TableInterpolant,
+    cached_table, check_admissible, parse_spec, Compliance, ComplianceSpec, Exponential, Hertz, LoadScaled, Persson,
+    Polynomial, PowerLaw, Rational, Scaled, Shifted, Sum, TableCompliance, TableInterpolant,
 };
 use microslip::real::{Precision, Real};
+use proptest::prelude::*;
 use rug::Float;
 
 const SPECS: [&str; 9] = [
@@ -347,4 +348,93 @@ fn balls_from_the_spec_enclose_the_exact_decimals() {
     let exact = Float::with_val(2000, Float::parse("0.433333333333333333333333333333").unwrap());
     assert!(slope.contains(&exact), "{slope:?}");
     assert!(!slope.contains(&Float::with_val(2000, 0.1f64 + 0.333_333_333_333_333_3)));
+}
+
+/// A compliance with its form hidden: `check_admissible` can only sample it.
+#[derive(Debug)]
+struct FormHidden(Box<dyn Compliance<f64>>);
+
+impl Compliance<f64> for FormHidden {
+    fn approach(&self, load: &f64) -> f64 {
+        self.0.approach(load)
+    }
+    fn slope(&self, load: &f64) -> f64 {
+        self.0.slope(load)
+    }
+    fn curvature(&self, load: &f64) -> f64 {
+        self.0.curvature(load)
+    }
+    fn describe(&self) -> String {
+        self.0.describe()
+    }
+}
+
+prop_compose! {
+    /// A power law, a Persson or Hertz compliance, or a positive multiple or sum of them,
+    /// with parameters of either sign and magnitudes from 1e-300 to 1e300.
+    fn formed_compliance()(
+        family in 0..5usize,
+        c in prop_oneof![-2.0..2.0f64, (-300.0..300.0f64).prop_map(|e| 10f64.powf(e))],
+        beta in prop_oneof![-3.0..1.0f64, Just(0.0), Just(-1.0)],
+        factor in prop_oneof![-1.0..3.0f64, Just(1e300)],
+    ) -> Box<dyn Compliance<f64>> {
+        let power = |c: f64| -> Box<dyn Compliance<f64>> { Box::new(PowerLaw { coefficient: c, exponent: beta }) };
+        match family {
+            0 => power(c),
+            1 => Box::new(Persson { gamma: c, sigma: factor }),
+            2 => Box::new(Hertz { radius: c.abs(), contact_modulus: factor.abs() }),
+            3 => Box::new(Scaled { factor, inner: power(c) }),
+            _ => Box::new(Sum { terms: vec![power(c), Box::new(Persson { gamma: factor, sigma: 1.0 })] }),
+        }
+    }
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(2000))]
+
+    /// Deciding admissibility from a family's form gives exactly what sampling gives:
+    /// never a pass that sampling would refuse (v' underflowing or overflowing included),
+    /// and the same refusal where it does not decide.
+    #[test]
+    fn admissibility_by_form_agrees_with_sampling(
+        compliance in formed_compliance(),
+        low_exponent in -310.0..300.0f64,
+        width in prop_oneof![0.0..2.0f64, Just(0.0), 2.0..600.0f64],
+    ) {
+        let low = 10f64.powf(low_exponent);
+        let high = low * 10f64.powf(width);
+        prop_assume!(high.is_finite());
+        let by_form = compliance.admissible_by_form(&low, &high);
+        let checked = check_admissible(compliance.as_ref(), &low, &high);
+        let sampled = check_admissible(&FormHidden(compliance), &low, &high);
+        // Debug, not ==: a refusal may carry a NaN curvature.
+        prop_assert_eq!(format!("{checked:?}"), format!("{sampled:?}"));
+        prop_assert!(!by_form || sampled.is_ok());
+    }
+}
+
+#[test]
+fn admissibility_by_form_decides_the_families_it_knows() {
+    let persson = Persson { gamma: 1.0, sigma: 1.0 };
+    assert!(persson.admissible_by_form(&0.5, &1.5));
+    // v' = P softens as it is pressed: not admissible, and not decided by the form.
+    let softening = PowerLaw {
+        coefficient: 1.0,
+        exponent: 1.0,
+    };
+    assert!(!softening.admissible_by_form(&0.5, &1.5));
+    // v' = 1e-300·P^-1 underflows to 0 at 1e30: sampling refuses it, so the form must not pass it.
+    let vanishing = PowerLaw {
+        coefficient: 1e-300,
+        exponent: -1.0,
+    };
+    assert!(!vanishing.admissible_by_form(&1.0, &1e30));
+    assert!(check_admissible(&vanishing, &1.0, &1e30).is_err());
+    // Families without a form rule are sampled.
+    let polynomial = Polynomial {
+        reference: 1.0,
+        coefficients: vec![1.0, -0.5],
+    };
+    assert!(!polynomial.admissible_by_form(&0.5, &1.5));
+    assert!(check_admissible(&polynomial, &0.5, &1.5).is_ok());
 }

@@ -1,7 +1,7 @@
 //! Compliances built from others: sums, multiples, a constant added to v', and
 //! the load scaling that models scaled roughness.
 
-use super::{merged_breakpoints, Compliance, SlopeChange};
+use super::{merged_breakpoints, regular_at_ends, Compliance, SlopeChange};
 use crate::real::Real;
 
 /// v = Σ vᵢ: compliances in series add.
@@ -55,6 +55,11 @@ impl<R: Real> Compliance<R> for Sum<R> {
         let parts: Vec<String> = self.terms.iter().map(|c| c.describe()).collect();
         parts.join(" + ")
     }
+    fn admissible_by_form(&self, low: &R, high: &R) -> bool {
+        // A sum of admissible terms is admissible; the ends' check catches a sum that
+        // overflows.
+        self.terms.iter().all(|c| c.admissible_by_form(low, high)) && regular_at_ends(self, low, high)
+    }
     fn derivative(&self, order: usize, load: &R) -> Option<R> {
         self.terms
             .iter()
@@ -100,6 +105,9 @@ impl<R: Real> Compliance<R> for Scaled<R> {
     }
     fn describe(&self) -> String {
         format!("{} × ({})", self.factor.to_scientific(6), self.inner.describe())
+    }
+    fn admissible_by_form(&self, low: &R, high: &R) -> bool {
+        self.factor > low.int(0) && self.inner.admissible_by_form(low, high) && regular_at_ends(self, low, high)
     }
     fn derivative(&self, order: usize, load: &R) -> Option<R> {
         Some(self.factor.clone() * &self.inner.derivative(order, load)?)

@@ -1,6 +1,6 @@
 //! The built-in compliance families.
 
-use super::{falling_factorial, Compliance, SlopeChange};
+use super::{falling_factorial, regular_at_ends, Compliance, SlopeChange};
 use crate::real::Real;
 
 /// v'(P) = C·P^β (β < 0 for a stiffening contact). Eq. (20) of the paper with the
@@ -118,6 +118,11 @@ impl<R: Real> Compliance<R> for PowerLaw<R> {
             self.exponent.to_scientific(6)
         )
     }
+    fn admissible_by_form(&self, low: &R, high: &R) -> bool {
+        // v' = C·P^β > 0 for C > 0, and v'' = C·β·P^(β − 1) ≤ 0 for β ≤ 0.
+        let zero = low.int(0);
+        self.coefficient > zero && self.exponent <= zero && regular_at_ends(self, low, high)
+    }
     fn slope_derivative(&self, order: usize, load: &R) -> Option<R> {
         // v'⁽ᵏ⁾ = C·β(β − 1)…(β − k + 1)·P^(β − k).
         Some(
@@ -188,6 +193,10 @@ impl<R: Real> Compliance<R> for Persson<R> {
             self.gamma.to_scientific(6),
             self.sigma.to_scientific(6)
         )
+    }
+    fn admissible_by_form(&self, low: &R, high: &R) -> bool {
+        // v' = γσ/P > 0 and v'' = −γσ/P² < 0 for γσ > 0.
+        self.gamma.clone() * &self.sigma > low.int(0) && regular_at_ends(self, low, high)
     }
     fn slope_derivative(&self, order: usize, load: &R) -> Option<R> {
         Some(logarithmic_derivative(
@@ -272,6 +281,9 @@ impl<R: Real> Compliance<R> for Hertz<R> {
             self.radius.to_scientific(6),
             self.contact_modulus.to_scientific(6)
         )
+    }
+    fn admissible_by_form(&self, low: &R, high: &R) -> bool {
+        self.as_power_law().admissible_by_form(low, high)
     }
     fn slope_derivative(&self, order: usize, load: &R) -> Option<R> {
         self.as_power_law().slope_derivative(order, load)

@@ -76,6 +76,14 @@ pub trait Compliance<R: Real>: Debug + Send + Sync {
     }
     /// A short human-readable description, e.g. `power law v' = 1·P^-1`.
     fn describe(&self) -> String;
+    /// Whether v' > 0 and v'' ≤ 0 at every load of [low, high] (0 < low ≤ high) follow from
+    /// the family's form and parameters, v' and v'' being finite at both ends and monotone
+    /// in between. `false` means "not known from the form": [`check_admissible`] then
+    /// samples the range.
+    fn admissible_by_form(&self, low: &R, high: &R) -> bool {
+        let _ = (low, high);
+        false
+    }
     /// The derivative of v of order `order` at `load` (0: v, 1: v', 2: v'', …), from a
     /// closed form exact at the working precision, for the small-amplitude series at
     /// every order. `None` for a compliance that cannot give it.
@@ -92,6 +100,18 @@ pub trait Compliance<R: Real>: Debug + Send + Sync {
         let _ = (order, load);
         None
     }
+}
+
+/// v' positive and finite and v'' finite at both ends of [low, high], with low > 0: for a
+/// form whose v' and v'' are monotone, so throughout (v' does not underflow to 0 or
+/// overflow in between).
+pub(crate) fn regular_at_ends<R: Real>(compliance: &dyn Compliance<R>, low: &R, high: &R) -> bool {
+    let zero = low.int(0);
+    *low > zero
+        && [low, high].into_iter().all(|load| {
+            let slope = compliance.slope(load);
+            slope.is_finite() && slope > zero && compliance.curvature(load).is_finite()
+        })
 }
 
 /// The falling factorial β(β − 1)…(β − k + 1) at the precision of `beta`:
@@ -152,8 +172,9 @@ pub enum AdmissibilityError {
     },
 }
 
-/// Checks v' > 0 and v'' ≤ 0 at 65 evenly spaced loads in [low, high] (both ends
-/// included). v'' is allowed a rounding-level excess over 0 so that a linear v
+/// Checks v' > 0 and v'' ≤ 0 over [low, high]: from the family's form where it decides
+/// ([`Compliance::admissible_by_form`]), otherwise at 65 evenly spaced loads (both ends
+/// included). There v'' is allowed a rounding-level excess over 0 so that a linear v
 /// (v'' = 0 exactly) computed with rounding error still passes.
 ///
 /// ```
@@ -167,6 +188,9 @@ pub enum AdmissibilityError {
 /// ```
 pub fn check_admissible<R: Real>(compliance: &dyn Compliance<R>, low: &R, high: &R) -> Result<(), AdmissibilityError> {
     const SAMPLES: i64 = 64;
+    if compliance.admissible_by_form(low, high) {
+        return Ok(());
+    }
     let (low_f, high_f) = (low.to_f64_lossy(), high.to_f64_lossy());
     for i in 0..=SAMPLES {
         let load = low.clone() + &((high.clone() - low) * low.ratio(i, SAMPLES));

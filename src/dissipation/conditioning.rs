@@ -17,11 +17,9 @@ pub(crate) fn check_case<R: Real>(
     options: &Options<R>,
 ) -> Result<(), DissipationError> {
     let amplification = cycle.rounding_amplification();
-    check_conditioning(
-        &amplification,
-        options,
-        format!("min(P0 − P1, P_T) = P0/{:.3e}", amplification.to_f64_lossy()),
-    )?;
+    check_conditioning(&amplification, options, || {
+        format!("min(P0 − P1, P_T) = P0/{:.3e}", amplification.to_f64_lossy())
+    })?;
     let low = (cycle.mean_normal_load.clone() - &cycle.normal_amplitude).min_of(&cycle.permanent_stick_load());
     let high = cycle.mean_normal_load.clone() + &cycle.normal_amplitude;
     range::check_magnitudes(cycle, compliance, options, &low, &high)?;
@@ -31,17 +29,18 @@ pub(crate) fn check_case<R: Real>(
     Ok(())
 }
 
-/// Refuses a cycle whose rounding amplification times ε exceeds `rounding_limit`.
+/// Refuses a cycle whose rounding amplification times ε exceeds `rounding_limit`, saying
+/// why in the words of `cause` (formed only for a refusal).
 pub(crate) fn check_conditioning<R: Real>(
     amplification: &R,
     options: &Options<R>,
-    cause: String,
+    cause: impl FnOnce() -> String,
 ) -> Result<(), DissipationError> {
     let expected = (amplification.clone() * &amplification.epsilon_like()).to_f64_lossy();
     if expected > options.rounding_limit {
         return Err(DissipationError::IllConditioned {
             bits: amplification.precision().in_bits(),
-            cause,
+            cause: cause(),
             expected,
             limit: options.rounding_limit,
         });

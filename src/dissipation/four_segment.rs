@@ -57,14 +57,12 @@ pub(crate) fn four_segment_integrals<R: Real>(
     // estimate covers the cancellation of BC and CH (`assemble`), and a verified run starts
     // at the precision it needs.
     let cancellation = cycle.cancellation_amplification() / &cycle.in_phase_cancellation();
-    check_conditioning(
-        &cancellation,
-        options,
+    check_conditioning(&cancellation, options, || {
         format!(
             "Q1/(fP1) = {:.3e}, and the slip terms of the segment integrands cancel to a difference that much smaller",
             (cycle.tangential_amplitude.clone() / &cycle.normal_amplitude / &cycle.friction).to_f64_lossy()
-        ),
-    )?;
+        )
+    })?;
     let integrands = SegmentIntegrands {
         geometry: &geometry,
         compliance,

@@ -14,11 +14,12 @@
 //! predicted cost (its points times the time per point of the last rule applied) would
 //! end past the deadline, and node tables stop computing at it.
 
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use super::gauss_legendre::node_table_before;
+use super::gauss_legendre::{node_table_before, NodeTable};
 use super::{tanh_sinh, Estimate};
-use crate::real::Real;
+use crate::real::{Precision, Real};
 
 /// ∫ₛₜₐᵣₜ^ₑₙd integrand: one piece of a sum of integrals.
 pub struct Piece<'a, R> {
@@ -243,20 +244,37 @@ const MAX_TANH_SINH_LEVEL: u32 = 16;
 const NOISE_MARGIN: i64 = 100;
 
 /// The deadline, kept ahead of the work by predicting each step's cost from the time
-/// per integrand evaluation of the last rule applied.
-#[derive(Clone, Copy, Debug)]
-struct Clock {
+/// per integrand evaluation of the last rule applied; and the rules applied so far, each
+/// fetched from the shared node cache once per integration rather than once per piece.
+struct Clock<R> {
     deadline: Option<Instant>,
     /// The measured time per point of the last rule applied (zero before the first).
     per_point: Duration,
+    rules: Vec<(usize, Precision, Arc<NodeTable<R>>)>,
 }
 
-impl Clock {
+impl<R: Real> Clock<R> {
     fn new(deadline: Option<Instant>) -> Self {
         Clock {
             deadline,
             per_point: Duration::ZERO,
+            rules: Vec::new(),
         }
+    }
+
+    /// The `points`-point rule at `precision`, or `None` when computing it would run past
+    /// the deadline.
+    fn rule(&mut self, points: usize, precision: Precision) -> Option<Arc<NodeTable<R>>> {
+        let known = self
+            .rules
+            .iter()
+            .find(|(n, bits, _)| *n == points && *bits == precision);
+        if let Some((_, _, rule)) = known {
+            return Some(Arc::clone(rule));
+        }
+        let rule = node_table_before::<R>(points, precision, self.deadline)?;
+        self.rules.push((points, precision, Arc::clone(&rule)));
+        Some(rule)
     }
 
     /// Whether a rule of `points` points may start: it is predicted to end by the deadline.
@@ -273,13 +291,12 @@ impl Clock {
 
     /// The piece by the `points`-point rule, with the rule applied to |f| (see
     /// `NodeTable::integrate_with_magnitude`); the time per point is recorded.
-    fn gauss<R: Real>(&mut self, piece: &Piece<'_, R>, points: usize) -> Result<(R, R), QuadError> {
+    fn gauss(&mut self, piece: &Piece<'_, R>, points: usize) -> Result<(R, R), QuadError> {
         if piece.start == piece.end {
             return Ok((piece.start.int(0), piece.start.int(0)));
         }
         self.allows(points)?;
-        let table =
-            node_table_before::<R>(points, piece.start.precision(), self.deadline).ok_or(QuadError::OutOfTime)?;
+        let table = self.rule(points, piece.start.precision()).ok_or(QuadError::OutOfTime)?;
         let started = self.deadline.map(|_| Instant::now());
         let (value, magnitude) = table.integrate_with_magnitude(&piece.integrand, &piece.start, &piece.end);
         if let Some(started) = started {
@@ -400,7 +417,7 @@ fn converge<R: Real>(pieces: &[Piece<'_, R>], settings: &Settings<R>) -> Result<
 fn first_look<R: Real>(
     pieces: &[Piece<'_, R>],
     first_points: usize,
-    clock: &mut Clock,
+    clock: &mut Clock<R>,
 ) -> Result<Vec<PieceEstimate<R>>, QuadError> {
     pieces
         .iter()
@@ -481,7 +498,7 @@ impl<'s, R: Real> Refinement<'s, R> {
         mut self,
         piece: &Piece<'_, R>,
         max_points: usize,
-        clock: &mut Clock,
+        clock: &mut Clock<R>,
     ) -> Result<PieceEstimate<R>, Refused<R>> {
         loop {
             if self.points() * 2 > max_points || self.stalled >= 2 {
@@ -535,7 +552,7 @@ impl<'s, R: Real> Refinement<'s, R> {
     /// integrand. Tanh–sinh resolves the first and tells the second: where the two rules
     /// agree with each other and with themselves to within NOISE_MARGIN × the share, the
     /// piece has reached its noise, and that spread is its error.
-    fn finish_by_tanh_sinh(mut self, piece: &Piece<'_, R>, clock: &Clock) -> Result<PieceEstimate<R>, Refused<R>> {
+    fn finish_by_tanh_sinh(mut self, piece: &Piece<'_, R>, clock: &Clock<R>) -> Result<PieceEstimate<R>, Refused<R>> {
         let (start, end) = (&piece.start, &piece.end);
         let estimate = match clock.deadline {
             Some(deadline) => tanh_sinh::integrate_before(
