@@ -13,7 +13,7 @@ use std::sync::Arc;
 
 use flint_sys::acb::{acb_init, acb_set_round};
 use flint_sys::acb_types::acb_struct;
-use flint_sys::arb::arb_add_error_mag;
+use flint_sys::arb::{arb_add_error_mag, arb_mul_2exp_si, arb_mul_si, arb_set_d};
 use flint_sys::arb_hypgeom::arb_hypgeom_legendre_p_ui_root;
 use flint_sys::arb_types::mag_struct;
 use flint_sys::mag::{
@@ -37,6 +37,14 @@ const ELLIPSES: [f64; 6] = [2.0, 3.0, 4.0, 6.0, 8.0, 16.0];
 /// ends are the integrand's nearest singularities' neighbours) costs more than one that
 /// fits saves.
 const LEAST_DEGREE_TO_WIDEN: u64 = 32;
+
+/// Cells per side of the grid on which the integrand is bounded where one box over the
+/// whole first ellipse bounds it too loosely (see [`Ellipse::cells`]).
+const GRID: u32 = 4;
+
+/// The least working precision at which the grid is tried: below it, the halves' rules
+/// cost less than the grid's cells (proofs/certified-digits.md, "Cells on the ellipse").
+const GRID_FROM_BITS: u32 = 256;
 
 /// How many times an interval is halved here before Arb's bisection takes what is left.
 pub(crate) const OWN_DEPTH: u32 = 6;
@@ -107,6 +115,39 @@ impl Ellipse {
         }
         let unit = Ball::wrap(raw, mid.precision().in_bits());
         unit * delta + mid
+    }
+
+    /// [`GRID`]² cells whose union holds the rectangle of [`Ellipse::around`], each mapped
+    /// onto the piece: a box arithmetic that widens with the box (a product of two loads
+    /// that each vary over the rectangle) is the tighter the smaller the box.
+    fn cells(&self, mid: &Ball, delta: &Ball) -> impl Iterator<Item = Ball> + '_ {
+        // The cells cover [−X, X] × [−Y', Y'] with Y' = `mag_get_d(Y)` ≥ Y, each centred at
+        // (2i + 1 − GRID)/GRID of a half axis with a radius of 1/GRID of it added to the
+        // centre's own. X and Y' are doubles and GRID a power of two, so the radii are exact
+        // doubles, which `mag_set_d` does not round down.
+        let (x, y) = (self.x.to_f64(), self.y.to_f64());
+        let (mid, delta) = (mid.clone(), delta.clone());
+        let steps = GRID as i64;
+        // From the outside in, the cells farthest from the real axis first: where the
+        // integrand has a singularity in the rectangle, they are the likeliest to meet it,
+        // and the first cell without an enclosure ends the bound.
+        let outside_in = move |k: i64| if k % 2 == 0 { k / 2 } else { steps - 1 - k / 2 };
+        (0..steps)
+            .flat_map(move |j| (0..steps).map(move |i| (outside_in(i), outside_in(j))))
+            .map(move |(i, j)| {
+                let mut raw = acb_struct::default();
+                // SAFETY: initialised, then set; `wrap` takes it over.
+                unsafe {
+                    acb_init(&mut raw);
+                    for (part, half_axis, k) in [(&mut raw.real, x, i), (&mut raw.imag, y, j)] {
+                        arb_set_d(part, half_axis);
+                        arb_mul_si(part, part, 2 * k + 1 - steps, 128);
+                        arb_mul_2exp_si(part, part, -(GRID.trailing_zeros() as i64));
+                        arb_add_error_mag(part, &Mag::of(half_axis / GRID as f64).0);
+                    }
+                }
+                Ball::wrap(raw, mid.precision().in_bits()) * &delta + &mid
+            })
     }
 
     /// An upper bound of the error of the n-point rule for an integrand bounded by
@@ -212,23 +253,41 @@ impl Rule<'_> {
         let mut tolerance = Mag::new();
         // SAFETY: initialised.
         unsafe { mag_set(&mut tolerance.0, self.tolerance) };
-        // A bound of |f| on the ellipse, times the half length, and the degree it allows.
-        let rule_on = |half_axis: f64| -> Option<(u64, Mag)> {
-            let ellipse = Ellipse::new(half_axis);
-            let value = (self.integrand)(&ellipse.around(&mid, &delta), true)?;
-            let (mut bound, mut half) = (Mag::new(), Mag::new());
-            // SAFETY: initialised.
-            unsafe {
-                flint_sys::acb::acb_get_mag(&mut bound.0, value.as_raw());
-                flint_sys::acb::acb_get_mag(&mut half.0, delta.as_raw());
-                mag_mul(&mut bound.0, &bound.0, &half.0);
-                if mag_is_finite(&bound.0) == 0 {
-                    return None;
+        // A bound of |f| over `boxes` (which hold the ellipse), times the half length.
+        let bound_over = |boxes: &mut dyn Iterator<Item = Ball>| -> Option<Mag> {
+            let (mut bound, mut part, mut half) = (Mag::new(), Mag::new(), Mag::new());
+            for cell in boxes {
+                let value = (self.integrand)(&cell, true)?;
+                // SAFETY: initialised.
+                unsafe {
+                    flint_sys::acb::acb_get_mag(&mut part.0, value.as_raw());
+                    flint_sys::mag::mag_max(&mut bound.0, &bound.0, &part.0);
                 }
             }
+            // SAFETY: initialised.
+            unsafe {
+                flint_sys::acb::acb_get_mag(&mut half.0, delta.as_raw());
+                mag_mul(&mut bound.0, &bound.0, &half.0);
+                (mag_is_finite(&bound.0) != 0).then_some(bound)
+            }
+        };
+        // The degree the bound on one box over the ellipse allows.
+        let rule_on = |half_axis: f64| -> Option<(u64, Mag)> {
+            let ellipse = Ellipse::new(half_axis);
+            let bound = bound_over(&mut std::iter::once(ellipse.around(&mid, &delta)))?;
             ellipse.degree(&bound, &tolerance, self.degree_limit)
         };
-        let mut best = rule_on(ELLIPSES[0])?;
+        // Where one box is too loose, the first ellipse bounded on a grid of cells.
+        let on_cells = || -> Option<(u64, Mag)> {
+            let ellipse = Ellipse::new(ELLIPSES[0]);
+            let bound = bound_over(&mut ellipse.cells(&mid, &delta))?;
+            ellipse.degree(&bound, &tolerance, self.degree_limit)
+        };
+        let mut best = match rule_on(ELLIPSES[0]) {
+            Some(found) => found,
+            None if bits >= GRID_FROM_BITS => on_cells()?,
+            None => return None,
+        };
         for half_axis in &ELLIPSES[1..] {
             if best.0 < LEAST_DEGREE_TO_WIDEN {
                 break;
@@ -375,6 +434,71 @@ mod tests {
     fn assert_encloses(value: &Ball, exact: &Float, radius_below: f64) {
         assert!(value.contains(exact), "{value:?} does not hold {exact}");
         assert!(value.relative_radius() < radius_below, "{value:?} is too wide");
+    }
+
+    #[test]
+    fn the_cells_cover_the_rectangle_of_the_ellipse() {
+        // Points of [−X, X] × [−Y, Y] (Y rounded up as a double), the edges and corners
+        // included, mapped onto [1, 4]: each lies in one of the cells.
+        let (mid, delta) = (int(5).times_power_of_two(-1), int(3).times_power_of_two(-1));
+        for half_axis in ELLIPSES {
+            let ellipse = Ellipse::new(half_axis);
+            let cells: Vec<Ball> = ellipse.cells(&mid, &delta).collect();
+            assert_eq!(cells.len(), (GRID * GRID) as usize);
+            let (x, y) = (ellipse.x.to_f64(), ellipse.y.to_f64());
+            for i in 0..=20 {
+                for j in 0..=20 {
+                    let mut raw = acb_struct::default();
+                    // SAFETY: initialised, then set exactly; `wrap` takes it over.
+                    unsafe {
+                        acb_init(&mut raw);
+                        arb_set_d(&mut raw.real, x * (f64::from(i) / 10.0 - 1.0));
+                        arb_set_d(&mut raw.imag, y * (f64::from(j) / 10.0 - 1.0));
+                    }
+                    let point = Ball::wrap(raw, BITS) * &delta + &mid;
+                    // SAFETY: initialised balls.
+                    let inside =
+                        |cell: &Ball| unsafe { flint_sys::acb::acb_contains(cell.as_raw(), point.as_raw()) != 0 };
+                    assert!(cells.iter().any(inside), "X = {half_axis}: ({i}, {j}) in no cell");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn cells_bound_what_one_box_cannot_from_256_bits() {
+        // f = 1/((x − 1)² + 9/4) on [−½, ½]: its poles 1 ± 3i/2 lie outside the ellipse
+        // X = 2, but box arithmetic over the whole rectangle holds a zero of the
+        // denominator; over each of the grid's cells it does not.
+        let boxes = Cell::new(0);
+        let integrand = |x: &Ball, analytic: bool| {
+            boxes.set(boxes.get() + u32::from(analytic));
+            let shifted = x.clone() - &x.int(1);
+            Some(x.int(1) / &(shifted.square() + &x.ratio(9, 4)))
+        };
+        let otherwise = |start: &Ball, _: &Ball| start.indeterminate();
+        let rule_at = |bits: u32| {
+            let (a, b) = (
+                Ball::from_i64(-1, Precision::bits(bits)),
+                Ball::from_i64(1, Precision::bits(bits)),
+            );
+            let tolerance = tolerance(i64::from(bits) - 20);
+            let rule = Rule {
+                integrand: &integrand,
+                tolerance: &tolerance.0,
+                degree_limit: 512,
+                otherwise: &otherwise,
+            };
+            boxes.set(0);
+            rule.one_rule(&a.times_power_of_two(-1), &b.times_power_of_two(-1))
+        };
+        assert!(rule_at(128).is_none(), "one box bounds it: the test shows nothing");
+        assert_eq!(boxes.get(), 1);
+        let value = rule_at(GRID_FROM_BITS).expect("the cells bound it");
+        assert!(boxes.get() > GRID * GRID, "the cells were not evaluated");
+        // (2/3)(atan(1) − atan(1/3)) = (2/3)·atan(1/2).
+        let exact = Float::with_val(400, 0.5).atan() * 2u32 / 3u32;
+        assert_encloses(&value, &exact, 1e-70);
     }
 
     #[test]
