@@ -5,9 +5,11 @@
 //! 46, 64, 90, 128, …) and its ellipses from X = 2, 4, 8, 32, …, and bisects where X = 2
 //! does not fit a subinterval. Here the degree is the least of a grid of eight steps an
 //! octave (…, 16, 18, 20, …, 30, 32, 36, …) that the bound allows, and from 32 points up
-//! the ellipses X = 3, 4, 6, 8, 16 are tried too; where X = 2 does not fit, the interval
-//! is halved (so that the degrees of a case, and their node tables, stay few), and after
-//! [`OWN_DEPTH`] halvings what is left goes to Arb's bisection.
+//! the ellipses X = 3, 4, 6, 8, 16 are tried too. Where one box over the X = 2 rectangle
+//! does not bound the integrand, the narrower ellipse X = 3/2 is tried, or from 256 bits
+//! the X = 2 rectangle cut into cells; where that fails too, the interval is halved (so
+//! that the degrees of a case, and their node tables, stay few), and after [`OWN_DEPTH`]
+//! halvings what is left goes to Arb's bisection.
 
 use std::sync::Arc;
 
@@ -41,6 +43,11 @@ const LEAST_DEGREE_TO_WIDEN: u64 = 32;
 /// Cells per side of the grid on which the integrand is bounded where one box over the
 /// whole first ellipse bounds it too loosely (see [`Ellipse::cells`]).
 const GRID: u32 = 4;
+
+/// The half axis X of the ellipse tried below [`GRID_FROM_BITS`] where X = 2 gives no
+/// degree: its rectangle reaches 1.12 half lengths off the axis (X = 2: 1.73), so a box
+/// arithmetic that widens with the box often bounds it (ρ = 2.6 against 3.7).
+const NARROW_ELLIPSE: f64 = 1.5;
 
 /// The least working precision at which the grid is tried: below it, the halves' rules
 /// cost less than the grid's cells (proofs/certified-digits.md, "Cells on the ellipse").
@@ -227,7 +234,7 @@ pub(crate) struct Rule<'a> {
 
 impl Rule<'_> {
     /// The integral over [start, end]: one Gauss–Legendre rule where its error bound on
-    /// an ellipse from X = 2 meets the tolerance; else the sum over the two halves, down
+    /// an ellipse (X = 2 and wider, or the narrower X = 3/2) meets the tolerance; else the sum over the two halves, down
     /// to `depth` halvings; else Arb's bisection.
     pub(crate) fn integrate(&self, start: &Ball, end: &Ball, depth: u32) -> Ball {
         if let Some(value) = self.one_rule(start, end) {
@@ -283,21 +290,26 @@ impl Rule<'_> {
             let bound = bound_over(&mut ellipse.cells(&mid, &delta))?;
             ellipse.degree(&bound, &tolerance, self.degree_limit)
         };
-        let mut best = match rule_on(ELLIPSES[0]) {
-            Some(found) => found,
+        let (n, error) = match rule_on(ELLIPSES[0]) {
+            Some(mut best) => {
+                // Wider ellipses from 32 points up, while they fit and lower the degree.
+                for half_axis in &ELLIPSES[1..] {
+                    if best.0 < LEAST_DEGREE_TO_WIDEN {
+                        break;
+                    }
+                    match rule_on(*half_axis) {
+                        Some(found) if found.0 < best.0 => best = found,
+                        _ => break,
+                    }
+                }
+                best
+            }
+            // One box over the X = 2 rectangle gives no degree: the cells from 256 bits,
+            // below them the narrower ellipse (neither is widened: a wider ellipse's box
+            // holds the X = 2 one).
             None if bits >= GRID_FROM_BITS => on_cells()?,
-            None => return None,
+            None => rule_on(NARROW_ELLIPSE)?,
         };
-        for half_axis in &ELLIPSES[1..] {
-            if best.0 < LEAST_DEGREE_TO_WIDEN {
-                break;
-            }
-            match rule_on(*half_axis) {
-                Some(found) if found.0 < best.0 => best = found,
-                _ => break,
-            }
-        }
-        let (n, error) = best;
         let table = nodes(n, bits)?;
         let mut sum = start.int(0);
         for k in 0..n as usize {
@@ -466,22 +478,22 @@ mod tests {
     }
 
     #[test]
-    fn cells_bound_what_one_box_cannot_from_256_bits() {
+    fn the_narrow_ellipse_and_the_cells_bound_what_one_box_cannot() {
         // f = 1/((x − 1)² + 9/4) on [−½, ½]: its poles 1 ± 3i/2 lie outside the ellipse
-        // X = 2, but box arithmetic over the whole rectangle holds a zero of the
-        // denominator; over each of the grid's cells it does not.
+        // X = 2, but box arithmetic over its whole rectangle holds a zero of the
+        // denominator; over the narrower rectangle (X = 3/2), and over each cell, it does not.
         let boxes = Cell::new(0);
+        let f = |x: &Ball| {
+            let shifted = x.clone() - &x.int(1);
+            x.int(1) / &(shifted.square() + &x.ratio(9, 4))
+        };
         let integrand = |x: &Ball, analytic: bool| {
             boxes.set(boxes.get() + u32::from(analytic));
-            let shifted = x.clone() - &x.int(1);
-            Some(x.int(1) / &(shifted.square() + &x.ratio(9, 4)))
+            Some(f(x))
         };
         let otherwise = |start: &Ball, _: &Ball| start.indeterminate();
+        let half = |n: i64, bits: u32| Ball::from_i64(n, Precision::bits(bits)).times_power_of_two(-1);
         let rule_at = |bits: u32| {
-            let (a, b) = (
-                Ball::from_i64(-1, Precision::bits(bits)),
-                Ball::from_i64(1, Precision::bits(bits)),
-            );
             let tolerance = tolerance(i64::from(bits) - 20);
             let rule = Rule {
                 integrand: &integrand,
@@ -490,15 +502,19 @@ mod tests {
                 otherwise: &otherwise,
             };
             boxes.set(0);
-            rule.one_rule(&a.times_power_of_two(-1), &b.times_power_of_two(-1))
+            let value = rule.one_rule(&half(-1, bits), &half(1, bits));
+            (value, boxes.get())
         };
-        assert!(rule_at(128).is_none(), "one box bounds it: the test shows nothing");
-        assert_eq!(boxes.get(), 1);
-        let value = rule_at(GRID_FROM_BITS).expect("the cells bound it");
-        assert!(boxes.get() > GRID * GRID, "the cells were not evaluated");
+        let whole = Ellipse::new(ELLIPSES[0]).around(&half(0, BITS), &half(1, BITS));
+        assert!(!f(&whole).is_finite(), "one box bounds it: the test shows nothing");
         // (2/3)(atan(1) − atan(1/3)) = (2/3)·atan(1/2).
         let exact = Float::with_val(400, 0.5).atan() * 2u32 / 3u32;
-        assert_encloses(&value, &exact, 1e-70);
+        let (narrow, narrow_boxes) = rule_at(128);
+        assert_eq!(narrow_boxes, 2, "X = 2, then X = 3/2");
+        assert_encloses(&narrow.expect("the narrow ellipse bounds it"), &exact, 1e-30);
+        let (cells, cell_boxes) = rule_at(GRID_FROM_BITS);
+        assert_eq!(cell_boxes, 1 + GRID * GRID, "X = 2, then the cells");
+        assert_encloses(&cells.expect("the cells bound it"), &exact, 1e-70);
     }
 
     #[test]
