@@ -692,18 +692,13 @@ impl<R: Real> EllipseGeometry<R> {
             + &(self.difference_amplitude.clone() * &half_angle_sin.square() / &self.friction)
     }
 
-    /// The loads at an angle θ given by (sin θ, cos θ): (P − P0, dP/dθ, Q − Q0, dQ/dθ).
-    pub fn loads_at(&self, sin_cos: &(R, R)) -> LoadsAt<R> {
-        let (sin, cos) = sin_cos;
-        let (phase_sin, phase_cos) = &self.phase_sin_cos;
-        // cos(θ − φ) and sin(θ − φ) by the subtraction formulas.
-        let lag_cos = cos.clone() * phase_cos + &(sin.clone() * phase_sin);
-        let lag_sin = sin.clone() * phase_cos - &(cos.clone() * phase_sin);
+    /// The loads at an angle θ given by (sin θ, cos θ): P − P0, dP/dθ, Q − Q0 and dQ/dθ,
+    /// each formed when asked.
+    pub fn loads_at<'g>(&'g self, sin_cos: &'g (R, R)) -> LoadsAt<'g, R> {
         LoadsAt {
-            normal_offset: self.normal_amplitude.clone() * cos,
-            normal_rate: -(self.normal_amplitude.clone() * sin),
-            tangential_offset: lag_cos * &self.tangential_amplitude,
-            tangential_rate: -(lag_sin * &self.tangential_amplitude),
+            geometry: self,
+            sin: &sin_cos.0,
+            cos: &sin_cos.1,
         }
     }
 
@@ -714,17 +709,40 @@ impl<R: Real> EllipseGeometry<R> {
     }
 }
 
-/// The loads and their rates at one angle of the cycle.
-#[derive(Clone, Debug)]
-pub struct LoadsAt<R> {
-    /// P − P0.
-    pub normal_offset: R,
-    /// dP/dθ.
-    pub normal_rate: R,
-    /// Q − Q0.
-    pub tangential_offset: R,
-    /// dQ/dθ.
-    pub tangential_rate: R,
+/// The loads and their rates at one angle of the cycle, from its sine and cosine. Each is
+/// formed only when asked: an integrand on balls pays for every product it forms, and no
+/// segment needs all four.
+#[derive(Clone, Copy, Debug)]
+pub struct LoadsAt<'g, R> {
+    geometry: &'g EllipseGeometry<R>,
+    sin: &'g R,
+    cos: &'g R,
+}
+
+impl<R: Real> LoadsAt<'_, R> {
+    /// P − P0 = P1 cos θ.
+    pub fn normal_offset(&self) -> R {
+        self.geometry.normal_amplitude.clone() * self.cos
+    }
+
+    /// dP/dθ = −P1 sin θ.
+    pub fn normal_rate(&self) -> R {
+        -(self.geometry.normal_amplitude.clone() * self.sin)
+    }
+
+    /// Q − Q0 = Q1 cos(θ − φ), cos(θ − φ) by the subtraction formula.
+    pub fn tangential_offset(&self) -> R {
+        let (phase_sin, phase_cos) = &self.geometry.phase_sin_cos;
+        let lag_cos = self.cos.clone() * phase_cos + &(self.sin.clone() * phase_sin);
+        lag_cos * &self.geometry.tangential_amplitude
+    }
+
+    /// dQ/dθ = −Q1 sin(θ − φ), sin(θ − φ) by the subtraction formula.
+    pub fn tangential_rate(&self) -> R {
+        let (phase_sin, phase_cos) = &self.geometry.phase_sin_cos;
+        let lag_sin = self.sin.clone() * phase_cos - &(self.cos.clone() * phase_sin);
+        -(lag_sin * &self.geometry.tangential_amplitude)
+    }
 }
 
 #[cfg(test)]

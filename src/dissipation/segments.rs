@@ -15,7 +15,7 @@ use std::rc::Rc;
 use super::segment::{Segment, Segments};
 use super::slope::{knot_offsets, slope_at};
 use crate::compliance::{Compliance, SlopeChange};
-use crate::cycle::{EllipseGeometry, LoadsAt};
+use crate::cycle::EllipseGeometry;
 use crate::quad::bottom_map::{BottomMap, BottomPoint};
 use crate::quad::sinh_map::{acosh_one_plus, asinh, resolve_peaks, Peak, SinhMap};
 use crate::quad::Piece;
@@ -154,26 +154,24 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
         )
     }
 
-    /// (Q − Q0)·[f v'(P) dP/dθ] and Q − Q0 at an angle with the given (sin, cos):
-    /// the term shared by EB (with the opposite sign), CH and HE.
-    fn loads_and_normal_term(&self, sin_cos: &(R, R), slope: &dyn Fn(&R) -> R) -> (LoadsAt<R>, R) {
+    /// Q − Q0 and f v'(P) dP/dθ at an angle with the given (sin, cos): the factor and the
+    /// term shared by EB (with the opposite sign), CH and HE.
+    fn loads_and_normal_term(&self, sin_cos: &(R, R), slope: &dyn Fn(&R) -> R) -> (R, R) {
         let g = self.geometry;
         let loads = g.loads_at(sin_cos);
-        let term = slope(&loads.normal_offset) * &g.friction * &loads.normal_rate;
-        (loads, term)
+        let term = slope(&loads.normal_offset()) * &g.friction * &loads.normal_rate();
+        (loads.tangential_offset(), term)
     }
 
-    /// (sin θ, cos θ) at θ = θ_C ± s from (sin s, cos s), by the addition formulas.
-    fn around_c(&self, s_sin_cos: &(R, R), sign: bool) -> (R, R) {
+    /// (sin θ, cos θ) at θ = θ_C + s, and cos θ_Y at the mirror point θ_Y = θ_C − s, from
+    /// (sin s, cos s) by the addition formulas: one set of four products serves both.
+    fn around_c(&self, s_sin_cos: &(R, R)) -> ((R, R), R) {
         let (c_sin, c_cos) = &self.geometry.theta_c_sin_cos;
         let (s_sin, s_cos) = s_sin_cos;
         let (sin_part, cos_part) = (c_sin.clone() * s_cos, c_cos.clone() * s_sin);
         let (cos_a, sin_b) = (c_cos.clone() * s_cos, c_sin.clone() * s_sin);
-        if sign {
-            (sin_part + &cos_part, cos_a - &sin_b)
-        } else {
-            (sin_part - &cos_part, cos_a + &sin_b)
-        }
+        let mirror_cos = cos_a.clone() + &sin_b;
+        ((sin_part + &cos_part, cos_a - &sin_b), mirror_cos)
     }
 
     /// The integrand of `segment` at angle `s` from its start.
@@ -217,8 +215,7 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
             Segment::CH => {
                 // θ = θ_C + s, the mirror point θ_C − s; sin(θ − θ_E) = sin(π + s) = −sin s.
                 let s_sin_cos = s.sin_cos();
-                let theta = self.around_c(&s_sin_cos, true);
-                let mirror_cos = self.around_c(&s_sin_cos, false).1;
+                let (theta, mirror_cos) = self.around_c(&s_sin_cos);
                 SegmentAngle::Mirrored {
                     theta,
                     mirror_cos,
@@ -309,28 +306,28 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
                 half_sin,
                 double_sin,
             } => {
-                let (loads, normal) = self.loads_and_normal_term(&theta, slope);
+                let (tangential_offset, normal) = self.loads_and_normal_term(&theta, slope);
                 if segment == Segment::EB {
                     let reverse = slope(&g.reverse_slip_offset(&half_sin)) * &g.sum_amplitude * &double_sin;
-                    loads.tangential_offset * &(reverse - &normal)
+                    tangential_offset * &(reverse - &normal)
                 } else {
                     let forward = slope(&g.forward_slip_offset(&half_sin)) * &g.difference_amplitude * &double_sin;
-                    loads.tangential_offset * &(normal - &forward)
+                    tangential_offset * &(normal - &forward)
                 }
             }
             SegmentAngle::Stick { theta } => {
                 let loads = g.loads_at(&theta);
-                loads.tangential_offset * &slope(&loads.normal_offset) * &loads.tangential_rate
+                loads.tangential_offset() * &slope(&loads.normal_offset()) * &loads.tangential_rate()
             }
             SegmentAngle::Mirrored {
                 theta,
                 mirror_cos,
                 from_c_sin,
             } => {
-                let (loads, normal) = self.loads_and_normal_term(&theta, slope);
+                let (tangential_offset, normal) = self.loads_and_normal_term(&theta, slope);
                 let mirror_offset = g.normal_amplitude.clone() * &mirror_cos;
                 let forward = slope(&mirror_offset) * &g.difference_amplitude * &from_c_sin;
-                loads.tangential_offset * &(normal + &forward)
+                tangential_offset * &(normal + &forward)
             }
         }
     }
