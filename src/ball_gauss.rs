@@ -233,9 +233,10 @@ pub(crate) struct Rule<'a> {
 }
 
 impl Rule<'_> {
-    /// The integral over [start, end]: one Gauss–Legendre rule where its error bound on
-    /// an ellipse (X = 2 and wider, or the narrower X = 3/2) meets the tolerance; else the sum over the two halves, down
-    /// to `depth` halvings; else Arb's bisection.
+    /// The integral over [start, end]: one Gauss–Legendre rule where its error bound on an
+    /// ellipse (X = 2 and wider; else X = 3/2, or from 256 bits the cells) meets the
+    /// tolerance; else the sum over the two halves, down to `depth` halvings; else Arb's
+    /// bisection.
     pub(crate) fn integrate(&self, start: &Ball, end: &Ball, depth: u32) -> Ball {
         if let Some(value) = self.one_rule(start, end) {
             return value;

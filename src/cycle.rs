@@ -712,7 +712,7 @@ impl<R: Real> EllipseGeometry<R> {
 /// The loads and their rates at one angle of the cycle, from its sine and cosine. Each is
 /// formed only when asked: an integrand on balls pays for every product it forms, and no
 /// segment needs all four.
-#[derive(Clone, Copy, Debug)]
+#[derive(Clone, Debug)]
 pub struct LoadsAt<'g, R> {
     geometry: &'g EllipseGeometry<R>,
     sin: &'g R,
