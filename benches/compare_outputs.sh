@@ -19,10 +19,10 @@ for spec in "${specs[@]}"; do
     for cycle in "${cycles[@]}"; do
         for extra in "" "--json" "--digits 20"; do
             compared=$((compared + 1))
-            if ! diff <(output "$old" "$cycle" "$spec" "$extra") <(output "$new" "$cycle" "$spec" "$extra") >/tmp/compare_outputs.diff; then
+            if ! differences=$(diff <(output "$old" "$cycle" "$spec" "$extra") <(output "$new" "$cycle" "$spec" "$extra")); then
                 differ=$((differ + 1))
                 echo "differs: $cycle --compliance $spec $extra"
-                head -5 /tmp/compare_outputs.diff
+                head -5 <<<"$differences"
             fi
         done
     done

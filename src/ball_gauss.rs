@@ -43,6 +43,8 @@ const LEAST_DEGREE_TO_WIDEN: u64 = 32;
 /// Cells per side of the grid on which the integrand is bounded where one box over the
 /// whole first ellipse bounds it too loosely (see [`Ellipse::cells`]).
 const GRID: u32 = 4;
+// The cells' centres and radii are exact only for a power of two (`Ellipse::cells`).
+const _: () = assert!(GRID.is_power_of_two());
 
 /// The half axis X of the ellipse tried below [`GRID_FROM_BITS`] where X = 2 gives no
 /// degree: its rectangle reaches 1.12 half lengths off the axis (X = 2: 1.73), so a box
