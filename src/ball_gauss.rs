@@ -5,11 +5,12 @@
 //! 46, 64, 90, 128, …) and its ellipses from X = 2, 4, 8, 32, …, and bisects where X = 2
 //! does not fit a subinterval. Here the degree is the least of a grid of eight steps an
 //! octave (…, 16, 18, 20, …, 30, 32, 36, …) that the bound allows, and from 32 points up
-//! the ellipses X = 3, 4, 6, 8, 16 are tried too. Where one box over the X = 2 rectangle
-//! does not bound the integrand, the narrower ellipse X = 3/2 is tried, or from 256 bits
-//! the X = 2 rectangle cut into cells; where that fails too, the interval is halved (so
-//! that the degrees of a case, and their node tables, stay few), and after [`OWN_DEPTH`]
-//! halvings what is left goes to Arb's bisection.
+//! the ellipses X = 9/4, 5/2, 3, 4, 6, 8, 16 are tried too. Where one box over the X = 2
+//! rectangle does not bound the integrand, the narrower ellipse X = 3/2 is tried, or from
+//! 256 bits the X = 2 rectangle cut into cells; where that fails too, the interval is
+//! halved (so that the degrees of a case, and their node tables, stay few), and after
+//! [`OWN_DEPTH`] halvings what is left goes to Arb's bisection. The parts of one piece at
+//! one depth start from the bound that served the last of them.
 
 use std::sync::Arc;
 
@@ -30,8 +31,11 @@ use crate::real::{Precision, Real};
 
 /// The half axes X along the interval (in units of its half length) of the rectangles
 /// that hold the Bernstein ellipses tried, in turn while they fit and lower the degree:
-/// ρ = X + √(X² − 1), from 3.7 to 32. The first is Arb's first.
-const ELLIPSES: [f64; 6] = [2.0, 3.0, 4.0, 6.0, 8.0, 16.0];
+/// ρ = X + √(X² − 1), from 3.7 to 32. The first is Arb's first; the steps below 3 are
+/// fine because the nearest singularity of an ordinary piece (where the load vanishes,
+/// off the real axis) usually lies between the X = 2 and X = 3 rectangles, and ρ, which
+/// sets the degree, grows by a sixth from X = 2 to 9/4 and again to 5/2.
+const ELLIPSES: [f64; 8] = [2.0, 2.25, 2.5, 3.0, 4.0, 6.0, 8.0, 16.0];
 
 /// The least degree at which a larger ellipse is tried: an evaluation on a complex ball
 /// costs about four on real points, and the next ellipse saves a quarter of the points
@@ -57,6 +61,23 @@ const GRID_FROM_BITS: u32 = 256;
 
 /// How many times an interval is halved here before Arb's bisection takes what is left.
 pub(crate) const OWN_DEPTH: u32 = 6;
+
+/// Which bound served the last part of a piece at one halving depth. The parts at one
+/// depth have the same length and, along a piece, usually the same distance to the
+/// integrand's nearest singularity (near separation every part of a bottom-map piece
+/// fails alike), so the next part there starts where the last one ended: with the
+/// fallback where the first ellipse failed, halved at once where the fallback failed
+/// too. Which rules are tried changes the points spent, never the rigour.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+enum Served {
+    /// The X = 2 ellipse (and any wider one), tried first.
+    #[default]
+    FirstEllipse,
+    /// The narrower ellipse, or the cells from 256 bits.
+    Fallback,
+    /// Neither: the part was halved.
+    Neither,
+}
 
 /// An Arb magnitude (an upper or lower bound of a non-negative number), cleared on drop.
 struct Mag(mag_struct);
@@ -240,23 +261,43 @@ impl Rule<'_> {
     /// tolerance; else the sum over the two halves, down to `depth` halvings; else Arb's
     /// bisection.
     pub(crate) fn integrate(&self, start: &Ball, end: &Ball, depth: u32) -> Ball {
-        if let Some(value) = self.one_rule(start, end) {
-            return value;
+        let mut served = [Served::default(); OWN_DEPTH as usize + 1];
+        self.integrate_parts(start, end, depth.min(OWN_DEPTH), &mut served)
+    }
+
+    /// [`Self::integrate`] with `served[depth]` the bound that served the last part at
+    /// each depth.
+    fn integrate_parts(&self, start: &Ball, end: &Ball, depth: u32, served: &mut [Served]) -> Ball {
+        let last = &mut served[depth as usize];
+        if *last != Served::Neither {
+            let (value, now) = self.one_rule(start, end, *last);
+            *last = now;
+            if let Some(value) = value {
+                return value;
+            }
         }
         if depth == 0 {
             return (self.otherwise)(start, end);
         }
         let middle = (start.clone() + end).times_power_of_two(-1);
-        let first = self.integrate(start, &middle, depth - 1);
+        let first = self.integrate_parts(start, &middle, depth - 1, served);
         if !first.is_finite() {
             // The piece has no finite enclosure; the other half cannot change that.
             return first;
         }
-        first + self.integrate(&middle, end, depth - 1)
+        first + self.integrate_parts(&middle, end, depth - 1, served)
     }
 
-    /// One rule over [start, end] at the fewest points the bound allows, or `None`.
-    fn one_rule(&self, start: &Ball, end: &Ball) -> Option<Ball> {
+    /// One rule over [start, end] at the fewest points the bound allows (from the
+    /// fallback on where `from` says the first ellipse failed last), or `None`; and
+    /// which bound served.
+    fn one_rule(&self, start: &Ball, end: &Ball, from: Served) -> (Option<Ball>, Served) {
+        let mut served = Served::FirstEllipse;
+        let value = self.one_rule_from(start, end, from, &mut served);
+        (value, served)
+    }
+
+    fn one_rule_from(&self, start: &Ball, end: &Ball, from: Served, served: &mut Served) -> Option<Ball> {
         let bits = start.precision().in_bits();
         let delta = (end.clone() - start).times_power_of_two(-1);
         let mid = (end.clone() + start).times_power_of_two(-1);
@@ -293,7 +334,24 @@ impl Rule<'_> {
             let bound = bound_over(&mut ellipse.cells(&mid, &delta))?;
             ellipse.degree(&bound, &tolerance, self.degree_limit)
         };
-        let (n, error) = match rule_on(ELLIPSES[0]) {
+        // Where one box over the X = 2 rectangle gives no degree: the cells from 256 bits,
+        // below them the narrower ellipse (neither is widened: a wider ellipse's box holds
+        // the X = 2 one).
+        let mut fallback = || {
+            *served = Served::Neither;
+            let found = if bits >= GRID_FROM_BITS {
+                on_cells()
+            } else {
+                rule_on(NARROW_ELLIPSE)
+            }?;
+            *served = Served::Fallback;
+            Some(found)
+        };
+        let first = match from {
+            Served::FirstEllipse => rule_on(ELLIPSES[0]),
+            Served::Fallback | Served::Neither => None,
+        };
+        let (n, error) = match first {
             Some(mut best) => {
                 // Wider ellipses from 32 points up, while they fit and lower the degree.
                 for half_axis in &ELLIPSES[1..] {
@@ -307,11 +365,7 @@ impl Rule<'_> {
                 }
                 best
             }
-            // One box over the X = 2 rectangle gives no degree: the cells from 256 bits,
-            // below them the narrower ellipse (neither is widened: a wider ellipse's box
-            // holds the X = 2 one).
-            None if bits >= GRID_FROM_BITS => on_cells()?,
-            None => rule_on(NARROW_ELLIPSE)?,
+            None => fallback()?,
         };
         let table = nodes(n, bits)?;
         let mut sum = start.int(0);
@@ -505,7 +559,8 @@ mod tests {
                 otherwise: &otherwise,
             };
             boxes.set(0);
-            let value = rule.one_rule(&half(-1, bits), &half(1, bits));
+            let (value, served) = rule.one_rule(&half(-1, bits), &half(1, bits), Served::FirstEllipse);
+            assert_eq!(served, Served::Fallback);
             (value, boxes.get())
         };
         let whole = Ellipse::new(ELLIPSES[0]).around(&half(0, BITS), &half(1, BITS));
@@ -518,6 +573,46 @@ mod tests {
         let (cells, cell_boxes) = rule_at(GRID_FROM_BITS);
         assert_eq!(cell_boxes, 1 + GRID * GRID, "X = 2, then the cells");
         assert_encloses(&cells.expect("the cells bound it"), &exact, 1e-70);
+    }
+
+    #[test]
+    fn parts_at_one_depth_start_from_the_bound_that_served_the_last() {
+        // 1/(c² + sin²(8πx)) on [0, 1]: a pole asinh(c)/(8π) off the axis at every
+        // multiple of 1/8, so that every part of one length meets the same nearest pole.
+        let c = int(1);
+        let f = |x: &Ball| x.int(1) / &(c.square() + &(x.pi_like() * x * &x.int(8)).sin().square());
+        // Each box's real width, X times the part's length: which ellipse it held.
+        let boxes = std::cell::RefCell::new(Vec::new());
+        let integrand = |x: &Ball, analytic: bool| {
+            if analytic {
+                boxes.borrow_mut().push(x.real_span().map_or(f64::NAN, |(a, b)| b - a));
+            }
+            Some(f(x))
+        };
+        let otherwise = |start: &Ball, _: &Ball| start.indeterminate();
+        let tolerance = tolerance(100);
+        let rule = Rule {
+            integrand: &integrand,
+            tolerance: &tolerance.0,
+            degree_limit: 256,
+            otherwise: &otherwise,
+        };
+        let value = rule.integrate(&int(0), &int(1), OWN_DEPTH);
+        // ∫ over a period of 1/(c² + sin²t) is π/(c·√(1 + c²)): here 1/√2.
+        let exact = Float::with_val(400, 2).sqrt().recip();
+        assert_encloses(&value, &exact, 1e-25);
+        // Halved five times, each first part trying X = 2 and then X = 3/2 (the others
+        // at depths 1 to 4 halved at once); at the sixth depth X = 3/2 fits, and the 31
+        // parts after the first try it alone. Trying every part afresh takes 126 boxes.
+        let expected: Vec<f64> = (0..6)
+            .flat_map(|depth| [2.0, NARROW_ELLIPSE].map(|x| x / f64::from(1 << depth)))
+            .chain(std::iter::repeat_n(NARROW_ELLIPSE / 32.0, 31))
+            .collect();
+        let widths = boxes.into_inner();
+        assert_eq!(widths.len(), expected.len(), "{widths:?}");
+        for (width, expected) in widths.iter().zip(&expected) {
+            assert!((width / expected - 1.0).abs() < 1e-6, "{widths:?}");
+        }
     }
 
     #[test]
