@@ -102,7 +102,16 @@ pub fn resolve_peaks<R: Real>(a: &R, b: &R, peaks: &[Peak<R>]) -> Vec<Resolved<R
     // The peak each end's map takes, with the index of the one whose centre it keeps.
     let mut toward_start: Option<(Peak<R>, usize)> = None;
     let mut toward_end: Option<(Peak<R>, usize)> = None;
+    let (start, end, span) = (a.to_f64_lossy(), b.to_f64_lossy(), length.to_f64_lossy());
     for (index, peak) in peaks.iter().enumerate() {
+        // A centre farther outside [a, b] than its length, by a double's reckoning, is not
+        // within a quarter of it (the test below): skipped without the arithmetic of R,
+        // which on balls costs more than the rest of the planning. Rounding to doubles
+        // cannot move a distance by three quarters of the length, and a NaN skips nothing.
+        let center = peak.center.to_f64_lossy();
+        if start - center > span || center - end > span {
+            continue;
+        }
         let outside = (a.clone() - &peak.center)
             .max_of(&(peak.center.clone() - b))
             .max_of(&zero);
@@ -229,5 +238,49 @@ mod tests {
         assert_eq!((last.peak.center, last.peak.width), (2.0, 1e-5));
         assert!((first.point_and_rate(&parts[0].end).0 - (2.0 - 1e-9) / 2.0).abs() < 1e-15);
         assert!(resolve_peaks(&0.0, &2.0, &peaks[3..]).iter().all(|p| p.map.is_none()));
+    }
+
+    /// Which peak takes [1, 3] with a narrow peak at `center` (and one always too far).
+    fn chosen<R: Real>(center: f64, precision: Precision) -> Option<usize> {
+        let at = |x: f64| R::from_f64(x, precision);
+        let peaks = [
+            Peak {
+                center: at(-7.0),
+                width: at(1e-9),
+            },
+            Peak {
+                center: at(center),
+                width: at(1e-9),
+            },
+        ];
+        let parts = resolve_peaks(&at(1.0), &at(3.0), &peaks);
+        assert_eq!(parts.len(), 1);
+        parts[0].peak
+    }
+
+    #[test]
+    fn a_peak_is_mapped_up_to_a_quarter_length_outside_in_every_type() {
+        // The window [1, 3] maps a narrow peak whose centre lies within half a unit of it
+        // (outside + width < 2/4); the doubles' shortcut skips only centres more than a
+        // length outside, so the same peaks are taken in f64, MPFR and on balls.
+        for (center, taken) in [
+            (0.5 + 1e-6, Some(1)),
+            (0.5 - 1e-6, None),
+            (3.5 - 1e-6, Some(1)),
+            (5.5, None),
+        ] {
+            assert_eq!(chosen::<f64>(center, Precision::DOUBLE), taken, "f64, {center}");
+            assert_eq!(
+                chosen::<rug::Float>(center, Precision::bits(200)),
+                taken,
+                "MPFR, {center}"
+            );
+            #[cfg(feature = "certified")]
+            assert_eq!(
+                chosen::<crate::ball::Ball>(center, Precision::bits(128)),
+                taken,
+                "ball, {center}"
+            );
+        }
     }
 }
