@@ -27,7 +27,7 @@ use crate::ball_gauss;
 use std::rc::Rc;
 
 use crate::compliance::{Compliance, SlopeChange};
-use crate::cycle::{CycleError, CycleKind, LoadCycle, ValidCycle};
+use crate::cycle::{CycleError, CycleKind, EllipseGeometry, LoadCycle, ValidCycle};
 use crate::dissipation::closed_forms::{
     constant_normal_load_segments, constant_normal_load_term, in_phase_segments, in_phase_terms, weighted_pieces,
 };
@@ -242,8 +242,11 @@ fn enclose_segments(
     let slopes = slopes(compliance, &geometry.mean_normal_load, bits)?;
     // The plain difference of slopes (the last) bounds every attempt on complex balls.
     let bound_slope = slopes.last().expect("the plain difference is always tried");
+    // Near separation, the same difference at the lowest load's bottom as a product.
+    let at_bottom = bottom_slope_change(compliance, &geometry);
     for slope in &slopes {
-        let (pieces, doubts) = watch(|| certified_pieces(&integrands, slope.as_ref(), bound_slope.as_ref()));
+        let (pieces, doubts) =
+            watch(|| certified_pieces(&integrands, slope.as_ref(), bound_slope.as_ref(), &at_bottom));
         if !doubts.none() {
             return Err(undecided(bits, doubts));
         }
@@ -320,6 +323,19 @@ fn segment_index(segment: Segment) -> usize {
         .iter()
         .position(|s| *s == segment)
         .expect("every segment is listed")
+}
+
+/// cosh u ↦ v'(δ cosh²u) − v'(P0), with δ = P0 − P1 the lowest load: the difference of
+/// slopes at the bottom of a cycle near separation (u the bottom map's variable), with the
+/// load as a product ([`Compliance::slope_at_scaled_square`]), whose factor cosh u keeps
+/// away from 0 on boxes where the sum P0 + x does not.
+fn bottom_slope_change<'a>(
+    compliance: &'a dyn Compliance<Ball>,
+    geometry: &EllipseGeometry<Ball>,
+) -> Box<dyn Fn(&Ball) -> Ball + Send + Sync + 'a> {
+    let lowest = geometry.mean_normal_load.clone() - &geometry.normal_amplitude;
+    let at_mean = compliance.slope(&geometry.mean_normal_load);
+    Box::new(move |root: &Ball| compliance.slope_at_scaled_square(&lowest, root) - &at_mean)
 }
 
 /// x ↦ v'(P0 + x) − v'(P0) as the difference of two slopes.
@@ -604,6 +620,7 @@ fn certified_pieces<'a>(
     integrands: &SegmentIntegrands<'a, Ball>,
     slope: &'a (dyn Fn(&Ball) -> Ball + Send + Sync + 'a),
     bound_slope: &'a (dyn Fn(&Ball) -> Ball + Send + Sync + 'a),
+    at_bottom: &'a (dyn Fn(&Ball) -> Ball + Send + Sync + 'a),
 ) -> Vec<CertifiedPiece<'a>> {
     integrands
         .plans()
@@ -612,7 +629,7 @@ fn certified_pieces<'a>(
             group: segment_index(plan.segment),
             label: plan.segment.name(),
             integrand: integrands.plan_integrand(plan.segment, plan.map.clone(), slope),
-            bound: Some(integrands.plan_integrand(plan.segment, plan.map, bound_slope)),
+            bound: Some(integrands.plan_integrand_at_bottom(plan.segment, plan.map, bound_slope, Some(at_bottom))),
             evaluations: Cell::new(0),
             start: plan.start,
             end: plan.end,
@@ -776,4 +793,77 @@ fn arb_bisection(
         );
     }
     Ball::wrap(raw, bits)
+}
+
+#[cfg(test)]
+mod tests {
+    use flint_sys::arb::arb_set_d;
+    use flint_sys::mag::mag_set_d;
+
+    use super::*;
+    use crate::compliance::parse_spec;
+
+    const BITS: u32 = 128;
+
+    /// The box mid ± half_real ± half_imag·i.
+    fn complex_box(mid: f64, half_real: f64, half_imag: f64) -> Ball {
+        let mut raw = acb_struct::default();
+        // SAFETY: initialised, then set; `wrap` takes it over.
+        unsafe {
+            acb_init(&mut raw);
+            arb_set_d(&mut raw.real, mid);
+            mag_set_d(&mut raw.real.rad, half_real);
+            mag_set_d(&mut raw.imag.rad, half_imag);
+        }
+        Ball::wrap(raw, BITS)
+    }
+
+    /// 1e−6 from separation, the bottom map's part u ∈ [2, 2.8] on the rectangle of the
+    /// ellipse X = 2 (where δ cosh²u has no zero): the difference of slopes at P0 + x,
+    /// x = P1(2t² sinh²u − 1) as the integrand forms it, has no finite bound (the box of
+    /// 1 + sinh²u holds 0), while at δ·cosh²u it has; at real points the two forms enclose
+    /// the same value.
+    #[test]
+    fn the_bottom_load_as_a_product_bounds_the_slope_change_where_its_offset_cannot() {
+        let p = Precision::bits(BITS);
+        let ball = |text: &str| Ball::parse_decimal(text, p).expect("a decimal");
+        let (mean, amplitude) = (ball("1"), ball("0.999999"));
+        let geometry = LoadCycle {
+            mean_normal_load: mean.clone(),
+            normal_amplitude: amplitude.clone(),
+            mean_tangential_load: ball("0"),
+            tangential_amplitude: ball("0.0005"),
+            phase: mean.pi_like().times_power_of_two(-1),
+            friction: ball("1"),
+            compliance_ratio: ball("1"),
+        }
+        .geometry()
+        .expect("a valid cycle");
+        let scale = ((mean.clone() - &amplitude) / &amplitude).times_power_of_two(-1).sqrt();
+        let offset_at = |u: &Ball| {
+            let half_sin = scale.clone() * &u.sinh_cosh().0;
+            amplitude.clone() * &(half_sin.square().times_power_of_two(1) - &u.int(1))
+        };
+        for spec in [
+            "persson:gamma=1,sigma=1",
+            "power:c=1,beta=-0.5",
+            "hertz:r=1,estar=1",
+            "2*persson:gamma=1,sigma=1+power:c=0.3,beta=-0.25",
+        ] {
+            let compliance = parse_spec::<Ball>(spec, p).expect("a SPEC");
+            let by_offset = difference_of_slopes(compliance.as_ref(), &mean);
+            let by_product = bottom_slope_change(compliance.as_ref(), &geometry);
+            let rectangle = complex_box(2.4, 2.0 * 0.4, 3f64.sqrt() * 0.4);
+            let (offset_bound, product_bound) = with_analytic(true, || {
+                (by_offset(&offset_at(&rectangle)), by_product(&rectangle.sinh_cosh().1))
+            });
+            assert!(!offset_bound.is_finite(), "{spec}: {offset_bound:?}");
+            assert!(product_bound.is_finite(), "{spec}: {product_bound:?}");
+            for u in ["0.2", "1.8", "3.4", "5.8"] {
+                let u = ball(u);
+                let difference = by_offset(&offset_at(&u)) - &by_product(&u.sinh_cosh().1);
+                assert!(difference.contains_zero(), "{spec} at u = {u:?}: {difference:?}");
+            }
+        }
+    }
 }

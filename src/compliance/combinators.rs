@@ -48,6 +48,9 @@ impl<R: Real> Compliance<R> for Sum<R> {
         let zero = reference.int(0);
         Box::new(move |offset: &R| terms.iter().fold(zero.clone(), |acc, term| acc + term(offset)))
     }
+    fn slope_at_scaled_square(&self, scale: &R, root: &R) -> R {
+        self.total(scale, |c| c.slope_at_scaled_square(scale, root))
+    }
     fn breakpoints(&self, like: &R) -> Vec<R> {
         merged_breakpoints(self.terms.iter().map(|c| c.breakpoints(like)))
     }
@@ -100,6 +103,9 @@ impl<R: Real> Compliance<R> for Scaled<R> {
         let inner = self.inner.slope_change_about(reference);
         Box::new(move |offset: &R| self.factor.clone() * &inner(offset))
     }
+    fn slope_at_scaled_square(&self, scale: &R, root: &R) -> R {
+        self.factor.clone() * &self.inner.slope_at_scaled_square(scale, root)
+    }
     fn breakpoints(&self, like: &R) -> Vec<R> {
         self.inner.breakpoints(like)
     }
@@ -149,6 +155,9 @@ impl<R: Real> Compliance<R> for Shifted<R> {
     fn slope_change_about<'a>(&'a self, reference: &R) -> SlopeChange<'a, R> {
         self.inner.slope_change_about(reference)
     }
+    fn slope_at_scaled_square(&self, scale: &R, root: &R) -> R {
+        self.inner.slope_at_scaled_square(scale, root) + &self.extra_slope
+    }
     fn breakpoints(&self, like: &R) -> Vec<R> {
         self.inner.breakpoints(like)
     }
@@ -196,6 +205,9 @@ impl<R: Real> Compliance<R> for LoadScaled<R> {
     fn slope_change(&self, reference: &R, offset: &R) -> R {
         self.inner
             .slope_change(&(reference.clone() / &self.factor), &(offset.clone() / &self.factor))
+    }
+    fn slope_at_scaled_square(&self, scale: &R, root: &R) -> R {
+        self.inner.slope_at_scaled_square(&(scale.clone() / &self.factor), root)
     }
     fn breakpoints(&self, like: &R) -> Vec<R> {
         let mut loads: Vec<R> = self

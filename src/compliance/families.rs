@@ -111,6 +111,11 @@ impl<R: Real> Compliance<R> for PowerLaw<R> {
     fn slope_change_about<'a>(&'a self, reference: &R) -> SlopeChange<'a, R> {
         self.clone().into_slope_change(reference)
     }
+    fn slope_at_scaled_square(&self, scale: &R, root: &R) -> R {
+        // C·s^β·r^(2β): r's enclosure, not r²'s, keeps away from 0.
+        let doubled = self.exponent.clone().times_power_of_two(1);
+        self.coefficient.clone() * &scale.powr(&self.exponent) * &root.powr(&doubled)
+    }
     fn describe(&self) -> String {
         format!(
             "power law v' = {}·P^{}",
@@ -186,6 +191,10 @@ impl<R: Real> Compliance<R> for Persson<R> {
             let ratio = offset.clone() / &reference;
             -(ratio * &product / &(offset.clone() + &reference))
         })
+    }
+    fn slope_at_scaled_square(&self, scale: &R, root: &R) -> R {
+        // γσ/(s·r²) as two divisions by r: r's enclosure, not r²'s, keeps away from 0.
+        self.gamma.clone() * &self.sigma / scale / root / root
     }
     fn describe(&self) -> String {
         format!(
@@ -274,6 +283,9 @@ impl<R: Real> Compliance<R> for Hertz<R> {
     }
     fn slope_change_about<'a>(&'a self, reference: &R) -> SlopeChange<'a, R> {
         self.as_power_law().into_slope_change(reference)
+    }
+    fn slope_at_scaled_square(&self, scale: &R, root: &R) -> R {
+        self.as_power_law().slope_at_scaled_square(scale, root)
     }
     fn describe(&self) -> String {
         format!(

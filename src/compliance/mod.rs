@@ -66,6 +66,14 @@ pub trait Compliance<R: Real>: Debug + Send + Sync {
         let reference = reference.clone();
         Box::new(move |offset: &R| self.slope_change(&reference, offset))
     }
+    /// v'(scale·root²): v' at a load given as a positive scale times a square, as the
+    /// bottom of a cycle near separation gives it (the lowest load δ times cosh²u).
+    /// On a complex ball the enclosure of root² may hold 0 where root's does not, so a
+    /// family singular at P = 0 divides by root itself (or raises it to a power), which
+    /// keeps its bound finite across the whole strip where the load has no zero.
+    fn slope_at_scaled_square(&self, scale: &R, root: &R) -> R {
+        self.slope(&(root.square() * scale))
+    }
     /// The loads where v' is not analytic (the knots of an interpolant, where its
     /// derivatives jump), at the precision of `like`, increasing; none for the analytic
     /// families. The dissipation integrals split at the angles where a load crosses

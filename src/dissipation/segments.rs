@@ -74,6 +74,24 @@ enum SegmentAngle<R> {
     },
 }
 
+/// The slope change at the load a bottom map is centred on, formed by the caller from
+/// that load as a product (δ cosh²u, [`Compliance::slope_at_scaled_square`]) rather than
+/// from its offset P1 cos θ: on a complex ball the product's factors keep away from 0
+/// where the offset's sum does not.
+struct CentredChange<R> {
+    load: LowLoad,
+    change: R,
+}
+
+/// The slope change at `load`: the centred one where it is that load, else `otherwise`.
+#[inline(always)]
+fn change_at<R>(load: LowLoad, centred: &mut Option<CentredChange<R>>, otherwise: impl FnOnce() -> R) -> R {
+    match centred.take_if(|centred| centred.load == load) {
+        Some(centred) => centred.change,
+        None => otherwise(),
+    }
+}
+
 /// A load the integrand of a segment takes v' at, where it is least.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum LowLoad {
@@ -91,7 +109,7 @@ pub(crate) const NEAR_SEPARATION: i64 = 1 << 10;
 
 /// How far from the lowest load, in θ, a bottom map reaches: 1/[`BOTTOM_REACH`] rad, so
 /// that sin α ≤ sin(1/8) keeps the branch points of cos α (t sinh u = ±1) ln 8 beyond the
-/// piece in u; the sinh map takes the rest, where 1 + cos θ ≥ 1 − cos(1/4) no longer
+/// piece in u; the rest is integrated in s, where 1 + cos θ ≥ 1 − cos(1/4) no longer
 /// cancels much (measured: proofs/certified-digits.md, "Near separation").
 const BOTTOM_REACH: i64 = 4;
 
@@ -156,10 +174,16 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
 
     /// Q − Q0 and f v'(P) dP/dθ at an angle with the given (sin, cos): the factor and the
     /// term shared by EB (with the opposite sign), CH and HE.
-    fn loads_and_normal_term(&self, sin_cos: &(R, R), slope: &dyn Fn(&R) -> R) -> (R, R) {
+    fn loads_and_normal_term(
+        &self,
+        sin_cos: &(R, R),
+        slope: &dyn Fn(&R) -> R,
+        centred: &mut Option<CentredChange<R>>,
+    ) -> (R, R) {
         let g = self.geometry;
         let loads = g.loads_at(sin_cos);
-        let term = slope(&loads.normal_offset()) * &g.friction * &loads.normal_rate();
+        let change = change_at(LowLoad::Normal, centred, || slope(&loads.normal_offset()));
+        let term = change * &g.friction * &loads.normal_rate();
         (loads.tangential_offset(), term)
     }
 
@@ -181,7 +205,7 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
     }
 
     pub(crate) fn integrand_with(&self, segment: Segment, s: &R, slope: &dyn Fn(&R) -> R) -> R {
-        self.integrand_at(segment, self.angle_at(segment, s), slope)
+        self.integrand_at(segment, self.angle_at(segment, s), slope, None)
     }
 
     /// The angles of `segment` at angle `s` from its start.
@@ -298,7 +322,13 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
 
     /// The integrand of `segment` at the angles `angle`.
     #[inline(always)]
-    fn integrand_at(&self, segment: Segment, angle: SegmentAngle<R>, slope: &dyn Fn(&R) -> R) -> R {
+    fn integrand_at(
+        &self,
+        segment: Segment,
+        angle: SegmentAngle<R>,
+        slope: &dyn Fn(&R) -> R,
+        mut centred: Option<CentredChange<R>>,
+    ) -> R {
         let g = self.geometry;
         match angle {
             SegmentAngle::Slip {
@@ -306,7 +336,7 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
                 half_sin,
                 double_sin,
             } => {
-                let (tangential_offset, normal) = self.loads_and_normal_term(&theta, slope);
+                let (tangential_offset, normal) = self.loads_and_normal_term(&theta, slope, &mut centred);
                 if segment == Segment::EB {
                     let reverse = slope(&g.reverse_slip_offset(&half_sin)) * &g.sum_amplitude * &double_sin;
                     tangential_offset * &(reverse - &normal)
@@ -317,16 +347,19 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
             }
             SegmentAngle::Stick { theta } => {
                 let loads = g.loads_at(&theta);
-                loads.tangential_offset() * &slope(&loads.normal_offset()) * &loads.tangential_rate()
+                let change = change_at(LowLoad::Normal, &mut centred, || slope(&loads.normal_offset()));
+                loads.tangential_offset() * &change * &loads.tangential_rate()
             }
             SegmentAngle::Mirrored {
                 theta,
                 mirror_cos,
                 from_c_sin,
             } => {
-                let (tangential_offset, normal) = self.loads_and_normal_term(&theta, slope);
-                let mirror_offset = g.normal_amplitude.clone() * &mirror_cos;
-                let forward = slope(&mirror_offset) * &g.difference_amplitude * &from_c_sin;
+                let (tangential_offset, normal) = self.loads_and_normal_term(&theta, slope, &mut centred);
+                let change = change_at(LowLoad::Mirror, &mut centred, || {
+                    slope(&(g.normal_amplitude.clone() * &mirror_cos))
+                });
+                let forward = change * &g.difference_amplitude * &from_c_sin;
                 tangential_offset * &(normal + &forward)
             }
         }
@@ -397,9 +430,9 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
                 for part in resolve_peaks(&start, &end, &peaks) {
                     let chosen = part.peak.map(|index| &lows[index]);
                     match (part.map, chosen, &margin) {
-                        (Some(map), Some((peak, low @ (LowLoad::Normal | LowLoad::Mirror))), Some(margin)) => {
+                        (Some(_), Some((peak, low @ (LowLoad::Normal | LowLoad::Mirror))), Some(margin)) => {
                             let bottom = self.bottom(segment, peak.center.clone(), *low, margin);
-                            self.push_bottom(&mut plans, segment, part.window, bottom, map);
+                            self.push_bottom(&mut plans, segment, part.window, bottom);
                         }
                         (map, ..) => plans.push(PiecePlan {
                             segment,
@@ -428,16 +461,10 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
     }
 
     /// The window (a, b) of `segment` with its lowest load toward one end: the bottom
-    /// map `bottom` within [`BOTTOM_REACH`] of it, and beyond the sinh map `rest` about the
-    /// same point.
-    fn push_bottom(
-        &self,
-        plans: &mut Vec<PiecePlan<R>>,
-        segment: Segment,
-        (a, b): (R, R),
-        bottom: Bottom<R>,
-        rest: SinhMap<R>,
-    ) {
+    /// map `bottom` within [`BOTTOM_REACH`] of it, and beyond in s itself (there the
+    /// load's zeros, about w = acosh(P0/P1) off the real axis at the lowest load, lie
+    /// at least 1/[`BOTTOM_REACH`] rad from the piece).
+    fn push_bottom(&self, plans: &mut Vec<PiecePlan<R>>, segment: Segment, (a, b): (R, R), bottom: Bottom<R>) {
         let center = bottom.map.center().clone();
         let reach = center.ratio(1, BOTTOM_REACH);
         let toward_start = center.clone() * &center.int(2) < a.clone() + &b;
@@ -465,9 +492,9 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
         if let Some((start, end)) = beyond {
             plans.push(PiecePlan {
                 segment,
-                start: rest.to_u(&start),
-                end: rest.to_u(&end),
-                map: PieceMap::Sinh(rest),
+                start,
+                end,
+                map: PieceMap::Plain,
             });
         }
     }
@@ -492,6 +519,23 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
     where
         S: Fn(&R) -> R + 'a,
     {
+        self.plan_integrand_at_bottom(segment, map, slope, None::<fn(&R) -> R>)
+    }
+
+    /// [`Self::plan_integrand`], with the slope change at the load a bottom map is centred
+    /// on, δ cosh²u, taken from `at_bottom(cosh u)` where given (the same function; on
+    /// complex balls a far narrower enclosure).
+    pub(crate) fn plan_integrand_at_bottom<S, B>(
+        &self,
+        segment: Segment,
+        map: PieceMap<R>,
+        slope: S,
+        at_bottom: Option<B>,
+    ) -> Box<dyn Fn(&R) -> R + 'a>
+    where
+        S: Fn(&R) -> R + 'a,
+        B: Fn(&R) -> R + 'a,
+    {
         let integrands = *self;
         match map {
             PieceMap::Plain => Box::new(move |s: &R| integrands.integrand_with(segment, s, &slope)),
@@ -502,7 +546,15 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
             PieceMap::Bottom(bottom) => Box::new(move |u: &R| {
                 let point = bottom.map.point(u);
                 let angle = integrands.angle_near_bottom(segment, &bottom, &point);
-                integrands.integrand_at(segment, angle, &slope) * &point.rate
+                let centred = at_bottom.as_ref().map(|change| CentredChange {
+                    load: if bottom.mirror {
+                        LowLoad::Mirror
+                    } else {
+                        LowLoad::Normal
+                    },
+                    change: change(&point.load_root),
+                });
+                integrands.integrand_at(segment, angle, &slope, centred) * &point.rate
             }),
         }
     }

@@ -34,6 +34,8 @@ pub struct BottomPoint<R> {
     pub half_cos: R,
     /// ds/du.
     pub rate: R,
+    /// cosh u, whose square times δ is the load the map is centred on.
+    pub load_root: R,
 }
 
 impl<R: Real> BottomMap<R> {
@@ -66,6 +68,7 @@ impl<R: Real> BottomMap<R> {
             half_sin,
             half_cos,
             rate,
+            load_root: cosh,
         }
     }
 }
