@@ -243,7 +243,10 @@ fn enclose_segments(
     // The plain difference of slopes (the last) bounds every attempt on complex balls.
     let bound_slope = slopes.last().expect("the plain difference is always tried");
     // Near separation, the same difference at the lowest load's bottom as a product.
-    let at_bottom = bottom_slope_change(compliance, &geometry);
+    let (at_bottom, doubts) = watch(|| bottom_slope_change(compliance, &geometry));
+    if !doubts.none() {
+        return Err(undecided(bits, doubts));
+    }
     for slope in &slopes {
         let (pieces, doubts) =
             watch(|| certified_pieces(&integrands, slope.as_ref(), bound_slope.as_ref(), &at_bottom));
