@@ -70,7 +70,8 @@ pub trait Compliance<R: Real>: Debug + Send + Sync {
     /// bottom of a cycle near separation gives it (the lowest load δ times cosh²u).
     /// On a complex ball the enclosure of root² may hold 0 where root's does not, so a
     /// family singular at P = 0 divides by root itself (or raises it to a power), which
-    /// keeps its bound finite across the whole strip where the load has no zero.
+    /// keeps its enclosure finite wherever root's keeps away from 0 (and, for a power,
+    /// from its branch cut).
     fn slope_at_scaled_square(&self, scale: &R, root: &R) -> R {
         self.slope(&(root.square() * scale))
     }
