@@ -574,17 +574,34 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
         let mut peaks = Vec::with_capacity(13);
         if let Some(margin) = self.normal_margin() {
             let width = acosh_one_plus(&margin);
+            // A centre more than the segment's length outside it, by a double's reckoning,
+            // is farther than its length from every window in it, which `resolve_peaks`
+            // skips: it is not formed in R. A NaN skips nothing.
+            let (start_f64, length_f64) = (start.to_f64_lossy(), length.to_f64_lossy());
+            let theta_c_f64 = g.theta_c.to_f64_lossy();
+            let far = |center: f64| {
+                let margin = 1e-9 * (1.0 + center.abs() + length_f64.abs());
+                center < -length_f64 - margin || center > 2.0 * length_f64 + margin
+            };
             for k in -2..=3i64 {
+                let lowest_f64 = std::f64::consts::PI * (2 * k + 1) as f64;
+                let normal = !far(lowest_f64 - start_f64);
+                let mirror = segment == Segment::CH && !far(theta_c_f64 - lowest_f64);
+                if !(normal || mirror) {
+                    continue;
+                }
                 let lowest = pi.clone() * &pi.int(2 * k + 1);
-                let center = lowest.clone() - start;
-                peaks.push((
-                    Peak {
-                        center,
-                        width: width.clone(),
-                    },
-                    LowLoad::Normal,
-                ));
-                if segment == Segment::CH {
+                if normal {
+                    let center = lowest.clone() - start;
+                    peaks.push((
+                        Peak {
+                            center,
+                            width: width.clone(),
+                        },
+                        LowLoad::Normal,
+                    ));
+                }
+                if mirror {
                     let center = g.theta_c.clone() - &lowest;
                     peaks.push((
                         Peak {
@@ -679,10 +696,25 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
         // At most two candidates for each of the six turns, and the two ends.
         let mut breaks = Vec::with_capacity(14);
         breaks.push(zero.clone());
+        // A candidate that lies outside [0, length] by more than a double's rounding could
+        // move it is skipped by doubles, without the arithmetic of R (on balls, a product
+        // and two comparisons of about 1 200 instructions each); a NaN skips nothing.
+        let (start_f64, length_f64) = (start.to_f64_lossy(), length.to_f64_lossy());
+        let theta_c_f64 = self.geometry.theta_c.to_f64_lossy();
+        let surely_outside = |s: f64| {
+            let margin = 1e-9 * (1.0 + s.abs() + length_f64.abs());
+            s < -margin || s > length_f64 + margin
+        };
         for k in -2..=3i64 {
+            let lowest_f64 = std::f64::consts::PI * (2 * k + 1) as f64;
+            let normal = !surely_outside(lowest_f64 - start_f64);
+            let mirror = segment == Segment::CH && !surely_outside(theta_c_f64 - lowest_f64);
+            if !(normal || mirror) {
+                continue;
+            }
             let lowest = pi.clone() * &pi.int(2 * k + 1);
-            let mirror = (segment == Segment::CH).then(|| self.geometry.theta_c.clone() - &lowest);
-            let candidates = std::iter::once(lowest.clone() - start).chain(mirror);
+            let mirror = mirror.then(|| self.geometry.theta_c.clone() - &lowest);
+            let candidates = normal.then(|| lowest.clone() - start).into_iter().chain(mirror);
             breaks.extend(candidates.filter(|s| *s > zero && s < length));
         }
         breaks.push(length.clone());
@@ -814,6 +846,73 @@ mod tests {
                             "{segment} {low:?} k = {k}, φ = {phase}: {in_s} in s, {in_u} in u"
                         );
                     }
+                }
+            }
+        }
+    }
+
+    /// The break points at the lowest loads, with far turns skipped by doubles, are every
+    /// angle strictly inside the segment where P (or CH's mirror load) is least, in f64 and
+    /// at 200 bits, for phases that put the segments' ends on all sides of those angles.
+    #[test]
+    fn lowest_load_points_are_every_lowest_load_inside_the_segment() {
+        use crate::real::Precision;
+        use rug::Float;
+        let p = Precision::bits(200);
+        let compliance = Persson { gamma: 1.0, sigma: 1.0 };
+        let precise_compliance = Persson {
+            gamma: Float::from_i64(1, p),
+            sigma: Float::from_i64(1, p),
+        };
+        for phase in [0.05, 0.3, 1.0, 1.6, 2.5, 3.1] {
+            let cycle = cycle_at(phase);
+            let g = cycle.geometry().expect("valid cycle");
+            let precise_cycle = LoadCycle {
+                mean_normal_load: Float::from_f64(cycle.mean_normal_load, p),
+                normal_amplitude: Float::from_f64(cycle.normal_amplitude, p),
+                mean_tangential_load: Float::from_f64(cycle.mean_tangential_load, p),
+                tangential_amplitude: Float::from_f64(cycle.tangential_amplitude, p),
+                phase: Float::from_f64(phase, p),
+                friction: Float::from_f64(cycle.friction, p),
+                compliance_ratio: Float::from_i64(1, p),
+            };
+            let precise_g = precise_cycle.geometry().expect("valid cycle");
+            let integrands = SegmentIntegrands {
+                geometry: &g,
+                compliance: &compliance,
+                remove_constant_slope: true,
+            };
+            let precise = SegmentIntegrands {
+                geometry: &precise_g,
+                compliance: &precise_compliance,
+                remove_constant_slope: true,
+            };
+            for segment in Segment::ALL {
+                let (start, length) = integrands.extent(segment);
+                let pi = std::f64::consts::PI;
+                let mut expected: Vec<f64> = (-4..=6i64)
+                    .flat_map(|k| {
+                        let lowest = (2 * k + 1) as f64 * pi;
+                        let mirror = (segment == Segment::CH).then_some(g.theta_c - lowest);
+                        std::iter::once(lowest - start).chain(mirror)
+                    })
+                    .filter(|s| *s > 0.0 && s < length)
+                    .collect();
+                expected.push(0.0);
+                expected.push(*length);
+                expected.sort_by(f64::total_cmp);
+                assert_eq!(
+                    integrands.lowest_load_points(segment),
+                    expected,
+                    "{segment}, φ = {phase}"
+                );
+                let found: Vec<f64> = precise.lowest_load_points(segment).iter().map(Float::to_f64).collect();
+                assert_eq!(found.len(), expected.len(), "{segment}, φ = {phase}: {found:?}");
+                for (found, expected) in found.iter().zip(&expected) {
+                    assert!(
+                        (found - expected).abs() < 1e-12,
+                        "{segment}, φ = {phase}: {found} {expected}"
+                    );
                 }
             }
         }
