@@ -574,22 +574,9 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
         let mut peaks = Vec::with_capacity(13);
         if let Some(margin) = self.normal_margin() {
             let width = acosh_one_plus(&margin);
-            // A centre more than the segment's length outside it, by a double's reckoning,
-            // is farther than its length from every window in it, which `resolve_peaks`
-            // skips: it is not formed in R. A NaN skips nothing.
-            let (start_f64, length_f64) = (start.to_f64_lossy(), length.to_f64_lossy());
-            let theta_c_f64 = g.theta_c.to_f64_lossy();
-            let far = |center: f64| {
-                let margin = 1e-9 * (1.0 + center.abs() + length_f64.abs());
-                center < -length_f64 - margin || center > 2.0 * length_f64 + margin
-            };
-            for k in -2..=3i64 {
-                let lowest_f64 = std::f64::consts::PI * (2 * k + 1) as f64;
-                let normal = !far(lowest_f64 - start_f64);
-                let mirror = segment == Segment::CH && !far(theta_c_f64 - lowest_f64);
-                if !(normal || mirror) {
-                    continue;
-                }
+            // A centre more than the segment's length outside it is farther than its length
+            // from every window in it, which `resolve_peaks` skips: it is not formed in R.
+            for (k, normal, mirror) in self.nearby_turns(segment, 1.0) {
                 let lowest = pi.clone() * &pi.int(2 * k + 1);
                 if normal {
                     let center = lowest.clone() - start;
@@ -685,6 +672,29 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
         crossings
     }
 
+    /// The six turns around the cycle (k = −2..=3) whose lowest loads can lie within
+    /// `slack` lengths of `segment`'s [0, length], by a double's reckoning: k, and whether
+    /// P's, at (2k + 1)π − start, and in CH the mirror load's, at θ_C − (2k + 1)π, can. The
+    /// margin, 10⁻⁹·(1 + |s| + length), is far beyond a double's rounding of these angles
+    /// or a ball's radius around them, so a turn skipped here is outside in every type; the
+    /// callers skip it without the arithmetic of R (on balls, a product and comparisons of
+    /// about 1 200 instructions each). A NaN skips nothing.
+    fn nearby_turns(&self, segment: Segment, slack: f64) -> impl Iterator<Item = (i64, bool, bool)> {
+        let (start, length) = self.extent(segment);
+        let (start, length) = (start.to_f64_lossy(), length.to_f64_lossy());
+        let theta_c = self.geometry.theta_c.to_f64_lossy();
+        let near = move |s: f64| {
+            let margin = 1e-9 * (1.0 + s.abs() + length.abs());
+            !(s < -slack * length - margin || s > (1.0 + slack) * length + margin)
+        };
+        (-2..=3i64).filter_map(move |k| {
+            let lowest = std::f64::consts::PI * (2 * k + 1) as f64;
+            let normal = near(lowest - start);
+            let mirror = segment == Segment::CH && near(theta_c - lowest);
+            (normal || mirror).then_some((k, normal, mirror))
+        })
+    }
+
     /// The break points 0 = s₀ < s₁ < … < L of a segment: the angles where P (and,
     /// for CH, P at the mirror point θ_C − s) is least, θ ≡ π (mod 2π). A compliance
     /// singular at P → 0 is nearly singular there when the cycle nears separation,
@@ -696,22 +706,8 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
         // At most two candidates for each of the six turns, and the two ends.
         let mut breaks = Vec::with_capacity(14);
         breaks.push(zero.clone());
-        // A candidate that lies outside [0, length] by more than a double's rounding could
-        // move it is skipped by doubles, without the arithmetic of R (on balls, a product
-        // and two comparisons of about 1 200 instructions each); a NaN skips nothing.
-        let (start_f64, length_f64) = (start.to_f64_lossy(), length.to_f64_lossy());
-        let theta_c_f64 = self.geometry.theta_c.to_f64_lossy();
-        let surely_outside = |s: f64| {
-            let margin = 1e-9 * (1.0 + s.abs() + length_f64.abs());
-            s < -margin || s > length_f64 + margin
-        };
-        for k in -2..=3i64 {
-            let lowest_f64 = std::f64::consts::PI * (2 * k + 1) as f64;
-            let normal = !surely_outside(lowest_f64 - start_f64);
-            let mirror = segment == Segment::CH && !surely_outside(theta_c_f64 - lowest_f64);
-            if !(normal || mirror) {
-                continue;
-            }
+        // A candidate outside [0, length] is not a break point: it is not formed in R.
+        for (k, normal, mirror) in self.nearby_turns(segment, 0.0) {
             let lowest = pi.clone() * &pi.int(2 * k + 1);
             let mirror = mirror.then(|| self.geometry.theta_c.clone() - &lowest);
             let candidates = normal.then(|| lowest.clone() - start).into_iter().chain(mirror);
