@@ -112,7 +112,7 @@ impl Drop for Mag {
 }
 
 /// One Bernstein ellipse E_ρ about [−1, 1], held by the rectangle [−X, X] × [−Y, Y].
-struct Ellipse {
+pub(crate) struct Ellipse {
     /// A lower bound of ρ = X + √(X² − 1).
     rho: Mag,
     /// X (exact).
@@ -122,7 +122,7 @@ struct Ellipse {
 }
 
 impl Ellipse {
-    fn new(half_axis: f64) -> Ellipse {
+    pub(crate) fn new(half_axis: f64) -> Ellipse {
         let x = Mag::of(half_axis);
         let (mut rho, mut y, mut one) = (Mag::new(), Mag::new(), Mag::new());
         // SAFETY: all initialised; the lower and upper roundings keep ρ below and Y above
@@ -141,7 +141,7 @@ impl Ellipse {
     }
 
     /// The rectangle mid + delta·([±X] + [±Y]i), which holds the ellipse mapped onto the piece.
-    fn around(&self, mid: &Ball, delta: &Ball) -> Ball {
+    pub(crate) fn around(&self, mid: &Ball, delta: &Ball) -> Ball {
         let mut raw = acb_struct::default();
         // SAFETY: initialised, then only its radii set; `wrap` takes it over.
         unsafe {

@@ -800,32 +800,16 @@ fn arb_bisection(
 
 #[cfg(test)]
 mod tests {
-    use flint_sys::arb::arb_set_d;
-    use flint_sys::mag::mag_set_d;
-
     use super::*;
     use crate::compliance::parse_spec;
 
     const BITS: u32 = 128;
 
-    /// The box mid ± half_real ± half_imag·i.
-    fn complex_box(mid: f64, half_real: f64, half_imag: f64) -> Ball {
-        let mut raw = acb_struct::default();
-        // SAFETY: initialised, then set; `wrap` takes it over.
-        unsafe {
-            acb_init(&mut raw);
-            arb_set_d(&mut raw.real, mid);
-            mag_set_d(&mut raw.real.rad, half_real);
-            mag_set_d(&mut raw.imag.rad, half_imag);
-        }
-        Ball::wrap(raw, BITS)
-    }
-
     /// 1e−6 from separation, the bottom map's part u ∈ [2, 2.8] on the rectangle of the
-    /// ellipse X = 2 (where δ cosh²u has no zero): the difference of slopes at P0 + x,
-    /// x = P1(2t² sinh²u − 1) as the integrand forms it, has no finite bound (the box of
-    /// 1 + sinh²u holds 0), while at δ·cosh²u it has; at real points the two forms enclose
-    /// the same value.
+    /// ellipse X = 2 as the rule bounds it (where δ cosh²u has no zero): the difference of
+    /// slopes at P0 + x, x = P1(2t² sinh²u − 1) as the integrand forms it, has no finite
+    /// bound (the box of 1 + sinh²u holds 0), while at δ·cosh²u it has; at real points the
+    /// two forms enclose the same value.
     #[test]
     fn the_bottom_load_as_a_product_bounds_the_slope_change_where_its_offset_cannot() {
         let p = Precision::bits(BITS);
@@ -856,7 +840,7 @@ mod tests {
             let compliance = parse_spec::<Ball>(spec, p).expect("a SPEC");
             let by_offset = difference_of_slopes(compliance.as_ref(), &mean);
             let by_product = bottom_slope_change(compliance.as_ref(), &geometry);
-            let rectangle = complex_box(2.4, 2.0 * 0.4, 3f64.sqrt() * 0.4);
+            let rectangle = ball_gauss::Ellipse::new(2.0).around(&ball("2.4"), &ball("0.4"));
             let (offset_bound, product_bound) = with_analytic(true, || {
                 (by_offset(&offset_at(&rectangle)), by_product(&rectangle.sinh_cosh().1))
             });
