@@ -272,18 +272,22 @@ impl Ball {
     }
 
     /// An upper bound on the real part's radius relative to its midpoint (infinite
-    /// where the ball contains zero and is not exactly zero).
-    pub fn relative_radius(&self) -> f64 {
+    /// where the ball contains zero and is not exactly zero), as a 64-bit float: the
+    /// radius of a ball of more than 320 digits is below the range of f64.
+    pub fn relative_radius(&self) -> Float {
         let (lower, upper) = self.bounds(self.precision + 64);
         if lower.is_zero() && upper.is_zero() {
-            return 0.0;
+            return Float::new(64);
         }
         if !(lower.is_finite() && upper.is_finite()) || (lower.is_sign_negative() != upper.is_sign_negative()) {
-            return f64::INFINITY;
+            return Float::with_val(64, rug::float::Special::Infinity);
         }
-        let width = Float::with_val(64, &upper - &lower);
-        let smallest = Float::with_val(64, lower.abs_ref()).min(&Float::with_val(64, upper.abs_ref()));
-        (width / smallest).to_f64_round(rug::float::Round::Up)
+        let up = rug::float::Round::Up;
+        let width = Float::with_val_round(64, &upper - &lower, up).0;
+        let smallest = Float::with_val_round(64, lower.abs_ref(), rug::float::Round::Down)
+            .0
+            .min(&Float::with_val_round(64, upper.abs_ref(), rug::float::Round::Down).0);
+        Float::with_val_round(64, width / smallest, up).0
     }
 
     /// (sinh, cosh), entire functions with no Real counterpart, for the sinh map.
@@ -977,7 +981,8 @@ pub fn certain_digits(ball: &Ball, max_digits: u32) -> Option<(String, u32)> {
     // No decimal of more digits than the radius allows can hold both ends.
     let radius = ball.relative_radius();
     let most = if radius > 0.0 {
-        max_digits.min((2.0 - radius.log10()).clamp(1.0, f64::from(max_digits)) as u32)
+        let log10 = radius.log10().to_f64_round(rug::float::Round::Up);
+        max_digits.min((2.0 - log10).clamp(1.0, f64::from(max_digits)) as u32)
     } else {
         max_digits
     };

@@ -12,12 +12,9 @@
 //! [`OWN_DEPTH`] halvings what is left goes to Arb's bisection. The parts of one piece at
 //! one depth start from the bound that served the last of them.
 
-use std::sync::Arc;
-
-use flint_sys::acb::{acb_init, acb_set_round};
+use flint_sys::acb::acb_init;
 use flint_sys::acb_types::acb_struct;
 use flint_sys::arb::{arb_add_error_mag, arb_mul_2exp_si, arb_mul_si, arb_set_d};
-use flint_sys::arb_hypgeom::arb_hypgeom_legendre_p_ui_root;
 use flint_sys::arb_types::mag_struct;
 use flint_sys::mag::{
     mag_add_lower, mag_clear, mag_cmp, mag_div, mag_get_d_log2_approx, mag_init, mag_is_finite, mag_mul,
@@ -25,9 +22,12 @@ use flint_sys::mag::{
     mag_sqrt_lower, mag_sub, mag_sub_lower,
 };
 
+mod legendre;
+
+use legendre::nodes;
+
 use crate::ball::Ball;
-use crate::quad::cache::{cached, Table};
-use crate::real::{Precision, Real};
+use crate::real::Real;
 
 /// The half axes X along the interval (in units of its half length) of the rectangles
 /// that hold the Bernstein ellipses tried, in turn while they fit and lower the degree:
@@ -409,70 +409,6 @@ impl Rule<'_> {
     }
 }
 
-/// The nodes x_k ≥ 0 (k < (n + 1)/2, decreasing) of an n-point Gauss–Legendre rule on
-/// [−1, 1] and their weights, as Arb's enclosures; the rule's other nodes are −x_k.
-struct BallRule {
-    bits: u32,
-    nodes: Vec<(Ball, Ball)>,
-}
-
-impl Table for BallRule {
-    fn precision(&self) -> Precision {
-        Precision::bits(self.bits)
-    }
-
-    fn rounded(&self, precision: Precision) -> Self {
-        let bits = precision.in_bits();
-        BallRule {
-            bits,
-            nodes: self
-                .nodes
-                .iter()
-                .map(|(x, w)| (round(x, bits), round(w, bits)))
-                .collect(),
-        }
-    }
-
-    fn bytes(&self) -> usize {
-        2 * self.nodes.len() * (std::mem::size_of::<Ball>() + self.bits.div_ceil(8) as usize)
-    }
-}
-
-/// The n-point rule at `bits`, from the node cache every computation shares (rounded
-/// down from a table at a higher precision where it holds one).
-fn nodes(n: u64, bits: u32) -> Option<Arc<BallRule>> {
-    cached(n as usize, Precision::bits(bits), || {
-        Some(BallRule {
-            bits,
-            nodes: (0..n.div_ceil(2)).map(|k| legendre_root(n, k, bits)).collect(),
-        })
-    })
-}
-
-/// The k-th root of the Legendre polynomial P_n (decreasing order) and its Gauss weight.
-fn legendre_root(n: u64, k: u64, bits: u32) -> (Ball, Ball) {
-    let (mut root, mut weight) = (acb_struct::default(), acb_struct::default());
-    // SAFETY: initialised, then the real parts set by Arb (imaginary parts stay exact 0);
-    // `wrap` takes them over.
-    unsafe {
-        acb_init(&mut root);
-        acb_init(&mut weight);
-        arb_hypgeom_legendre_p_ui_root(&mut root.real, &mut weight.real, n, k, i64::from(bits));
-    }
-    (Ball::wrap(root, bits), Ball::wrap(weight, bits))
-}
-
-/// `x` rounded to `bits` (a ball that contains it).
-fn round(x: &Ball, bits: u32) -> Ball {
-    let mut raw = acb_struct::default();
-    // SAFETY: initialised; `wrap` takes it over.
-    unsafe {
-        acb_init(&mut raw);
-        acb_set_round(&mut raw, x.as_raw(), i64::from(bits));
-    }
-    Ball::wrap(raw, bits)
-}
-
 #[cfg(test)]
 mod tests {
     use std::cell::Cell;
@@ -481,6 +417,7 @@ mod tests {
     use rug::Float;
 
     use super::*;
+    use crate::real::Precision;
 
     const BITS: u32 = 128;
 
@@ -733,20 +670,5 @@ mod tests {
             assert!(d >= n && (d as f64) <= 1.125 * n as f64 + 1.0);
             assert_eq!(degree_at_least(d), d);
         }
-    }
-
-    #[test]
-    fn node_tables_are_the_gauss_legendre_rules() {
-        // The 3-point rule: nodes ±√(3/5), 0 and weights 5/9, 8/9, 5/9.
-        let table = nodes(3, 64).unwrap().nodes.clone();
-        let root = (Float::with_val(400, 3) / 5u32).sqrt();
-        assert!(table[0].0.contains(&root) && table[1].0.contains(&Float::new(400)));
-        assert!(table[0].1.contains(&(Float::with_val(400, 5) / 9u32)));
-        assert!(table[1].1.contains(&(Float::with_val(400, 8) / 9u32)));
-        // Rounded from a table at higher precision, still the same nodes.
-        let fine = nodes(3, 256).unwrap();
-        let coarse = nodes(3, 64).unwrap();
-        assert!(fine.nodes[0].0.contains(&root) && coarse.nodes[0].0.contains(&root));
-        assert_eq!((fine.bits, coarse.bits), (256, 64));
     }
 }

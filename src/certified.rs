@@ -107,8 +107,9 @@ pub enum CertifiedError {
         asked: u32,
         /// The significant digits the enclosure determines.
         reached: u32,
-        /// The enclosure's radius relative to its midpoint.
-        relative_radius: f64,
+        /// The enclosure's radius relative to its midpoint (beyond f64's range at
+        /// hundreds of digits).
+        relative_radius: rug::Float,
         /// The largest working precision tried.
         bits: u32,
     },
@@ -120,7 +121,7 @@ pub enum CertifiedError {
         asked: u32,
         /// The significant digits the last enclosure determined.
         reached: u32,
-        /// The working precision of the last attempt.
+        /// The working precision of the last attempt (the first, where none was run).
         bits: u32,
     },
 }
@@ -403,7 +404,8 @@ where
     });
     let first = whole_limbs(digit_bits + guard + extra);
     let mut bits = first;
-    let (mut reached, mut last_bits) = (0, 0);
+    // Where no attempt is run in time, the error names the first one's precision.
+    let (mut reached, mut last_bits) = (0, bits);
     let mut gave_up_before = false;
     let out_of_time = || deadline.is_some_and(|deadline| Instant::now() >= deadline);
     // An attempt at twice the bits costs about four times the last: one that would end

@@ -283,8 +283,25 @@ fn to_digits(case: &CaseSpec, digits: u32, deadline: Instant) -> Result<(Answer,
         Err(refusal) => refusal?,
     };
     let budget = deadline.saturating_duration_since(Instant::now());
-    let verified = verified_dissipation_of(case, digits, budget)?;
-    Ok((verified.answer, Some(no_enclosure)))
+    match verified_dissipation_of(case, digits, budget) {
+        Ok(verified) => Ok((verified.answer, Some(no_enclosure))),
+        Err(ReferenceError::Budget(spent)) => Err(further_in_time(no_enclosure, spent)),
+        Err(error) => Err(error),
+    }
+}
+
+/// Where both the enclosure and agreement ran out of time, the one that got further (the
+/// enclosure on a tie: its digits are proven).
+fn further_in_time(no_enclosure: NoEnclosure, spent: crate::verified::OutOfBudget) -> ReferenceError {
+    match no_enclosure {
+        #[cfg(feature = "certified")]
+        NoEnclosure::Refused(error @ crate::certified::CertifiedError::OutOfTime { reached, .. })
+            if reached >= spent.digits_reached() =>
+        {
+            ReferenceError::Certified(error)
+        }
+        _ => ReferenceError::Budget(spent),
+    }
 }
 
 #[cfg(feature = "certified")]

@@ -308,6 +308,25 @@ fn certain_digits_are_those_the_whole_ball_rounds_to() {
         certain_digits(&Ball::from_i64(0, p), 10).unwrap(),
         ("0".to_string(), 10)
     );
+    // Beyond f64's range: 1/3 at 2000 bits holds about 600 digits, and all 500 asked are
+    // certain (a radius taken through f64 floors at 4.9e-324 and stops at 325).
+    let fine = Precision::bits(2000);
+    let third = Ball::from_i64(1, fine) / &Ball::from_i64(3, fine);
+    assert_eq!(
+        certain_digits(&third, 500).unwrap(),
+        (format!("3.{}e-1", "3".repeat(499)), 500)
+    );
+}
+
+/// 400 digits, more than a radius taken through f64 could count, are certified, and their
+/// leading 130 are the 500-bit reference's.
+#[test]
+fn digits_beyond_the_range_of_f64_are_certified() {
+    let case = acceptance();
+    let certified = certified_dissipation(ball_case(&case), 400).unwrap_or_else(|e| panic!("{e}"));
+    assert!(certified.digits >= 400, "{} digits", certified.digits);
+    let leading = certain_digits(&certified.enclosure.total, 130).unwrap();
+    assert_eq!(leading, (Real::to_scientific(&reference(&case), 130), 130));
 }
 
 #[test]

@@ -491,6 +491,37 @@ fn hints_name_only_flags_that_can_help() {
     assert!(!stdout.contains("/inf") && !stderr.contains("/inf"), "{stdout}{stderr}");
 }
 
+/// Running out of time is a failure (exit 1), not bad input, whichever notices it: the
+/// library between attempts, or the command's watchdog when an attempt under way outlasts
+/// the budget (the exponential case at 1e200 loads, whose attempts are long).
+#[test]
+fn running_out_of_time_exits_1_whichever_notices_it() {
+    let exponential = [
+        "--p0",
+        "1e200",
+        "--p1",
+        "4e199",
+        "--q1",
+        "5e199",
+        "--phi",
+        "2",
+        "--compliance",
+        "exp:a=3,c=0.7,d=0.2",
+    ];
+    for budget in ["0.001", "0.05", "0.3"] {
+        for digits in [None, Some("20")] {
+            let mut args = exponential.to_vec();
+            args.extend(["--max-seconds", budget]);
+            if let Some(digits) = digits {
+                args.extend(["--digits", digits]);
+            }
+            assert_one_line_failure(on_case("dissipation", &args), 1, "raise --max-seconds");
+        }
+    }
+    let (code, _, stderr) = on_case("dissipation", &["--digits", "500", "--max-seconds", "0.001"]);
+    assert_eq!(code, 1, "{stderr}");
+}
+
 #[test]
 fn output_paths_are_checked_before_computing_and_failures_are_one_human_line() {
     let directory = scratch("paths");

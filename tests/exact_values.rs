@@ -41,6 +41,8 @@ fn a_phase_near_a_multiple_of_pi_gives_w_its_relative_digits() {
         ("1e-50", "1e-20", "1e-50", "1e-20"),
         ("pi-1e-50", "pi-1e-20", "1e-50", "1e-20"),
         ("-pi+1e-50", "3pi+1e-20", "1e-50", "1e-20"),
+        // sin²φ below f64's range
+        ("pi-1e-200", "pi-1e-20", "1e-200", "1e-20"),
     ] {
         let (w_near, w_far) = (w(near), w(far));
         let square = |text: &str| Float::parse_decimal(text, Precision::bits(200)).unwrap().square();
@@ -72,6 +74,21 @@ fn a_phase_near_a_multiple_of_pi_gives_w_its_relative_digits() {
     let (code, stdout, _) = microslip(&["series", "--rho", "0.5", "--phi", "pi-1e-100", "--order", "2"]);
     assert_eq!(code, 0);
     assert!(stdout.contains("I_1   = -4.44444444444444e-201"), "{stdout}");
+}
+
+/// Where sin²φ underflows f64 (φ below about 1e−154), f64's reason for handing W to the
+/// enclosure is the cancellation of its segments, as at larger phases, not a compliance
+/// undefined somewhere: its rounding bound is infinite, not NaN.
+#[test]
+fn a_phase_whose_square_underflows_f64_is_handed_on_for_cancellation() {
+    for phi in ["1e-100", "1e-160", "1e-300"] {
+        let (code, stdout, stderr) = microslip(&case_args("dissipation", &[("--q1", "0.2"), ("--phi", phi)]));
+        assert_eq!(code, 0, "{stderr}");
+        assert!(
+            stdout.contains("in place of f64: f64 resolves 0 digits here: its segments, up to 1.2e-2, cancel to W"),
+            "φ = {phi}: {stdout}"
+        );
+    }
 }
 
 /// `3.141592653589793` is a decimal 1.2246…e−16 below π: W = c_π δ² with c_π from φ = π − 1e−30

@@ -20,11 +20,12 @@ const GRACE: Duration = Duration::from_millis(300);
 /// Stack of the worker thread: as large as the main thread's usual one.
 const STACK_BYTES: usize = 64 << 20;
 
-/// `work()`, or a refusal (and the end of the process) when it has not answered within
-/// `budget` plus a short grace.
+/// `work()`, or a failure (exit 1, as when the library itself runs out of time; the
+/// input was fine) and the end of the process when it has not answered within `budget`
+/// plus a short grace.
 pub fn within<T: Send>(budget: Duration, work: impl FnOnce() -> Result<T, Failure> + Send) -> Result<T, Failure> {
     within_or(budget, work, || {
-        Failure::refused(format!(
+        Failure::failed(format!(
             "the time budget of {} s ran out before the result was reached; raise --max-seconds",
             budget.as_secs_f64()
         ))

@@ -98,7 +98,9 @@ pub struct Dissipation<R> {
     pub total: R,
     /// Its split over the four segments.
     pub segments: Segments<R>,
-    /// An estimate of the absolute quadrature error of `total`.
+    /// An estimate of the absolute error of `total`, of the quadrature and of rounding;
+    /// infinite where the rounding is beyond the working precision's range (segments
+    /// that cancel near in phase, in f64 at a phase below about 1e-154).
     pub error_estimate: R,
     /// Integrand evaluations spent.
     pub evaluations: usize,
@@ -179,11 +181,17 @@ pub(crate) fn assemble<R: Real>(
     } else {
         total.abs()
     };
-    let rounding = size * &(amplification * &eps) + &(scale.clone() * &eps * &eps.int(64));
-    let mut error_estimate = parts.error * lambda + &rounding;
-    if !total.is_finite() || !error_estimate.is_finite() {
+    if !total.is_finite() || !parts.error.is_finite() {
         return Err(DissipationError::NotFinite { segment: "total" });
     }
+    // Where the amplification itself is beyond the precision's range (near in phase, the
+    // cancellation 1/(8 sin²φ) once sin²φ underflows), rounding is not bounded at all.
+    let rounding = if amplification.is_finite() {
+        size * &(amplification * &eps) + &(scale.clone() * &eps * &eps.int(64))
+    } else {
+        R::from_f64(f64::INFINITY, total.precision())
+    };
+    let mut error_estimate = parts.error * lambda + &rounding;
     let zero = total.int(0);
     if scale > zero && scale < R::smallest_full_precision(total.precision()) {
         return Err(DissipationError::OutOfRange {
