@@ -101,7 +101,7 @@ pub enum CertifiedError {
         end: f64,
     },
     /// The enclosure stayed wider than asked at the largest precision tried.
-    #[error("the enclosure of W reached only {reached} of the {asked} digits asked (relative radius {relative_radius:.1e} at {bits} bits)")]
+    #[error("the enclosure of W reached only {reached} of the {asked} digits asked (relative radius {relative_radius:.2e} at {bits} bits)")]
     TooWide {
         /// The significant digits asked for.
         asked: u32,
