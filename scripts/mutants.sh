@@ -39,22 +39,22 @@ binary="$CARGO_TARGET_DIR/release/microslip"
 # file | name | exact original text (must occur once) | replacement [| certified: only the
 # certified enclosures must catch it]
 mutations=$(cat <<'LIST'
-src/dissipation/segments.rs|EB sign flip|loads.tangential_offset * &(reverse - &normal)|loads.tangential_offset * &(reverse + &normal)
-src/dissipation/segments.rs|EB factor 2|g.sum_amplitude * &double_sin;|g.sum_amplitude * &double_sin * &two;
-src/dissipation/segments.rs|EB P instead of P_S|slope(&g.reverse_slip_offset(&half_sin))|slope(&loads.normal_offset)
-src/dissipation/segments.rs|BC sign flip|loads.tangential_offset * &slope(&loads.normal_offset) * &loads.tangential_rate|-(loads.tangential_offset * &slope(&loads.normal_offset) * &loads.tangential_rate)
-src/dissipation/segments.rs|BC factor 2|* &slope(&loads.normal_offset) * &loads.tangential_rate|* &slope(&loads.normal_offset) * &loads.tangential_rate * &two
-src/dissipation/segments.rs|BC P_T instead of P|* &slope(&loads.normal_offset) * &loads.tangential_rate|* &slope(&g.permanent_stick_offset) * &loads.tangential_rate
-src/dissipation/segments.rs|CH sign flip|loads.tangential_offset * &(normal + &forward)|loads.tangential_offset * &(normal - &forward)
-src/dissipation/segments.rs|CH factor 2|g.difference_amplitude * &s_sin_cos.0;|g.difference_amplitude * &s_sin_cos.0 * &two;
-src/dissipation/segments.rs|CH P instead of P_Y|slope(&mirror_offset)|slope(&loads.normal_offset)
-src/dissipation/segments.rs|HE sign flip|loads.tangential_offset * &(normal - &forward)|loads.tangential_offset * &(normal + &forward)
-src/dissipation/segments.rs|HE factor 2|g.difference_amplitude * &double_sin;|g.difference_amplitude * &double_sin * &two;
-src/dissipation/segments.rs|HE P instead of P_K|slope(&g.forward_slip_offset(&half_sin))|slope(&loads.normal_offset)
-src/dissipation/segments.rs|EB plus 1e-40|loads.tangential_offset * &(reverse - &normal)|loads.tangential_offset * &(reverse - &normal) + &s.int(10).powi(-40)|certified
-src/dissipation/segments.rs|BC plus 1e-40|loads.tangential_offset * &slope(&loads.normal_offset) * &loads.tangential_rate|loads.tangential_offset * &slope(&loads.normal_offset) * &loads.tangential_rate + &s.int(10).powi(-40)|certified
-src/dissipation/segments.rs|CH plus 1e-40|loads.tangential_offset * &(normal + &forward)|loads.tangential_offset * &(normal + &forward) + &s.int(10).powi(-40)|certified
-src/dissipation/segments.rs|HE plus 1e-40|loads.tangential_offset * &(normal - &forward)|loads.tangential_offset * &(normal - &forward) + &s.int(10).powi(-40)|certified
+src/dissipation/segments.rs|EB sign flip|tangential_offset * &(reverse - &normal)|tangential_offset * &(reverse + &normal)
+src/dissipation/segments.rs|EB factor 2|* &g.sum_amplitude * &double_sin;|* &g.sum_amplitude * &double_sin * &double_sin.int(2);
+src/dissipation/segments.rs|EB P instead of P_S|slope(&g.reverse_slip_offset(&half_sin))|slope(&g.loads_at(&theta).normal_offset())
+src/dissipation/segments.rs|BC sign flip|loads.tangential_offset() * &change * &loads.tangential_rate()|-(loads.tangential_offset() * &change * &loads.tangential_rate())
+src/dissipation/segments.rs|BC factor 2|loads.tangential_offset() * &change * &loads.tangential_rate()|loads.tangential_offset() * &change * &loads.tangential_rate() * &change.int(2)
+src/dissipation/segments.rs|BC P_T instead of P|loads.tangential_offset() * &change * &loads.tangential_rate()|loads.tangential_offset() * &slope(&g.permanent_stick_offset) * &loads.tangential_rate()
+src/dissipation/segments.rs|CH sign flip|tangential_offset * &(normal + &forward)|tangential_offset * &(normal - &forward)
+src/dissipation/segments.rs|CH factor 2|* &g.difference_amplitude * &from_c_sin;|* &g.difference_amplitude * &from_c_sin * &from_c_sin.int(2);
+src/dissipation/segments.rs|CH P instead of P_Y|slope(&(g.normal_amplitude.clone() * &mirror_cos))|slope(&g.loads_at(&theta).normal_offset())
+src/dissipation/segments.rs|HE sign flip|tangential_offset * &(normal - &forward)|tangential_offset * &(normal + &forward)
+src/dissipation/segments.rs|HE factor 2|* &g.difference_amplitude * &double_sin;|* &g.difference_amplitude * &double_sin * &double_sin.int(2);
+src/dissipation/segments.rs|HE P instead of P_K|slope(&g.forward_slip_offset(&half_sin))|slope(&g.loads_at(&theta).normal_offset())
+src/dissipation/segments.rs|EB plus 1e-40|tangential_offset * &(reverse - &normal)|tangential_offset * &(reverse - &normal) + &theta.int(10).powi(-40)|certified
+src/dissipation/segments.rs|BC plus 1e-40|loads.tangential_offset() * &change * &loads.tangential_rate()|loads.tangential_offset() * &change * &loads.tangential_rate() + &change.int(10).powi(-40)|certified
+src/dissipation/segments.rs|CH plus 1e-40|tangential_offset * &(normal + &forward)|tangential_offset * &(normal + &forward) + &theta.int(10).powi(-40)|certified
+src/dissipation/segments.rs|HE plus 1e-40|tangential_offset * &(normal - &forward)|tangential_offset * &(normal - &forward) + &theta.int(10).powi(-40)|certified
 src/cycle.rs|P_S with sigma- for sigma+|self.sum_amplitude.clone() * &half_angle_sin.square() / &self.friction|self.difference_amplitude.clone() * &half_angle_sin.square() / &self.friction
 src/cycle.rs|P_K without 1/f|self.difference_amplitude.clone() * &half_angle_sin.square() / &self.friction|self.difference_amplitude.clone() * &half_angle_sin.square()
 src/cycle.rs|P_T offset doubled|(cycle.friction.clone() * &phi.int(2))|cycle.friction.clone()
@@ -71,7 +71,7 @@ src/exact/polynomial_w.rs|exact CH P_Y at C not 2C|g.normal_amplitude.clone() * 
 src/exact/trig.rs|trig product sign|product.cos[sum] += cos_cos.clone() - &sin_sin;|product.cos[sum] += cos_cos.clone() + &sin_sin;
 src/exact/trig.rs|trig integral factor|.sin() * &two / &kk;|.sin() / &kk;
 src/exact/series.rs|series factorial|factorial *= &zero.int(n as i64);|factorial *= &zero.int(n as i64 + 1);
-src/compliance/families.rs|power-law derivative order|* &falling_factorial(&self.exponent, n - 1)|* &falling_factorial(&self.exponent, n)
+src/compliance/families.rs|power-law derivative order|* &falling_factorial(&self.exponent, order)|* &falling_factorial(&self.exponent, order + 1)
 LIST
 )
 
