@@ -11,7 +11,7 @@
 use rug::Rational;
 use serde::{Deserialize, Serialize};
 
-use crate::compliance::{Compliance, ComplianceSpec, SpecReadError};
+use crate::compliance::{Compliance, ComplianceSpec, SpecError};
 use crate::cycle::{compliance_ratio_from_poisson, CycleError, LoadCycle};
 use crate::decimal::{decimal, rounded};
 use crate::dissipation::ExactZero;
@@ -66,7 +66,7 @@ pub enum InputError {
     /// The compliance SPEC is wrong, or a table it names cannot be read or is not a
     /// compliance.
     #[error(transparent)]
-    Compliance(#[from] SpecReadError),
+    Compliance(#[from] SpecError),
     /// ν is out of range or not finite.
     #[error(transparent)]
     Cycle(#[from] CycleError),
@@ -185,7 +185,7 @@ impl CaseText {
         };
         let phase = ExactPhase::parse(&self.phi)?.reduce()?;
         let mean_tangential_load = Field::read("q0", &self.q0)?;
-        let compliance = ComplianceSpec::read(&self.compliance)?;
+        let compliance = ComplianceSpec::parse(&self.compliance)?;
         Ok(CaseSpec {
             mean_normal_load: Field::read("p0", &self.p0)?,
             normal_amplitude: Field::read("p1", &self.p1)?,
@@ -237,7 +237,7 @@ impl CaseSpec {
             friction: self.friction.at(precision)?,
             compliance_ratio,
         };
-        let compliance = self.compliance.build::<R>(precision).map_err(SpecReadError::from)?;
+        let compliance = self.compliance.build::<R>(precision)?;
         Ok(Case { cycle, compliance })
     }
 
@@ -443,11 +443,11 @@ mod tests {
         ));
         assert!(matches!(
             text("1", "0.2", "1", "table:no-such-table.csv").spec(),
-            Err(InputError::Compliance(SpecReadError::Table(TableError::File { .. })))
+            Err(InputError::Compliance(SpecError::Table(TableError::File { .. })))
         ));
         assert!(matches!(
             text("1", "0.2", "1", "persson:gamma=0,sigma=1").spec(),
-            Err(InputError::Compliance(SpecReadError::Spec(_)))
+            Err(InputError::Compliance(SpecError::Text { .. }))
         ));
         let mut both = text("1", "0.2", "1", persson);
         both.lambda = Some("1".into());

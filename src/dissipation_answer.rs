@@ -22,7 +22,7 @@ use rug::Float;
 
 use crate::answer::{Answer, ExactReason, Provenance, Value};
 use crate::case::{Case, CaseSpec, CaseText, InputError};
-use crate::compliance::{Compliance, ComplianceTable, SpecReadError, TableInterpolant};
+use crate::compliance::{Compliance, ComplianceTable, TableInterpolant};
 use crate::cycle::LoadCycle;
 use crate::dissipation::{dissipation, Dissipation, DissipationError, ExactZero, Method, Options, Segment, Segments};
 use crate::real::{Precision, Real};
@@ -566,7 +566,7 @@ fn table_answer(
         let half = case
             .compliance()
             .build_with::<f64>(Precision::DOUBLE, interpolant)
-            .map_err(|e| ReferenceError::Input(SpecReadError::from(e).into()))?;
+            .map_err(|e| ReferenceError::Input(InputError::from(e)))?;
         let moved = dissipation(&cycle, half.as_ref(), &options).map_err(in_f64)?;
         let uncertainty = moved.error_estimate + result.error_estimate;
         table_error = table_error.max(((moved.total - result.total).abs() + uncertainty) / divisor);

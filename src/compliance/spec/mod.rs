@@ -31,22 +31,18 @@ use super::table::{ComplianceTable, TableError, TableInterpolant};
 use super::Compliance;
 use crate::real::{Precision, Real};
 
-/// A SPEC string that does not describe a compliance.
-#[derive(Debug, Clone, PartialEq, Eq, thiserror::Error)]
-#[error("compliance spec '{spec}': {problem}")]
-pub struct SpecError {
-    /// The whole SPEC.
-    pub spec: String,
-    /// What is wrong with it.
-    pub problem: String,
-}
-
-/// Why a SPEC's text does not give a compliance: the text itself, or a table it names.
+/// Why a SPEC does not give a compliance: its text, or a table it names.
+#[non_exhaustive]
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum SpecReadError {
-    /// The text is not a SPEC.
-    #[error(transparent)]
-    Spec(#[from] SpecError),
+pub enum SpecError {
+    /// The text is not a SPEC, or a number in it cannot be held at the precision asked.
+    #[error("compliance spec '{spec}': {problem}")]
+    Text {
+        /// The whole SPEC.
+        spec: String,
+        /// What is wrong with it.
+        problem: String,
+    },
     /// A table the SPEC names cannot be read or is not a compliance.
     #[error(transparent)]
     Table(#[from] TableError),
@@ -124,17 +120,6 @@ impl ComplianceSpec {
     /// assert!(!spec.is_constant_slope());
     /// ```
     pub fn parse(text: &str) -> Result<ComplianceSpec, SpecError> {
-        Self::read(text).map_err(|error| match error {
-            SpecReadError::Spec(error) => error,
-            SpecReadError::Table(error) => SpecError {
-                spec: text.to_string(),
-                problem: error.to_string(),
-            },
-        })
-    }
-
-    /// As [`ComplianceSpec::parse`], a table that cannot be used reported as the table's error.
-    pub fn read(text: &str) -> Result<ComplianceSpec, SpecReadError> {
         let terms = parse::terms(text)?;
         Ok(ComplianceSpec {
             text: text.to_string(),
@@ -155,7 +140,7 @@ impl ComplianceSpec {
         precision: Precision,
         interpolant: TableInterpolant,
     ) -> Result<Box<dyn Compliance<R>>, SpecError> {
-        build::compliance(&self.terms, precision, interpolant).map_err(|problem| SpecError {
+        build::compliance(&self.terms, precision, interpolant).map_err(|problem| SpecError::Text {
             spec: self.text.clone(),
             problem,
         })

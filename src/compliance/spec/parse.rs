@@ -1,21 +1,20 @@
 //! SPEC text to its tree: terms split at '+', a term's multiplier, family and key=value
 //! parameters read as exact decimals, tables read once.
 
-use super::{Exact, SpecError, SpecReadError, Term};
+use super::{Exact, SpecError, Term};
 use crate::compliance::table::{cached_table, parse_table_term, TableError};
 use crate::phase::decimal;
 
 /// The terms of a SPEC, or why it is not one.
-pub(super) fn terms(spec: &str) -> Result<Vec<Term>, SpecReadError> {
+pub(super) fn terms(spec: &str) -> Result<Vec<Term>, SpecError> {
     split_terms(spec)
         .into_iter()
         .map(|text| {
             term(text).map_err(|problem| match problem {
-                TermError::Problem(problem) => SpecError {
+                TermError::Problem(problem) => SpecError::Text {
                     spec: spec.to_string(),
                     problem,
-                }
-                .into(),
+                },
                 TermError::Table(error) => error.into(),
             })
         })
