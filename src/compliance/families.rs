@@ -38,44 +38,16 @@ impl<R: Real> PowerLaw<R> {
     /// but the factor u) and with one square or cube root in place of ln1p and expm1.
     fn into_slope_change<'a>(self, reference: &R) -> SlopeChange<'a, R> {
         let (slope, inverse) = (self.slope(reference), reference.int(1) / reference);
-        if let Some((numerator, denominator)) = self.small_rational_exponent() {
-            let reference = reference.clone();
-            return Box::new(move |offset: &R| {
-                if numerator == 0 {
-                    return offset.int(0);
-                }
-                let one = offset.int(1);
-                // 1 + u as (P0 + x)/P0: one rounding, also where u is near −1.
-                let base = (reference.clone() + offset) * &inverse;
-                let root = match denominator {
-                    1 => base,
-                    2 => base.sqrt(),
-                    _ => base.cbrt(),
-                };
-                let (mut root_sum, mut root_power) = (one.clone(), one.clone());
-                for _ in 1..denominator {
-                    root_power *= &root;
-                    root_sum += &root_power;
-                }
-                let ratio = offset.clone() * &inverse;
-                let root_minus_one = if denominator == 1 { ratio } else { ratio / &root_sum };
-                let (mut sum, mut power) = (one.clone(), root.clone());
-                for _ in 1..numerator.unsigned_abs() {
-                    sum = sum * &root + &one;
-                    power *= &root;
-                }
-                let growth = root_minus_one * &sum;
-                if numerator > 0 {
-                    slope.clone() * &growth
-                } else {
-                    -(slope.clone() * &growth / &power)
-                }
-            });
+        match self.small_rational_exponent() {
+            Some((0, _)) => Box::new(|offset: &R| offset.int(0)),
+            Some((numerator, 1)) => rational_slope_change::<R, 1>(numerator, slope, reference.clone(), inverse),
+            Some((numerator, 2)) => rational_slope_change::<R, 2>(numerator, slope, reference.clone(), inverse),
+            Some((numerator, _)) => rational_slope_change::<R, 3>(numerator, slope, reference.clone(), inverse),
+            None => Box::new(move |offset: &R| {
+                let relative = (offset.clone() * &inverse).ln_1p() * &self.exponent;
+                slope.clone() * &relative.exp_m1()
+            }),
         }
-        Box::new(move |offset: &R| {
-            let relative = (offset.clone() * &inverse).ln_1p() * &self.exponent;
-            slope.clone() * &relative.exp_m1()
-        })
     }
 
     /// β as k/q with q ≤ 3 and |k| ≤ [`RATIONAL_EXPONENTS`], when it is one (at the
@@ -88,6 +60,45 @@ impl<R: Real> PowerLaw<R> {
             rational.then(|| (scaled.to_f64_lossy() as i32, denominator))
         })
     }
+}
+
+/// x ↦ C·P0^β·[(1 + x/P0)^β − 1] for β = k/q, k ≠ 0, through r = (1 + x/P0)^(1/q) (see
+/// [`PowerLaw::into_slope_change`]); the root's degree Q is a constant so that its sums
+/// unroll, since this runs at every integrand evaluation.
+fn rational_slope_change<'a, R: Real, const Q: u32>(
+    numerator: i32,
+    slope: R,
+    reference: R,
+    inverse: R,
+) -> SlopeChange<'a, R> {
+    Box::new(move |offset: &R| {
+        let one = offset.int(1);
+        // 1 + u as (P0 + x)/P0: one rounding, also where u is near −1.
+        let base = (reference.clone() + offset) * &inverse;
+        let root = match Q {
+            1 => base,
+            2 => base.sqrt(),
+            _ => base.cbrt(),
+        };
+        let (mut root_sum, mut root_power) = (one.clone(), one.clone());
+        for _ in 1..Q {
+            root_power *= &root;
+            root_sum += &root_power;
+        }
+        let ratio = offset.clone() * &inverse;
+        let root_minus_one = if Q == 1 { ratio } else { ratio / &root_sum };
+        let (mut sum, mut power) = (one.clone(), root.clone());
+        for _ in 1..numerator.unsigned_abs() {
+            sum = sum * &root + &one;
+            power *= &root;
+        }
+        let growth = root_minus_one * &sum;
+        if numerator > 0 {
+            slope.clone() * &growth
+        } else {
+            -(slope.clone() * &growth / &power)
+        }
+    })
 }
 
 impl<R: Real> Compliance<R> for PowerLaw<R> {
