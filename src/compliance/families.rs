@@ -189,19 +189,14 @@ impl<R: Real> Compliance<R> for Persson<R> {
         -(self.gamma.clone() * &self.sigma / &load.square())
     }
     fn slope_change(&self, reference: &R, offset: &R) -> R {
-        // γσ/(x + d) − γσ/x = −γσ·(d/x)/(x + d), exact in form; no product of two loads,
-        // which would overflow f64 for loads above 1e154 (and underflow below 1e-154).
-        let ratio = offset.clone() / reference;
-        -(self.gamma.clone() * &self.sigma * &ratio / &(reference.clone() + offset))
+        self.slope_change_about(reference)(offset)
     }
     fn slope_change_about<'a>(&'a self, reference: &R) -> SlopeChange<'a, R> {
-        // `slope_change` with γσ formed once: the same operations on the same operands,
-        // so the same values in f64 and MPFR (a rounded product or sum commutes).
-        let (reference, product) = (reference.clone(), self.gamma.clone() * &self.sigma);
-        Box::new(move |offset: &R| {
-            let ratio = offset.clone() / &reference;
-            -(ratio * &product / &(offset.clone() + &reference))
-        })
+        // γσ/(P0 + x) − γσ/P0 = −v'(P0)·x/(P0 + x): exact in form, one division an
+        // evaluation, and no product of two loads (which would overflow f64 for loads
+        // above 1e154, and underflow below 1e-154).
+        let (reference, slope) = (reference.clone(), self.slope(reference));
+        Box::new(move |offset: &R| -(offset.clone() / &(offset.clone() + &reference) * &slope))
     }
     fn slope_at_scaled_square(&self, scale: &R, root: &R) -> R {
         // γσ/(s·r²) as two divisions by r: r's enclosure, not r²'s, keeps away from 0.
