@@ -1,21 +1,21 @@
 #!/usr/bin/env python3
-"""W by mpmath's tanh-sinh beside microslip's verified digits.
+"""W by mpmath's tanh-sinh beside microslip's certified digits (--digits).
 
 The same four segment integrals in the cycle angle (src/dissipation/segments.rs,
 proofs/four-segment.md) are integrated by mpmath.quad (tanh-sinh, split at the same
 lowest-load points) at 15, 30, 50 and 100 digits, for three cases; microslip computes the
-same W to the same number of verified digits, timed as a whole process and per row of a
+same W to the same number of certified digits (proven by an Arb enclosure), timed as a whole process and per row of a
 batch (node tables warm). Both are compared with a 130-digit value from microslip.
 
 Usage: benches/mpmath_side_by_side.py [path/to/microslip]   (optional dependency: mpmath;
 not run in CI). mpmath is timed with its caches warm (one run first, then the best of 3);
 the batch per-row time is (t(N + 1 rows) - t(1 row)) / N on one thread.
 
-Besides the verified digits (two runs), microslip's single run at a fixed precision with its
+Besides the certified digits, microslip's single run at a fixed precision with its
 error estimate (no verifying run, node tables warm) is timed in process by the criterion
 group `single_run` of benches/dissipation.rs, which this script runs with cargo: that is
 the like-for-like comparison with one mpmath run (goal >= 20x at 50 and 100 digits; >= 10x
-for verified digits per row).
+for the digits per row, set when --digits meant two runs agreeing).
 """
 
 import json
