@@ -51,10 +51,10 @@ src/dissipation/segments.rs|CH P instead of P_Y|slope(&(g.normal_amplitude.clone
 src/dissipation/segments.rs|HE sign flip|tangential_offset * &(normal - &forward)|tangential_offset * &(normal + &forward)
 src/dissipation/segments.rs|HE factor 2|* &g.difference_amplitude * &double_sin;|* &g.difference_amplitude * &double_sin * &double_sin.int(2);
 src/dissipation/segments.rs|HE P instead of P_K|slope(&g.forward_slip_offset(&half_sin))|slope(&g.loads_at(&theta).normal_offset())
-src/dissipation/segments.rs|EB plus 1e-40|tangential_offset * &(reverse - &normal)|tangential_offset * &(reverse - &normal) + &theta.int(10).powi(-40)|certified
+src/dissipation/segments.rs|EB plus 1e-40|tangential_offset * &(reverse - &normal)|tangential_offset * &(reverse - &normal) + &normal.int(10).powi(-40)|certified
 src/dissipation/segments.rs|BC plus 1e-40|loads.tangential_offset() * &change * &loads.tangential_rate()|loads.tangential_offset() * &change * &loads.tangential_rate() + &change.int(10).powi(-40)|certified
-src/dissipation/segments.rs|CH plus 1e-40|tangential_offset * &(normal + &forward)|tangential_offset * &(normal + &forward) + &theta.int(10).powi(-40)|certified
-src/dissipation/segments.rs|HE plus 1e-40|tangential_offset * &(normal - &forward)|tangential_offset * &(normal - &forward) + &theta.int(10).powi(-40)|certified
+src/dissipation/segments.rs|CH plus 1e-40|tangential_offset * &(normal + &forward)|tangential_offset * &(normal + &forward) + &forward.int(10).powi(-40)|certified
+src/dissipation/segments.rs|HE plus 1e-40|tangential_offset * &(normal - &forward)|tangential_offset * &(normal - &forward) + &forward.int(10).powi(-40)|certified
 src/cycle.rs|P_S with sigma- for sigma+|self.sum_amplitude.clone() * &half_angle_sin.square() / &self.friction|self.difference_amplitude.clone() * &half_angle_sin.square() / &self.friction
 src/cycle.rs|P_K without 1/f|self.difference_amplitude.clone() * &half_angle_sin.square() / &self.friction|self.difference_amplitude.clone() * &half_angle_sin.square()
 src/cycle.rs|P_T offset doubled|(cycle.friction.clone() * &phi.int(2))|cycle.friction.clone()

@@ -4,8 +4,6 @@
 
 use std::time::Duration;
 
-use rayon::prelude::*;
-
 use crate::answer::{Answer, Provenance};
 use crate::compliance::{ComplianceSpec, TableError};
 use crate::cycle::LoadCycle;
@@ -214,17 +212,18 @@ fn row_result(threads: &RowThreads, row: &InputRow, digits: Option<u32>, budget:
     }
 }
 
-/// Every row on all cores, each within `budget`, in input order; `row_done` is called
-/// as each row finishes.
+/// Every row on as many threads as rayon's pool has, each within `budget`, in input
+/// order; `row_done` is called as each row finishes. The rows are dealt out by threads of
+/// their own, which wait for the rows' threads, so that the pool stays free for the
+/// node tables a row computes on it.
 pub fn run(rows: &[InputRow], digits: Option<u32>, budget: Duration, row_done: &(dyn Fn() + Sync)) -> Vec<RowResult> {
     let threads = RowThreads::default();
-    rows.par_iter()
-        .map(|row| {
-            let result = row_result(&threads, row, digits, budget);
-            row_done();
-            result
-        })
-        .collect()
+    crate::workers::each_on_own_threads(
+        rows.len(),
+        rayon::current_num_threads(),
+        |index| row_result(&threads, &rows[index], digits, budget),
+        |_, _| row_done(),
+    )
 }
 
 /// The input columns that are echoed (all but those named like a result column).

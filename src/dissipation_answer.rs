@@ -99,6 +99,11 @@ pub enum Fallback {
         /// Its error estimate.
         error_estimate: f64,
     },
+    /// f64 gives W = 0 with an error estimate of 0, as for an exact zero, which no reason
+    /// read from the input makes it (those are answered before f64 runs): every change of
+    /// v' over the cycle's loads, or every integrand value, has rounded to zero in f64
+    /// (v' = a·exp(−P/c) + d at loads of thousands of c).
+    ZeroInF64,
     /// The segments cancel to a W much smaller than themselves.
     Cancellation {
         /// The digits f64 determines.
@@ -138,6 +143,9 @@ impl std::fmt::Display for Fallback {
                 f,
                 "f64 resolves {resolved} digits here: W ± its error estimate {error_estimate:.1e} straddles a rounding boundary of digit {}",
                 resolved + 1
+            ),
+            Fallback::ZeroInF64 => f.write_str(
+                "f64 gives W = 0, which no reason read from the input makes exact (in f64 the changes of v' over the cycle's loads, or the integrands, round to 0)",
             ),
             Fallback::Cancellation {
                 resolved,
@@ -428,9 +436,12 @@ fn in_f64(case: &CaseSpec, deadline: Instant) -> Result<Result<Answer, Fallback>
 }
 
 /// Whether the digits f64 determines are enough to print: [`F64_DIGITS_FLOOR`] or more,
-/// or one fewer where only the rounding boundary of the next digit is straddled (every
+/// never for a W of 0 ± 0 (an exact zero is answered by its reason before f64 runs), or one fewer where only the rounding boundary of the next digit is straddled (every
 /// digit printed is still right, and MPFR would cost a thousand times more).
 fn f64_suffices(result: &Dissipation<f64>) -> Result<(), Fallback> {
+    if result.total == 0.0 && result.error_estimate == 0.0 {
+        return Err(Fallback::ZeroInF64);
+    }
     let resolved = resolved_digits(result.total, result.error_estimate);
     if resolved >= F64_DIGITS_FLOOR {
         return Ok(());

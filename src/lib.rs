@@ -86,3 +86,4 @@ pub mod plot;
 pub mod quad;
 #[doc(hidden)]
 pub mod verified;
+mod workers;

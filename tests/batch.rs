@@ -525,3 +525,40 @@ fn csv_rows_carry_their_provenance_and_an_enclosure_that_rounds_to_w() {
         }
     }
 }
+
+/// Rows near in phase leave f64 for enclosures at a few hundred bits, whose node tables
+/// are large enough to be computed on the worker pool. When the rows were dealt out by
+/// the pool's own workers, each waiting for its row's thread, no worker was left for the
+/// tables: with as many such rows as workers, every row ran out of its budget.
+#[test]
+fn rows_whose_node_tables_are_computed_on_the_pool_finish_within_their_budget() {
+    let near_in_phase = [
+        ("persson", "4.6953780618937086e-32", "persson:gamma=0.4542,sigma=1.728"),
+        (
+            "sum",
+            "6.2548301364665267e-38",
+            "power:c=1,beta=-0.5+persson:gamma=1,sigma=0.86",
+        ),
+        ("power", "1e-35", "power:c=1,beta=-1.5"),
+        ("hertz", "3e-33", "hertz:r=1,estar=1"),
+    ];
+    let rows: Vec<[String; 10]> = near_in_phase
+        .iter()
+        .map(|(id, phi, spec)| [*id, "1", "0.4", "0", "0.1", phi, "1", "1.2", "", spec].map(String::from))
+        .collect();
+    let args: Vec<&str> = "batch --input - --output - --format jsonl --jobs 2 --max-seconds 30"
+        .split(' ')
+        .collect();
+    let output = microslip(&args, Some(&to_csv(&rows)));
+    let results = read_jsonl(&output.stdout);
+    assert_eq!(
+        output.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&output.stderr)
+    );
+    for result in &results {
+        assert_eq!(result["provenance"], "certified", "{result}");
+    }
+    compare_with_single_runs(&rows, &results, &[0, 1, 2, 3], None);
+}

@@ -204,6 +204,31 @@ fn values_that_are_not_exactly_zero_are_not_printed_as_zero() {
     assert!((value / expected - 1.0).abs() < 1e-7, "{value} vs {expected}");
 }
 
+/// v' = a·exp(−P/c) + d at loads of 10⁹ c: every change of v' over the cycle rounds to 0 in
+/// f64 (and in MPFR's default exponent range), so f64 gives W = 0, which it printed as a
+/// 0 of 4294967295 digits. W is about exp(−2·10⁹): a positive number that is no exact zero.
+#[test]
+fn a_w_that_rounds_to_zero_in_f64_is_not_printed_as_zero() {
+    let overrides = [
+        ("--p0", "1e10"),
+        ("--p1", "5e9"),
+        ("--q1", "5e8"),
+        ("--compliance", "exp:a=2.204,c=2.486,d=0.3174"),
+        ("--max-seconds", "2"),
+    ];
+    let (code, stdout, stderr) = microslip(&case_args("dissipation", &overrides));
+    match code {
+        0 => {
+            let value: f64 = stdout.split_whitespace().nth(2).unwrap().parse().unwrap();
+            assert!(value != 0.0 && !stdout.contains("exact"), "{stdout}");
+        }
+        _ => {
+            assert_eq!(code, 1, "{stderr}");
+            assert!(stdout.is_empty() && stderr.contains("time budget"), "{stdout}{stderr}");
+        }
+    }
+}
+
 #[test]
 fn simulation_of_a_constant_compliance_gives_zero() {
     let (code, stdout, stderr) = microslip(&case_args("simulate", &[("--compliance", "const:c=1")]));

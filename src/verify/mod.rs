@@ -10,9 +10,6 @@ pub mod claims;
 pub mod generators;
 pub mod small_amplitude;
 
-use std::sync::atomic::{AtomicUsize, Ordering};
-use std::sync::mpsc;
-
 use rug::Float;
 use serde::Serialize;
 
@@ -221,28 +218,15 @@ fn evaluated<C: Claim + Send + Sync + 'static>(
 pub fn run(options: GateOptions, mut progress: impl FnMut(usize, usize, &str)) -> Vec<ClaimReport> {
     let steps = gate(options);
     let total = steps.len();
-    let workers = rayon::current_num_threads().min(total);
-    let next = AtomicUsize::new(0);
-    let (sender, receiver) = mpsc::channel();
-    let mut results: Vec<Option<Vec<ClaimReport>>> = vec![None; total];
-    std::thread::scope(|scope| {
-        for _ in 0..workers {
-            let (sender, steps, next) = (sender.clone(), &steps, &next);
-            scope.spawn(move || loop {
-                let index = next.fetch_add(1, Ordering::Relaxed);
-                let Some((_, check)) = steps.get(index) else {
-                    break;
-                };
-                if sender.send((index, check())).is_err() {
-                    break;
-                }
-            });
-        }
-        drop(sender);
-        for (done, (index, reports)) in receiver.iter().enumerate() {
-            progress(done + 1, total, steps[index].0);
-            results[index] = Some(reports);
-        }
-    });
-    results.into_iter().flatten().flatten().collect()
+    let mut done = 0;
+    let reports = crate::workers::each_on_own_threads(
+        total,
+        rayon::current_num_threads(),
+        |index| (steps[index].1)(),
+        |index, _| {
+            done += 1;
+            progress(done, total, steps[index].0);
+        },
+    );
+    reports.into_iter().flatten().collect()
 }
