@@ -189,12 +189,13 @@ impl<R: Real> Compliance<R> for Persson<R> {
         -(self.gamma.clone() * &self.sigma / &load.square())
     }
     fn slope_change(&self, reference: &R, offset: &R) -> R {
-        self.slope_change_about(reference)(offset)
+        // γσ/(P0 + x) − γσ/P0 = −v'(P0)·x/(P0 + x): exact in form, one division, and no
+        // product of two loads (which would overflow f64 for loads above 1e154, and
+        // underflow below 1e-154).
+        -(offset.clone() / &(offset.clone() + reference) * &self.slope(reference))
     }
     fn slope_change_about<'a>(&'a self, reference: &R) -> SlopeChange<'a, R> {
-        // γσ/(P0 + x) − γσ/P0 = −v'(P0)·x/(P0 + x): exact in form, one division an
-        // evaluation, and no product of two loads (which would overflow f64 for loads
-        // above 1e154, and underflow below 1e-154).
+        // `slope_change` with v'(P0) formed once: the same operations, the same values.
         let (reference, slope) = (reference.clone(), self.slope(reference));
         Box::new(move |offset: &R| -(offset.clone() / &(offset.clone() + &reference) * &slope))
     }
