@@ -436,8 +436,9 @@ fn in_f64(case: &CaseSpec, deadline: Instant) -> Result<Result<Answer, Fallback>
 }
 
 /// Whether the digits f64 determines are enough to print: [`F64_DIGITS_FLOOR`] or more,
-/// never for a W of 0 ± 0 (an exact zero is answered by its reason before f64 runs), or one fewer where only the rounding boundary of the next digit is straddled (every
-/// digit printed is still right, and MPFR would cost a thousand times more).
+/// or one fewer where only the rounding boundary of the next digit is straddled (every
+/// digit printed is still right, and MPFR would cost a thousand times more); never for a
+/// W of 0 ± 0 (an exact zero is answered by its reason before f64 runs).
 fn f64_suffices(result: &Dissipation<f64>) -> Result<(), Fallback> {
     if result.total == 0.0 && result.error_estimate == 0.0 {
         return Err(Fallback::ZeroInF64);

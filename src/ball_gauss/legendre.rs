@@ -145,7 +145,8 @@ fn newton_step(n: u64, around: &Ball, bits: u32) -> Option<(Ball, Ball)> {
         };
         (value, slope)
     };
-    let (slope_range, curvature_range) = derivative_ranges(n, &reach, &(reach.square() - &one), precision);
+    let reach_square = reach.square();
+    let (slope_range, curvature_range) = derivative_ranges(n, &reach, &(reach_square.clone() - &one), precision);
     let slope_between = slope.clone() + &(curvature_range.clone() * &(reach.clone() - &mid));
     let root = mid.clone() - &(value.clone() / &slope_between);
     if !root.is_finite() || root.relative_radius() >= around.relative_radius() {
@@ -155,7 +156,7 @@ fn newton_step(n: u64, around: &Ball, bits: u32) -> Option<(Ball, Ball)> {
     let eigenvalue = mid.int((n * (n + 1)) as i64);
     let curvature = (mid.int(2) * &mid * &slope - eigenvalue.clone() * &value) / &(one.clone() - &mid.square());
     let third_range = (reach.int(4) * &reach * &curvature_range - (eigenvalue - &mid.int(2)) * &slope_range)
-        / &(one.clone() - &reach.square());
+        / &(one.clone() - &reach_square);
     let slope_at_root = slope + &(curvature * &step) + &(third_range * &step.square()).times_power_of_two(-1);
     let weight = mid.int(2) / &((one - &root.square()) * &slope_at_root.square());
     weight.is_finite().then(|| (round(&root, bits), round(&weight, bits)))
