@@ -185,6 +185,26 @@ impl Value {
         }
     }
 
+    /// The value in the ball's real interval (read at `bits`), with at most `most`
+    /// significant digits, however far its size lies beyond the range of MPFR.
+    #[cfg(feature = "certified")]
+    pub fn of_ball(ball: &crate::ball::Ball, bits: u32, most: u32) -> Self {
+        let Some((scaled, shift)) = ball.decimal_scaled() else {
+            let (lower, upper) = ball.bounds(bits);
+            return Value::within(&lower, &upper, most);
+        };
+        let (lower, upper) = scaled.bounds(bits);
+        let value = Value::within(&lower, &upper, most);
+        let shift_text = |text: String| crate::verified::shift_exponent(&text, shift);
+        Value {
+            decimal: value.decimal.shifted(shift),
+            enclosure: value
+                .enclosure
+                .map(|(lower, upper)| (shift_text(lower), shift_text(upper))),
+            binary64: None,
+        }
+    }
+
     /// The value in [`value` − `radius`, `value` + `radius`], with at most `most`
     /// significant digits.
     pub fn about(value: &Float, radius: &Float, most: u32) -> Self {

@@ -27,14 +27,20 @@ use std::ops::{Add, AddAssign, Div, DivAssign, Mul, MulAssign, Neg, Rem, RemAssi
 use flint_sys::acb::*;
 use flint_sys::acb_types::acb_struct;
 use flint_sys::arb::*;
-use flint_sys::arb_types::arb_struct;
-use flint_sys::arf::{arf_get_d, arf_get_mpfr, arf_rnd_t_ARF_RND_NEAR};
+use flint_sys::arb_types::{arb_struct, mag_struct};
+use flint_sys::arf::{
+    arf_abs_bound_lt_2exp_si, arf_clear, arf_get_d, arf_get_mpfr, arf_init, arf_is_zero, arf_rnd_t_ARF_RND_NEAR,
+    arf_set_mag,
+};
 use flint_sys::arf_types::arf_struct;
+use flint_sys::mag::{mag_clear, mag_cmp, mag_init, mag_is_zero, mag_mul_2exp_si};
+
 use flint_sys::deps::{__mpfr_struct, mpfr_rnd_t_MPFR_RNDD, mpfr_rnd_t_MPFR_RNDU};
 use num_traits::ToPrimitive;
 use rug::Float;
 
 use crate::real::{ParseRealError, Precision, Real};
+use crate::verified::shift_exponent;
 
 thread_local! {
     static UNDECIDED: Cell<u64> = const { Cell::new(0) };
@@ -135,6 +141,10 @@ pub struct Ball {
 // reference; FLINT's functions are thread-safe on distinct objects.
 unsafe impl Send for Ball {}
 unsafe impl Sync for Ball {}
+
+/// The binary exponent beyond which a ball's decimal exponent is not printed: 2^61, so
+/// that decimal exponents stay far inside i64.
+pub const MOST_DECIMAL_BINARY_EXPONENT: i64 = 1 << 61;
 
 impl Drop for Ball {
     fn drop(&mut self) {
@@ -247,6 +257,48 @@ impl Ball {
         unsafe { acb_contains_zero(&self.raw) != 0 }
     }
 
+    /// Whether every |x| in the ball is below 2^`log2_factor` times the least |y| in
+    /// `scale`: how a value that should be much smaller than another is recognised
+    /// without reading either into a float of bounded exponent.
+    pub(crate) fn is_below_scaled(&self, scale: &Ball, log2_factor: i64) -> bool {
+        let (mut upper, mut lower) = (mag_struct::default(), mag_struct::default());
+        // SAFETY: the magnitudes are initialised here and cleared before returning;
+        // the balls are initialised.
+        unsafe {
+            mag_init(&mut upper);
+            mag_init(&mut lower);
+            acb_get_mag(&mut upper, &self.raw);
+            acb_get_mag_lower(&mut lower, &scale.raw);
+            mag_mul_2exp_si(&mut lower, &lower, log2_factor);
+            let below = mag_cmp(&upper, &lower) < 0;
+            mag_clear(&mut upper);
+            mag_clear(&mut lower);
+            below
+        }
+    }
+
+    /// Of two enclosures of one value, the one whose bound on the absolute value is
+    /// smaller.
+    pub(crate) fn tighter(self, other: Ball) -> Ball {
+        let (mut mine, mut theirs) = (mag_struct::default(), mag_struct::default());
+        // SAFETY: as in `is_below_scaled`.
+        let other_is_tighter = unsafe {
+            mag_init(&mut mine);
+            mag_init(&mut theirs);
+            acb_get_mag(&mut mine, &self.raw);
+            acb_get_mag(&mut theirs, &other.raw);
+            let tighter = mag_cmp(&theirs, &mine) < 0;
+            mag_clear(&mut mine);
+            mag_clear(&mut theirs);
+            tighter
+        };
+        if other_is_tighter {
+            other
+        } else {
+            self
+        }
+    }
+
     /// The ball is a single number (radius zero).
     pub fn is_exact(&self) -> bool {
         // SAFETY: initialised.
@@ -271,10 +323,71 @@ impl Ball {
         (lower, upper)
     }
 
+    /// Whether the real part's size (its midpoint's, or its radius's where that is
+    /// larger) lies within 2^(±2^61) (10^(±6.9·10¹⁷)), whose decimal exponents the printed
+    /// decimals hold; zero does.
+    pub fn decimal_exponent_fits(&self) -> bool {
+        self.binary_exponent().abs() < MOST_DECIMAL_BINARY_EXPONENT
+    }
+
+    /// An e with |x| < 2^e for every x of the real part, the larger of Arb's bounds on
+    /// its midpoint and on its radius (saturated far beyond
+    /// [`MOST_DECIMAL_BINARY_EXPONENT`]); 0 for an exact zero. A ball that contains zero
+    /// has the size of its radius.
+    fn binary_exponent(&self) -> i64 {
+        let (mid, radius) = (&self.raw.real.mid, &self.raw.real.rad);
+        let mut radius_as_arf = arf_struct::default();
+        // SAFETY: initialised; the arf is initialised and cleared here.
+        unsafe {
+            let mid_bound = (arf_is_zero(mid) == 0).then(|| arf_abs_bound_lt_2exp_si(mid));
+            let radius_bound = (mag_is_zero(radius) == 0).then(|| {
+                arf_init(&mut radius_as_arf);
+                arf_set_mag(&mut radius_as_arf, radius);
+                let bound = arf_abs_bound_lt_2exp_si(&radius_as_arf);
+                arf_clear(&mut radius_as_arf);
+                bound
+            });
+            mid_bound.into_iter().chain(radius_bound).max().unwrap_or(0)
+        }
+    }
+
+    /// The real part as `(scaled, shift)` with the ball = scaled·10^shift and scaled of a
+    /// size MPFR holds, where the ball's own size lies beyond 2^(±2^29) (rug's floats end
+    /// at 2^(±2^30); W = e^(−P/c)-small at loads of 10⁹ decay loads is such a number);
+    /// `None` where it needs no scaling. The scaled ball contains the exact quotient, so
+    /// digits it rounds to, shifted, are digits the ball rounds to.
+    /// A ball beyond [`Ball::decimal_exponent_fits`] scales to an indeterminate ball,
+    /// which determines no digit.
+    pub fn decimal_scaled(&self) -> Option<(Ball, i64)> {
+        const MPFR_SAFE_EXPONENT: i64 = 1 << 29;
+        let binary = self.binary_exponent();
+        if binary.abs() <= MPFR_SAFE_EXPONENT || !self.is_finite() {
+            return None;
+        }
+        if !self.decimal_exponent_fits() {
+            return Some((self.indeterminate(), 0));
+        }
+        // 10^shift within a factor 10 of the ball's midpoint.
+        let shift = ((binary - 1) as f64 * std::f64::consts::LOG10_2).floor() as i64;
+        let bits = self.precision + 64;
+        let mut power = Ball::zero(bits);
+        // SAFETY: initialised; the real part is written, the imaginary part stays zero.
+        unsafe { arb_ui_pow_ui(power.real_mut(), 10, shift.unsigned_abs(), i64::from(bits)) };
+        let scaled = if shift > 0 {
+            self.clone() / &power
+        } else {
+            self.clone() * &power
+        };
+        Some((scaled, shift))
+    }
+
     /// An upper bound on the real part's radius relative to its midpoint (infinite
     /// where the ball contains zero and is not exactly zero), as a 64-bit float: the
     /// radius of a ball of more than 320 digits is below the range of f64.
     pub fn relative_radius(&self) -> Float {
+        if let Some((scaled, _)) = self.decimal_scaled() {
+            return scaled.relative_radius();
+        }
         let (lower, upper) = self.bounds(self.precision + 64);
         if lower.is_zero() && upper.is_zero() {
             return Float::new(64);
@@ -730,8 +843,21 @@ impl Real for Ball {
         Ball::from_i64(1, precision).times_power_of_two(1 - precision.in_bits() as i32)
     }
     fn smallest_full_precision(precision: Precision) -> Self {
-        // Arb's exponents are unbounded; like MPFR, nothing physical comes near this.
-        Ball::from_i64(1, precision).times_power_of_two(-(1 << 28))
+        // Arb's exponents are integers of any size, so a ball keeps its precision however
+        // small it is; this floor, 2^(−2^4096), lies below e^(−P/c) at every load the input
+        // can give (MPFR's, 2^(−2^28), is passed by e^(−P/c) at P = 2·10⁸ c), and a W too
+        // small to print is refused by its size ([`Ball::decimal_exponent_fits`]).
+        let mut exponent: flint_sys::flint::fmpz = 0;
+        // SAFETY: the fmpz is initialised and cleared here; the ball is initialised and
+        // scaled in place.
+        unsafe {
+            flint_sys::fmpz::fmpz_init(&mut exponent);
+            flint_sys::fmpz::fmpz_set_si(&mut exponent, -1);
+            flint_sys::fmpz::fmpz_mul_2exp(&mut exponent, &exponent, 4096);
+            let floor = Ball::from_i64(1, precision).in_place(|raw, _| acb_mul_2exp_fmpz(raw, raw, &exponent));
+            flint_sys::fmpz::fmpz_clear(&mut exponent);
+            floor
+        }
     }
 
     fn sqrt(&self) -> Self {
@@ -971,6 +1097,9 @@ pub fn certain_digits(ball: &Ball, max_digits: u32) -> Option<(String, u32)> {
     let max_digits = max_digits.max(1);
     if !ball.is_real() || !ball.is_finite() {
         return None;
+    }
+    if let Some((scaled, shift)) = ball.decimal_scaled() {
+        return certain_digits(&scaled, max_digits).map(|(text, digits)| (shift_exponent(&text, shift), digits));
     }
     // SAFETY: initialised.
     if unsafe { arb_is_zero(ball.real_part()) } != 0 {

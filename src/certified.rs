@@ -113,6 +113,18 @@ pub enum CertifiedError {
         /// The largest working precision tried.
         bits: u32,
     },
+    /// W lies beyond the decimal exponents printed ([`crate::ball::MOST_DECIMAL_BINARY_EXPONENT`]):
+    /// e^(−P/c) at loads of 10¹⁸ decay loads c.
+    #[error("W is enclosed but its size lies beyond 2^(±2^61) (10^(±6.9e17)), past the decimal exponents microslip prints: the case's loads are beyond 10^18 times the compliance's own load scale")]
+    BeyondDecimalExponents,
+    /// v' falls by more than e^[`MOST_DECAY_FOLDS`] across the cycle's loads: their span
+    /// over the compliance's decay load (the exponential's c) is beyond what the bounds
+    /// on complex boxes resolve at any precision.
+    #[error("the compliance's v' falls by a factor of up to e^({folds:.1e}) across the cycle's loads (their span, at most 2·P1 + Q1/f, over its decay load); the enclosure resolves at most e^(1e13), so no digit of W can be vouched for: bring the loads within 10^13 decay loads of each other")]
+    TooSteep {
+        /// The span of the loads over the decay load.
+        folds: f64,
+    },
     /// The deadline passed, or would pass during the next attempt, before the enclosure
     /// was narrow enough.
     #[error("the time budget ran out before the enclosure of W was narrow enough: {reached} of the {asked} digits asked reached (working precision {bits} bits)")]
@@ -151,6 +163,9 @@ pub fn enclose_dissipation(
         return Err(undecided(bits, doubts));
     }
     let valid = valid?;
+    if let Some(folds) = decay_folds(cycle, compliance).filter(|folds| folds.is_nan() || *folds > MOST_DECAY_FOLDS) {
+        return Err(CertifiedError::TooSteep { folds });
+    }
     let zero = cycle.mean_normal_load.int(0);
     let exact_zero = || Enclosure {
         total: zero.clone(),
@@ -193,6 +208,22 @@ pub fn enclose_dissipation(
     })
 }
 
+/// The most e-folds of v' across a cycle's loads that [`enclose_dissipation`] takes on:
+/// the bound of an integrand e^(−P/c) on a complex box grows as e^(width/c), and beyond
+/// this the boxes it needs are too many to integrate (proofs/certified-digits.md, "Loads
+/// of many decay loads").
+pub const MOST_DECAY_FOLDS: f64 = 1e13;
+
+/// How many times the compliance's decay load fits in the span of the loads v' is taken
+/// at: from the lowest slip load P_T ≥ P0 − P1 − Q1/f up to P0 + P1, so at most
+/// 2·P1 + Q1/f; `None` for a compliance without a decay load of its own.
+fn decay_folds(cycle: &LoadCycle<Ball>, compliance: &dyn Compliance<Ball>) -> Option<f64> {
+    let decay_load = compliance.decay_load()?;
+    let span = cycle.normal_amplitude.clone() * &cycle.normal_amplitude.int(2)
+        + &(cycle.tangential_amplitude.clone() / &cycle.friction);
+    Some((span / &decay_load).to_f64_lossy())
+}
+
 /// The undecided comparisons of a computation, as the refusal at `bits`.
 fn undecided(bits: u32, doubts: Doubts) -> CertifiedError {
     CertifiedError::Undecided {
@@ -223,6 +254,48 @@ fn slopes<'a>(
     Ok(attempts)
 }
 
+/// How far (in bits) above the rounding of v'(P0) a plain difference of slopes must lie
+/// to bound the slope change on its own.
+const ROUNDING_MARGIN_BITS: i64 = 32;
+
+/// The slope change x ↦ v'(P0 + x) − v'(P0) on complex balls, for Arb's bounds: the
+/// plain difference of slopes (the last of `slopes`), whose width does not grow with
+/// the algebra of a compliance's own form; but for a compliance that `decays` (one with
+/// a decay load), where that difference is lost in the rounding of v'(P0) — a slope
+/// change far below v' itself, as for a·e^(−P/c) + d at loads of thousands of c — the
+/// tighter of it and the compliance's own form (the first), both enclosures of the same
+/// value.
+fn bounding_slope<'s>(
+    slopes: &'s [SlopeChange<'_, Ball>],
+    at_mean: Ball,
+    bits: u32,
+    decays: bool,
+) -> impl Fn(&Ball) -> Ball + Send + Sync + 's {
+    let plain = slopes.last().expect("the plain difference is always tried");
+    let own = (decays && slopes.len() > 1).then(|| &slopes[0]);
+    let floor = ROUNDING_MARGIN_BITS - i64::from(bits);
+    move |offset: &Ball| {
+        let bound = plain(offset);
+        match own {
+            Some(own) if bound.is_below_scaled(&at_mean, floor) => bound.tighter(own(offset)),
+            _ => bound,
+        }
+    }
+}
+
+/// A size that no segment integrand exceeds by much: the largest |v'(P) − v'(P0)| over
+/// the cycle's loads (at P_T or at P0 + P1, v' being monotone) times Q1 and the largest
+/// rates of slip, fP1 + Q1 + σ₊.
+fn integrand_ceiling(geometry: &EllipseGeometry<Ball>, slope: &(dyn Fn(&Ball) -> Ball + Send + Sync)) -> Ball {
+    let largest_change = slope(&geometry.permanent_stick_offset)
+        .abs()
+        .max_of(&slope(&geometry.normal_amplitude).abs());
+    let rates = geometry.friction.clone() * &geometry.normal_amplitude
+        + &geometry.tangential_amplitude
+        + &geometry.sum_amplitude;
+    largest_change * &geometry.tangential_amplitude * &rates
+}
+
 /// The four segments of an elliptic cycle per unit λ, and how many pieces they took.
 fn enclose_segments(
     valid: &ValidCycle<Ball>,
@@ -241,20 +314,34 @@ fn enclose_segments(
     };
     let mut outcome = None;
     let slopes = slopes(compliance, &geometry.mean_normal_load, bits)?;
-    // The plain difference of slopes (the last) bounds every attempt on complex balls.
-    let bound_slope = slopes.last().expect("the plain difference is always tried");
+    let (at_mean, doubts) = watch(|| compliance.slope(&geometry.mean_normal_load));
+    if !doubts.none() {
+        return Err(undecided(bits, doubts));
+    }
+    // Only a compliance with a decay load of its own has slope changes far below the
+    // rounding of v'(P0), and peaks the rough W can miss; the others keep the plain bound.
+    let decays = compliance.decay_load().is_some();
+    let bound_slope = bounding_slope(&slopes, at_mean, bits, decays);
+    let ceiling = decays
+        .then(|| watch(|| integrand_ceiling(&geometry, slopes[0].as_ref())))
+        .and_then(|(ceiling, doubts)| doubts.none().then_some(ceiling));
     // Near separation, the same difference at the lowest load's bottom as a product.
     let (at_bottom, doubts) = watch(|| bottom_slope_change(compliance, &geometry));
     if !doubts.none() {
         return Err(undecided(bits, doubts));
     }
     for slope in &slopes {
-        let (pieces, doubts) =
-            watch(|| certified_pieces(&integrands, slope.as_ref(), bound_slope.as_ref(), &at_bottom));
+        let (pieces, doubts) = watch(|| certified_pieces(&integrands, slope.as_ref(), &bound_slope, &at_bottom));
         if !doubts.none() {
             return Err(undecided(bits, doubts));
         }
-        outcome = Some(integrate_pieces(&pieces, Segment::ALL.len(), goal_bits, bits));
+        outcome = Some(integrate_pieces(
+            &pieces,
+            Segment::ALL.len(),
+            goal_bits,
+            bits,
+            ceiling.as_ref(),
+        ));
         if matches!(outcome, Some(Ok(_))) {
             break;
         }
@@ -298,20 +385,31 @@ fn enclose_terms<const N: usize>(
         if !doubts.none() {
             return Err(undecided(bits, doubts));
         }
+        let decay_load = compliance.decay_load();
         let pieces: Vec<CertifiedPiece<'_>> = pieces
             .into_iter()
             .zip(term_of_piece)
-            .map(|(piece, term)| CertifiedPiece {
-                group: term,
-                label: piece.label,
-                start: piece.start,
-                end: piece.end,
-                integrand: piece.integrand,
-                bound: None,
-                evaluations: Cell::new(0),
+            .flat_map(|(piece, term)| {
+                let parts = match &decay_load {
+                    Some(decay_load) => cut_from_low_end(&piece.start, &piece.end, decay_load),
+                    None => vec![(piece.start.clone(), piece.end.clone())],
+                };
+                let integrand = Rc::new(piece.integrand);
+                parts.into_iter().map(move |(start, end)| {
+                    let integrand = Rc::clone(&integrand);
+                    CertifiedPiece {
+                        group: term,
+                        label: piece.label,
+                        start,
+                        end,
+                        integrand: Box::new(move |x: &Ball| integrand(x)),
+                        bound: None,
+                        evaluations: Cell::new(0),
+                    }
+                })
             })
             .collect();
-        outcome = Some(integrate_pieces(&pieces, N, goal_bits, bits));
+        outcome = Some(integrate_pieces(&pieces, N, goal_bits, bits, None));
         if matches!(outcome, Some(Ok(_))) {
             break;
         }
@@ -319,6 +417,33 @@ fn enclose_terms<const N: usize>(
     let (sums, pieces) = outcome.expect("one slope at least")?;
     let mut sums = sums.into_iter();
     Ok((std::array::from_fn(|_| sums.next().expect("one sum per term")), pieces))
+}
+
+/// [`start`, `end`] (in either order) cut at ℓ + c·2^k, k = 0, 1, …, strictly inside,
+/// with ℓ its lower end and c the decay load: an integrand e^(−(x − ℓ)/c) varies over each
+/// part's Bernstein ellipse (X = 2) by no more than over the part itself, where over one
+/// piece of many decay loads its bound grows as e^(length/c).
+fn cut_from_low_end(start: &Ball, end: &Ball, decay_load: &Ball) -> Vec<(Ball, Ball)> {
+    let (from, to) = (start.to_f64_lossy(), end.to_f64_lossy());
+    // The last cut lies at most a quarter of the length from ℓ: decided by doubles, no
+    // comparison of balls is needed to keep the cuts inside and in order.
+    let cuts = ((to - from).abs() / decay_load.to_f64_lossy()).log2().floor() - 2.0;
+    if cuts.is_nan() || cuts < 1.0 {
+        return vec![(start.clone(), end.clone())];
+    }
+    let low = if from < to { start } else { end };
+    let mut points: Vec<Ball> = (0..cuts.min(f64::from(i32::MAX)) as i32)
+        .map(|k| low.clone() + &decay_load.clone().times_power_of_two(k))
+        .collect();
+    if from > to {
+        points.reverse();
+    }
+    points.insert(0, start.clone());
+    points.push(end.clone());
+    points
+        .windows(2)
+        .map(|pair| (pair[0].clone(), pair[1].clone()))
+        .collect()
 }
 
 /// The position of a segment in [`Segment::ALL`].
@@ -355,10 +480,11 @@ fn integrate_pieces(
     groups: usize,
     goal_bits: u32,
     bits: u32,
+    ceiling: Option<&Ball>,
 ) -> Result<(Vec<Ball>, usize), CertifiedError> {
     let mut sums = vec![Ball::from_i64(0, Precision::bits(bits)); groups];
     let zero = Ball::from_i64(0, Precision::bits(bits));
-    let tolerance = absolute_tolerance(pieces, goal_bits, &zero);
+    let tolerance = absolute_tolerance(pieces, goal_bits, &zero, ceiling);
     for piece in pieces {
         let value = integrate_piece(piece, goal_bits, &tolerance, bits);
         if !value.is_finite() {
@@ -437,6 +563,9 @@ where
         // spare bits; a retry adds what the precision gained.
         let goal = (digit_bits + GOAL_GUARD_BITS + extra).min(first) + (bits - first);
         let error = match enclose_dissipation(&cycle, compliance.as_ref(), goal) {
+            Ok(enclosure) if !enclosure.total.decimal_exponent_fits() => {
+                return Err(CertifiedError::BeyondDecimalExponents);
+            }
             Ok(enclosure) => {
                 let certain = certain_digits(&enclosure.total, digits);
                 if let Some((text, enough)) = certain.clone().filter(|(_, n)| *n >= digits) {
@@ -456,8 +585,9 @@ where
                     bits,
                 }
             }
-            // A cycle outside the theory stays outside at any precision.
-            Err(error @ CertifiedError::Cycle(_)) => return Err(error),
+            // A cycle outside the theory stays outside at any precision, and so does one
+            // too steep for the bounds.
+            Err(error @ (CertifiedError::Cycle(_) | CertifiedError::TooSteep { .. })) => return Err(error),
             // Arb gave up on a piece at two precisions in a row: its integrand has a
             // singularity too near the piece for bisection, which more bits do not move.
             Err(error @ CertifiedError::NotFinite { .. }) if gave_up_before => return Err(error),
@@ -695,6 +825,25 @@ impl CertifiedPiece<'_> {
         }
         Some(sum * &half / &self.start.int(9))
     }
+
+    /// A rough value of the integral that also sees the ends, where the pieces' narrow
+    /// peaks lie (five-point Gauss–Lobatto); the three-point value where an end cannot
+    /// be evaluated.
+    fn rough_integral_with_ends(&self) -> Option<Ball> {
+        let (Some(at_start), Some(at_end)) = (self.value(&self.start, false), self.value(&self.end, false)) else {
+            return self.rough_integral();
+        };
+        let int = |n: i64| self.start.int(n);
+        let half = (self.end.clone() - &self.start) / &int(2);
+        let middle = self.start.clone() + &half;
+        let offset = half.clone() * &(int(3) / &int(7)).sqrt();
+        // Weights 1/10, 49/90, 32/45, 49/90, 1/10 on [−1, 1], over 90.
+        let mut sum = (at_start + &at_end) * &int(9) + &(self.value(&middle, false)? * &int(64));
+        for node in [middle.clone() - &offset, middle + &offset] {
+            sum += self.value(&node, false)? * &int(49);
+        }
+        Some(sum * &half / &int(90))
+    }
 }
 
 /// An absolute error Arb may stop at on a subinterval: 2^−goal of a rough W, so that a
@@ -702,13 +851,30 @@ impl CertifiedPiece<'_> {
 /// relative goal alone would ask for every bit) stops where W needs no more. Any
 /// tolerance keeps the enclosure rigorous; a rough W far too large only costs digits,
 /// which the next precision recovers. Zero (the relative goal alone) where no rough W
-/// is at hand.
-fn absolute_tolerance(pieces: &[CertifiedPiece<'_>], goal_bits: u32, zero: &Ball) -> Tolerance {
-    let rough = pieces
-        .iter()
-        .try_fold(zero.clone(), |sum, piece| Some(sum + &piece.rough_integral()?));
-    Tolerance::of(rough.filter(Ball::is_finite).as_ref(), goal_bits)
+/// is at hand. Where that W is below 2^−[`MISSED_PEAK_BITS`] of the integrands'
+/// `ceiling`, a peak at a piece's end narrower than the three points' spacing may have
+/// been missed (e^(−P/c) at loads of millions of c: the rough W is then smaller than W
+/// by thousands of digits, and no precision could meet a tolerance scaled to it), and
+/// a rough W that sees the ends replaces it.
+fn absolute_tolerance(pieces: &[CertifiedPiece<'_>], goal_bits: u32, zero: &Ball, ceiling: Option<&Ball>) -> Tolerance {
+    let rough = |estimate: &dyn Fn(&CertifiedPiece<'_>) -> Option<Ball>| {
+        pieces
+            .iter()
+            .try_fold(zero.clone(), |sum, piece| Some(sum + &estimate(piece)?))
+            .filter(Ball::is_finite)
+    };
+    let mut scale = rough(&|piece| piece.rough_integral());
+    if let (Some(estimate), Some(ceiling)) = (&scale, ceiling) {
+        if estimate.is_below_scaled(ceiling, -MISSED_PEAK_BITS) {
+            scale = rough(&|piece| piece.rough_integral_with_ends()).or(scale);
+        }
+    }
+    Tolerance::of(scale.as_ref(), goal_bits)
 }
+
+/// How far below the integrands' ceiling a rough W must lie to be suspected of a missed
+/// peak ([`absolute_tolerance`]).
+const MISSED_PEAK_BITS: i64 = 30;
 
 /// An Arb magnitude (an upper bound of |x| times 2^−goal, or zero).
 struct Tolerance(mag_struct);

@@ -343,14 +343,15 @@ mod certified {
         let certified = match certified_dissipation_by(read, digits, Some(share)) {
             Ok(certified) => certified,
             Err(CertifiedError::Cycle(error)) => return Err(Err(DissipationError::from(error).into())),
+            // No precision of MPFR holds such a W either, nor resolves such a compliance.
+            Err(error @ (CertifiedError::BeyondDecimalExponents | CertifiedError::TooSteep { .. })) => {
+                return Err(Err(ReferenceError::Certified(error)))
+            }
             Err(error) => return Err(Ok(NoEnclosure::Refused(error))),
         };
         let enclosure = &certified.enclosure;
         let bits = enclosure.precision.in_bits();
-        let value = |ball: &Ball| {
-            let (lower, upper) = ball.bounds(bits);
-            Value::within(&lower, &upper, digits)
-        };
+        let value = |ball: &Ball| Value::of_ball(ball, bits, digits);
         let total = value(&enclosure.total);
         if total.digits() < digits {
             // The one printing rule is stricter than the driver's where an end is a tie.

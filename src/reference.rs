@@ -187,9 +187,11 @@ impl TwoPrecisions for FourSegmentW<'_> {
         std::slice::from_ref(&output.total)
     }
 
-    /// A closed form's W = 0 (no tangential oscillation, in phase with nothing slipping).
-    fn zeros_are_exact(&self, output: &Self::Output) -> bool {
-        output.method != Method::FourSegment
+    /// Never: the exact zeros (no tangential oscillation, in phase with nothing slipping,
+    /// a constant v') are answered by their reason before any run, so a zero here is a W
+    /// that underflowed or cancelled at both precisions, on whose digits they do not agree.
+    fn zeros_are_exact(&self, _output: &Self::Output) -> bool {
+        false
     }
 
     /// An integral that did not converge within the attempt's points or time.

@@ -344,7 +344,34 @@ pub enum Decimal {
     },
 }
 
+/// A decimal in scientific notation (`8.26e-5`) times 10^`shift` (`8.26e-872038342` for a
+/// shift of −872038337); text without an exponent (`0`, `inf`) as it is.
+pub(crate) fn shift_exponent(text: &str, shift: i64) -> String {
+    match text
+        .split_once('e')
+        .map(|(mantissa, exponent)| (mantissa, exponent.parse::<i64>()))
+    {
+        Some((mantissa, Ok(exponent))) if shift != 0 => format!("{mantissa}e{}", exponent + shift),
+        _ => text.to_string(),
+    }
+}
+
 impl Decimal {
+    /// The same decimal times 10^`shift`.
+    pub(crate) fn shifted(self, shift: i64) -> Decimal {
+        match self {
+            Decimal::Zero => Decimal::Zero,
+            Decimal::Digits { text, digits } => Decimal::Digits {
+                text: shift_exponent(&text, shift),
+                digits,
+            },
+            Decimal::Undetermined { lower, upper } => Decimal::Undetermined {
+                lower: shift_exponent(&lower, shift),
+                upper: shift_exponent(&upper, shift),
+            },
+        }
+    }
+
     /// The significant digits determined: `u32::MAX` for an exact zero, 0 where none is.
     pub fn digits(&self) -> u32 {
         match self {

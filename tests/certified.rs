@@ -6,18 +6,23 @@
 
 mod common;
 
+use microslip::answer::{Answer, Provenance, Value};
 use microslip::ball::{certain_digits, hull, watch, Ball};
+use microslip::case::CaseText;
 use microslip::certified::{certified_dissipation, enclose_dissipation, CertifiedError};
 use microslip::compliance::{parse_spec, Compliance, Polynomial};
 use microslip::cycle::LoadCycle;
 use microslip::dissipation::{dissipation, Options, Segment, SegmentIntegrands};
+use microslip::dissipation_answer::dissipation_answer;
 use microslip::exact::polynomial_dissipation;
 use microslip::phase::ExactPhase;
 use microslip::quad::sinh_map::{resolve_peaks, Peak};
 use microslip::quad::{integrate, Piece, Settings};
 use microslip::real::{Precision, Real};
+use microslip::reference::ReferenceError;
 use rug::ops::Pow;
 use rug::Float;
+use std::time::Duration;
 
 /// A case as exact decimals; a phase ending in `pi` is that multiple of π.
 #[derive(Clone, Debug)]
@@ -811,4 +816,137 @@ fn random_cases_at_the_corners_hold_their_100_digit_references() {
         assert_certified(&corner, 40);
         certified += 1;
     }
+}
+
+/// W of `case` printed by the library's one policy, with `digits` digits, or its refusal.
+fn printed_w(case: &Case, digits: u32) -> Result<Answer, ReferenceError> {
+    let text = CaseText {
+        p0: case.p0.clone(),
+        p1: case.p1.clone(),
+        q0: "0".into(),
+        q1: case.q1.clone(),
+        phi: case.phi.clone(),
+        friction: case.friction.clone(),
+        lambda: Some(case.lambda.clone()),
+        nu: None,
+        compliance: case.spec.clone(),
+    };
+    dissipation_answer(&text, Some(digits), Duration::from_secs(60))
+}
+
+/// An exponential v' = a·e^(−P/c) + d at loads of many decay loads c.
+fn decay_case(p0: &str, p1: &str, q1: &str, phi: &str, decay_load: &str) -> Case {
+    Case {
+        lambda: "1.14".into(),
+        ..case(p0, p1, q1, phi, "1.19", &format!("exp:a=2.204,c={decay_load},d=0.3174"))
+    }
+}
+
+/// `text` (a decimal in scientific notation) as mantissa and decimal exponent, for
+/// values whose exponents lie beyond any float's.
+fn mantissa_and_exponent(text: &str) -> (String, i64) {
+    let (mantissa, exponent) = text.split_once('e').expect("scientific notation");
+    (mantissa.to_string(), exponent.parse().expect("an integer exponent"))
+}
+
+/// At constant normal load W = 4λf²·a·e^(−(P0 − q)/c)·(qc + qcE + 2c²(E − 1)) with q = Q1/f
+/// and E = e^(−q/c), integrated by hand from the Masing loop's integral: its log10, formed
+/// in MPFR at 300 bits, gives the mantissa and the exponent of W however small W is.
+fn constant_normal_load_exponential(p0: &str, q1: &str) -> (Float, i64) {
+    let number = |text: &str| Float::with_val(300, Float::parse(text).unwrap());
+    let (p0, q1, f, lambda, a, c) = (
+        number(p0),
+        number(q1),
+        number("1.19"),
+        number("1.14"),
+        number("2.204"),
+        number("2.486"),
+    );
+    let q = q1 / &f;
+    let e = (-(q.clone() / &c)).exp();
+    let loop_integral = q.clone() * &c + &(q.clone() * &c * &e) + &(c.clone() * &c * 2u32 * &(e - 1u32));
+    let prefactor = lambda * 4u32 * &f * &f * &a * &loop_integral;
+    let log10 = prefactor.log10() - (p0 - &q) / &c / Float::with_val(300, 10u32).ln();
+    let exponent = log10.clone().floor();
+    let mantissa = Float::with_val(300, 10u32).pow(log10 - &exponent);
+    (mantissa, exponent.to_f64() as i64)
+}
+
+/// An exponential at 10⁹ decay loads and more, where W lies far beyond the range of MPFR
+/// (10^(−1.7·10⁹)): the constant-normal-load enclosure prints the digits of the Masing
+/// loop integrated by hand, mantissa and exponent alike.
+#[test]
+fn an_exponential_far_beyond_mpfrs_range_is_proven_against_its_closed_form() {
+    for p0 in ["1e4", "1e10", "1e15"] {
+        let case = decay_case(p0, "0", "5e2", "0", "2.486");
+        let answer = printed_w(&case, 20).expect("proven");
+        assert!(
+            matches!(answer.provenance, Provenance::Certified { .. }),
+            "{p0}: {:?}",
+            answer.provenance
+        );
+        let (mantissa, exponent) = mantissa_and_exponent(&answer.value.decimal.to_string());
+        let (expected_mantissa, expected_exponent) = constant_normal_load_exponential(p0, "5e2");
+        assert_eq!(exponent, expected_exponent, "{p0}");
+        let printed = Float::with_val(300, Float::parse(&mantissa).unwrap());
+        let unit = Float::with_val(300, 10u32).pow(-19i32) / 2u32;
+        assert!(
+            (printed - &expected_mantissa).abs() <= unit,
+            "{p0}: {mantissa} against {expected_mantissa:.25}"
+        );
+    }
+}
+
+/// W is the same for loads and decay load scaled together, times the square of the
+/// factor: at 10¹² decay loads (W ≈ 10^(−8.7·10¹¹)) the four-segment enclosures of two
+/// such cases print the same digits, two decimal exponents apart. At 2000 decay loads
+/// the enclosure holds Arb's own integration of the four segments (python-flint's
+/// acb.integral, proofs/certified-digits.md, "Loads of many decay loads").
+#[test]
+fn an_exponential_at_many_decay_loads_is_proven_in_four_segments() {
+    let small = printed_w(&decay_case("1e13", "5e12", "5e11", "2.39", "2.486"), 15).expect("proven");
+    let large = printed_w(&decay_case("1e14", "5e13", "5e12", "2.39", "24.86"), 15).expect("proven");
+    let (small_mantissa, small_exponent) = mantissa_and_exponent(&small.value.decimal.to_string());
+    let (large_mantissa, large_exponent) = mantissa_and_exponent(&large.value.decimal.to_string());
+    assert!(small_exponent < -800_000_000_000, "{small_exponent}");
+    assert_eq!((large_mantissa, large_exponent), (small_mantissa, small_exponent + 2));
+    let moderate = printed_w(&decay_case("1e4", "5e3", "5e2", "2.39", "2.486"), 15).expect("proven");
+    assert_eq!(moderate.value.decimal.to_string(), "5.07262441320447e-870");
+}
+
+/// Beyond 10¹³ decay loads across the cycle the bounds cannot resolve v', and beyond
+/// 2^(2^61) the decimal exponent is not printed: both are refused at once, with the reason.
+#[test]
+fn an_exponential_beyond_what_the_enclosure_resolves_is_refused_at_once() {
+    let started = std::time::Instant::now();
+    let steep = printed_w(&decay_case("1e41", "5e40", "5e39", "2.39", "2.486"), 15);
+    assert!(
+        matches!(steep, Err(ReferenceError::Certified(CertifiedError::TooSteep { folds })) if folds > 4e40),
+        "{steep:?}"
+    );
+    let tiny = printed_w(&decay_case("1e20", "1e7", "1e6", "2.39", "1"), 15);
+    assert!(
+        matches!(
+            tiny,
+            Err(ReferenceError::Certified(CertifiedError::BeyondDecimalExponents))
+        ),
+        "{tiny:?}"
+    );
+    assert!(started.elapsed() < Duration::from_secs(20), "{:?}", started.elapsed());
+}
+
+/// A ball whose size lies beyond MPFR's exponents prints by the one rule, its exponent
+/// carried apart: a zero-centred one as the interval it spans, with no digit.
+#[test]
+fn a_ball_beyond_mpfrs_exponents_prints_its_interval() {
+    let precision = Precision::bits(128);
+    let tiny = Ball::from_i64(1, precision).times_power_of_two(i32::MIN) / &Ball::from_i64(3, precision);
+    let around_zero = tiny.clone() - &tiny.clone();
+    let printed = Value::of_ball(&around_zero, 128, 15);
+    assert_eq!(printed.digits(), 0);
+    let text = printed.decimal.to_string();
+    assert!(text.contains("e-64645703"), "{text}");
+    let third = Value::of_ball(&tiny, 128, 15);
+    assert_eq!(third.digits(), 15);
+    assert!(third.decimal.to_string().starts_with("1.892"), "{}", third.decimal);
 }

@@ -46,6 +46,11 @@ fn reference_failure(error: ReferenceError, digits_given: bool) -> Failure {
             | DissipationError::IllConditioned { .. }
             | DissipationError::OutOfRange { .. },
         ) if !digits_given => "; try --digits N (digits in MPFR)",
+        #[cfg(feature = "certified")]
+        ReferenceError::Certified(
+            microslip::certified::CertifiedError::BeyondDecimalExponents
+            | microslip::certified::CertifiedError::TooSteep { .. },
+        ) => "",
         _ if !out_of_time(&error) => "",
         _ if digits_given => "; raise --max-seconds or ask for fewer --digits",
         _ => "; raise --max-seconds",
@@ -61,7 +66,7 @@ fn reference_failure(error: ReferenceError, digits_given: bool) -> Failure {
 /// Whether the digits could not be had in time (or at all): the input was fine.
 fn out_of_time(error: &ReferenceError) -> bool {
     match error {
-        ReferenceError::Budget(_) => true,
+        ReferenceError::Budget(_) | ReferenceError::Dissipation(DissipationError::OutOfTime) => true,
         #[cfg(feature = "certified")]
         ReferenceError::Certified(_) => true,
         _ => false,

@@ -54,6 +54,13 @@ impl<R: Real> Compliance<R> for Sum<R> {
     fn breakpoints(&self, like: &R) -> Vec<R> {
         merged_breakpoints(self.terms.iter().map(|c| c.breakpoints(like)))
     }
+    fn decay_load(&self) -> Option<R> {
+        // The shortest of the terms' scales.
+        self.terms
+            .iter()
+            .filter_map(|c| c.decay_load())
+            .reduce(|shortest, scale| shortest.min_of(&scale))
+    }
     fn describe(&self) -> String {
         let parts: Vec<String> = self.terms.iter().map(|c| c.describe()).collect();
         parts.join(" + ")
@@ -109,6 +116,9 @@ impl<R: Real> Compliance<R> for Scaled<R> {
     fn breakpoints(&self, like: &R) -> Vec<R> {
         self.inner.breakpoints(like)
     }
+    fn decay_load(&self) -> Option<R> {
+        self.inner.decay_load()
+    }
     fn describe(&self) -> String {
         format!("{} × ({})", self.factor.to_scientific(6), self.inner.describe())
     }
@@ -161,6 +171,9 @@ impl<R: Real> Compliance<R> for Shifted<R> {
     fn breakpoints(&self, like: &R) -> Vec<R> {
         self.inner.breakpoints(like)
     }
+    fn decay_load(&self) -> Option<R> {
+        self.inner.decay_load()
+    }
     fn describe(&self) -> String {
         format!("({}) + {}·P", self.inner.describe(), self.extra_slope.to_scientific(6))
     }
@@ -208,6 +221,10 @@ impl<R: Real> Compliance<R> for LoadScaled<R> {
     }
     fn slope_at_scaled_square(&self, scale: &R, root: &R) -> R {
         self.inner.slope_at_scaled_square(&(scale.clone() / &self.factor), root)
+    }
+    fn decay_load(&self) -> Option<R> {
+        // v'(P/k) decays over k times the inner scale.
+        self.inner.decay_load().map(|scale| (scale * &self.factor).abs())
     }
     fn breakpoints(&self, like: &R) -> Vec<R> {
         let mut loads: Vec<R> = self

@@ -504,6 +504,15 @@ impl<R: Real> Compliance<R> for Exponential<R> {
         let reference = reference.clone();
         Box::new(move |offset: &R| self.slope_change(&reference, offset))
     }
+    fn decay_load(&self) -> Option<R> {
+        (self.decay_load > self.decay_load.int(0)).then(|| self.decay_load.clone())
+    }
+    fn admissible_by_form(&self, low: &R, _high: &R) -> bool {
+        // v' = a·e^(−P/c) + d > 0 and v'' = −(a/c)·e^(−P/c) < 0 at every load for a, c > 0
+        // and d ≥ 0, even where e^(−P/c) is below the type's smallest number.
+        let zero = low.int(0);
+        self.amplitude > zero && self.decay_load > zero && self.constant >= zero
+    }
     fn describe(&self) -> String {
         format!(
             "exponential v' = {}·exp(−P/{}) + {}",

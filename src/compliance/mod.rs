@@ -75,6 +75,14 @@ pub trait Compliance<R: Real>: Debug + Send + Sync {
     fn slope_at_scaled_square(&self, scale: &R, root: &R) -> R {
         self.slope(&(root.square() * scale))
     }
+    /// The load over which v' decays by a factor e, for a compliance with a load scale
+    /// of its own (the exponential's c); `None` for one whose only load scale is the
+    /// load itself (the power laws, Persson's, a polynomial). Where it is shorter than
+    /// the cycle's lowest load, the integrands of W peak within about √(2c/P1) rad of
+    /// every lowest load, and the quadrature maps peaks of that width.
+    fn decay_load(&self) -> Option<R> {
+        None
+    }
     /// The loads where v' is not analytic (the knots of an interpolant, where its
     /// derivatives jump), at the precision of `like`, increasing; none for the analytic
     /// families. The dissipation integrals split at the angles where a load crosses

@@ -564,7 +564,9 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
     /// of half-width acosh(P0/P1) (where P0 + P1 cos θ vanishes, off the real axis);
     /// for EB P_S = P_T + σ₊ sin²h/f at B, of half-width 2 asinh(√(fP_T/σ₊)), and for HE
     /// P_K likewise at E with σ₋. A compliance singular at P = 0 makes these peaks as
-    /// narrow as √((P0 − P1)/P0) near separation and √(P_T/P0) near gross slip.
+    /// narrow as √((P0 − P1)/P0) near separation and √(P_T/P0) near gross slip; one with a
+    /// decay load c shorter than those loads ([`Compliance::decay_load`]) as narrow as
+    /// √(2c/P1), the load itself replaced by c in each width.
     fn low_loads(&self, segment: Segment) -> Vec<(Peak<R>, LowLoad)> {
         let g = self.geometry;
         let (start, length) = self.extent(segment);
@@ -572,7 +574,18 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
         let pi = length.pi_like();
         // Six turns, twice for CH, and the slip load's peak.
         let mut peaks = Vec::with_capacity(13);
+        // A v' singular at P = 0 peaks over the load itself, one with a decay load of its
+        // own over that where it is shorter.
+        let decay_load = self.compliance.decay_load();
+        let within_decay = |load: R| match &decay_load {
+            Some(scale) => load.min_of(scale),
+            None => load,
+        };
         if let Some(margin) = self.normal_margin() {
+            let margin = match &decay_load {
+                Some(scale) => margin.min_of(&(scale.clone() / &g.normal_amplitude)),
+                None => margin,
+            };
             let width = acosh_one_plus(&margin);
             // A centre more than the segment's length outside it is farther than its length
             // from every window in it, which `resolve_peaks` skips: it is not formed in R.
@@ -601,7 +614,7 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
             }
         }
         if let Some(amplitude) = self.slip_amplitude(segment).filter(|a| **a > zero) {
-            let ratio = g.permanent_stick_load() * &g.friction / amplitude;
+            let ratio = within_decay(g.permanent_stick_load()) * &g.friction / amplitude;
             let width = asinh(&ratio.max_of(&zero).sqrt()) * &zero.int(2);
             peaks.push((
                 Peak {
