@@ -37,6 +37,7 @@ use flint_sys::mag::{mag_clear, mag_cmp, mag_init, mag_is_zero, mag_mul_2exp_si}
 
 use flint_sys::deps::{__mpfr_struct, mpfr_rnd_t_MPFR_RNDD, mpfr_rnd_t_MPFR_RNDU};
 use num_traits::ToPrimitive;
+use rug::float::Round;
 use rug::Float;
 
 use crate::real::{ParseRealError, Precision, Real};
@@ -145,6 +146,58 @@ unsafe impl Sync for Ball {}
 /// The binary exponent beyond which a ball's decimal exponent is not printed: 2^61, so
 /// that decimal exponents stay far inside i64.
 pub const MOST_DECIMAL_BINARY_EXPONENT: i64 = 1 << 61;
+
+/// `x` into `out` rounded in the direction `round`, as MPFR rounds a result past its
+/// exponent range: below it to 0 or the least positive number, beyond it to the largest
+/// finite number or infinity, whichever lies on the side of `x` that `round` asks for
+/// (`arf_get_mpfr` leaves such an exponent out of range, which MPFR does not expect).
+///
+/// # Safety
+/// `x` must be an initialised arf.
+unsafe fn outward_into_mpfr(out: &mut Float, x: &arf_struct, round: Round) {
+    let direction = match round {
+        Round::Down => mpfr_rnd_t_MPFR_RNDD,
+        _ => mpfr_rnd_t_MPFR_RNDU,
+    };
+    // SAFETY: `x` is initialised (the caller's promise).
+    let (zero, exponent, negative) = unsafe {
+        (
+            arf_is_zero(x) != 0,
+            arf_abs_bound_lt_2exp_si(x),
+            flint_sys::arf::arf_sgn(x) < 0,
+        )
+    };
+    let (low, high) = (i64::from(rug::float::exp_min()), i64::from(rug::float::exp_max()));
+    if zero || (low..=high).contains(&exponent) || !unsafe { flint_sys::arf::arf_is_finite(x) != 0 } {
+        // SAFETY: `out` is an initialised MPFR number; the exponent is within range.
+        unsafe { arf_get_mpfr(out.as_raw_mut().cast::<__mpfr_struct>(), x, direction) };
+        return;
+    }
+    let toward_zero = (round == Round::Down) != negative;
+    *out = if exponent < low {
+        // Below the range: 0 on the side of zero, the least number away from it.
+        let mut least = Float::new(out.prec());
+        if !toward_zero {
+            least.next_up();
+        }
+        if negative {
+            -least
+        } else {
+            least
+        }
+    } else {
+        // Beyond the range: the largest finite number toward zero, infinity away from it.
+        let mut largest = Float::with_val(out.prec(), rug::float::Special::Infinity);
+        if toward_zero {
+            largest.next_down();
+        }
+        if negative {
+            -largest
+        } else {
+            largest
+        }
+    };
+}
 
 impl Drop for Ball {
     fn drop(&mut self) {
@@ -315,8 +368,8 @@ impl Ball {
             flint_sys::arf::arf_init(&mut a);
             flint_sys::arf::arf_init(&mut b);
             arb_get_interval_arf(&mut a, &mut b, self.real_part(), i64::from(bits));
-            arf_get_mpfr(lower.as_raw_mut().cast::<__mpfr_struct>(), &a, mpfr_rnd_t_MPFR_RNDD);
-            arf_get_mpfr(upper.as_raw_mut().cast::<__mpfr_struct>(), &b, mpfr_rnd_t_MPFR_RNDU);
+            outward_into_mpfr(&mut lower, &a, Round::Down);
+            outward_into_mpfr(&mut upper, &b, Round::Up);
             flint_sys::arf::arf_clear(&mut a);
             flint_sys::arf::arf_clear(&mut b);
         }
@@ -351,6 +404,13 @@ impl Ball {
         }
     }
 
+    /// Whether the ball is finite and its size lies beyond 2^(±2^29), where rug's floats
+    /// (which end at 2^(±2^30)) no longer hold it with room to spare.
+    pub fn is_beyond_mpfr(&self) -> bool {
+        const MPFR_SAFE_EXPONENT: i64 = 1 << 29;
+        self.is_finite() && self.binary_exponent().abs() > MPFR_SAFE_EXPONENT
+    }
+
     /// The real part as `(scaled, shift)` with the ball = scaled·10^shift and scaled of a
     /// size MPFR holds, where the ball's own size lies beyond 2^(±2^29) (rug's floats end
     /// at 2^(±2^30); W = e^(−P/c)-small at loads of 10⁹ decay loads is such a number);
@@ -359,11 +419,10 @@ impl Ball {
     /// A ball beyond [`Ball::decimal_exponent_fits`] scales to an indeterminate ball,
     /// which determines no digit.
     pub fn decimal_scaled(&self) -> Option<(Ball, i64)> {
-        const MPFR_SAFE_EXPONENT: i64 = 1 << 29;
-        let binary = self.binary_exponent();
-        if binary.abs() <= MPFR_SAFE_EXPONENT || !self.is_finite() {
+        if !self.is_beyond_mpfr() {
             return None;
         }
+        let binary = self.binary_exponent();
         if !self.decimal_exponent_fits() {
             return Some((self.indeterminate(), 0));
         }

@@ -241,9 +241,10 @@ fn simulate_refuses_what_cannot_fit_and_stops_at_its_time_budget() {
             "bytes of memory, more than",
         );
     }
+    // Running out of time is no refusal of the input: exit 1, as for every command.
     assert_one_line_failure(
         on_case("simulate", &["--steps", "1000000", "--max-seconds", "0.5"]),
-        2,
+        1,
         "the time budget ran out",
     );
 }

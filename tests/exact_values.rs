@@ -226,6 +226,28 @@ fn a_w_that_rounds_to_zero_in_f64_is_not_printed_as_zero() {
     assert!(stdout.contains("proven") && !stdout.contains("(exact"), "{stdout}");
 }
 
+/// The same underflow in the f64 simulation and in the series' partial sums: neither is
+/// printed as 0 or as digits it cannot hold; each fails (exit 1) saying what gives W.
+#[test]
+fn a_w_below_the_range_of_a_command_is_refused_there_not_printed_as_zero() {
+    let exponential = |p0: &'static str, p1: &'static str, q1: &'static str| {
+        vec![
+            ("--p0", p0),
+            ("--p1", p1),
+            ("--q1", q1),
+            ("--compliance", "exp:a=2.204,c=2.486,d=0.3174"),
+        ]
+    };
+    let (code, stdout, stderr) = microslip(&case_args("simulate", &exponential("1e4", "5e3", "5e2")));
+    assert_eq!(code, 1, "{stdout}{stderr}");
+    assert!(stdout.is_empty() && stderr.contains("rounds to 0 in f64"), "{stderr}");
+    let mut beyond = exponential("1e10", "5e9", "5e8");
+    beyond.push(("--order", "2"));
+    let (code, stdout, stderr) = microslip(&case_args("series", &beyond));
+    assert_eq!(code, 1, "{stdout}{stderr}");
+    assert!(stdout.is_empty() && stderr.contains("beyond 2^(±2^29)"), "{stderr}");
+}
+
 #[test]
 fn simulation_of_a_constant_compliance_gives_zero() {
     let (code, stdout, stderr) = microslip(&case_args("simulate", &[("--compliance", "const:c=1")]));

@@ -66,7 +66,7 @@ fn simulation_failure(error: SimulationError) -> Failure {
             "{error}; more --elements and --steps may reach it, or a larger --tolerance accepts it"
         )),
         SimulationError::TooLarge { .. } => Failure::refused(format!("{error}; use fewer --elements or --steps")),
-        SimulationError::OutOfTime { .. } => Failure::refused(format!(
+        SimulationError::OutOfTime { .. } => Failure::failed(format!(
             "{error}; raise --max-seconds or use fewer --elements or --steps"
         )),
         other => Failure::refused(other.to_string()),
@@ -107,6 +107,16 @@ pub fn run(args: &SimulateArgs) -> Result<String, Failure> {
         ..SimulationOptions::default()
     };
     let result = simulate(&cycle, compliance.as_ref(), &options).map_err(simulation_failure)?;
+    // Where every change of v' over the cycle's loads underflows f64 (an exponential at loads
+    // of hundreds of decay loads) the simulated W is 0; only a W that is 0 by its reason is
+    // printed as 0.
+    if result.w_work == 0.0 && result.w_friction == 0.0 && spec.exact_zero().is_none() {
+        return Err(Failure::failed(
+            "the simulation's W rounds to 0 in f64 (the changes of v' over the cycle's loads underflow), though \
+             nothing in the input makes W exactly 0; `microslip dissipation` gives W at any size"
+                .to_string(),
+        ));
+    }
     let printed = PrintedSimulation::of(&result);
     let w = printed.work.to_string();
     // A write that fails after the run still reports W.

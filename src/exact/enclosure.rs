@@ -45,6 +45,10 @@ pub enum EnclosureError<E> {
         /// The fewest digits any value reached.
         reached: u32,
     },
+    /// A value lies beyond MPFR's exponents ([`Ball::is_beyond_mpfr`]), where its digits
+    /// are not printed.
+    #[error("a value lies beyond 2^(±2^29), outside the exponents printed here")]
+    BeyondRange,
     /// The enclosures stayed wider than asked up to [`MAX_BITS`].
     #[error("the enclosure reached only {reached} of the {asked} digits asked at {bits} bits")]
     TooWide {
@@ -129,6 +133,9 @@ pub fn enclose<E>(
             last = EnclosureError::Undecided { bits };
         } else {
             doubted = false;
+            if values.iter().any(Ball::is_beyond_mpfr) {
+                return Err(EnclosureError::BeyondRange);
+            }
             let reached = values.iter().map(|v| digits_of(v, digits)).min();
             if reached.unwrap_or(digits) >= digits {
                 return Ok(Enclosed { values, bits });

@@ -70,6 +70,13 @@ pub enum ExactAnswerError {
         /// The time spent.
         seconds: f64,
     },
+    /// A value lies beyond MPFR's exponents: the partial sums of an exponential at loads of
+    /// about 10⁸ decay loads and more.
+    #[error("{quantity} lies beyond 2^(±2^29) (about 10^(±1.6e8)), outside the exponents this command prints: `microslip dissipation` prints W at any size")]
+    BeyondRange {
+        /// What was being enclosed (`I`, `Iₙ`, `W_N`).
+        quantity: &'static str,
+    },
     /// No enclosure, and the agreement path ran out of time.
     #[error("only {} of the {} digits needed ({} asked for and {GUARD_DIGITS} guard digits) agreed between two precisions within {:.1} s, and no rigorous enclosure could be had; ask for fewer digits", .0.digits_agreed, .0.digits_required(), .0.digits_requested, .0.seconds)]
     OutOfTime(OutOfBudget),
@@ -82,7 +89,7 @@ impl ExactAnswerError {
     pub fn is_failure(&self) -> bool {
         matches!(
             self,
-            ExactAnswerError::OutOfTime(_) | ExactAnswerError::Unreached { .. }
+            ExactAnswerError::OutOfTime(_) | ExactAnswerError::Unreached { .. } | ExactAnswerError::BeyondRange { .. }
         )
     }
 }
@@ -162,6 +169,7 @@ fn enclosures<E: Into<ExactAnswerError>>(
             enclosed.bits,
         ))),
         Err(EnclosureError::Input(error)) => Err(error.into()),
+        Err(EnclosureError::BeyondRange) => Err(ExactAnswerError::BeyondRange { quantity }),
         Err(EnclosureError::OutOfTime { asked, reached }) => Err(ExactAnswerError::Unreached {
             quantity,
             asked,
