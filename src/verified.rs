@@ -346,6 +346,7 @@ pub enum Decimal {
 
 /// A decimal in scientific notation (`8.26e-5`) times 10^`shift` (`8.26e-872038342` for a
 /// shift of −872038337); text without an exponent (`0`, `inf`) as it is.
+#[cfg(feature = "certified")]
 pub(crate) fn shift_exponent(text: &str, shift: i64) -> String {
     match text
         .split_once('e')
@@ -358,6 +359,7 @@ pub(crate) fn shift_exponent(text: &str, shift: i64) -> String {
 
 impl Decimal {
     /// The same decimal times 10^`shift`.
+    #[cfg(feature = "certified")]
     pub(crate) fn shifted(self, shift: i64) -> Decimal {
         match self {
             Decimal::Zero => Decimal::Zero,

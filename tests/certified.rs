@@ -950,3 +950,35 @@ fn a_ball_beyond_mpfrs_exponents_prints_its_interval() {
     assert_eq!(third.digits(), 15);
     assert!(third.decimal.to_string().starts_with("1.892"), "{}", third.decimal);
 }
+
+/// A ball beyond MPFR's exponents reads into MPFR rounded outward as MPFR itself rounds
+/// past its range: 0 or the least number below it, the largest finite number or infinity
+/// beyond it, on the side the bound asks for.
+#[test]
+fn bounds_beyond_mpfrs_exponents_round_outward() {
+    let precision = Precision::bits(128);
+    let third = Ball::from_i64(1, precision) / &Ball::from_i64(3, precision);
+    let mut least = Float::new(160);
+    least.next_up();
+    let mut largest = Float::with_val(160, rug::float::Special::Infinity);
+    largest.next_down();
+    for sign in [1, -1] {
+        let tiny = third.clone().times_power_of_two(i32::MIN) * &Ball::from_i64(sign, precision);
+        let huge = third.clone().times_power_of_two(i32::MAX) * &Ball::from_i64(sign, precision);
+        let (tiny_low, tiny_high) = tiny.bounds(160);
+        let (huge_low, huge_high) = huge.bounds(160);
+        if sign > 0 {
+            assert!(tiny_low.is_zero() && tiny_high == least, "{tiny_low} {tiny_high}");
+            assert!(huge_low == largest && huge_high.is_infinite(), "{huge_low} {huge_high}");
+        } else {
+            assert!(
+                tiny_low == -least.clone() && tiny_high.is_zero(),
+                "{tiny_low} {tiny_high}"
+            );
+            assert!(
+                huge_low.is_infinite() && huge_high == -largest.clone(),
+                "{huge_low} {huge_high}"
+            );
+        }
+    }
+}
