@@ -88,8 +88,9 @@ pub enum CertifiedError {
         undecided: u64,
     },
     /// A piece's enclosure is not finite (the integrand is singular on the piece, or
-    /// Arb's subdivision gave up).
-    #[error("at {bits} bits the {integral} integral has no finite enclosure: its integrand is not analytic on the piece [{start:.6e}, {end:.6e}]")]
+    /// Arb's subdivision gave up: an exponential at 10¹² decay loads whose bound on the
+    /// boxes near its slip peak outgrows the evaluations allowed).
+    #[error("at {bits} bits the {integral} integral has no finite enclosure: its integrand is not analytic on the piece [{start:.6e}, {end:.6e}], or grows there on the complex boxes around it faster than Arb's bisection resolves within its evaluations")]
     NotFinite {
         /// The working precision.
         bits: u32,

@@ -325,6 +325,21 @@ mod certified {
 
     use super::NoEnclosure;
 
+    /// Whether the compliance has a decay load c and every load the cycle reads (all above
+    /// P0 − P1 − Q1/f) is more than 2^29·ln 2 decay loads: then each e^(−P/c), and W with
+    /// them, lies below 2^(−2^29), which no MPFR precision holds, and agreement of two
+    /// precisions cannot answer where the enclosure did not.
+    fn beyond_mpfr(case: &CaseSpec) -> bool {
+        let Ok(Case { cycle, compliance }) = case.at::<f64>(crate::real::Precision::DOUBLE) else {
+            return false;
+        };
+        let Some(decay_load) = compliance.decay_load() else {
+            return false;
+        };
+        let lowest = cycle.mean_normal_load - cycle.normal_amplitude - cycle.tangential_amplitude / cycle.friction;
+        lowest / decay_load > (1u64 << 29) as f64 * std::f64::consts::LN_2
+    }
+
     /// W to `digits` certified digits; `Err(Ok(why))` where no enclosure can be had and
     /// agreement may serve, `Err(Err(error))` where nothing will (a cycle outside the
     /// theory, the budget spent).
@@ -347,6 +362,7 @@ mod certified {
             Err(error @ (CertifiedError::BeyondDecimalExponents | CertifiedError::TooSteep { .. })) => {
                 return Err(Err(ReferenceError::Certified(error)))
             }
+            Err(error) if beyond_mpfr(case) => return Err(Err(ReferenceError::Certified(error))),
             Err(error) => return Err(Ok(NoEnclosure::Refused(error))),
         };
         let enclosure = &certified.enclosure;

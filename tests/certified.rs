@@ -933,6 +933,25 @@ fn an_exponential_beyond_what_the_enclosure_resolves_is_refused_at_once() {
         "{tiny:?}"
     );
     assert!(started.elapsed() < Duration::from_secs(20), "{:?}", started.elapsed());
+    // Near 10¹³ decay loads a cycle whose slip peak's piece outgrows Arb's evaluations is
+    // refused by the enclosure at once: W lies beyond MPFR, so no agreement is tried.
+    let started = std::time::Instant::now();
+    let near_limit = case(
+        "4.80093e7",
+        "1.87577e7",
+        "9.37742e6",
+        "2.2408",
+        "0.739",
+        "exp:a=1,c=8.878e-6,d=0",
+    );
+    match printed_w(&near_limit, 15) {
+        Ok(answer) => assert!(matches!(answer.provenance, Provenance::Certified { .. }), "{answer:?}"),
+        Err(refusal) => assert!(
+            matches!(refusal, ReferenceError::Certified(CertifiedError::NotFinite { .. })),
+            "{refusal:?}"
+        ),
+    }
+    assert!(started.elapsed() < Duration::from_secs(20), "{:?}", started.elapsed());
 }
 
 /// A ball whose size lies beyond MPFR's exponents prints by the one rule, its exponent

@@ -46,11 +46,13 @@ fn reference_failure(error: ReferenceError, digits_given: bool) -> Failure {
             | DissipationError::IllConditioned { .. }
             | DissipationError::OutOfRange { .. },
         ) if !digits_given => "; try --digits N (digits in MPFR)",
+        // More time helps an enclosure only where time is what it ran out of.
         #[cfg(feature = "certified")]
-        ReferenceError::Certified(
-            microslip::certified::CertifiedError::BeyondDecimalExponents
-            | microslip::certified::CertifiedError::TooSteep { .. },
-        ) => "",
+        ReferenceError::Certified(error)
+            if !matches!(error, microslip::certified::CertifiedError::OutOfTime { .. }) =>
+        {
+            ""
+        }
         _ if !out_of_time(&error) => "",
         _ if digits_given => "; raise --max-seconds or ask for fewer --digits",
         _ => "; raise --max-seconds",
