@@ -143,6 +143,32 @@ pub struct Ball {
 unsafe impl Send for Ball {}
 unsafe impl Sync for Ball {}
 
+/// An Arb magnitude (an upper or lower bound of a non-negative number), cleared on drop.
+pub(crate) struct Mag(pub(crate) mag_struct);
+
+impl Mag {
+    pub(crate) fn new() -> Mag {
+        let mut m = mag_struct::default();
+        // SAFETY: initialised here, cleared on drop.
+        unsafe { mag_init(&mut m) };
+        Mag(m)
+    }
+
+    pub(crate) fn of(x: f64) -> Mag {
+        let mut m = Mag::new();
+        // SAFETY: initialised. Exact for a dyadic x (the ellipses' half axes).
+        unsafe { flint_sys::mag::mag_set_d(&mut m.0, x) };
+        m
+    }
+}
+
+impl Drop for Mag {
+    fn drop(&mut self) {
+        // SAFETY: initialised in `new`.
+        unsafe { mag_clear(&mut self.0) }
+    }
+}
+
 /// The binary exponent beyond which a ball's decimal exponent is not printed: 2^61, so
 /// that decimal exponents stay far inside i64.
 pub const MOST_DECIMAL_BINARY_EXPONENT: i64 = 1 << 61;
@@ -310,42 +336,32 @@ impl Ball {
         unsafe { acb_contains_zero(&self.raw) != 0 }
     }
 
+    /// An upper bound of |x| over the ball.
+    fn magnitude(&self) -> Mag {
+        let mut bound = Mag::new();
+        // SAFETY: both initialised.
+        unsafe { acb_get_mag(&mut bound.0, &self.raw) };
+        bound
+    }
+
     /// Whether every |x| in the ball is below 2^`log2_factor` times the least |y| in
     /// `scale`: how a value that should be much smaller than another is recognised
     /// without reading either into a float of bounded exponent.
     pub(crate) fn is_below_scaled(&self, scale: &Ball, log2_factor: i64) -> bool {
-        let (mut upper, mut lower) = (mag_struct::default(), mag_struct::default());
-        // SAFETY: the magnitudes are initialised here and cleared before returning;
-        // the balls are initialised.
+        let mut least = Mag::new();
+        // SAFETY: all initialised; the scaling is in place.
         unsafe {
-            mag_init(&mut upper);
-            mag_init(&mut lower);
-            acb_get_mag(&mut upper, &self.raw);
-            acb_get_mag_lower(&mut lower, &scale.raw);
-            mag_mul_2exp_si(&mut lower, &lower, log2_factor);
-            let below = mag_cmp(&upper, &lower) < 0;
-            mag_clear(&mut upper);
-            mag_clear(&mut lower);
-            below
+            acb_get_mag_lower(&mut least.0, &scale.raw);
+            mag_mul_2exp_si(&mut least.0, &least.0, log2_factor);
+            mag_cmp(&self.magnitude().0, &least.0) < 0
         }
     }
 
     /// Of two enclosures of one value, the one whose bound on the absolute value is
     /// smaller.
     pub(crate) fn tighter(self, other: Ball) -> Ball {
-        let (mut mine, mut theirs) = (mag_struct::default(), mag_struct::default());
-        // SAFETY: as in `is_below_scaled`.
-        let other_is_tighter = unsafe {
-            mag_init(&mut mine);
-            mag_init(&mut theirs);
-            acb_get_mag(&mut mine, &self.raw);
-            acb_get_mag(&mut theirs, &other.raw);
-            let tighter = mag_cmp(&theirs, &mine) < 0;
-            mag_clear(&mut mine);
-            mag_clear(&mut theirs);
-            tighter
-        };
-        if other_is_tighter {
+        // SAFETY: both magnitudes initialised.
+        if unsafe { mag_cmp(&other.magnitude().0, &self.magnitude().0) } < 0 {
             other
         } else {
             self

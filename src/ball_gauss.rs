@@ -17,16 +17,15 @@ use flint_sys::acb_types::acb_struct;
 use flint_sys::arb::{arb_add_error_mag, arb_mul_2exp_si, arb_mul_si, arb_set_d};
 use flint_sys::arb_types::mag_struct;
 use flint_sys::mag::{
-    mag_add_lower, mag_clear, mag_cmp, mag_div, mag_get_d_log2_approx, mag_init, mag_is_finite, mag_mul,
-    mag_mul_2exp_si, mag_mul_lower, mag_mul_ui_lower, mag_one, mag_pow_ui_lower, mag_set, mag_set_d, mag_sqrt,
-    mag_sqrt_lower, mag_sub, mag_sub_lower,
+    mag_add_lower, mag_cmp, mag_div, mag_get_d_log2_approx, mag_is_finite, mag_mul, mag_mul_2exp_si, mag_mul_lower,
+    mag_mul_ui_lower, mag_one, mag_pow_ui_lower, mag_set, mag_sqrt, mag_sqrt_lower, mag_sub, mag_sub_lower,
 };
 
 mod legendre;
 
 use legendre::nodes;
 
-use crate::ball::Ball;
+use crate::ball::{Ball, Mag};
 use crate::real::Real;
 
 /// The half axes X along the interval (in units of its half length) of the rectangles
@@ -83,32 +82,6 @@ enum Served {
     Neither,
     /// Neither, on the last two parts.
     NeitherTwice,
-}
-
-/// An Arb magnitude (an upper or lower bound of a non-negative number), cleared on drop.
-struct Mag(mag_struct);
-
-impl Mag {
-    fn new() -> Mag {
-        let mut m = mag_struct::default();
-        // SAFETY: initialised here, cleared on drop.
-        unsafe { mag_init(&mut m) };
-        Mag(m)
-    }
-
-    fn of(x: f64) -> Mag {
-        let mut m = Mag::new();
-        // SAFETY: initialised. The ellipses' X are dyadic, so this is exact.
-        unsafe { mag_set_d(&mut m.0, x) };
-        m
-    }
-}
-
-impl Drop for Mag {
-    fn drop(&mut self) {
-        // SAFETY: initialised in `new`.
-        unsafe { mag_clear(&mut self.0) }
-    }
 }
 
 /// One Bernstein ellipse E_ρ about [−1, 1], held by the rectangle [−X, X] × [−Y, Y].

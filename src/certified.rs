@@ -261,24 +261,25 @@ const ROUNDING_MARGIN_BITS: i64 = 32;
 
 /// The slope change x ↦ v'(P0 + x) − v'(P0) on complex balls, for Arb's bounds: the
 /// plain difference of slopes (the last of `slopes`), whose width does not grow with
-/// the algebra of a compliance's own form; but for a compliance that `decays` (one with
-/// a decay load), where that difference is lost in the rounding of v'(P0) — a slope
-/// change far below v' itself, as for a·e^(−P/c) + d at loads of thousands of c — the
-/// tighter of it and the compliance's own form (the first), both enclosures of the same
-/// value.
+/// the algebra of a compliance's own form; but for a compliance with a decay load (whose
+/// v'(P0) is `at_mean`), where that difference is lost in the rounding of v'(P0) — a
+/// slope change far below v' itself, as for a·e^(−P/c) + d at loads of thousands of c —
+/// the tighter of it and the compliance's own form (the first), both enclosures of the
+/// same value.
 fn bounding_slope<'s>(
     slopes: &'s [SlopeChange<'_, Ball>],
-    at_mean: Ball,
+    at_mean: Option<Ball>,
     bits: u32,
-    decays: bool,
 ) -> impl Fn(&Ball) -> Ball + Send + Sync + 's {
     let plain = slopes.last().expect("the plain difference is always tried");
-    let own = (decays && slopes.len() > 1).then(|| &slopes[0]);
+    let own = at_mean
+        .filter(|_| slopes.len() > 1)
+        .map(|at_mean| (&slopes[0], at_mean));
     let floor = ROUNDING_MARGIN_BITS - i64::from(bits);
     move |offset: &Ball| {
         let bound = plain(offset);
-        match own {
-            Some(own) if bound.is_below_scaled(&at_mean, floor) => bound.tighter(own(offset)),
+        match &own {
+            Some((own, at_mean)) if bound.is_below_scaled(at_mean, floor) => bound.tighter(own(offset)),
             _ => bound,
         }
     }
@@ -315,17 +316,23 @@ fn enclose_segments(
     };
     let mut outcome = None;
     let slopes = slopes(compliance, &geometry.mean_normal_load, bits)?;
-    let (at_mean, doubts) = watch(|| compliance.slope(&geometry.mean_normal_load));
-    if !doubts.none() {
-        return Err(undecided(bits, doubts));
-    }
     // Only a compliance with a decay load of its own has slope changes far below the
     // rounding of v'(P0), and peaks the rough W can miss; the others keep the plain bound.
-    let decays = compliance.decay_load().is_some();
-    let bound_slope = bounding_slope(&slopes, at_mean, bits, decays);
-    let ceiling = decays
+    let at_mean = match compliance.decay_load() {
+        Some(_) => {
+            let (at_mean, doubts) = watch(|| compliance.slope(&geometry.mean_normal_load));
+            if !doubts.none() {
+                return Err(undecided(bits, doubts));
+            }
+            Some(at_mean)
+        }
+        None => None,
+    };
+    let ceiling = at_mean
+        .is_some()
         .then(|| watch(|| integrand_ceiling(&geometry, slopes[0].as_ref())))
         .and_then(|(ceiling, doubts)| doubts.none().then_some(ceiling));
+    let bound_slope = bounding_slope(&slopes, at_mean, bits);
     // Near separation, the same difference at the lowest load's bottom as a product.
     let (at_bottom, doubts) = watch(|| bottom_slope_change(compliance, &geometry));
     if !doubts.none() {
