@@ -11,8 +11,9 @@
 use rug::Rational;
 use serde::{Deserialize, Serialize};
 
+use crate::boundaries::{self, compliance_ratio_of_poisson, ExactCycle};
 use crate::compliance::{Compliance, ComplianceSpec, SpecError};
-use crate::cycle::{compliance_ratio_from_poisson, CycleError, LoadCycle};
+use crate::cycle::{CycleError, LoadCycle};
 use crate::decimal::{decimal, rounded};
 use crate::dissipation::ExactZero;
 use crate::phase::{ExactPhase, PhaseError, ReducedPhase};
@@ -67,7 +68,8 @@ pub enum InputError {
     /// compliance.
     #[error(transparent)]
     Compliance(#[from] SpecError),
-    /// ν is out of range or not finite.
+    /// The cycle leaves the theory (separation, gross slip, λ or ν out of range, …),
+    /// decided exactly from the decimals ([`crate::boundaries`]).
     #[error(transparent)]
     Cycle(#[from] CycleError),
     /// The phase is not written in an accepted form, or is too large.
@@ -130,18 +132,11 @@ impl Field {
     }
 }
 
-/// How the case gives the compliance ratio.
-#[derive(Clone, Debug, PartialEq)]
-enum Ratio {
-    /// λ itself.
-    Lambda(Field),
-    /// Poisson's ratio ν, λ = (2 − ν)/(2(1 − ν)).
-    Poisson(Field),
-}
-
 /// A case read once from its text: exact decimals, the phase reduced exactly modulo π,
-/// the compliance as a tree with its tables read. Not yet a valid cycle: the computations
-/// validate the cycle at their precision and say what is wrong.
+/// the compliance as a tree with its tables read, and its cycle inside the theory, decided
+/// exactly ([`crate::boundaries`]). A cycle rounded to a working precision may still cross
+/// a boundary the exact one keeps off (P0 − P1 = 1e-17 in f64): the computations check
+/// their rounded cycle and go to a higher precision where it does.
 #[derive(Clone, Debug)]
 pub struct CaseSpec {
     mean_normal_load: Field,
@@ -149,7 +144,8 @@ pub struct CaseSpec {
     mean_tangential_load: Field,
     tangential_amplitude: Field,
     friction: Field,
-    ratio: Ratio,
+    /// λ, exactly: as given, or (2 − ν)/(2(1 − ν)) from Poisson's ratio ν.
+    compliance_ratio: Field,
     phase: ReducedPhase,
     compliance: ComplianceSpec,
 }
@@ -178,36 +174,38 @@ impl CaseText {
     /// assert_eq!(spec.exact_zero(), None);
     /// ```
     pub fn spec(&self) -> Result<CaseSpec, InputError> {
-        let ratio = match (&self.lambda, &self.nu) {
-            (Some(lambda), None) => Ratio::Lambda(Field::read("lambda", lambda)?),
-            (None, Some(nu)) => Ratio::Poisson(Field::read("nu", nu)?),
+        let compliance_ratio = match (&self.lambda, &self.nu) {
+            (Some(lambda), None) => Field::read("lambda", lambda)?,
+            (None, Some(nu)) => {
+                let nu = Field::read("nu", nu)?;
+                Field {
+                    value: compliance_ratio_of_poisson(&nu.value)?,
+                    ..nu
+                }
+            }
             _ => return Err(InputError::LambdaOrNu),
         };
         let phase = ExactPhase::parse(&self.phi)?.reduce()?;
         let mean_tangential_load = Field::read("q0", &self.q0)?;
         let compliance = ComplianceSpec::parse(&self.compliance)?;
-        Ok(CaseSpec {
+        let spec = CaseSpec {
             mean_normal_load: Field::read("p0", &self.p0)?,
             normal_amplitude: Field::read("p1", &self.p1)?,
             mean_tangential_load,
             tangential_amplitude: Field::read("q1", &self.q1)?,
             friction: Field::read("friction", &self.friction)?,
-            ratio,
+            compliance_ratio,
             phase,
             compliance,
-        })
+        };
+        boundaries::decide(&spec.exact_cycle())?;
+        Ok(spec)
     }
 
     /// The load cycle and compliance at `precision` (`self.spec()?.at(precision)`); a caller
     /// that needs more than one precision reads the [`CaseSpec`] once instead.
     pub fn read<R: Real>(&self, precision: Precision) -> Result<Case<R>, InputError> {
         self.spec()?.at(precision)
-    }
-
-    /// Why W is exactly 0, if it is ([`CaseSpec::exact_zero`]).
-    // For the lead at merge: callers (src/reference.rs) move to the `CaseSpec` they hold; then remove.
-    pub fn exact_zero(&self) -> Result<Option<ExactZero>, InputError> {
-        Ok(self.spec()?.exact_zero())
     }
 }
 
@@ -216,10 +214,7 @@ impl CaseSpec {
     /// cycle is not validated here: the computations validate it and say what is wrong. In
     /// f64, a number that f64 cannot hold (1e-400) is refused, higher precisions read it.
     pub fn at<R: Real>(&self, precision: Precision) -> Result<Case<R>, InputError> {
-        let compliance_ratio = match &self.ratio {
-            Ratio::Lambda(lambda) => lambda.at(precision)?,
-            Ratio::Poisson(nu) => compliance_ratio_from_poisson(&nu.at(precision)?)?,
-        };
+        let compliance_ratio = self.compliance_ratio.at(precision)?;
         let (phase, mirrored) = self.cycle_phase(precision)?;
         let mean_tangential_load: R = self.mean_tangential_load.at(precision)?;
         let cycle = LoadCycle {
@@ -278,6 +273,19 @@ impl CaseSpec {
     /// P1 = 0 exactly: the normal load is constant (the Cattaneo–Mindlin closed form).
     pub fn has_constant_normal_load(&self) -> bool {
         self.normal_amplitude.value == 0
+    }
+
+    /// The cycle's exact quantities, for deciding its boundaries.
+    fn exact_cycle(&self) -> ExactCycle<'_> {
+        ExactCycle {
+            mean_normal_load: &self.mean_normal_load.value,
+            normal_amplitude: &self.normal_amplitude.value,
+            mean_tangential_load: &self.mean_tangential_load.value,
+            tangential_amplitude: &self.tangential_amplitude.value,
+            friction: &self.friction.value,
+            compliance_ratio: &self.compliance_ratio.value,
+            phase: &self.phase,
+        }
     }
 
     /// The phase, reduced exactly modulo π.
@@ -452,10 +460,15 @@ mod tests {
         let mut both = text("1", "0.2", "1", persson);
         both.lambda = Some("1".into());
         assert_eq!(both.spec().unwrap_err(), InputError::LambdaOrNu);
-        let tiny = text("1e-400", "0.2", "1", persson).spec().unwrap();
+        // P0 = 1e-400 with P1 = 0.4 separates, decided exactly when read.
+        assert!(matches!(
+            text("1e-400", "0.2", "1", persson).spec(),
+            Err(InputError::Cycle(CycleError::Separation { .. }))
+        ));
+        let tiny = text("1", "1e-400", "1", persson).spec().unwrap();
         assert!(matches!(
             tiny.at::<f64>(Precision::DOUBLE),
-            Err(InputError::OutsideF64Range { quantity: "P0", .. })
+            Err(InputError::OutsideF64Range { quantity: "Q1", .. })
         ));
         assert!(tiny.at::<Float>(Precision::bits(64)).is_ok());
     }

@@ -128,8 +128,10 @@ pub enum CertifiedError {
     },
     /// The deadline passed, or would pass during the next attempt, before the enclosure
     /// was narrow enough.
-    #[error("the time budget ran out before the enclosure of W was narrow enough: {reached} of the {asked} digits asked reached (working precision {bits} bits)")]
+    #[error("the time budget ran out after {seconds:.1} s before the enclosure of W was narrow enough: {reached} of the {asked} digits asked reached (working precision {bits} bits)")]
     OutOfTime {
+        /// The seconds spent.
+        seconds: f64,
         /// The significant digits asked for.
         asked: u32,
         /// The significant digits the last enclosure determined.
@@ -524,6 +526,7 @@ pub fn certified_dissipation_by<F>(case: F, digits: u32, deadline: Option<Instan
 where
     F: Fn(Precision) -> Result<(LoadCycle<Ball>, Box<dyn Compliance<Ball>>), String>,
 {
+    let started_at = Instant::now();
     let digits = digits.max(1);
     let read = |bits| case(Precision::bits(bits)).map_err(|reason| CertifiedError::Case { bits, reason });
     // The digits' bits with guard bits for the rounding of the integrand and the sum of
@@ -556,6 +559,7 @@ where
     loop {
         if deadline.is_some_and(|deadline| Instant::now() + next_cost >= deadline) {
             return Err(CertifiedError::OutOfTime {
+                seconds: started_at.elapsed().as_secs_f64(),
                 asked: digits,
                 reached,
                 bits: last_bits,

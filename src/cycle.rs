@@ -134,6 +134,15 @@ pub enum CycleError {
         /// `excess` over fP0.
         relative: f64,
     },
+    /// A boundary of the theory that the exact inputs lie on or within 2^(−bits) of, which
+    /// no precision up to `bits` settles ([`crate::boundaries`]).
+    #[error("undecidable at this precision: whether the cycle reaches {boundary} is not settled at {bits} bits; move the inputs off the boundary")]
+    Undecidable {
+        /// The boundary, in words.
+        boundary: &'static str,
+        /// The most bits tried.
+        bits: u32,
+    },
 }
 
 /// The largest |φ| in radians a cycle accepts. Any phase up to it is reduced exactly

@@ -20,10 +20,11 @@ use std::time::{Duration, Instant};
 
 use rug::Float;
 
+use crate::admissibility::prove_admissible;
 use crate::answer::{Answer, ExactReason, Provenance, Value};
 use crate::case::{Case, CaseSpec, CaseText, InputError};
 use crate::compliance::{Compliance, ComplianceTable, TableInterpolant};
-use crate::cycle::LoadCycle;
+use crate::cycle::{CycleError, LoadCycle};
 use crate::dissipation::{dissipation, Dissipation, DissipationError, ExactZero, Method, Options, Segment, Segments};
 use crate::real::{Precision, Real};
 use crate::reference::{check_case, checked_exact_zero, verified_dissipation_of, ReferenceError, MAX_DIGITS};
@@ -59,6 +60,9 @@ impl DissipationAnswer {
 pub enum Fallback {
     /// f64 cannot hold a number of the case (1e-400, c=1e400).
     CannotRead(InputError),
+    /// Rounded to f64, the inputs cross a boundary of the theory that the exact cycle keeps
+    /// off (P1 = 0.99999999999999999 rounds to P0 = 1).
+    RoundedAcrossBoundary(CycleError),
     /// An intermediate of the compliance's formula leaves f64's range: its change of v'
     /// about P0 differs from MPFR's at `load`.
     ComplianceOverflow {
@@ -117,6 +121,10 @@ impl std::fmt::Display for Fallback {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             Fallback::CannotRead(error) => write!(f, "f64 cannot read the case: {error}"),
+            Fallback::RoundedAcrossBoundary(error) => write!(
+                f,
+                "rounded to f64 the inputs cross a boundary that the exact cycle keeps off (in f64: {error})"
+            ),
             Fallback::ComplianceOverflow { load, in_f64, in_mpfr } => write!(
                 f,
                 "in f64 the compliance gives v'(P) − v'(P0) = {in_f64:.3e} at P = {load:.3e}, in MPFR {in_mpfr}: an intermediate of its formula leaves the range of f64"
@@ -233,18 +241,20 @@ pub fn dissipation_report(
     digits: Option<u32>,
     budget: Duration,
 ) -> Result<DissipationAnswer, ReferenceError> {
-    let deadline = Instant::now() + budget;
+    let started = Instant::now();
+    let deadline = started + budget;
     if let Some(digits) = digits.filter(|&d| d == 0 || d > MAX_DIGITS) {
         return Err(ReferenceError::DigitsOutOfRange(digits));
     }
     // The case is read once; every precision below is computed from it.
     let case = &case.spec()?;
+    prove_admissible(case).map_err(DissipationError::from)?;
     let tables = case.compliance().tables();
     if !tables.is_empty() {
         let estimate = table_answer(case, &tables, deadline)?;
         return match digits {
             None => Ok(estimate),
-            Some(digits) => table_to_digits(case, estimate, digits, deadline),
+            Some(digits) => table_to_digits(case, estimate, digits, (started, deadline)),
         };
     }
     let plain = |answer| DissipationAnswer {
@@ -263,7 +273,7 @@ pub fn dissipation_report(
             Err(fallback) => Some(fallback),
         },
     };
-    let (answer, no_enclosure) = to_digits(case, digits.unwrap_or(F64_MOST_DIGITS), deadline)?;
+    let (answer, no_enclosure) = to_digits(case, digits.unwrap_or(F64_MOST_DIGITS), (started, deadline))?;
     Ok(DissipationAnswer {
         fallback,
         no_enclosure,
@@ -283,7 +293,11 @@ pub fn exact_zero_answer(reason: ExactZero, digits: Option<u32>) -> Answer {
 }
 
 /// `digits` digits: certified where an enclosure can be had, else by agreement.
-fn to_digits(case: &CaseSpec, digits: u32, deadline: Instant) -> Result<(Answer, Option<NoEnclosure>), ReferenceError> {
+fn to_digits(
+    case: &CaseSpec,
+    digits: u32,
+    (started, deadline): (Instant, Instant),
+) -> Result<(Answer, Option<NoEnclosure>), ReferenceError> {
     // The enclosure needs a case inside the theory, which it does not check itself.
     check_case(case)?;
     let no_enclosure = match certified::answer(case, digits, deadline) {
@@ -293,7 +307,11 @@ fn to_digits(case: &CaseSpec, digits: u32, deadline: Instant) -> Result<(Answer,
     let budget = deadline.saturating_duration_since(Instant::now());
     match verified_dissipation_of(case, digits, budget) {
         Ok(verified) => Ok((verified.answer, Some(no_enclosure))),
-        Err(ReferenceError::Budget(spent)) => Err(further_in_time(no_enclosure, spent)),
+        Err(ReferenceError::Budget(mut spent)) => {
+            // The time the request took, not agreement's share of it.
+            spent.seconds = started.elapsed().as_secs_f64();
+            Err(further_in_time(no_enclosure, spent))
+        }
         Err(error) => Err(error),
     }
 }
@@ -352,16 +370,17 @@ mod certified {
             let Case { cycle, compliance } = case.at::<Ball>(precision).map_err(|e| e.to_string())?;
             Ok((cycle, compliance))
         };
-        // The enclosure gets half of what is left: where it cannot be had in that time
-        // (Arb chasing a singularity near a piece), agreement answers in the other half.
-        let share = Instant::now() + deadline.saturating_duration_since(Instant::now()) / 2;
-        let certified = match certified_dissipation_by(read, digits, Some(share)) {
+        // The enclosure gets the whole budget: running out of time is a failure with the
+        // digits reached, never a reason to print digits that are not proven.
+        let certified = match certified_dissipation_by(read, digits, Some(deadline)) {
             Ok(certified) => certified,
             Err(CertifiedError::Cycle(error)) => return Err(Err(DissipationError::from(error).into())),
             // No precision of MPFR holds such a W either, nor resolves such a compliance.
-            Err(error @ (CertifiedError::BeyondDecimalExponents | CertifiedError::TooSteep { .. })) => {
-                return Err(Err(ReferenceError::Certified(error)))
-            }
+            Err(
+                error @ (CertifiedError::BeyondDecimalExponents
+                | CertifiedError::TooSteep { .. }
+                | CertifiedError::OutOfTime { .. }),
+            ) => return Err(Err(ReferenceError::Certified(error))),
             Err(error) if beyond_mpfr(case) => return Err(Err(ReferenceError::Certified(error))),
             Err(error) => return Err(Ok(NoEnclosure::Refused(error))),
         };
@@ -412,6 +431,9 @@ fn in_f64(case: &CaseSpec, deadline: Instant) -> Result<Result<Answer, Fallback>
         Err(error) if case.at::<Float>(Precision::bits(64)).is_ok() => return Ok(Err(Fallback::CannotRead(error))),
         Err(error) => return Err(error.into()),
     };
+    if let Err(error) = cycle.validate() {
+        return Ok(Err(Fallback::RoundedAcrossBoundary(error)));
+    }
     if let Some(fallback) = slope_change_differs_from_mpfr(case, &cycle, compliance.as_ref()) {
         return Ok(Err(fallback));
     }
@@ -635,11 +657,11 @@ fn table_to_digits(
     case: &CaseSpec,
     estimate: DissipationAnswer,
     digits: u32,
-    deadline: Instant,
+    clock: (Instant, Instant),
 ) -> Result<DissipationAnswer, ReferenceError> {
     let (answer, no_enclosure) = match checked_exact_zero(case)? {
         Some(reason) => (exact_zero_answer(reason, Some(digits)), None),
-        None => to_digits(case, digits, deadline)?,
+        None => to_digits(case, digits, clock)?,
     };
     Ok(DissipationAnswer {
         answer,

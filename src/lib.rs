@@ -44,7 +44,9 @@
 //! or JSON text.
 #![warn(missing_docs)]
 
+pub mod admissibility;
 pub mod answer;
+pub mod boundaries;
 pub mod case;
 #[cfg(feature = "certified")]
 pub mod certified;

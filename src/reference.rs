@@ -13,10 +13,10 @@ use std::time::{Duration, Instant};
 
 use rug::Float;
 
+use crate::admissibility::prove_admissible;
 use crate::answer::{Answer, Provenance, Value};
 use crate::case::{Case, CaseSpec, CaseText, InputError};
-use crate::compliance::{check_admissible, TableError};
-use crate::cycle::ValidCycle;
+use crate::compliance::TableError;
 use crate::dissipation::{dissipation, Dissipation, DissipationError, ExactZero, Method, Options, Rules, Segments};
 use crate::dissipation_answer::exact_zero_answer;
 use crate::quad::{FixedRule, RuleError};
@@ -76,6 +76,19 @@ pub enum ReferenceError {
         /// Why f64 cannot compute the cycle.
         source: DissipationError,
     },
+}
+
+impl ReferenceError {
+    /// Whether the input was fine and the run could not vouch for W in time (or at all): a
+    /// failure (exit 1) rather than a refusal of the input (exit 2).
+    pub fn is_failure(&self) -> bool {
+        match self {
+            ReferenceError::Budget(_) | ReferenceError::Dissipation(DissipationError::OutOfTime) => true,
+            #[cfg(feature = "certified")]
+            ReferenceError::Certified(_) => true,
+            _ => false,
+        }
+    }
 }
 
 fn attempt(
@@ -213,14 +226,10 @@ pub(crate) fn checked_exact_zero(case: &CaseSpec) -> Result<Option<ExactZero>, R
     Ok(Some(reason))
 }
 
-/// Refuses a case outside the theory: its cycle is validated, and its compliance checked
-/// over the cycle's loads, in MPFR, as a computation of W checks them.
+/// Refuses a case whose compliance is not admissible over the cycle's loads
+/// ([`prove_admissible`]; the cycle itself was decided exactly when the case was read).
 pub(crate) fn check_case(case: &CaseSpec) -> Result<(), ReferenceError> {
-    let Case { cycle, compliance } = case.at::<Float>(Precision::bits(128))?;
-    let cycle = ValidCycle::new(cycle).map_err(DissipationError::from)?;
-    let low = (cycle.mean_normal_load.clone() - &cycle.normal_amplitude).min_of(&cycle.permanent_stick_load());
-    let high = cycle.mean_normal_load.clone() + &cycle.normal_amplitude;
-    check_admissible(compliance.as_ref(), &low, &high).map_err(DissipationError::from)?;
+    prove_admissible(case).map_err(DissipationError::from)?;
     Ok(())
 }
 

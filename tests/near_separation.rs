@@ -44,8 +44,19 @@ fn scan_case(nines: usize, rho: f64, phase: Phase, compliance: &str) -> CaseText
         phi = std::f64::consts::PI - phi;
     }
     let (phi, q1) = (format!("{phi:.17e}"), format!("{:.17e}", rho * (1.0 - d)));
-    let case = common::case().p1(p1).q1(q1).phi(phi).compliance(compliance);
-    let Case { cycle, .. } = case.clone().text().read::<Float>(Precision::bits(BITS)).unwrap();
+    let case = common::case().p1(&p1).q1(&q1).phi(&phi).compliance(compliance);
+    // The amplitudes of Q ± fP from the cycle with Q0 = 0 (which may slide: it is not a case).
+    let at = |text: &str| Float::with_val(BITS, Float::parse(text).unwrap());
+    let (phase, _) = microslip::case::parse_phase::<Float>(&phi, Precision::bits(BITS)).unwrap();
+    let cycle = microslip::cycle::LoadCycle {
+        mean_normal_load: at("1"),
+        normal_amplitude: at(&p1),
+        mean_tangential_load: at("0"),
+        tangential_amplitude: at(&q1),
+        phase,
+        friction: at("1"),
+        compliance_ratio: at("1"),
+    };
     let (plus, minus) = cycle.slip_line_amplitudes();
     let q0 = (plus - minus) / 2u32;
     case.q0(q0.to_string_radix(10, Some(60))).text()

@@ -67,12 +67,7 @@ fn reference_failure(error: ReferenceError, digits_given: bool) -> Failure {
 
 /// Whether the digits could not be had in time (or at all): the input was fine.
 fn out_of_time(error: &ReferenceError) -> bool {
-    match error {
-        ReferenceError::Budget(_) | ReferenceError::Dissipation(DissipationError::OutOfTime) => true,
-        #[cfg(feature = "certified")]
-        ReferenceError::Certified(_) => true,
-        _ => false,
-    }
+    error.is_failure()
 }
 
 pub fn run(args: &DissipationArgs) -> Result<String, Failure> {
@@ -138,7 +133,9 @@ fn text(report: &DissipationAnswer) -> String {
 /// and why the policy left f64 or found no enclosure, as W's line says it.
 fn provenance(report: &DissipationAnswer) -> String {
     let answer = &report.answer;
-    let digits = match answer.value.digits() {
+    // An exact zero has as many digits as are asked for (`Answer::digits`), not the unbounded
+    // digits of its value.
+    let digits = match answer.digits() {
         0 => "no significant digit determined".to_string(),
         1 => "1 significant digit".to_string(),
         n => format!("{n} significant digits"),

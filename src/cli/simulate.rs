@@ -92,6 +92,13 @@ pub fn run(args: &SimulateArgs) -> Result<String, Failure> {
     let case = args.case.text();
     let spec = case.spec()?;
     let Case { mut cycle, compliance } = spec.at::<f64>(Precision::DOUBLE)?;
+    // The exact cycle is inside the theory (read above); its f64 copy may round across a
+    // boundary it keeps off, and the simulation runs in f64.
+    if let Err(error) = cycle.validate() {
+        return Err(Failure::failed(format!(
+            "rounded to f64 the inputs cross a boundary that the exact cycle keeps off (in f64: {error}); the simulation runs in f64, `microslip dissipation` computes this cycle"
+        )));
+    }
     // The simulation follows the loads in time: a phase within 2⁻²⁰ of an odd multiple of π is
     // read as the mirror image of its cycle (the same W), turned back here for the loop and plot.
     if spec.phase().is_mirror_image() {

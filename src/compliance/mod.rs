@@ -29,7 +29,6 @@ mod table;
 
 pub use combinators::{LoadScaled, Scaled, Shifted, Sum};
 pub use families::{Exponential, Hertz, Persson, Polynomial, PowerLaw, Rational};
-pub use slope_form::{constant_slope, slope_polynomial_degree};
 pub use spec::{parse_spec, ComplianceSpec, SpecError};
 pub use table::{
     cached_table, ComplianceTable, Coordinates, TableColumn, TableCompliance, TableError, TableInterpolant, TABLE_ORDER,
@@ -172,6 +171,19 @@ pub enum AdmissibilityError {
         low: f64,
         /// The upper end of that range.
         high: f64,
+    },
+    /// Neither admissibility nor its failure is settled near `load` by ball enclosures
+    /// over up to `intervals` subintervals of the range.
+    #[error("undecidable at this precision: whether v' > 0 and v'' ≤ 0 is not settled near P = {load:.4e} by ball enclosures over up to {intervals} subintervals of [{low:.4e}, {high:.4e}] (v'' or v' may touch 0 there); the theory needs both on that range")]
+    Undecidable {
+        /// A load near which it is not settled.
+        load: f64,
+        /// The lower end of the load range that needs it.
+        low: f64,
+        /// The upper end of that range.
+        high: f64,
+        /// The subintervals tried.
+        intervals: usize,
     },
     /// v' or v'' is not a finite number somewhere.
     #[error("the compliance is not finite at P = {load:.4e} (v' = {slope:e}, v'' = {curvature:e}); finite v' and v'' are needed on [{low:.4e}, {high:.4e}]")]

@@ -104,6 +104,20 @@ impl ComplianceSpec {
         !form.opaque && form.remaining().next().is_none()
     }
 
+    /// Whether v'' ≤ 0 at every positive load follows from the exact form: after exact
+    /// cancellation, every function that remains has a coefficient whose sign makes its own
+    /// v'' ≤ 0 (c·β ≤ 0 for c·P^β; c ≥ 0 for c/(P + o) with o ≥ 0; c/o ≥ 0 for c·e^(−P/o)).
+    /// False for a form that has a Hertz or table term, or a term of either sign.
+    pub fn is_concave_by_form(&self) -> bool {
+        let form = SlopeForm::of(self.terms());
+        !form.opaque
+            && form.terms.iter().all(|(shape, c)| match shape {
+                Shape::Power(beta) => Rational::from(c * beta) <= 0,
+                Shape::Reciprocal(offset) => *c >= 0 && *offset >= 0,
+                Shape::Decay(decay_load) => Rational::from(c * decay_load) >= 0,
+            })
+    }
+
     /// The degree of v' where it is exactly a polynomial in P (0 for a constant), None otherwise.
     pub fn slope_polynomial_degree(&self) -> Option<usize> {
         let form = SlopeForm::of(self.terms());
@@ -116,20 +130,6 @@ impl ComplianceSpec {
         });
         degree
     }
-}
-
-/// Whether the SPEC's v' is constant, exactly ([`ComplianceSpec::is_constant_slope`]); false
-/// for a SPEC that does not parse.
-// For the lead at merge: callers move to the `ComplianceSpec` they hold; then remove.
-pub fn constant_slope(spec: &str) -> bool {
-    ComplianceSpec::parse(spec).is_ok_and(|spec| spec.is_constant_slope())
-}
-
-/// The degree of the SPEC's v' where it is exactly a polynomial in P
-/// ([`ComplianceSpec::slope_polynomial_degree`]); None for a SPEC that does not parse.
-// For the lead at merge: src/exact/printing.rs moves to the `ComplianceSpec` it holds; then remove.
-pub fn slope_polynomial_degree(spec: &str) -> Option<usize> {
-    ComplianceSpec::parse(spec).ok()?.slope_polynomial_degree()
 }
 
 #[cfg(test)]

@@ -82,15 +82,17 @@ pub enum ExactAnswerError {
     OutOfTime(OutOfBudget),
 }
 
-#[cfg(feature = "certified")]
 impl ExactAnswerError {
     /// Whether the input was fine and the run could not vouch for its result (exit 1),
     /// rather than refused (exit 2).
     pub fn is_failure(&self) -> bool {
-        matches!(
-            self,
-            ExactAnswerError::OutOfTime(_) | ExactAnswerError::Unreached { .. } | ExactAnswerError::BeyondRange { .. }
-        )
+        match self {
+            ExactAnswerError::OutOfTime(_)
+            | ExactAnswerError::Unreached { .. }
+            | ExactAnswerError::BeyondRange { .. } => true,
+            ExactAnswerError::Reference(error) => error.is_failure(),
+            _ => false,
+        }
     }
 }
 

@@ -440,6 +440,14 @@ impl<R: Real> Compliance<R> for TableCompliance {
         self.data().interpolant.curvature(load)
     }
 
+    fn admissible_by_form(&self, low: &R, high: &R) -> bool {
+        // By construction: positive node slopes, and a Fritsch–Carlson monotone cubic on each
+        // piece, so v' > 0 and v'' ≤ 0 on the whole table (proofs/table-compliance.md); a
+        // range outside the table is refused where its coverage is checked.
+        let _ = (low, high);
+        true
+    }
+
     fn breakpoints(&self, like: &R) -> Vec<R> {
         // The interior loads: the first and last bound the table, beyond which v' is not finite.
         let loads = &self.data().loads;

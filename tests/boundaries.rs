@@ -1,0 +1,204 @@
+//! The boundaries of the theory (separation, gross slip, λ, ν) decided exactly from the
+//! decimals as written, admissibility (v' > 0, v'' ≤ 0) proven, and budgets that run out
+//! never passed off as answers: the f64 default and `--digits` make the same decision.
+
+mod common;
+
+use std::time::Duration;
+
+use common::case;
+use microslip::answer::Provenance;
+use microslip::case::InputError;
+use microslip::compliance::AdmissibilityError;
+use microslip::cycle::CycleError;
+use microslip::dissipation::DissipationError;
+use microslip::dissipation_answer::dissipation_report;
+use microslip::reference::ReferenceError;
+
+const BUDGET: Duration = Duration::from_secs(60);
+
+/// W in the default mode and at `--digits 20`, each as (printed W, proven?).
+fn both_modes(text: &microslip::case::CaseText) -> [Result<(String, bool), ReferenceError>; 2] {
+    [None, Some(20)].map(|digits| {
+        dissipation_report(text, digits, BUDGET).map(|report| {
+            let proven = report.answer.provenance.is_proven();
+            (report.answer.value.decimal.to_string(), proven)
+        })
+    })
+}
+
+/// Whether `printed`, a decimal of n significant digits, is `proven` (a longer decimal)
+/// rounded to n digits.
+fn rounds_to(printed: &str, proven: &str) -> bool {
+    let mantissa = printed.split(['e', 'E']).next().unwrap();
+    let n = mantissa.chars().filter(char::is_ascii_digit).count();
+    let exact = rug::Float::with_val(256, rug::Float::parse(proven).unwrap());
+    let rounded = rug::Float::with_val(256, rug::Float::parse(exact.to_string_radix(10, Some(n))).unwrap());
+    rounded == rug::Float::with_val(256, rug::Float::parse(printed).unwrap())
+}
+
+fn cycle_error(result: &Result<(String, bool), ReferenceError>) -> Option<&CycleError> {
+    match result {
+        Err(ReferenceError::Input(InputError::Cycle(error))) => Some(error),
+        _ => None,
+    }
+}
+
+/// Both modes answer, the proven W begins with `expected`, and the default prints it
+/// rounded.
+fn assert_answered(text: &microslip::case::CaseText, expected: &str) {
+    let [default, digits] = both_modes(text);
+    let (default, digits) = (
+        default.unwrap_or_else(|e| panic!("default refused {text:?}: {e}")),
+        digits.unwrap_or_else(|e| panic!("--digits refused {text:?}: {e}")),
+    );
+    assert!(digits.1, "--digits 20 is proven: {digits:?}");
+    assert!(digits.0.starts_with(expected), "{digits:?}");
+    assert!(rounds_to(&default.0, &digits.0), "{default:?} against {digits:?}");
+}
+
+/// Both modes refuse with the same cycle error, which `check` accepts.
+fn assert_refused(text: &microslip::case::CaseText, check: impl Fn(&CycleError) -> bool) {
+    for result in both_modes(text) {
+        let error = cycle_error(&result).unwrap_or_else(|| panic!("{text:?} should be refused, got {result:?}"));
+        assert!(check(error), "{text:?}: {error}");
+    }
+}
+
+#[test]
+fn separation_is_decided_on_the_decimals_not_their_f64_copies() {
+    // P1 = 0.99999999999999999 rounds to 1 in f64; the exact cycle keeps 1e-17 from separation.
+    let near = case().p1("0.99999999999999999").q1("1e-25").phi("pi/2");
+    assert_answered(&near.clone().text(), "1.51348375045834");
+    for (p1, inside) in [
+        ("0.9999999999999999999999999999999999999999", true),
+        ("1.0000000000000000000000000000000000000001", false),
+        ("1", false),
+    ] {
+        let text = case().p1(p1).q1("1e-45").phi("pi/2").text();
+        if inside {
+            for result in both_modes(&text) {
+                assert!(result.is_ok(), "{p1}: {result:?}");
+            }
+        } else {
+            assert_refused(&text, |e| matches!(e, CycleError::Separation { .. }));
+        }
+    }
+}
+
+#[test]
+fn gross_slip_is_decided_exactly_on_both_sides_of_the_cone() {
+    // A margin of +5.2e-19 fP0, which f64 rounds away.
+    let thin = case()
+        .p1("0.99999933332014679")
+        .q1("6.6667985320947576e-10")
+        .phi("pi+1e-12")
+        .friction("0.001")
+        .lambda("2");
+    assert_answered(&thin.text(), "4.5918722769865");
+    // At φ = π/2, cos φ = 0 exactly: max(Q − fP) = Q0 − fP0 + √(Q1² + f²P1²) = Q0 − 0.5.
+    let at = |q0: &str| case().p1("0.3").q1("0.4").phi("pi/2").q0(q0).text();
+    for result in both_modes(&at("0.4999999999999999999999999999999999999999")) {
+        assert!(result.is_ok(), "{result:?}");
+    }
+    for q0 in [
+        "0.5000000000000000000000000000000000000001",
+        "0.5",
+        "-0.5000000000000000000000000000000000000001",
+    ] {
+        assert_refused(&at(q0), |e| matches!(e, CycleError::GrossSlip { .. }));
+    }
+    // At φ = π/3, cos φ = 1/2 exactly: σ² = Q1² + f²P1² − Q1 f P1 = 0.16 + 0.09 − 0.12 = 0.13.
+    let third = |q0: &str| case().p1("0.3").q1("0.4").phi("pi/3").q0(q0).text();
+    let sigma = 0.13f64.sqrt();
+    assert!(both_modes(&third(&format!("{:.12}", 1.0 - sigma - 1e-9)))
+        .iter()
+        .all(Result::is_ok));
+    assert_refused(&third(&format!("{:.12}", 1.0 - sigma + 1e-9)), |e| {
+        matches!(e, CycleError::GrossSlip { sign: "+", .. })
+    });
+}
+
+#[test]
+fn the_compliance_ratio_and_poissons_ratio_are_decided_exactly() {
+    for nu in [
+        "0.66666666666666666667",
+        "0.6666666666666666666666666666666666666667",
+        "-1e-40",
+    ] {
+        assert_refused(&case().nu(nu).text(), |e| {
+            matches!(e, CycleError::PoissonRatioOutOfRange { .. })
+        });
+    }
+    for nu in ["0.66666666666666666666", "0", "0.5"] {
+        assert!(both_modes(&case().nu(nu).text()).iter().all(Result::is_ok), "ν = {nu}");
+    }
+    for lambda in [
+        "2.0000000000000000000000000000000000000001",
+        "0.9999999999999999999999999999999999999999",
+    ] {
+        assert_refused(&case().lambda(lambda).text(), |e| {
+            matches!(e, CycleError::ComplianceRatioOutOfRange { .. })
+        });
+    }
+    for lambda in ["1.9999999999999999999999999999999999999999", "2", "1"] {
+        assert!(
+            both_modes(&case().lambda(lambda).text()).iter().all(Result::is_ok),
+            "λ = {lambda}"
+        );
+    }
+}
+
+#[test]
+fn a_convex_compliance_is_refused_in_both_modes_naming_a_load() {
+    for spec in [
+        "poly:p0=1,coeffs=2;1e-40",
+        "power:c=1,beta=1e-300",
+        "power:c=1,beta=-2+power:c=-1.00001,beta=-2",
+    ] {
+        for result in both_modes(&case().compliance(spec).text()) {
+            let refused = matches!(
+                result,
+                Err(ReferenceError::Dissipation(DissipationError::Compliance(
+                    AdmissibilityError::PositiveCurvature { .. } | AdmissibilityError::NonPositiveSlope { .. }
+                )))
+            );
+            assert!(refused, "{spec}: {result:?}");
+        }
+    }
+}
+
+#[test]
+fn a_cancelling_but_concave_sum_is_admissible_and_proven() {
+    // v' = 1e-5/P², concave, written as a difference of two steep terms.
+    let text = case().compliance("power:c=1,beta=-2+power:c=-0.99999,beta=-2").text();
+    let single = case().compliance("power:c=0.00001,beta=-2").text();
+    let [_, digits] = both_modes(&text);
+    let [_, reference] = both_modes(&single);
+    let (digits, reference) = (digits.unwrap(), reference.unwrap());
+    assert!(digits.1 && reference.1);
+    assert_eq!(digits.0, reference.0);
+}
+
+#[test]
+fn a_budget_that_runs_out_is_a_failure_not_an_unproven_answer() {
+    // A case that once answered by agreement after 1.6 s of a 5 s budget, with exit 0.
+    let text = case()
+        .p0("1e-300")
+        .p1("7.2659167100239962e-301")
+        .q1("5.8415471045620484e-301")
+        .phi("0.2548pi")
+        .friction("1.682")
+        .lambda("1.3287")
+        .compliance("power:c=1,beta=-1+power:c=-1,beta=-1+exp:a=1.05e-07,c=1e-300,d=0")
+        .text();
+    // Too little time for 30 proven digits: a failure (exit 1), never agreement.
+    match dissipation_report(&text, Some(30), Duration::from_millis(300)) {
+        Err(error) => assert!(error.is_failure(), "{error}"),
+        Ok(report) => assert!(
+            report.answer.provenance.is_proven() || matches!(report.answer.provenance, Provenance::Exact(_)),
+            "{:?}",
+            report.answer.provenance
+        ),
+    }
+}
