@@ -78,6 +78,8 @@ pub mod figures;
 #[doc(hidden)]
 pub mod files;
 #[doc(hidden)]
+pub mod messages;
+#[doc(hidden)]
 pub mod phase;
 #[cfg(feature = "cli")]
 #[doc(hidden)]
