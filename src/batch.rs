@@ -8,12 +8,13 @@ use crate::answer::{Answer, Provenance};
 use crate::compliance::{ComplianceSpec, TableError};
 use crate::cycle::LoadCycle;
 use crate::dissipation_answer::{dissipation_report, tables_cover, DissipationAnswer};
+use crate::messages::printable;
 use crate::reference::ReferenceError;
 
 mod input;
 mod output;
 
-pub use input::{read_input, BatchInput, InputRow, MAX_RECORD_BYTES};
+pub use input::{check_input, read_input, BatchInput, InputRow, MAX_RECORD_BYTES};
 pub use output::{BatchRecord, JsonValue};
 
 pub use crate::dissipation_answer::{method_key, TableEstimate, TABLE_QUADRATURE_TOLERANCE};
@@ -194,7 +195,7 @@ impl RowThreads {
 
 fn row_result(threads: &RowThreads, row: &InputRow, digits: Option<u32>, budget: Duration) -> RowResult {
     let failed = |error: String| RowResult {
-        error: format!("line {}: {error}", row.line),
+        error: format!("line {}: {}", row.line, printable(&error)),
         ..RowResult::default()
     };
     let case = match &row.case {

@@ -6,10 +6,39 @@
 //! socket, a descriptor (`/dev/fd/N`) or standard output (`-`, `/dev/stdout`) is written
 //! in place and never replaced. Every target can be checked before any work is spent on
 //! its contents ([`check_writable`]).
+//!
+//! Every temporary file is listed while it exists, so that a process ended by a signal
+//! removes them first ([`abandon_temporaries`]): no temporary file outlives the process.
 
 use std::fs::{File, OpenOptions};
 use std::io::Write;
 use std::path::{Path, PathBuf};
+use std::sync::{Mutex, PoisonError};
+
+/// The temporary files of this process that exist (or are about to).
+static TEMPORARIES: Mutex<Vec<PathBuf>> = Mutex::new(Vec::new());
+
+/// `work` with the list of temporary files held: the cleanup on a signal waits for it, so
+/// a temporary file is never made unlisted, nor renamed over its target once removed.
+fn with_temporaries<T>(work: impl FnOnce(&mut Vec<PathBuf>) -> T) -> T {
+    let mut list = TEMPORARIES.lock().unwrap_or_else(PoisonError::into_inner);
+    work(&mut list)
+}
+
+/// Removes every temporary file of the process and keeps the list held for good, so that
+/// none is made or renamed afterwards: for a process about to end on a signal (its
+/// outputs are then left as they were, never half-written).
+pub fn abandon_temporaries() {
+    let mut list = TEMPORARIES.lock().unwrap_or_else(PoisonError::into_inner);
+    for temporary in list.drain(..) {
+        let _ = std::fs::remove_file(temporary);
+    }
+    std::mem::forget(list);
+}
+
+/// The longest record (a line of a CSV input: a batch row, its header, a comment, a row
+/// of a table) read, in bytes: a row of numbers and a SPEC is well under a kilobyte.
+pub const MAX_RECORD_BYTES: u64 = 1 << 20;
 
 /// Why an output file cannot be (or could not be) written.
 #[derive(Debug, thiserror::Error)]
@@ -190,17 +219,30 @@ fn temporary_for(path: &Path, destination: &Destination) -> PathBuf {
 }
 
 /// Checks, before anything is computed, that `path` ends in one of `extensions` (any
-/// when empty, compared without case) and can be written: a file's directory exists and
+/// when empty, compared without case; standard output, `-`, is taken for a content of a
+/// single extension) and can be written: a file's directory exists and
 /// accepts a new file (by creating and removing a temporary one), a device opens for
 /// writing (a FIFO is not opened: that would wait for its reader).
 pub fn check_writable(path: &Path, extensions: &[&str]) -> Result<(), OutputError> {
     let shown = path.display().to_string();
-    if !extensions.is_empty() {
+    // Standard output has no name to tell the format by: it takes a content of one format.
+    let single_format_to_standard_output =
+        extensions.len() == 1 && matches!(destination(path), Ok(Destination::StandardOutput));
+    if !extensions.is_empty() && !single_format_to_standard_output {
         let matches = path
             .extension()
             .is_some_and(|e| extensions.iter().any(|x| e.eq_ignore_ascii_case(x)));
         if !matches {
             let listed: Vec<String> = extensions.iter().map(|e| format!(".{e}")).collect();
+            if matches!(destination(path), Ok(Destination::StandardOutput)) {
+                return Err(OutputError::Content {
+                    path: shown,
+                    message: format!(
+                        "standard output has no name to choose the format by: write to a file ending in {}",
+                        listed.join(" or ")
+                    ),
+                });
+            }
             return Err(OutputError::Extension {
                 path: shown,
                 expected: listed.join(" or "),
@@ -230,12 +272,14 @@ pub fn check_writable(path: &Path, extensions: &[&str]) -> Result<(), OutputErro
                 });
             }
             let probe = temporary_for(path, &destination);
-            File::create(&probe).map_err(|source| OutputError::NotWritable {
-                path: shown,
-                directory: directory.display().to_string(),
-                source,
-            })?;
-            std::fs::remove_file(&probe).map_err(io)
+            with_temporaries(|_| {
+                File::create(&probe).map_err(|source| OutputError::NotWritable {
+                    path: shown,
+                    directory: directory.display().to_string(),
+                    source,
+                })?;
+                std::fs::remove_file(&probe).map_err(io)
+            })
         }
     }
 }
@@ -283,6 +327,7 @@ pub fn write_atomically<E: std::fmt::Display>(
     let shown = path.display().to_string();
     let destination = destination(path)?;
     let temporary = temporary_for(path, &destination);
+    with_temporaries(|list| list.push(temporary.clone()));
     let outcome = write(&temporary)
         .map_err(|error| OutputError::Content {
             path: shown.clone(),
@@ -290,7 +335,7 @@ pub fn write_atomically<E: std::fmt::Display>(
         })
         .and_then(|()| {
             match &destination {
-                Destination::File(target) => replace(&temporary, target),
+                Destination::File(target) => with_temporaries(|_| replace(&temporary, target)),
                 _ => copy_in_place(&temporary, &destination),
             }
             .map_err(|source| OutputError::Io {
@@ -298,9 +343,12 @@ pub fn write_atomically<E: std::fmt::Display>(
                 source,
             })
         });
-    if outcome.is_err() || !matches!(destination, Destination::File(_)) {
-        let _ = std::fs::remove_file(&temporary);
-    }
+    with_temporaries(|list| {
+        if outcome.is_err() || !matches!(destination, Destination::File(_)) {
+            let _ = std::fs::remove_file(&temporary);
+        }
+        list.retain(|listed| *listed != temporary);
+    });
     outcome
 }
 
@@ -334,7 +382,12 @@ impl StreamedOutput {
             Destination::InPlace(target) => (Box::new(open_in_place(target).map_err(io)?), None),
             Destination::File(target) => {
                 let temporary = temporary_for(path, &destination);
-                let file = File::create(&temporary).map_err(io)?;
+                let file = with_temporaries(|list| {
+                    let file = File::create(&temporary)?;
+                    list.push(temporary.clone());
+                    Ok(file)
+                })
+                .map_err(io)?;
                 (Box::new(file), Some((temporary, target.clone())))
             }
         };
@@ -354,10 +407,14 @@ impl StreamedOutput {
         };
         self.sink.flush().map_err(io)?;
         if let Some((temporary, target)) = self.replacing.take() {
-            let replaced = replace(&temporary, &target);
-            if replaced.is_err() {
-                let _ = std::fs::remove_file(&temporary);
-            }
+            let replaced = with_temporaries(|list| {
+                let replaced = replace(&temporary, &target);
+                if replaced.is_err() {
+                    let _ = std::fs::remove_file(&temporary);
+                }
+                list.retain(|listed| *listed != temporary);
+                replaced
+            });
             replaced.map_err(io)?;
         }
         Ok(())
@@ -377,7 +434,10 @@ impl Write for StreamedOutput {
 impl Drop for StreamedOutput {
     fn drop(&mut self) {
         if let Some((temporary, _)) = &self.replacing {
-            let _ = std::fs::remove_file(temporary);
+            with_temporaries(|list| {
+                let _ = std::fs::remove_file(temporary);
+                list.retain(|listed| listed != temporary);
+            });
         }
     }
 }

@@ -80,6 +80,8 @@ pub mod figures;
 #[doc(hidden)]
 pub mod files;
 #[doc(hidden)]
+pub mod messages;
+#[doc(hidden)]
 pub mod phase;
 #[cfg(feature = "cli")]
 #[doc(hidden)]

@@ -10,11 +10,12 @@ use clap::{CommandFactory, Parser, Subcommand};
 
 use cli::budget::within;
 use cli::case::Jobs;
-use cli::report::{emit, fail, parse_error};
+use cli::parse::radians_warning;
+use cli::report::{emit, emit_on_stderr, fail, parse_error, warn};
 use cli::{
     accuracy::AccuracyArgs, batch::BatchArgs, completions::CompletionsArgs, dissipation::DissipationArgs,
     figures::FiguresArgs, man::ManArgs, reference::ReferenceArgs, series::SeriesArgs, simulate::SimulateArgs,
-    small_amplitude::SmallAmplitudeArgs, verify::VerifyArgs,
+    small_amplitude::SmallAmplitudeArgs, table::TableArgs, verify::VerifyArgs,
 };
 
 #[derive(Parser)]
@@ -27,6 +28,9 @@ use cli::{
 struct Cli {
     #[command(subcommand)]
     command: Command,
+    /// No progress bars and no warnings on standard error (errors still print).
+    #[arg(long, short = 'q', global = true)]
+    quiet: bool,
 }
 
 #[derive(Subcommand)]
@@ -46,9 +50,9 @@ enum Command {
     /// Check the reference values of a catalogue of cases against a fresh computation
     /// (or, with --write, replace them).
     Reference(ReferenceArgs),
-    /// A table of Ŵ = W/(γσλf²) against the phase φ for Persson's compliance
-    /// v' = γσ/P, P0 = 1, P1 = 0.4 (the paper's Fig. 5).
-    Table,
+    /// A table of W against the phase φ for a few amplitudes Q1, as text, CSV or JSON; by default
+    /// Ŵ = W/(γσλf²) for Persson's compliance v' = γσ/P, P0 = 1, P1 = 0.4 (the paper's Fig. 5).
+    Table(Box<TableArgs>),
     /// Regenerate the paper's Figures 4–8 (CSV, SVG, PNG) and the facts it states (facts.json).
     Figures(FiguresArgs),
     /// W for every load cycle (row) of a CSV file, on all cores, in input order.
@@ -69,6 +73,17 @@ impl Command {
             _ => None,
         }
     }
+
+    /// The phase of a command that takes one on its command line.
+    fn phase(&self) -> Option<&str> {
+        match self {
+            Command::Dissipation(args) => Some(&args.case.phi),
+            Command::Simulate(args) => Some(&args.case.phi),
+            Command::SmallAmplitude(args) => Some(&args.phi),
+            Command::Series(args) => Some(&args.phi),
+            _ => None,
+        }
+    }
 }
 
 fn main() -> ExitCode {
@@ -76,9 +91,22 @@ fn main() -> ExitCode {
         Ok(cli) => cli,
         Err(error) => return parse_error(&error),
     };
+    if cli.quiet {
+        cli::report::set_quiet();
+    }
+    if let Err(failure) = cli::signals::install() {
+        return fail(&failure);
+    }
     if let Some(Err(failure)) = cli.command.jobs().map(Jobs::install) {
         return fail(&failure);
     }
+    // Said once the run has succeeded: a refusal stays one line.
+    let phase_warning = cli.command.phase().and_then(|phi| radians_warning("--phi", phi));
+    let warn_of_phase = || {
+        if let Some(warning) = &phase_warning {
+            warn(warning);
+        }
+    };
     let outcome = match &cli.command {
         Command::Dissipation(args) => within(args.answer.max_seconds, || cli::dissipation::run(args)),
         Command::Verify(args) => match cli::verify::run(args) {
@@ -89,10 +117,17 @@ fn main() -> ExitCode {
         },
         Command::SmallAmplitude(args) => within(args.answer.max_seconds, || cli::small_amplitude::run(args)),
         Command::Series(args) => within(args.answer.max_seconds, || cli::series::run(args)),
-        Command::Simulate(args) => within(args.max_seconds, || cli::simulate::run(args)),
+        Command::Simulate(args) => match within(args.max_seconds, || cli::simulate::run(args)) {
+            // The loop took standard output: the report goes to standard error.
+            Ok(text) if args.loop_on_standard_output() => {
+                warn_of_phase();
+                return emit_on_stderr(&text);
+            }
+            outcome => outcome,
+        },
         Command::Accuracy(args) => cli::accuracy::run(args),
         Command::Reference(args) => cli::reference::run(args),
-        Command::Table => cli::table::run(),
+        Command::Table(args) => cli::table::run(args),
         Command::Figures(args) => cli::figures::run(args),
         Command::Completions(args) => cli::completions::run(args, Cli::command()),
         Command::Man(args) => cli::man::run(args, Cli::command()),
@@ -103,7 +138,10 @@ fn main() -> ExitCode {
         },
     };
     match outcome {
-        Ok(text) => emit(&text, ExitCode::SUCCESS),
+        Ok(text) => {
+            warn_of_phase();
+            emit(&text, ExitCode::SUCCESS)
+        }
         Err(failure) => fail(&failure),
     }
 }

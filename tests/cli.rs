@@ -51,7 +51,7 @@ fn bare_microslip_prints_usage_and_the_subcommands_on_stderr() {
     let (code, stdout, stderr) = microslip::<&str>(&[]);
     assert_eq!(code, 2);
     assert!(stdout.is_empty());
-    assert!(stderr.contains("Usage: microslip <COMMAND>"), "{stderr}");
+    assert!(stderr.contains("Usage: microslip [OPTIONS] <COMMAND>"), "{stderr}");
     for command in [
         "dissipation",
         "simulate",
@@ -745,7 +745,7 @@ fn a_misspelt_command_flag_or_choice_keeps_clap_suggestion_and_usage() {
             &[
                 "microslip: unrecognized subcommand 'disipation'",
                 "a similar subcommand exists: 'dissipation'",
-                "Usage: microslip <COMMAND>",
+                "Usage: microslip [OPTIONS] <COMMAND>",
                 "--help",
             ][..],
         ),

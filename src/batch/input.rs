@@ -8,10 +8,10 @@ use std::sync::Arc;
 
 use super::BatchError;
 use crate::case::CaseText;
+use crate::compliance::column_name;
+use crate::messages::printable;
 
-/// The longest record (a row, or the header, or a comment line) a batch reads, in
-/// bytes: a row of numbers and a SPEC is well under a kilobyte.
-pub const MAX_RECORD_BYTES: u64 = 1 << 20;
+pub use crate::files::MAX_RECORD_BYTES;
 
 /// One input row: its line in the file, its cells, and the case (or why there is none).
 #[derive(Clone, Debug)]
@@ -104,6 +104,9 @@ pub fn read_input<R: Read>(source: R) -> Result<BatchInput<R>, BatchError> {
     let header_line = loop {
         let mut line = Vec::new();
         let count = buffered.read_until(b'\n', &mut line).map_err(|e| input_error(&e))? as u64;
+        if count > MAX_RECORD_BYTES {
+            return Err(BatchError::Input(too_long(comment_lines + 1)));
+        }
         if count == 0 || !line.starts_with(b"#") {
             break line;
         }
@@ -123,7 +126,7 @@ pub fn read_input<R: Read>(source: R) -> Result<BatchInput<R>, BatchError> {
         .collect();
     check_header(&header)?;
     record_start.store(bytes_before_header + reader.position().byte(), Ordering::Relaxed);
-    let find = |name: &str| header.iter().position(|h| h.eq_ignore_ascii_case(name));
+    let find = |name: &str| header.iter().position(|h| column_name(h) == name);
     let columns = CASE_COLUMNS.map(find);
     Ok(BatchInput {
         header,
@@ -135,18 +138,31 @@ pub fn read_input<R: Read>(source: R) -> Result<BatchInput<R>, BatchError> {
     })
 }
 
-/// Refuses a header that names a column twice (compared as the columns are found:
-/// without case) or lacks a required one.
+/// Why a record longer than [`MAX_RECORD_BYTES`] is refused.
+fn too_long(line: u64) -> String {
+    format!(
+        "line {line} is longer than {} MiB: this is not a batch CSV, whose rows are at most {} MiB",
+        MAX_RECORD_BYTES >> 20,
+        MAX_RECORD_BYTES >> 20
+    )
+}
+
+/// Refuses a header that names a column twice (compared as the columns are found: by
+/// [`column_name`], without case and units) or lacks a required one.
 fn check_header(header: &[String]) -> Result<(), BatchError> {
+    let shown = || printable(&header.join(",")).into_owned();
     for (i, name) in header.iter().enumerate() {
-        if header[..i].iter().any(|earlier| earlier.eq_ignore_ascii_case(name)) {
+        if header[..i]
+            .iter()
+            .any(|earlier| column_name(earlier) == column_name(name))
+        {
             return Err(BatchError::DuplicateColumn {
-                name: name.clone(),
-                header: header.join(","),
+                name: printable(name).into_owned(),
+                header: shown(),
             });
         }
     }
-    let has = |name: &str| header.iter().any(|h| h.eq_ignore_ascii_case(name));
+    let has = |name: &str| header.iter().any(|h| column_name(h) == name);
     let required = ["p0", "p1", "q1", "phi", "friction", "compliance"];
     let mut missing: Vec<&str> = required.iter().copied().filter(|name| !has(name)).collect();
     if !has("lambda") && !has("nu") {
@@ -157,9 +173,22 @@ fn check_header(header: &[String]) -> Result<(), BatchError> {
     } else {
         Err(BatchError::MissingColumns {
             missing: missing.join(", "),
-            header: header.join(","),
+            header: shown(),
         })
     }
+}
+
+/// Reads a whole input for what would stop a batch part-way (a NUL byte, a record over
+/// [`MAX_RECORD_BYTES`], an unclosed quote, a header without its columns) without
+/// computing anything: the number of rows, or why the input is no batch CSV. For a file,
+/// which can be read twice, before any row is computed or written.
+pub fn check_input<R: Read>(source: R) -> Result<u64, BatchError> {
+    let mut rows = 0;
+    for row in read_input(source)? {
+        row?;
+        rows += 1;
+    }
+    Ok(rows)
 }
 
 impl<R: Read> Iterator for BatchInput<R> {
@@ -168,8 +197,13 @@ impl<R: Read> Iterator for BatchInput<R> {
     /// The next row; an input that stops being a CSV ends the rows with why.
     fn next(&mut self) -> Option<Self::Item> {
         let mut record = csv::ByteRecord::new();
+        let start = self.reader.position().byte();
         let more = self.reader.read_byte_record(&mut record);
         let end = self.reader.position().byte();
+        if matches!(more, Ok(true)) && end.saturating_sub(start) > MAX_RECORD_BYTES {
+            let line = self.comment_lines + record.position().map_or(0, |p| p.line());
+            return Some(Err(BatchError::Input(too_long(line))));
+        }
         self.record_start
             .store(self.bytes_before_header + end, Ordering::Relaxed);
         match more {
@@ -210,7 +244,7 @@ fn row_case(header: &[String], text: &[Option<String>], columns: &[Option<usize>
         ));
     }
     if let Some(i) = text.iter().position(Option::is_none) {
-        return Err(format!("{} is not UTF-8 text", header[i]));
+        return Err(format!("{} is not UTF-8 text", printable(&header[i])));
     }
     let cell = |k: usize| -> Option<String> { columns[k].and_then(|i| text[i].clone()).filter(|s| !s.is_empty()) };
     let required = |k: usize| cell(k).ok_or_else(|| format!("{} is empty", CASE_COLUMNS[k]));

@@ -7,6 +7,7 @@ use std::collections::BTreeMap;
 use serde::{Serialize, Serializer};
 
 use super::RowResult;
+use crate::compliance::column_name;
 
 /// A value of the JSON output.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -111,7 +112,7 @@ impl<'a> BatchRecord<'a> {
     /// The record of the echoed (column, cell) pairs of a row and its result.
     pub fn new(cells: impl IntoIterator<Item = (&'a str, &'a str)>, result: &'a RowResult) -> Self {
         let typed = |(name, cell): (&'a str, &'a str)| {
-            let decimal = DECIMAL_COLUMNS.iter().any(|c| c.eq_ignore_ascii_case(name));
+            let decimal = DECIMAL_COLUMNS.contains(&column_name(name).as_str());
             (
                 name,
                 if decimal {

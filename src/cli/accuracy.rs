@@ -8,6 +8,7 @@ use microslip::accuracy;
 use microslip::files::check_writable;
 use microslip::plot::{accuracy_picture, write_all_or_none, Format};
 
+use super::durations::ACCURACY_QUICK;
 use super::progress::Progress;
 use super::report::Failure;
 
@@ -16,8 +17,7 @@ pub struct AccuracyArgs {
     /// Directory for accuracy.csv, accuracy.svg and accuracy.png (created if missing).
     #[arg(long)]
     pub out: PathBuf,
-    /// Fewer cases, precisions and repeats (well under a minute).
-    #[arg(long)]
+    #[arg(long, help = format!("Fewer cases, precisions and repeats ({ACCURACY_QUICK})"))]
     pub quick: bool,
 }
 

@@ -11,11 +11,12 @@ use microslip::batch::{self, BatchError, InputRow, RowResult};
 use microslip::files::{check_writable, StreamedOutput};
 
 use super::case::Jobs;
-use super::parse;
+use super::parse::{self, radians_warning};
 use super::progress::Progress;
 use super::report::{warn, Failure};
 
 #[derive(Args)]
+#[command(after_help = INPUT_CHECKED)]
 pub struct BatchArgs {
     /// Input CSV (`-` for stdin): p0,p1,q1,phi,friction,lambda or nu,compliance; optional q0, id.
     #[arg(long)]
@@ -23,7 +24,8 @@ pub struct BatchArgs {
     /// Output (`-` for stdout); a regular file is written whole or not at all, a device or FIFO in place.
     #[arg(long)]
     pub output: String,
-    /// Verified significant digits for every row (1–1000); without it, f64 as a single run.
+    /// Significant digits for every row (1–1000), proven by a rigorous enclosure where one can be had
+    /// (the provenance column says what vouches for each); without it, f64 as a single run.
     #[arg(long, allow_hyphen_values = true, value_parser = parse::digits)]
     pub digits: Option<u32>,
     /// Output format.
@@ -35,6 +37,13 @@ pub struct BatchArgs {
     #[command(flatten)]
     pub jobs: Jobs,
 }
+
+/// When input that is no batch CSV is found, and what has been written by then.
+const INPUT_CHECKED: &str = "An input file is read whole for what would stop the batch (a NUL byte, \
+a record over 1 MiB, an unclosed quote) before any row is computed: such input exits 2 with nothing \
+written. Standard input streams, so rows are computed and written 256 at a time as they arrive; \
+input that stops being CSV part-way then exits 2 naming its line, an output file is left as it was, \
+and standard output (or a device) keeps the complete rows before that chunk, in input order.";
 
 /// Rows read before they are computed together (on all cores) and written, in order.
 const ROWS_PER_CHUNK: usize = 256;
@@ -55,6 +64,10 @@ pub fn run(args: &BatchArgs) -> Result<usize, Failure> {
     } else {
         Box::new(std::fs::File::open(&args.input).map_err(|e| Failure::refused(format!("{}: {e}", args.input)))?)
     };
+    if args.input != "-" && std::fs::metadata(&args.input).is_ok_and(|m| m.is_file()) {
+        let file = std::fs::File::open(&args.input).map_err(|e| Failure::refused(format!("{}: {e}", args.input)))?;
+        batch::check_input(std::io::BufReader::new(file)).map_err(refused)?;
+    }
     let mut input = batch::read_input(source).map_err(refused)?;
     let header = input.header.clone();
     let mut output = StreamedOutput::create(output_path).map_err(|e| Failure::failed(e.to_string()))?;
@@ -67,6 +80,7 @@ pub fn run(args: &BatchArgs) -> Result<usize, Failure> {
     let done = std::sync::atomic::AtomicUsize::new(0);
     let started = Instant::now();
     let (mut rows_done, mut failed) = (0, 0);
+    let mut phase_warning = None;
     loop {
         let chunk: Vec<InputRow> = input
             .by_ref()
@@ -75,6 +89,12 @@ pub fn run(args: &BatchArgs) -> Result<usize, Failure> {
             .map_err(refused)?;
         if chunk.is_empty() {
             break;
+        }
+        if phase_warning.is_none() {
+            phase_warning = chunk.iter().find_map(|row| {
+                let phi = row.case.as_ref().ok().map(|case| case.phi.as_str())?;
+                radians_warning(&format!("line {}: phi", row.line), phi)
+            });
         }
         let read = rows_done + chunk.len();
         let results = batch::run(&chunk, args.digits, args.max_seconds, &|| {
@@ -101,6 +121,10 @@ pub fn run(args: &BatchArgs) -> Result<usize, Failure> {
     progress.finish();
     output.write_all(&pending).map_err(lost)?;
     output.finish().map_err(|e| Failure::failed(e.to_string()))?;
+    // Said once the input has been read whole: a refused input stays one line.
+    if let Some(warning) = phase_warning {
+        warn(&format!("{warning} (the first such row)"));
+    }
     if failed > 0 || args.output != "-" {
         warn(&format!(
             "{rows_done} rows in {:.2} s, {failed} failed{}",

@@ -1,5 +1,5 @@
 //! The flags shared by subcommands: a load cycle on a contact, how an answer is asked
-//! for (verified digits, a time budget, JSON), and how many threads do the work.
+//! for (proven digits, a time budget, JSON), and how many threads do the work.
 
 use std::num::NonZeroUsize;
 use std::time::Duration;
@@ -7,6 +7,7 @@ use std::time::Duration;
 use clap::Args;
 
 use microslip::case::CaseText;
+use microslip::compliance::{spec_help, spec_summary};
 
 use super::parse;
 use super::report::Failure;
@@ -44,10 +45,7 @@ pub struct CaseArgs {
     /// Poisson's ratio ν in [0, 2/3], giving λ = (2 − ν)/(2(1 − ν)) in [1, 2].
     #[arg(long, allow_hyphen_values = true)]
     pub nu: Option<String>,
-    /// Normal compliance SPEC, e.g. `persson:gamma=1,sigma=1`, `power:c=1,beta=-1`,
-    /// `hertz:r=1,estar=1`, `poly:p0=1,coeffs=2;-0.5;-0.1`, terms joined by `+`
-    /// (`persson:gamma=1,sigma=1+const:c=0.5`); v' > 0 and v'' ≤ 0 are needed.
-    #[arg(long, allow_hyphen_values = true)]
+    #[arg(long, allow_hyphen_values = true, help = spec_summary(), long_help = spec_help())]
     pub compliance: String,
 }
 
@@ -67,11 +65,11 @@ impl CaseArgs {
     }
 }
 
-/// How an answer is asked for: verified digits or f64, within a time budget, as text or JSON.
+/// How an answer is asked for: proven digits or f64, within a time budget, as text or JSON.
 /// (A command describes its `--digits` with `mut_arg`.)
 #[derive(Args)]
 pub struct Answer {
-    /// Significant digits to compute and verify (1–1000).
+    /// Significant digits to compute and prove by a rigorous enclosure (1–1000).
     #[arg(long, allow_hyphen_values = true, value_parser = parse::digits)]
     pub digits: Option<u32>,
     /// Time budget, in seconds (up to 1e6).

@@ -1,4 +1,4 @@
-//! `microslip dissipation`: W and its four segments, in f64 or to verified digits.
+//! `microslip dissipation`: W and its four segments, in f64 or to proven digits.
 
 use clap::Args;
 

@@ -4,6 +4,7 @@
 use std::num::NonZeroUsize;
 use std::time::Duration;
 
+use microslip::phase::ExactPhase;
 use microslip::reference::MAX_DIGITS;
 
 /// The longest time budget accepted: 1e6 s (about 11.6 days). Larger values would
@@ -82,9 +83,42 @@ pub fn seed(text: &str) -> Result<u64, String> {
         .map_err(|_| format!("must be a whole number from 0 to {}", u64::MAX))
 }
 
+/// A warning for a phase written as a bare number beyond a full turn (|φ| > 2π, `--phi 72`):
+/// it is read as radians, as written, though degrees were likely meant. None for any
+/// other phase (one in π or degrees, a smaller number, or none at all).
+pub fn radians_warning(name: &str, text: &str) -> Option<String> {
+    let phase = ExactPhase::parse(text).ok()?;
+    let (multiple, offset) = phase.parts();
+    let radians = offset.to_f64();
+    if *multiple != 0 || radians.abs() <= std::f64::consts::TAU {
+        return None;
+    }
+    let written = text.trim();
+    let turns = radians / 180.0;
+    let in_pi = format!("{turns}");
+    let as_pi = if in_pi.len() <= 8 {
+        format!("{in_pi}pi")
+    } else {
+        "0.4pi".to_string()
+    };
+    Some(format!(
+        "{name} {written} is read as {written} radians (more than 2π); for degrees write {written}deg, or a multiple of π such as {as_pi}"
+    ))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn only_bare_numbers_beyond_a_turn_are_warned_of() {
+        let warning = radians_warning("--phi", "72").unwrap();
+        assert!(warning.contains("72deg") && warning.contains("0.4pi"), "{warning}");
+        assert!(radians_warning("--phi", "-100").unwrap().contains("-100deg"));
+        for quiet in ["6.28", "72deg", "72°", "3pi", "0.4pi", "pi+7", "x", "1e-3"] {
+            assert_eq!(radians_warning("--phi", quiet), None, "{quiet}");
+        }
+    }
 
     #[test]
     fn budgets_are_positive_and_bounded() {

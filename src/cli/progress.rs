@@ -1,5 +1,6 @@
 //! Progress of the long runs (verify, accuracy, reference, figures, batch) on standard
-//! error, drawn only when standard error is a terminal: the one progress display.
+//! error, drawn only when standard error is a terminal and `--quiet` is not given: the
+//! one progress display.
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
@@ -8,7 +9,12 @@ pub struct Progress(ProgressBar);
 
 impl Progress {
     pub fn new(total: usize) -> Self {
-        let bar = ProgressBar::with_draw_target(Some(total as u64), ProgressDrawTarget::stderr());
+        let target = if super::report::quiet() {
+            ProgressDrawTarget::hidden()
+        } else {
+            ProgressDrawTarget::stderr()
+        };
+        let bar = ProgressBar::with_draw_target(Some(total as u64), target);
         if let Ok(style) = ProgressStyle::with_template("[{pos}/{len}] {wide_msg} {elapsed}") {
             bar.set_style(style);
         }

@@ -5,8 +5,11 @@
 
 use std::io::Write;
 use std::process::ExitCode;
+use std::sync::atomic::{AtomicBool, Ordering};
 
 use clap::error::{ContextKind, ContextValue, ErrorKind};
+
+use microslip::messages::printable;
 
 /// Exit code of refused input: bad flags, a case outside the theory, a limit.
 pub const REFUSED: u8 = 2;
@@ -45,13 +48,42 @@ impl<E: std::fmt::Display> From<E> for Failure {
     }
 }
 
-/// Writes `message` to standard error, prefixed with the program's name; a failure to
-/// write there is ignored (there is nowhere left to report it).
-pub fn warn(message: &str) {
+/// Whether warnings and progress are kept off standard error (`--quiet`).
+static QUIET: AtomicBool = AtomicBool::new(false);
+
+/// Keeps warnings and progress off standard error from now on (errors still print).
+pub fn set_quiet() {
+    QUIET.store(true, Ordering::Relaxed);
+}
+
+/// Whether `--quiet` was given.
+pub fn quiet() -> bool {
+    QUIET.load(Ordering::Relaxed)
+}
+
+/// Writes each line of `message` to standard error, prefixed with the program's name and
+/// with control characters escaped; a failure to write there is ignored (there is
+/// nowhere left to report it).
+fn error_lines(message: &str) {
     let mut stderr = std::io::stderr().lock();
     for line in message.lines() {
-        let _ = writeln!(stderr, "microslip: {line}");
+        let _ = writeln!(stderr, "microslip: {}", printable(line));
     }
+}
+
+/// A warning on standard error (see [`error_lines`]), unless `--quiet` was given.
+pub fn warn(message: &str) {
+    if !quiet() {
+        error_lines(message);
+    }
+}
+
+/// A result printed on standard error where standard output carries other data (the
+/// loop of `simulate --loop -`); kept by `--quiet`, which silences only warnings.
+pub fn emit_on_stderr(text: &str) -> ExitCode {
+    let mut stderr = std::io::stderr().lock();
+    let _ = writeln!(stderr, "{text}");
+    ExitCode::SUCCESS
 }
 
 /// Prints `text` (and a newline) to standard output and gives the exit code: success,
@@ -67,7 +99,7 @@ pub fn emit(text: &str, success: ExitCode) -> ExitCode {
         Ok(()) => success,
         Err(error) if error.kind() == std::io::ErrorKind::BrokenPipe => success,
         Err(error) => {
-            warn(&format!("writing to standard output: {error}"));
+            error_lines(&format!("writing to standard output: {error}"));
             ExitCode::from(FAILED)
         }
     }
@@ -75,16 +107,17 @@ pub fn emit(text: &str, success: ExitCode) -> ExitCode {
 
 /// Reports a failure on standard error and gives its exit code.
 pub fn fail(failure: &Failure) -> ExitCode {
-    warn(&failure.message);
+    error_lines(&failure.message);
     ExitCode::from(failure.code)
 }
 
 /// A command-line parsing error as what to print and where: help and version go to
 /// standard output with exit 0; a bare `microslip` prints usage and the subcommands
-/// to standard error with exit 2. A missing argument, a conflict or a value outside its
-/// range is one line naming what is wrong; a misspelt command or flag, or a value not
-/// among the choices, keeps clap's suggestion ("a similar subcommand exists"), the
-/// possible values and the usage line, since those are what a user needs to correct it.
+/// to standard error with exit 2. Every other error is one line on standard error with
+/// exit 2: a missing argument, a conflict or a value outside its range names what is
+/// wrong; a misspelt command or flag, or a value not among the choices, keeps clap's
+/// suggestion ("a similar subcommand exists"), the possible values and the usage, joined
+/// into that line, since those are what a user needs to correct it.
 pub fn parse_error(error: &clap::Error) -> ExitCode {
     match error.kind() {
         ErrorKind::DisplayHelp | ErrorKind::DisplayVersion => emit(error.to_string().trim_end(), ExitCode::SUCCESS),
@@ -92,15 +125,26 @@ pub fn parse_error(error: &clap::Error) -> ExitCode {
             let _ = write!(std::io::stderr().lock(), "{}", error.render());
             ExitCode::from(REFUSED)
         }
-        _ => match parse_error_line(error) {
-            Some(line) => fail(&Failure::refused(line)),
-            None => {
-                let rendered = error.render().to_string();
-                let message = rendered.strip_prefix("error: ").unwrap_or(&rendered);
-                let _ = write!(std::io::stderr().lock(), "microslip: {message}");
-                ExitCode::from(REFUSED)
-            }
-        },
+        _ => {
+            let line = parse_error_line(error).unwrap_or_else(|| joined_lines(&error.render().to_string()));
+            fail(&Failure::refused(line))
+        }
+    }
+}
+
+/// clap's rendering of an error as one line: its parts joined by "; ", without the
+/// "error: " prefix.
+fn joined_lines(rendered: &str) -> String {
+    let parts: Vec<&str> = rendered
+        .lines()
+        .map(str::trim)
+        .filter(|line| !line.is_empty())
+        .map(|line| line.strip_prefix("error: ").unwrap_or(line))
+        .collect();
+    if parts.is_empty() {
+        "invalid arguments".to_string()
+    } else {
+        parts.join("; ")
     }
 }
 
@@ -184,7 +228,7 @@ fn first_line(error: &clap::Error) -> String {
 
 #[cfg(test)]
 mod tests {
-    use super::flag_of;
+    use super::{flag_of, joined_lines};
 
     #[test]
     fn flags_and_groups_of_flags_read_as_typed() {
@@ -192,5 +236,16 @@ mod tests {
         assert_eq!(flag_of("--json"), "--json");
         assert_eq!(flag_of("<--rho <RHO>|--p0 <P0>>"), "--rho or --p0");
         assert_eq!(flag_of("<SHELL>"), "<SHELL>");
+    }
+
+    #[test]
+    fn a_rendered_error_is_one_line_with_its_tip_and_usage() {
+        let rendered = "error: unrecognized subcommand 'tabel'\n\n  tip: a similar subcommand exists: 'table'\n\n\
+                        Usage: microslip <COMMAND>\n\nFor more information, try '--help'.\n";
+        assert_eq!(
+            joined_lines(rendered),
+            "unrecognized subcommand 'tabel'; tip: a similar subcommand exists: 'table'; Usage: microslip <COMMAND>; \
+             For more information, try '--help'."
+        );
     }
 }

@@ -6,6 +6,7 @@ use serde::Serialize;
 
 use microslip::answer::{Answer, Provenance};
 use microslip::case::CaseText;
+use microslip::compliance::{spec_help, spec_summary};
 use microslip::exact::printing::{coefficient_answers, partial_sum_answers, ExactAnswerError};
 
 use super::case::Answer as AnswerArgs;
@@ -14,7 +15,7 @@ use super::report::Failure;
 /// `--rho` for the coefficients Iₙ alone, or a case (`--p0 … --compliance`) for its partial sums.
 #[derive(Args)]
 #[command(mut_arg("digits", |digits| digits.help(
-    "Certified significant digits (1–1000), from rigorous enclosures; without it, 15 certified digits (and \
+    "Significant digits (1–1000), proven by rigorous enclosures; without it, 15 proven digits (and \
      the f64 values of Iₙ beside them in JSON)"
 )))]
 #[command(group(ArgGroup::new("source").args(["rho", "p0"]).required(true)))]
@@ -51,8 +52,7 @@ pub struct SeriesArgs {
     /// Poisson's ratio ν.
     #[arg(long, allow_hyphen_values = true)]
     pub nu: Option<String>,
-    /// Normal compliance SPEC (as for `dissipation`).
-    #[arg(long, allow_hyphen_values = true, requires = "p0")]
+    #[arg(long, allow_hyphen_values = true, requires = "p0", help = spec_summary(), long_help = spec_help())]
     pub compliance: Option<String>,
     #[command(flatten)]
     pub answer: AnswerArgs,

@@ -8,7 +8,7 @@ use clap::Args;
 
 use microslip::batch;
 use microslip::case::{Case, CaseText};
-use microslip::files::{check_writable, write_text_atomically};
+use microslip::files::{check_writable, destination, write_text_atomically, Destination};
 use microslip::plot::{plot_cycle, PLOT_EXTENSIONS};
 use microslip::real::Precision;
 use microslip::simulate::{loop_csv, simulate, SimulationError, SimulationOptions, SimulationResult};
@@ -38,7 +38,8 @@ pub struct SimulateArgs {
     /// Time budget, in seconds (up to 1e6).
     #[arg(long, allow_hyphen_values = true, value_parser = parse::seconds, default_value = "60")]
     pub max_seconds: Duration,
-    /// Write the steady loop (theta,P,Q,u) to this .csv file.
+    /// Write the steady loop (theta,P,Q,u) to this .csv file, or with `-` to standard output
+    /// (the report then goes to standard error).
     #[arg(long = "loop")]
     pub loop_csv: Option<PathBuf>,
     /// Draw the load ellipse and the hysteresis loop to this .svg or .png file.
@@ -47,6 +48,15 @@ pub struct SimulateArgs {
     /// Print one JSON object.
     #[arg(long)]
     pub json: bool,
+}
+
+impl SimulateArgs {
+    /// Whether the loop is written to standard output (`--loop -`), which then carries it alone.
+    pub fn loop_on_standard_output(&self) -> bool {
+        self.loop_csv
+            .as_deref()
+            .is_some_and(|path| matches!(destination(path), Ok(Destination::StandardOutput)))
+    }
 }
 
 /// Whether two paths name the same file (as far as can be told before either exists).

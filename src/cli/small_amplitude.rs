@@ -11,8 +11,8 @@ use super::series::{failure, shown, ValueReport};
 
 #[derive(Args)]
 #[command(mut_arg("digits", |digits| digits.help(
-    "Certified significant digits (1–1000), from a rigorous enclosure of the closed form; without it, \
-     15 certified digits (and I's f64 value beside them in JSON)"
+    "Significant digits (1–1000), proven by a rigorous enclosure of the closed form; without it, \
+     15 proven digits (and I's f64 value beside them in JSON)"
 )))]
 pub struct SmallAmplitudeArgs {
     /// ρ = Q1/(f P1) (> 0).

@@ -1,38 +1,250 @@
-//! `microslip table`: Ŵ against φ for Persson's compliance (the paper's Fig. 5).
+//! `microslip table`: W against the phase φ for a few tangential amplitudes Q1, by
+//! default Ŵ for Persson's compliance as in the paper's Fig. 5, as text, CSV or JSON.
 
-use microslip::case::{Case, CaseText};
-use microslip::dissipation::{dissipation, Options};
+use clap::Args;
+use serde::Serialize;
+
+use microslip::case::{Case, CaseText, InputError};
+use microslip::compliance::{spec_help, spec_summary};
+use microslip::cycle::CycleError;
+use microslip::dissipation::{dissipation, DissipationError, ExactZero, Options};
+use microslip::files::csv_text;
 use microslip::real::{Precision, Real};
 
 use super::report::Failure;
 
-pub fn run() -> Result<String, Failure> {
-    let amplitudes = ["0.2", "0.4", "0.5", "0.6"];
-    let mut out = String::from("Ŵ = W/(γσλf²) for v' = γσ/P, P0 = 1, P1 = 0.4, f = 1 (f64)\n   φ/π");
-    for q1 in amplitudes {
-        out.push_str(&format!("   Q1 = {q1:<11}"));
+/// The most rows (phase steps) a table has.
+const MAX_PHASE_STEPS: usize = 1000;
+
+/// The defaults: the paper's Fig. 5, where γσλf² = 1 makes W the normalized Ŵ.
+const FIG5_COMPLIANCE: &str = "persson:gamma=1,sigma=1";
+
+#[derive(Args)]
+pub struct TableArgs {
+    /// Mean normal load P0 (> 0).
+    #[arg(long, allow_hyphen_values = true, default_value = "1")]
+    pub p0: String,
+    /// Normal load amplitude P1 (0 ≤ P1 < P0).
+    #[arg(long, allow_hyphen_values = true, default_value = "0.4")]
+    pub p1: String,
+    /// Mean tangential load Q0.
+    #[arg(long, allow_hyphen_values = true, default_value = "0")]
+    pub q0: String,
+    /// Tangential load amplitudes Q1, one column each, separated by commas.
+    #[arg(
+        long,
+        allow_hyphen_values = true,
+        value_delimiter = ',',
+        default_value = "0.2,0.4,0.5,0.6"
+    )]
+    pub q1: Vec<String>,
+    /// Rows: φ = kπ/N for k = 0 … N (1–1000).
+    #[arg(long, allow_hyphen_values = true, value_parser = phase_steps, default_value = "10")]
+    pub phase_steps: usize,
+    /// Coulomb friction coefficient f (> 0).
+    #[arg(long, allow_hyphen_values = true, default_value = "1")]
+    pub friction: String,
+    /// Tangential/normal compliance ratio λ, in [1, 2] (default 1).
+    #[arg(long, allow_hyphen_values = true, conflicts_with = "nu")]
+    pub lambda: Option<String>,
+    /// Poisson's ratio ν in [0, 2/3], giving λ = (2 − ν)/(2(1 − ν)).
+    #[arg(long, allow_hyphen_values = true)]
+    pub nu: Option<String>,
+    #[arg(long, allow_hyphen_values = true, default_value = FIG5_COMPLIANCE,
+          help = spec_summary(), long_help = spec_help())]
+    pub compliance: String,
+    /// Output format.
+    #[arg(long, value_parser = ["text", "csv", "json"], default_value = "text")]
+    pub format: String,
+}
+
+/// A number of phase steps, 1 to [`MAX_PHASE_STEPS`].
+fn phase_steps(text: &str) -> Result<usize, String> {
+    match text.trim().parse::<usize>() {
+        Ok(steps) if (1..=MAX_PHASE_STEPS).contains(&steps) => Ok(steps),
+        _ => Err(format!("must be a whole number from 1 to {MAX_PHASE_STEPS}")),
     }
-    for tenths in 0..=10 {
-        out.push_str(&format!("\n  {:>4.1}", f64::from(tenths) / 10.0));
-        for q1 in amplitudes {
-            let case = CaseText {
-                p0: "1".into(),
-                p1: "0.4".into(),
-                q0: "0".into(),
-                q1: q1.into(),
-                phi: format!("{}pi", f64::from(tenths) / 10.0),
-                friction: "1".into(),
-                lambda: Some("1".into()),
-                nu: None,
-                compliance: "persson:gamma=1,sigma=1".into(),
-            };
-            let Case { cycle, compliance } = case.spec()?.at::<f64>(Precision::DOUBLE)?;
-            let cell = match dissipation(&cycle, compliance.as_ref(), &Options::default()) {
-                Ok(result) => result.total.to_scientific(8),
-                Err(_) => "gross slip".to_string(),
-            };
-            out.push_str(&format!("   {cell:<16}"));
+}
+
+/// One cell of the table: W at a phase and an amplitude.
+#[derive(Serialize)]
+struct Cell<'a> {
+    phi_over_pi: f64,
+    /// The phase as read, exactly: `kpi/N`.
+    phi: String,
+    #[serde(rename = "Q1")]
+    q1: &'a str,
+    /// W (absent in gross slip, where the theory gives none).
+    #[serde(rename = "W", skip_serializing_if = "Option::is_none")]
+    w: Option<f64>,
+    /// W is exactly 0, by a reason read from the exact inputs (in phase without slip, say).
+    exact_zero: bool,
+    /// `partial slip`; `no slip` (in phase within friction, or Q1 = 0), where W is 0; or
+    /// `gross slip` where the load ellipse reaches |Q| = fP.
+    regime: &'static str,
+}
+
+impl Cell<'_> {
+    /// W as text: `0` when exactly 0, else `digits` significant digits; the regime in gross slip.
+    fn shown(&self, digits: usize) -> String {
+        match self.w {
+            None => self.regime.to_string(),
+            Some(_) if self.exact_zero => "0".to_string(),
+            Some(w) if digits == 0 => format!("{w:e}"),
+            Some(w) => w.to_scientific(digits),
         }
     }
-    Ok(out)
+}
+
+/// `microslip table --format json`.
+#[derive(Serialize)]
+struct TableReport<'a> {
+    inputs: &'a TableArgs,
+    cells: Vec<Cell<'a>>,
+}
+
+impl Serialize for TableArgs {
+    fn serialize<S: serde::Serializer>(&self, serializer: S) -> Result<S::Ok, S::Error> {
+        use serde::ser::SerializeMap;
+        let mut map = serializer.serialize_map(None)?;
+        map.serialize_entry("p0", &self.p0)?;
+        map.serialize_entry("p1", &self.p1)?;
+        map.serialize_entry("q0", &self.q0)?;
+        map.serialize_entry("q1", &self.q1)?;
+        map.serialize_entry("phase_steps", &self.phase_steps)?;
+        map.serialize_entry("friction", &self.friction)?;
+        match (&self.lambda, &self.nu) {
+            (_, Some(nu)) => map.serialize_entry("nu", nu)?,
+            (lambda, None) => map.serialize_entry("lambda", lambda.as_deref().unwrap_or("1"))?,
+        }
+        map.serialize_entry("compliance", &self.compliance)?;
+        map.end()
+    }
+}
+
+impl TableArgs {
+    /// The case of one cell.
+    fn case(&self, q1: &str, phi: &str) -> CaseText {
+        CaseText {
+            p0: self.p0.clone(),
+            p1: self.p1.clone(),
+            q0: self.q0.clone(),
+            q1: q1.to_string(),
+            phi: phi.to_string(),
+            friction: self.friction.clone(),
+            lambda: self
+                .nu
+                .is_none()
+                .then(|| self.lambda.clone().unwrap_or_else(|| "1".into())),
+            nu: self.nu.clone(),
+            compliance: self.compliance.clone(),
+        }
+    }
+
+    /// Whether the table is the paper's Fig. 5, whose W is the normalized Ŵ.
+    fn is_fig5(&self) -> bool {
+        let one = |text: &str| text.trim() == "1";
+        one(&self.p0)
+            && self.p1.trim() == "0.4"
+            && self.q0.trim() == "0"
+            && one(&self.friction)
+            && self.lambda.as_deref().is_none_or(one)
+            && self.nu.is_none()
+            && self.compliance == FIG5_COMPLIANCE
+    }
+
+    /// Every cell, row by row (phase), each row's amplitudes in order.
+    fn cells(&self) -> Result<Vec<Cell<'_>>, Failure> {
+        let steps = self.phase_steps;
+        let mut cells = Vec::with_capacity((steps + 1) * self.q1.len());
+        for k in 0..=steps {
+            let phi = format!("{k}pi/{steps}");
+            for q1 in &self.q1 {
+                let cell_failure = |message: String| Failure::refused(format!("φ = {phi}, Q1 = {q1}: {message}"));
+                let spec = self.case(q1, &phi).spec().map_err(|e| cell_failure(e.to_string()))?;
+                let gross_slip = |error: &CycleError| matches!(error, CycleError::GrossSlip { .. });
+                let w = match spec.at::<f64>(Precision::DOUBLE) {
+                    Err(InputError::Cycle(error)) if gross_slip(&error) => None,
+                    Err(error) => return Err(cell_failure(error.to_string())),
+                    Ok(Case { cycle, compliance }) => {
+                        match dissipation(&cycle, compliance.as_ref(), &Options::default()) {
+                            Ok(result) => Some(result.total),
+                            Err(DissipationError::Cycle(error)) if gross_slip(&error) => None,
+                            Err(error) => return Err(cell_failure(error.to_string())),
+                        }
+                    }
+                };
+                let exact_zero = spec.exact_zero();
+                let regime = match (w, exact_zero) {
+                    (None, _) => "gross slip",
+                    (_, Some(ExactZero::InPhaseWithoutSlip | ExactZero::NoTangentialOscillation)) => "no slip",
+                    _ => "partial slip",
+                };
+                cells.push(Cell {
+                    phi_over_pi: k as f64 / steps as f64,
+                    phi: phi.clone(),
+                    q1,
+                    w,
+                    exact_zero: w.is_some() && exact_zero.is_some(),
+                    regime,
+                });
+            }
+        }
+        Ok(cells)
+    }
+
+    /// The table as text: a heading, then a row per phase and a column per amplitude.
+    fn text(&self, cells: &[Cell]) -> String {
+        let ratio = match &self.nu {
+            Some(nu) => format!("ν = {nu}"),
+            None => format!("λ = {}", self.lambda.as_deref().unwrap_or("1")),
+        };
+        let mut out = format!(
+            "W per cycle (f64) for compliance {}, P0 = {}, P1 = {}, Q0 = {}, f = {}, {ratio}{}\n{:>8}",
+            self.compliance,
+            self.p0,
+            self.p1,
+            self.q0,
+            self.friction,
+            if self.is_fig5() {
+                "; here W = Ŵ = W/(γσλf²), the paper's Fig. 5"
+            } else {
+                ""
+            },
+            "φ/π"
+        );
+        for q1 in &self.q1 {
+            out.push_str(&format!("   Q1 = {q1:<11}"));
+        }
+        for row in cells.chunks(self.q1.len().max(1)) {
+            let fraction = format!("{:.4}", row[0].phi_over_pi);
+            let fraction = fraction.trim_end_matches('0').trim_end_matches('.');
+            out.push_str(&format!("\n  {fraction:>6}"));
+            for cell in row {
+                out.push_str(&format!("   {:<16}", cell.shown(8)));
+            }
+        }
+        out
+    }
+}
+
+pub fn run(args: &TableArgs) -> Result<String, Failure> {
+    let cells = args.cells()?;
+    match args.format.as_str() {
+        "csv" => {
+            let rows = cells.iter().map(|cell| {
+                let w = if cell.w.is_some() { cell.shown(0) } else { String::new() };
+                [
+                    cell.phi_over_pi.to_string(),
+                    cell.q1.to_string(),
+                    w,
+                    cell.regime.to_string(),
+                ]
+            });
+            let text = csv_text(&["phi_over_pi", "Q1", "W", "regime"], rows)?;
+            Ok(text.trim_end().to_string())
+        }
+        "json" => Ok(serde_json::to_string(&TableReport { inputs: args, cells })?),
+        _ => Ok(args.text(&cells)),
+    }
 }

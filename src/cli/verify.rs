@@ -7,6 +7,7 @@ use clap::Args;
 use microslip::verify::{self, GateOptions};
 
 use super::case::Jobs;
+use super::durations::VERIFY_QUICK;
 use super::json::{ClaimRow, GateReport};
 use super::parse;
 use super::progress::Progress;
@@ -14,8 +15,7 @@ use super::report::Failure;
 
 #[derive(Args)]
 pub struct VerifyArgs {
-    /// A smaller sample (under 10 s).
-    #[arg(long)]
+    #[arg(long, help = format!("A smaller sample ({VERIFY_QUICK})"))]
     pub quick: bool,
     /// The seed of the random draws.
     #[arg(long, allow_hyphen_values = true, value_parser = parse::seed, default_value = "2026")]

@@ -29,7 +29,8 @@ mod table;
 
 pub use combinators::{LoadScaled, Scaled, Shifted, Sum};
 pub use families::{Exponential, Hertz, Persson, Polynomial, PowerLaw, Rational};
-pub use spec::{parse_spec, ComplianceSpec, SpecError};
+pub use spec::{family_names, parse_spec, spec_help, spec_summary, ComplianceSpec, Family, SpecError, FAMILIES};
+pub(crate) use table::column_name;
 pub use table::{
     cached_table, ComplianceTable, Coordinates, TableColumn, TableCompliance, TableError, TableInterpolant, TABLE_ORDER,
 };

@@ -12,7 +12,7 @@ use serde::Serialize;
 
 use super::draw::figure_picture;
 use super::evaluate::{LimitSlope, FIGURE_RELATIVE_ERROR};
-use super::sweeps::{compute, step_count, Facts, Figures, SweepError, FIG8_PHASES};
+use super::sweeps::{compute, step_count, Facts, Figures, SweepError, FIG5_NORMAL, FIG8_PHASES};
 use super::{Figure, Progress};
 use crate::files::csv_text;
 use crate::plot::{write_all_or_none, Format, PlotError};
@@ -199,12 +199,14 @@ fn limit_slopes_csv(facts: &Facts) -> Result<Vec<u8>, FiguresError> {
         .map_err(|e| write_error(Path::new("limit_slopes.csv"), e))
 }
 
-/// facts.json: one key per number the paper states in words, every value a number (or null where
-/// a ratio is unbounded), the keys in alphabetical order.
+/// facts.json: one key per number the paper states in words, every value a number, the keys
+/// in alphabetical order. A gain that has no finite value is absent from
+/// `fig5_out_of_phase_gain` and given its reason in `fig5_out_of_phase_gain_unbounded`.
 #[derive(Debug, Serialize)]
 pub struct FactsJson<'a> {
     pub fig4_max_rel_diff: f64,
-    pub fig5_out_of_phase_gain: &'a BTreeMap<String, Option<f64>>,
+    pub fig5_out_of_phase_gain: BTreeMap<&'a str, f64>,
+    pub fig5_out_of_phase_gain_unbounded: BTreeMap<&'a str, &'static str>,
     pub fig5_phi_max_over_pi: &'a BTreeMap<String, f64>,
     pub fig6_small_amplitude_slope: BTreeMap<&'a str, f64>,
     pub fig7_small_amplitude_slope: BTreeMap<&'a str, f64>,
@@ -233,9 +235,25 @@ impl<'a> FactsJson<'a> {
             fig8.insert(format!("fig8_limit_slope{suffix}"), slopes(limit));
             fig8.insert(format!("fig8_range_slope{suffix}"), numbers(range));
         }
+        let gains = &facts.fig5_out_of_phase_gain;
+        let unbounded = |q1_hat: &str| {
+            if q1_hat.parse::<f64>().is_ok_and(|q| q <= FIG5_NORMAL) {
+                "Ŵ(φ = 0) = 0: in phase with Q̂1 ≤ P̂1 nothing slips, so Ŵ_max/Ŵ(0) is unbounded"
+            } else {
+                "φ = 0 is gross slip: Ŵ(0) is not defined, so Ŵ_max/Ŵ(0) is unbounded"
+            }
+        };
         FactsJson {
             fig4_max_rel_diff: facts.fig4_max_rel_diff,
-            fig5_out_of_phase_gain: &facts.fig5_out_of_phase_gain,
+            fig5_out_of_phase_gain: gains
+                .iter()
+                .filter_map(|(key, gain)| Some((key.as_str(), (*gain)?)))
+                .collect(),
+            fig5_out_of_phase_gain_unbounded: gains
+                .iter()
+                .filter(|(_, gain)| gain.is_none())
+                .map(|(key, _)| (key.as_str(), unbounded(key)))
+                .collect(),
             fig5_phi_max_over_pi: &facts.fig5_phi_max_over_pi,
             fig6_small_amplitude_slope: slopes(&facts.fig6_small_amplitude_slope),
             fig7_small_amplitude_slope: slopes(&facts.fig7_small_amplitude_slope),

@@ -3,15 +3,10 @@
 //! ```text
 //! spec   := term ('+' term)*            sum of compliances
 //! term   := [number '*'] family [':' key=value (',' key=value)*]
-//! family := power:c,beta      v' = c·P^beta
-//!         | persson:gamma,sigma  v' = gamma·sigma/P
-//!         | hertz:r,estar     v = (9P²/(16 r estar²))^(1/3)
-//!         | poly:p0,coeffs    v' = Σ coeffs[k]·(P − p0)^k, coeffs separated by ';'
-//!         | rational:a,b,c    v' = a + b/(P + c)
-//!         | exp:a,c,d         v' = a·exp(−P/c) + d
-//!         | const:c           v' = c
-//!         | table:FILE[,smoothing=TOL]  v' from a CSV table (see table.rs)
 //! ```
+//!
+//! The families and their keys are listed once, in [`FAMILIES`] (power, persson, hertz,
+//! poly, rational, exp, const, and `table:FILE[,smoothing=TOL]` for measured data).
 //!
 //! [`ComplianceSpec::parse`] reads the text once: numbers as exact decimals (rationals),
 //! tables read and validated. [`ComplianceSpec::build`] then gives the compliance at any
@@ -21,6 +16,9 @@
 
 mod build;
 mod parse;
+mod vocabulary;
+
+pub use vocabulary::{family_names, spec_help, spec_summary, Family, FAMILIES};
 
 use std::fmt;
 use std::sync::Arc;

@@ -1,8 +1,10 @@
 //! SPEC text to its tree: terms split at '+', a term's multiplier, family and key=value
 //! parameters read as exact decimals, tables read once.
 
+use super::vocabulary::{family_names, Family, FAMILIES, TABLE};
 use super::{Exact, SpecError, Term};
 use crate::compliance::table::{cached_table, parse_table_term, TableError};
+use crate::messages::{did_you_mean, printable};
 use crate::phase::decimal;
 
 /// The terms of a SPEC, or why it is not one.
@@ -12,7 +14,7 @@ pub(super) fn terms(spec: &str) -> Result<Vec<Term>, SpecError> {
         .map(|text| {
             term(text).map_err(|problem| match problem {
                 TermError::Problem(problem) => SpecError::Text {
-                    spec: spec.to_string(),
+                    spec: printable(spec).into_owned(),
                     problem,
                 },
                 TermError::Table(error) => error.into(),
@@ -55,7 +57,7 @@ impl From<String> for TermError {
 
 /// A decimal of the SPEC, exactly.
 fn number(key: &'static str, text: &str) -> Result<Exact, String> {
-    let value = decimal(text).ok_or_else(|| format!("{key}='{text}' is not a decimal number"))?;
+    let value = decimal(text).ok_or_else(|| format!("{key}='{}' is not a decimal number", printable(text)))?;
     Ok(Exact {
         key,
         text: text.to_string(),
@@ -75,23 +77,26 @@ impl<'a> Parameters<'a> {
         for item in text.split(',').map(str::trim).filter(|s| !s.is_empty()) {
             let (key, value) = item
                 .split_once('=')
-                .ok_or_else(|| format!("'{item}' in {family} is not key=value"))?;
+                .ok_or_else(|| format!("'{}' in {family} is not key=value", printable(item)))?;
             let key = key.trim();
             if pairs.iter().any(|(k, _)| *k == key) {
-                return Err(format!("{family} gives '{key}' twice"));
+                return Err(format!("{family} gives '{}' twice", printable(key)));
             }
             pairs.push((key, value.trim()));
         }
         Ok(Parameters { family, pairs })
     }
 
-    /// The values of exactly these keys, in this order: a key the family does not take, or
-    /// one it needs and is not given, is an error naming what the family takes.
-    fn take<const N: usize>(&self, keys: [&'static str; N]) -> Result<[Parameter<'a>; N], String> {
+    /// The values of exactly the family's keys, in their order: a key the family does not
+    /// take, or one it needs and is not given, is an error naming what the family takes.
+    fn take<const N: usize>(&self, family: &Family) -> Result<[Parameter<'a>; N], String> {
+        let keys = family.keys;
         if let Some((unknown, _)) = self.pairs.iter().find(|(k, _)| !keys.contains(k)) {
             return Err(format!(
-                "{} has no parameter '{unknown}' (it takes {})",
+                "{} has no parameter '{}'{} (it takes {})",
                 self.family,
+                printable(unknown),
+                did_you_mean(unknown, keys),
                 keys.join(", ")
             ));
         }
@@ -102,11 +107,17 @@ impl<'a> Parameters<'a> {
                 keys.join(", ")
             ));
         }
-        Ok(keys.map(|key| Parameter {
-            family: self.family,
-            key,
-            text: self.pairs.iter().find(|(k, _)| *k == key).map_or("", |(_, text)| text),
-        }))
+        let parameters: Vec<Parameter<'a>> = keys
+            .iter()
+            .map(|&key| Parameter {
+                family: self.family,
+                key,
+                text: self.pairs.iter().find(|(k, _)| *k == key).map_or("", |(_, text)| text),
+            })
+            .collect();
+        parameters
+            .try_into()
+            .map_err(|_| format!("{} takes {} parameters, not {N}", self.family, keys.len()))
     }
 }
 
@@ -130,7 +141,12 @@ impl Parameter<'_> {
     fn positive(&self) -> Result<Exact, String> {
         let value = self.value()?;
         if value.value <= 0 {
-            return Err(format!("{} needs {} > 0, got {}", self.family, self.key, self.text));
+            return Err(format!(
+                "{} needs {} > 0, got {}",
+                self.family,
+                self.key,
+                printable(self.text)
+            ));
         }
         Ok(value)
     }
@@ -158,45 +174,56 @@ fn term(text: &str) -> Result<Term, TermError> {
     })
 }
 
-fn family_term(family: &str, parameters: &str) -> Result<Term, TermError> {
-    if family == "table" {
+fn family_term(name: &str, parameters: &str) -> Result<Term, TermError> {
+    if name.is_empty() {
+        return Err(TermError::Problem("a term names no family".to_string()));
+    }
+    let Some(family) = FAMILIES.iter().find(|family| family.name == name) else {
+        return Err(TermError::Problem(format!(
+            "unknown family '{}'{} (known: {})",
+            printable(name),
+            did_you_mean(name, &family_names()),
+            family_names().join(", ")
+        )));
+    };
+    if family.name == TABLE {
         let (path, smoothing) = parse_table_term(parameters)?;
         return cached_table(&path, smoothing)
             .map(Term::Table)
             .map_err(TermError::Table);
     }
-    let params = Parameters::parse(family, parameters)?;
-    let term = match family {
+    let params = Parameters::parse(family.name, parameters)?;
+    let term = match family.name {
         "power" => {
-            let [coefficient, exponent] = params.take(["c", "beta"])?;
+            let [coefficient, exponent] = params.take(family)?;
             Term::Power {
                 coefficient: coefficient.value()?,
                 exponent: exponent.value()?,
             }
         }
         "persson" => {
-            let [gamma, sigma] = params.take(["gamma", "sigma"])?;
+            let [gamma, sigma] = params.take(family)?;
             Term::Persson {
                 gamma: gamma.positive()?,
                 sigma: sigma.positive()?,
             }
         }
         "hertz" => {
-            let [radius, contact_modulus] = params.take(["r", "estar"])?;
+            let [radius, contact_modulus] = params.take(family)?;
             Term::Hertz {
                 radius: radius.positive()?,
                 contact_modulus: contact_modulus.positive()?,
             }
         }
         "poly" => {
-            let [reference, coefficients] = params.take(["p0", "coeffs"])?;
+            let [reference, coefficients] = params.take(family)?;
             Term::Polynomial {
                 reference: reference.value()?,
                 coefficients: coefficients.list()?,
             }
         }
         "rational" => {
-            let [constant, numerator, offset] = params.take(["a", "b", "c"])?;
+            let [constant, numerator, offset] = params.take(family)?;
             Term::Rational {
                 constant: constant.value()?,
                 numerator: numerator.value()?,
@@ -204,7 +231,7 @@ fn family_term(family: &str, parameters: &str) -> Result<Term, TermError> {
             }
         }
         "exp" => {
-            let [amplitude, decay_load, constant] = params.take(["a", "c", "d"])?;
+            let [amplitude, decay_load, constant] = params.take(family)?;
             Term::Exponential {
                 amplitude: amplitude.value()?,
                 decay_load: decay_load.positive()?,
@@ -212,15 +239,10 @@ fn family_term(family: &str, parameters: &str) -> Result<Term, TermError> {
             }
         }
         "const" => {
-            let [slope] = params.take(["c"])?;
+            let [slope] = params.take(family)?;
             Term::Constant { slope: slope.value()? }
         }
-        "" => return Err(TermError::Problem("a term names no family".to_string())),
-        other => {
-            return Err(TermError::Problem(format!(
-                "unknown family '{other}' (known: power, persson, hertz, poly, rational, exp, const, table)"
-            )))
-        }
+        other => return Err(TermError::Problem(format!("the family '{other}' has no reader"))),
     };
     Ok(term)
 }

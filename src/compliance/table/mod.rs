@@ -20,9 +20,11 @@ use std::sync::{Arc, Mutex, OnceLock};
 use std::time::SystemTime;
 
 use super::Compliance;
+use crate::messages::{did_you_mean, printable};
 use crate::real::Real;
 pub use interpolant::Coordinates;
 use interpolant::Piecewise;
+pub(crate) use read::column_name;
 use read::read_raw;
 use shape::{approach_node_slopes, non_increasing_fit};
 
@@ -354,31 +356,51 @@ fn approach_slopes(coordinates: Coordinates, loads: &[f64], approach: &[f64]) ->
     }
 }
 
+/// The keys of a `table:` term: its file (also written bare, `table:FILE`) and the
+/// smoothing tolerance.
+pub const TABLE_KEYS: [&str; 2] = ["file", "smoothing"];
+
 /// The text after `table:`: the file, then optionally `smoothing=TOL` (relative, ≥ 0).
-/// `file=PATH` names the file explicitly.
+/// `file=PATH` names the file explicitly. Each is given once.
 pub fn parse_table_term(text: &str) -> Result<(String, f64), String> {
+    let [file_key, smoothing_key] = TABLE_KEYS;
     let mut path: Option<String> = None;
-    let mut smoothing = 0.0;
+    let mut smoothing: Option<f64> = None;
+    let usage = "table takes a file and optionally smoothing=TOL (table:FILE,smoothing=1e-3)";
     for item in text.split(',').map(str::trim).filter(|s| !s.is_empty()) {
-        match item.split_once('=').map(|(k, v)| (k.trim(), v.trim())) {
-            Some(("smoothing", value)) => {
-                smoothing = value
+        let (key, value) = match item.split_once('=') {
+            Some((key, value)) => (key.trim(), value.trim()),
+            None => (file_key, item),
+        };
+        let twice = |given: bool| {
+            if given {
+                Err(format!("table gives '{key}' twice ({}); give it once", printable(text)))
+            } else {
+                Ok(())
+            }
+        };
+        if key == smoothing_key {
+            twice(smoothing.is_some())?;
+            smoothing = Some(
+                value
                     .parse::<f64>()
                     .ok()
                     .filter(|s| s.is_finite() && *s >= 0.0)
-                    .ok_or_else(|| format!("table smoothing='{value}' is not a number ≥ 0"))?;
-            }
-            Some(("file", value)) if path.is_none() => path = Some(value.to_string()),
-            None if path.is_none() => path = Some(item.to_string()),
-            _ => {
-                return Err(format!(
-                    "table takes a file and optionally smoothing=TOL (table:FILE,smoothing=1e-3), not '{item}'"
-                ))
-            }
+                    .ok_or_else(|| format!("table smoothing='{}' is not a number ≥ 0", printable(value)))?,
+            );
+        } else if key == file_key {
+            twice(path.is_some())?;
+            path = Some(value.to_string());
+        } else {
+            return Err(format!(
+                "{usage}, not '{}'{}",
+                printable(item),
+                did_you_mean(key, &TABLE_KEYS)
+            ));
         }
     }
     let path = path.ok_or_else(|| "table needs a file: table:FILE".to_string())?;
-    Ok((path, smoothing))
+    Ok((path, smoothing.unwrap_or(0.0)))
 }
 
 /// The table at `path` read once per process (and again when the file changes).

@@ -2,6 +2,8 @@
 //! aside) and its rows, each number checked, with the line of the file for every refusal.
 
 use super::{TableColumn, TableError};
+use crate::files::MAX_RECORD_BYTES;
+use crate::messages::printable;
 
 /// A table as read: which column gives the compliance, and per data row its file line,
 /// load and value.
@@ -14,7 +16,7 @@ pub(super) struct RawTable {
 
 /// The name a header cell gives its column: the text before a unit in brackets or
 /// parentheses (`Load [N]`, `approach (um)`), trimmed, in lower case.
-pub(super) fn column_name(header: &str) -> String {
+pub(crate) fn column_name(header: &str) -> String {
     let name = header.split(['[', '(']).next().unwrap_or(header);
     name.trim().to_lowercase()
 }
@@ -38,23 +40,24 @@ pub(super) fn read_raw(path: &str) -> Result<RawTable, TableError> {
         .headers()
         .map_err(|e| file_error(format!("has no readable header: {}", io_message(&e))))?
         .clone();
-    let found: Vec<&str> = headers.iter().collect();
+    let found = printable(&headers.iter().collect::<Vec<_>>().join(",")).into_owned();
+    if reader.position().byte() > MAX_RECORD_BYTES {
+        return Err(file_error(too_long()));
+    }
     let find = |name: &str| -> Result<Option<usize>, TableError> {
         let mut matches = headers.iter().enumerate().filter(|(_, h)| column_name(h) == name);
         match (matches.next(), matches.next()) {
             (Some((_, first)), Some((_, second))) => Err(file_error(format!(
-                "has two '{name}' columns ('{first}' and '{second}'); keep one, so that each value is given once"
+                "has two '{name}' columns ('{}' and '{}'); keep one, so that each value is given once",
+                printable(first),
+                printable(second)
             ))),
             (first, _) => Ok(first.map(|(index, _)| index)),
         }
     };
     let needs = "a table needs the columns load and approach, or load and slope (units in brackets or parentheses are allowed: 'Load [N]')";
-    let load_column = find("load")?.ok_or_else(|| {
-        file_error(format!(
-            "has no 'load' column (its header is '{}'); {needs}",
-            found.join(",")
-        ))
-    })?;
+    let load_column =
+        find("load")?.ok_or_else(|| file_error(format!("has no 'load' column (its header is '{found}'); {needs}")))?;
     let (column, value_column) = match (find("approach")?, find("slope")?) {
         (Some(a), None) => (TableColumn::Approach, a),
         (None, Some(s)) => (TableColumn::Slope, s),
@@ -66,21 +69,22 @@ pub(super) fn read_raw(path: &str) -> Result<RawTable, TableError> {
         }
         (None, None) => {
             return Err(file_error(format!(
-                "has neither an 'approach' nor a 'slope' column (its header is '{}'); {needs}",
-                found.join(",")
+                "has neither an 'approach' nor a 'slope' column (its header is '{found}'); {needs}"
             )))
         }
     };
-    let value_name = headers.get(value_column).unwrap_or("value").to_string();
-    let load_name = headers.get(load_column).unwrap_or("load").to_string();
+    let value_name = printable(headers.get(value_column).unwrap_or("value")).into_owned();
+    let load_name = printable(headers.get(load_column).unwrap_or("load")).into_owned();
     let mut raw = RawTable {
         column,
         lines: Vec::new(),
         loads: Vec::new(),
         values: Vec::new(),
     };
-    for record in reader.records() {
-        let record = record.map_err(|e| match e.position() {
+    let mut record = csv::StringRecord::new();
+    loop {
+        let start = reader.position().byte();
+        let more = reader.read_record(&mut record).map_err(|e| match e.position() {
             Some(position) => TableError::Row {
                 path: path.to_string(),
                 line: position.line(),
@@ -88,24 +92,30 @@ pub(super) fn read_raw(path: &str) -> Result<RawTable, TableError> {
             },
             None => file_error(io_message(&e)),
         })?;
-        let line = record.position().map_or(0, |p| p.line());
-        if record.iter().all(str::is_empty) {
-            continue;
+        if !more {
+            break;
         }
+        let line = record.position().map_or(0, |p| p.line());
         let row_error = |problem: String| TableError::Row {
             path: path.to_string(),
             line,
             problem,
         };
+        if reader.position().byte() - start > MAX_RECORD_BYTES {
+            return Err(row_error(too_long()));
+        }
+        if record.iter().all(str::is_empty) {
+            continue;
+        }
         let cell = |index: usize, name: &str| -> Result<f64, TableError> {
             let text = record
                 .get(index)
                 .ok_or_else(|| row_error(format!("has no {name} value (fewer fields than the header)")))?;
             let value: f64 = text
                 .parse()
-                .map_err(|_| row_error(format!("{name} '{text}' is not a number")))?;
+                .map_err(|_| row_error(format!("{name} '{}' is not a number", printable(text))))?;
             if !value.is_finite() {
-                return Err(row_error(format!("{name} '{text}' is not finite")));
+                return Err(row_error(format!("{name} '{}' is not finite", printable(text))));
             }
             Ok(value)
         };
@@ -114,6 +124,14 @@ pub(super) fn read_raw(path: &str) -> Result<RawTable, TableError> {
         raw.lines.push(line);
     }
     Ok(raw)
+}
+
+/// Why a record longer than [`MAX_RECORD_BYTES`] is refused.
+fn too_long() -> String {
+    format!(
+        "a record is longer than {} MiB: this is not a table of loads, whose rows are short",
+        MAX_RECORD_BYTES >> 20
+    )
 }
 
 fn io_message(error: &csv::Error) -> String {
