@@ -12,10 +12,8 @@ use crate::messages::printable;
 use crate::reference::ReferenceError;
 
 mod input;
-mod output;
 
 pub use input::{check_input, read_input, BatchInput, InputRow, MAX_RECORD_BYTES};
-pub use output::{BatchRecord, JsonValue};
 
 pub use crate::dissipation_answer::{method_key, TableEstimate, TABLE_QUADRATURE_TOLERANCE};
 
@@ -62,9 +60,6 @@ pub const RESULT_COLUMNS: [&str; 10] = [
     "enclosure_upper",
 ];
 
-/// The result fields of a JSON record beyond [`RESULT_COLUMNS`].
-const RECORD_ONLY_FIELDS: [&str; 1] = ["enclosure"];
-
 /// The result of one row, as the output columns print it.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct RowResult {
@@ -86,6 +81,8 @@ pub struct RowResult {
     pub method: String,
     /// Why the row failed (empty when it succeeded).
     pub error: String,
+    /// W and what vouches for it, as a single run reports it (none for a failed row).
+    pub answer: Option<DissipationAnswer>,
 }
 
 impl RowResult {
@@ -95,13 +92,13 @@ impl RowResult {
     }
 
     /// The result of a row that gave `report`.
-    fn of(report: &DissipationAnswer) -> Self {
+    fn of(report: DissipationAnswer) -> Self {
         let DissipationAnswer {
             answer,
             fallback,
             no_enclosure,
             table,
-        } = report;
+        } = &report;
         let Answer { value, provenance, .. } = answer;
         let mut method = answer.method.map_or("", method_key).to_string();
         if let Some(reason) = fallback {
@@ -125,6 +122,7 @@ impl RowResult {
             table_error: table.as_ref().map(|t| t.error),
             method,
             error: String::new(),
+            answer: Some(report),
         }
     }
 }
@@ -203,7 +201,7 @@ fn row_result(threads: &RowThreads, row: &InputRow, digits: Option<u32>, budget:
         Err(problem) => return failed(problem.clone()),
     };
     match threads.within_budget(budget, move || dissipation_report(&case, digits, budget)) {
-        Some(Ok(Ok(report))) => RowResult::of(&report),
+        Some(Ok(Ok(report))) => RowResult::of(report),
         Some(Ok(Err(error))) => failed(error.to_string()),
         Some(Err(_)) => failed("internal error: the computation panicked (please report this case)".to_string()),
         None => failed(format!(
@@ -281,21 +279,6 @@ where
     writer.into_inner().map_err(|e| io(&e))
 }
 
-/// The results as records, one per row in input order (the JSON lines output).
-pub fn records<'a>(header: &'a [String], rows: &'a [InputRow], results: &'a [RowResult]) -> Vec<BatchRecord<'a>> {
-    let mut keep = echoed(header);
-    keep.retain(|&i| !RECORD_ONLY_FIELDS.contains(&header[i].as_str()));
-    rows.iter()
-        .zip(results)
-        .map(|(row, result)| {
-            BatchRecord::new(
-                keep.iter().map(|&i| (header[i].as_str(), row.cells[i].as_str())),
-                result,
-            )
-        })
-        .collect()
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -305,32 +288,6 @@ mod tests {
         let input = read_input(text.as_bytes()).unwrap();
         let header = input.header.clone();
         (header, input.map(Result::unwrap).collect())
-    }
-
-    #[test]
-    fn a_record_echoes_the_inputs_and_gives_absent_results_as_null() {
-        let text = "id,p0,p1,q1,phi,friction,lambda,compliance,W\n\
-                    a,1,0.4,0.5,0.4pi,1,1,\"persson:gamma=1,sigma=1\",old\n\
-                    b,1,0.4,5,0.4pi,1,1,\"persson:gamma=1,sigma=1\",old\n";
-        let (header, rows) = rows_of(text);
-        let results = run(&rows, None, Duration::from_secs(10), &|| {});
-        let lines: Vec<serde_json::Value> = records(&header, &rows, &results)
-            .iter()
-            .map(|record| serde_json::to_value(record).unwrap())
-            .collect();
-        // The input's own W column is not echoed: the result's W takes its place.
-        assert_eq!(lines[0]["W"], 0.4062475792458);
-        assert_eq!(lines[0]["id"], "a");
-        assert_eq!(lines[0]["p1"], 0.4);
-        assert_eq!(lines[0]["phi"], "0.4pi");
-        assert_eq!(lines[0]["compliance"], "persson:gamma=1,sigma=1");
-        assert_eq!(lines[0]["digits"], 13);
-        assert!(lines[0]["error"].is_null() && lines[0]["table_error"].is_null());
-        assert!(lines[1]["W"].is_null() && lines[1]["method"].is_null());
-        assert!(lines[1]["error"].as_str().unwrap().contains("gross slip"));
-        assert_eq!(lines[0]["provenance"], "estimate");
-        assert_eq!(lines[0]["digits_certified"], 0);
-        assert_eq!(lines[0].as_object().unwrap().len(), 17);
     }
 
     #[test]

@@ -137,7 +137,7 @@ fn compare_with_single_runs(
     for &i in sample {
         let single = single_run(&rows[i], digits);
         let batch = &results[i];
-        assert_eq!(batch["id"], rows[i][0]);
+        assert_eq!(batch["inputs"]["id"], rows[i][0]);
         match single.get("error") {
             Some(error) => {
                 let message = error.as_str().unwrap_or_default().trim_start_matches("microslip: ");
@@ -148,18 +148,13 @@ fn compare_with_single_runs(
                 );
             }
             None => {
-                // The same decimal: a number where binary64 holds it, else the same text.
-                let printed = single["W"].as_str().expect("a single run prints W as text");
-                match &batch["W"] {
-                    serde_json::Value::Number(w) => {
-                        assert_eq!(w.as_f64(), printed.parse().ok(), "row {i}: {:?}", rows[i]);
-                        assert!(single["digits"].as_u64().unwrap() <= 17, "row {i}");
-                    }
-                    w => assert_eq!(w, printed, "row {i}: {:?}", rows[i]),
-                }
-                assert_eq!(batch["digits"], single["digits"], "row {i}");
-                assert_eq!(batch["table_error"], single["table_error"], "row {i}");
+                // Every result key of the row is the single run's, of the same value and type.
                 assert!(batch["error"].is_null(), "row {i}: {}", batch["error"]);
+                for (key, value) in batch.as_object().expect("a JSON object") {
+                    if key != "inputs" && key != "error" {
+                        assert_eq!(value, &single[key], "row {i}, {key}: {:?}", rows[i]);
+                    }
+                }
             }
         }
     }
@@ -181,7 +176,7 @@ fn batch_output_equals_single_runs_row_by_row() {
     let results = read_jsonl(&output.stdout);
     assert_eq!(results.len(), rows.len());
     for (row, result) in rows.iter().zip(&results) {
-        assert_eq!(result["id"], row[0], "input order");
+        assert_eq!(result["inputs"]["id"], row[0], "input order");
     }
     let succeeded = results.iter().filter(|r| r["error"].is_null()).count();
     assert!(succeeded >= 50, "{succeeded} of 60 rows succeeded");
@@ -315,7 +310,7 @@ fn all_rows_computed_exits_0_and_replaces_the_output_whole() {
     );
     let results = read_jsonl(&std::fs::read(&output_path).expect("output"));
     assert_eq!(results.len(), 7);
-    assert!(results.iter().all(|r| r["error"].is_null() && r["W"].is_number()));
+    assert!(results.iter().all(|r| r["error"].is_null() && r["W"].is_string()));
     // No temporary file left beside the output.
     let names: Vec<String> = std::fs::read_dir(&dir)
         .expect("dir")
@@ -362,26 +357,30 @@ fn an_unreadable_input_exits_2_and_writes_nothing() {
 }
 
 #[test]
-fn jsonl_gives_numbers_as_numbers_text_only_where_a_number_would_lose_digits_and_null_for_absent() {
+fn jsonl_gives_every_key_one_type_inputs_as_written_and_w_as_a_decimal_string() {
     let input = "id,p0,p1,q0,q1,phi,friction,lambda,nu,compliance\n\
                  007,1,0.4,-0.0500000000000000000001,0.5,0.4pi,1,,0.3,\"persson:gamma=1,sigma=1\"\n\
-                 far,1e-400,0.4,0,0.5,1.2,1,1,,const:c=1\n";
+                 far,1e-400,0.4,0,0.5,1.2,1,1,,const:c=1\n\
+                 tiny,1,0.4,0,0.5,0.4pi,1,1,,\"persson:gamma=1e-400,sigma=1\"\n";
     let typed = |digits: &[&str]| {
         let mut args = vec!["batch", "--input", "-", "--output", "-", "--format", "jsonl"];
         args.extend_from_slice(digits);
         read_jsonl(&microslip(&args, Some(input)).stdout)
     };
     let rows = typed(&[]);
-    let first = &rows[0];
+    let first = &rows[0]["inputs"];
+    // Every input cell is the text written, a decimal, a phase or an empty cell alike.
     assert_eq!(first["id"], "007");
-    assert_eq!(first["p0"], 1.0);
-    assert_eq!(first["p1"], 0.4);
+    assert_eq!(first["p0"], "1");
+    assert_eq!(first["p1"], "0.4");
     assert_eq!(first["q0"], "-0.0500000000000000000001");
     assert_eq!(first["phi"], "0.4pi");
-    assert!(first["lambda"].is_null());
-    assert_eq!(first["nu"], 0.3);
+    assert_eq!(first["lambda"], "");
+    assert_eq!(first["nu"], "0.3");
     assert_eq!(first["compliance"], "persson:gamma=1,sigma=1");
-    // W in f64 digits is a number: the single run's decimal, read as binary64.
+    assert_eq!(rows[1]["inputs"]["p0"], "1e-400");
+    assert_eq!(rows[1]["inputs"]["phi"], "1.2");
+    // W is the single run's decimal string, with the binary64 computed beside it.
     let single = single_run(
         &[
             "007",
@@ -398,16 +397,26 @@ fn jsonl_gives_numbers_as_numbers_text_only_where_a_number_would_lose_digits_and
         .map(String::from),
         None,
     );
-    let printed: f64 = single["W"].as_str().unwrap().parse().unwrap();
-    assert_eq!(first["W"].as_f64(), Some(printed));
-    assert!(first["error_estimate"].is_number() && first["table_error"].is_null());
-    assert_eq!(rows[1]["p0"], "1e-400");
-    assert_eq!(rows[1]["phi"], 1.2);
-    // Verified digits beyond what binary64 holds are text, all of them.
+    assert_eq!(rows[0]["W"], single["W"]);
+    assert_eq!(rows[0]["W_f64"], single["W_f64"]);
+    let printed: f64 = rows[0]["W"].as_str().unwrap().parse().unwrap();
+    assert!((printed - rows[0]["W_f64"].as_f64().unwrap()).abs() <= 1e-12 * printed);
+    assert!(rows[0]["error_estimate"].is_number() && rows[0]["table_error"].is_null());
+    // A failed row (P0 < P1) has every result null, its inputs as written all the same.
+    assert!(rows[1]["error"].is_string() && rows[1]["W"].is_null() && rows[1]["digits"].is_null());
+    // A compliance f64 cannot hold: 15 digits by an enclosure, W text of the same kind, no W_f64.
+    assert_eq!(rows[2]["W"], "4.06247579245824e-401", "{}", rows[2]);
+    assert!(
+        rows[2]["W_f64"].is_null() && rows[2]["f64_fallback"].is_string(),
+        "{}",
+        rows[2]
+    );
+    // Verified digits: text again, 25 of them, and no binary64.
     let verified = typed(&["--digits", "25"]);
-    let w = verified[0]["W"].as_str().expect("25 digits are text");
+    let w = verified[0]["W"].as_str().expect("W is text");
     assert_eq!(w.split('e').next().unwrap().replace(['.', '-'], "").len(), 25, "{w}");
     assert!(w.starts_with(&single["W"].as_str().unwrap()[..8]), "{w}");
+    assert!(verified[0]["W_f64"].is_null(), "{}", verified[0]);
 }
 
 /// W of a row's case at 400 bits by the library's quadrature to a 1e-100 tolerance: an

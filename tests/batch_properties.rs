@@ -179,7 +179,7 @@ fn output_ids(bytes: &[u8], format: Format) -> Vec<String> {
             .lines()
             .map(|line| {
                 let value: serde_json::Value = serde_json::from_str(line).expect("a JSON line");
-                value["id"].as_str().unwrap_or("").to_string()
+                value["inputs"]["id"].as_str().unwrap_or("").to_string()
             })
             .collect()
     } else {

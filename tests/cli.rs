@@ -209,7 +209,7 @@ fn simulate_prints_only_vouched_digits_and_fails_short_of_its_tolerance() {
     assert!(estimate <= 1e-6 && estimate <= 10f64.powi(-(digits as i32)), "{value}");
     // The printing rule gives up a digit whose rounding boundary W ± the estimate straddles.
     assert!(estimate > 10f64.powi(-(digits as i32) - 2) || digits == 15, "{value}");
-    assert_eq!(value["bound"], "estimate");
+    assert_eq!(value["provenance"], "simulated");
     let w = value["W"].as_str().unwrap();
     assert_eq!(w.split('e').next().unwrap().replace('.', "").len(), digits, "{value}");
     assert_eq!(
@@ -675,7 +675,8 @@ fn json_reports_share_one_vocabulary() {
     assert_eq!(simulated["inputs"]["p1"], "0.4");
     assert_eq!(simulated["inputs"]["elements"], 100);
     assert_eq!(simulated["inputs"]["tolerance"], 1e-3);
-    assert!(simulated["method"].as_str().unwrap().contains("simulation"));
+    assert_eq!(simulated["method"], "history-simulation");
+    assert_eq!(simulated["provenance"], "simulated");
     assert!(simulated["digits_verified"].is_null() && simulated["precision_bits"] == 53);
     assert!(simulated["W_f64"].as_f64().is_some() && simulated["W"].is_string());
 
@@ -1074,7 +1075,7 @@ fn an_exact_zero_is_one_answer_in_json_and_in_batch_rows() {
     assert_eq!(code, 0, "{stderr}");
     let row = json(&stdout);
     assert_eq!(
-        (row["W"].as_f64(), &row["method"], &row["provenance"]),
-        (Some(0.0), &zero["method"], &zero["provenance"])
+        (&row["W"], &row["method"], &row["provenance"], &row["exact"]),
+        (&zero["W"], &zero["method"], &zero["provenance"], &zero["exact"])
     );
 }

@@ -319,7 +319,11 @@ fn the_series_prints_its_exact_values_as_exact() {
     let (_, stdout, _) = microslip(&["series", "--rho", "1", "--phi", "pi", "--order", "2", "--json"]);
     let json: serde_json::Value = serde_json::from_str(stdout.trim()).unwrap();
     assert!(
-        json["exact"].as_array().unwrap().iter().all(|e| e.as_str().is_some()),
+        json["values"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .all(|v| v["exact"].as_str().is_some()),
         "{stdout}"
     );
 }

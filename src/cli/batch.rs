@@ -103,7 +103,7 @@ pub fn run(args: &BatchArgs) -> Result<usize, Failure> {
         });
         let mut bytes = std::mem::take(&mut pending);
         bytes.extend(if jsonl {
-            super::json::lines(&batch::records(&header, &chunk, &results))?
+            super::json::lines(&super::json::batch_rows(&header, &chunk, &results))?
         } else {
             batch::csv_rows(&header, &chunk, &results)?
         });

@@ -10,6 +10,7 @@ use microslip::compliance::{spec_help, spec_summary};
 use microslip::exact::printing::{coefficient_answers, partial_sum_answers, ExactAnswerError};
 
 use super::case::Answer as AnswerArgs;
+use super::json::{printed, ShapeInputs, ValueEnvelope, ValueReport};
 use super::report::Failure;
 
 /// `--rho` for the coefficients Iₙ alone, or a case (`--p0 … --compliance`) for its partial sums.
@@ -58,42 +59,6 @@ pub struct SeriesArgs {
     pub answer: AnswerArgs,
 }
 
-/// One value of an answer in JSON: its digits, its interval and what vouches for it.
-#[derive(Serialize)]
-pub struct ValueReport {
-    /// The value by the one printing rule (`"0"` for an exact zero).
-    pub value: String,
-    /// The significant digits printed.
-    pub digits: u32,
-    /// The digits proven (by reason or by a rigorous enclosure); 0 where not proven.
-    pub digits_certified: u32,
-    /// Outward-rounded decimal ends of an interval that contains the value (null where
-    /// the value is exact).
-    pub enclosure: Option<(String, String)>,
-    /// `exact`, `certified`, `agreement` or `estimate`.
-    pub provenance: &'static str,
-    /// Why the value is exact, where it is.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub exact: Option<&'static str>,
-    /// The binary64 value computed beside the digits, where there is one.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    pub f64: Option<f64>,
-}
-
-impl ValueReport {
-    pub fn of(answer: &Answer) -> Self {
-        ValueReport {
-            value: answer.value.decimal.to_string(),
-            digits: answer.digits(),
-            digits_certified: answer.digits_certified(),
-            enclosure: answer.value.enclosure.clone(),
-            provenance: answer.provenance.key(),
-            exact: exact_reason(answer),
-            f64: answer.value.binary64,
-        }
-    }
-}
-
 /// Why an answer is exact, where it is.
 pub fn exact_reason(answer: &Answer) -> Option<&'static str> {
     match &answer.provenance {
@@ -120,31 +85,30 @@ pub fn failure(error: ExactAnswerError) -> Failure {
 /// `microslip series --rho … --json`.
 #[derive(Serialize)]
 struct SeriesReport<'a> {
-    rho: &'a str,
-    phi: &'a str,
     /// The fewest digits printed of any coefficient.
     digits: u32,
     /// I₀ … I_N as printed.
-    coefficients: Vec<String>,
-    /// I₀ … I_N with their intervals and provenance.
-    values: Vec<ValueReport>,
+    coefficients: Vec<Option<String>>,
     /// I₀ … I_N in binary64 (runs without --digits).
     coefficients_f64: Option<Vec<f64>>,
-    /// Why a coefficient is exactly the 0 printed (null where it is computed).
-    exact: Vec<Option<&'static str>>,
+    /// I₀ … I_N, each with what vouches for it.
+    values: Vec<ValueReport>,
+    inputs: ShapeInputs<'a>,
 }
 
-/// `microslip series` with a case `--json`: the partial sums W_N beside W.
+/// `microslip series` with a case `--json`: W as `dissipation --json` prints it, and the
+/// partial sums W_N beside it.
 #[derive(Serialize)]
 struct PartialSumsReport<'a> {
     #[serde(rename = "W")]
-    w: ValueReport,
+    w: Option<String>,
+    #[serde(rename = "W_f64")]
+    w_f64: Option<f64>,
+    #[serde(flatten)]
+    envelope: ValueEnvelope,
     partial_sums: Vec<ValueReport>,
     /// W_N − W for N = 1 … order.
     differences: Vec<ValueReport>,
-    /// Why W and every W_N are exactly 0, where they are.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    exact: Option<&'static str>,
     inputs: &'a CaseText,
 }
 
@@ -165,13 +129,11 @@ pub fn run(args: &SeriesArgs) -> Result<String, Failure> {
                 })
                 .collect();
             let report = SeriesReport {
-                rho,
-                phi: &args.phi,
                 digits: answers.iter().map(Answer::digits).min().unwrap_or(0),
-                coefficients: answers.iter().map(|a| a.value.decimal.to_string()).collect(),
-                values: answers.iter().map(ValueReport::of).collect(),
+                coefficients: answers.iter().map(|a| printed(&a.value)).collect(),
                 coefficients_f64: in_f64.filter(|_| args.answer.digits.is_none()),
-                exact: answers.iter().map(exact_reason).collect(),
+                values: answers.iter().map(ValueReport::of).collect(),
+                inputs: ShapeInputs { rho, phi: &args.phi },
             };
             return Ok(serde_json::to_string(&report)?);
         }
@@ -203,10 +165,11 @@ pub fn run(args: &SeriesArgs) -> Result<String, Failure> {
     let all_exact = exact_reason(&sums.dissipation);
     if args.answer.json {
         let report = PartialSumsReport {
-            w: ValueReport::of(&sums.dissipation),
+            w: printed(&sums.dissipation.value),
+            w_f64: sums.dissipation.value.binary64,
+            envelope: ValueEnvelope::of(&sums.dissipation),
             partial_sums: sums.sums.iter().map(ValueReport::of).collect(),
             differences: sums.differences.iter().map(ValueReport::of).collect(),
-            exact: all_exact,
             inputs: &case,
         };
         return Ok(serde_json::to_string(&report)?);

@@ -6,16 +6,17 @@ use std::time::{Duration, Instant};
 
 use clap::Args;
 
+use microslip::answer::{Answer, Provenance, Value};
 use microslip::batch;
 use microslip::case::{Case, CaseText};
 use microslip::files::{check_writable, destination, write_text_atomically, Destination};
 use microslip::plot::{plot_cycle, PLOT_EXTENSIONS};
 use microslip::real::Precision;
 use microslip::simulate::{loop_csv, simulate, SimulationError, SimulationOptions, SimulationResult};
-use microslip::verified::{decimal_f64, Bound, Decimal, F64_MOST_DIGITS};
+use microslip::verified::{decimal_f64, Decimal, F64_MOST_DIGITS};
 
 use super::case::CaseArgs;
-use super::json::{SimulationInputs, SimulationReport};
+use super::json::{printed, SimulationInputs, SimulationReport, ValueEnvelope};
 use super::parse;
 use super::report::Failure;
 
@@ -147,9 +148,7 @@ pub fn run(args: &SimulateArgs) -> Result<String, Failure> {
         plot_cycle(path, &cycle, &result).map_err(|e| lost(&e))?;
     }
     if args.json {
-        return Ok(serde_json::to_string(&simulation_report(
-            &result, &printed, &case, args,
-        ))?);
+        return Ok(serde_json::to_string(&simulation_report(&result, &case, args))?);
     }
     let digits = match printed.work.digits() {
         0 => "no significant digit determined".to_string(),
@@ -182,24 +181,26 @@ impl PrintedSimulation {
     }
 }
 
-fn simulation_report<'a>(
-    result: &SimulationResult,
-    printed: &PrintedSimulation,
-    case: &'a CaseText,
-    args: &SimulateArgs,
-) -> SimulationReport<'a> {
+/// The JSON report of a simulation: W with the envelope of a value whose provenance is
+/// the simulation itself (an estimate from its refinements, not a proof).
+fn simulation_report<'a>(result: &SimulationResult, case: &'a CaseText, args: &SimulateArgs) -> SimulationReport<'a> {
     let defaults = SimulationOptions::default();
+    let bound = result.estimated_rel_error * result.w_work.abs();
+    let work = Answer {
+        value: Value::from_f64(result.w_work, bound),
+        segments: None,
+        digits_requested: None,
+        provenance: Provenance::Simulated { error_estimate: bound },
+        method: None,
+    };
     SimulationReport {
-        w: printed.work.to_string(),
+        w: printed(&work.value),
         w_f64: result.w_work,
-        w_friction: printed.friction.to_string(),
+        w_friction: printed(&Value::from_f64(result.w_friction, bound)),
         w_friction_f64: result.w_friction,
-        digits: printed.work.digits().min(F64_MOST_DIGITS),
-        digits_verified: None,
-        bound: Bound::Estimate.key(),
-        precision_bits: 53,
+        envelope: ValueEnvelope::of(&work),
         estimated_rel_error: result.estimated_rel_error,
-        method: "history simulation of a spring bed, Richardson-extrapolated from three resolutions",
+        method: "history-simulation",
         elements: result.elements,
         steps: result.steps,
         inputs: SimulationInputs {

@@ -6,8 +6,9 @@ use serde::Serialize;
 use microslip::exact::printing::coefficient_answer;
 
 use super::case::Answer;
+use super::json::{printed, ShapeInputs, ValueEnvelope};
 use super::report::Failure;
-use super::series::{failure, shown, ValueReport};
+use super::series::{failure, shown};
 
 #[derive(Args)]
 #[command(mut_arg("digits", |digits| digits.help(
@@ -26,32 +27,16 @@ pub struct SmallAmplitudeArgs {
     pub answer: Answer,
 }
 
-/// ρ and φ as given.
-#[derive(Serialize)]
-struct ShapeInputs<'a> {
-    rho: &'a str,
-    phi: &'a str,
-}
-
 /// `microslip small-amplitude --json`.
 #[derive(Serialize)]
 struct CoefficientReport<'a> {
     #[serde(rename = "I")]
-    i: String,
-    /// I in binary64 where it is representable there (null otherwise).
+    i: Option<String>,
+    /// I in binary64 where it is computed there (null otherwise).
     #[serde(rename = "I_f64")]
     i_f64: Option<f64>,
-    digits: u32,
-    /// The digits printed, each vouched for (proven unless `provenance` says `agreement`).
-    digits_verified: u32,
-    digits_certified: u32,
-    enclosure: Option<(String, String)>,
-    provenance: &'static str,
-    /// The working precision of the enclosure (null for an exact value).
-    precision_bits: Option<u32>,
-    /// Why I is exactly the 0 printed, where it is.
-    #[serde(skip_serializing_if = "Option::is_none")]
-    exact: Option<&'static str>,
+    #[serde(flatten)]
+    envelope: ValueEnvelope,
     inputs: ShapeInputs<'a>,
 }
 
@@ -59,17 +44,10 @@ pub fn run(args: &SmallAmplitudeArgs) -> Result<String, Failure> {
     let answer =
         coefficient_answer(&args.rho, &args.phi, args.answer.digits, args.answer.max_seconds).map_err(failure)?;
     if args.answer.json {
-        let value = ValueReport::of(&answer);
         let report = CoefficientReport {
-            i: value.value,
-            i_f64: value.f64,
-            digits: value.digits,
-            digits_verified: value.digits,
-            digits_certified: value.digits_certified,
-            enclosure: value.enclosure,
-            provenance: value.provenance,
-            precision_bits: answer.provenance.precision_bits(),
-            exact: value.exact,
+            i: printed(&answer.value),
+            i_f64: answer.value.binary64,
+            envelope: ValueEnvelope::of(&answer),
             inputs: ShapeInputs {
                 rho: &args.rho,
                 phi: &args.phi,
