@@ -42,14 +42,16 @@ pub(crate) struct ExactCycle<'a> {
     pub friction: &'a Rational,
     /// λ.
     pub compliance_ratio: &'a Rational,
+    /// λ as written (or ν, where λ comes from it), for a refusal.
+    pub compliance_ratio_text: &'a str,
     /// φ.
     pub phase: &'a ReducedPhase,
 }
 
-/// λ = (2 − ν)/(2(1 − ν)) exactly, for Poisson's ratio ν ∈ [0, 2/3] (λ ∈ [1, 2]).
-pub(crate) fn compliance_ratio_of_poisson(nu: &Rational) -> Result<Rational, CycleError> {
+/// λ = (2 − ν)/(2(1 − ν)) exactly, for Poisson's ratio ν ∈ [0, 2/3] (λ ∈ [1, 2]), written `text`.
+pub(crate) fn compliance_ratio_of_poisson(nu: &Rational, text: &str) -> Result<Rational, CycleError> {
     if *nu < 0 || *nu > Rational::from((2, 3)) {
-        return Err(CycleError::PoissonRatioOutOfRange { nu: nu.to_f64() });
+        return Err(CycleError::PoissonRatioOutOfRange { nu: text.to_string() });
     }
     let two = Rational::from(2);
     Ok(Rational::from(&two - nu) / (two * Rational::from(1 - nu)))
@@ -87,7 +89,7 @@ pub(crate) fn decide(cycle: &ExactCycle) -> Result<(), CycleError> {
     let lambda = cycle.compliance_ratio;
     if *lambda < 1 || *lambda > 2 {
         return Err(CycleError::ComplianceRatioOutOfRange {
-            lambda: lambda.to_f64(),
+            lambda: cycle.compliance_ratio_text.to_string(),
         });
     }
     for side in [Side::Forward, Side::Reverse] {
@@ -183,11 +185,15 @@ impl Side {
             Cosine::Exact(c) => c.clone(),
             Cosine::Between(low, high) => Rational::from(low + high) / 2,
         };
-        // σ² = room² − margin.
+        // σ² = room² − margin, and σ − room = −margin/(σ + room) without cancellation.
         let margin = Rational::from(coupling * &cos) + fixed;
-        let amplitude_squared = Rational::from(room.square_ref()) - margin;
+        let amplitude_squared = Rational::from(room.square_ref()) - &margin;
         let amplitude = Float::with_val(BITS, &amplitude_squared).max(&Float::new(BITS)).sqrt();
-        let excess = amplitude - Float::with_val(BITS, room);
+        let excess = if *room > 0 {
+            -Float::with_val(BITS, &margin) / (amplitude + Float::with_val(BITS, room))
+        } else {
+            amplitude - Float::with_val(BITS, room)
+        };
         let relative = Float::with_val(BITS, &excess / Float::with_val(BITS, friction_limit));
         let (sign, sign_word) = match self {
             Side::Forward => ("+", ""),

@@ -179,7 +179,7 @@ impl CaseText {
             (None, Some(nu)) => {
                 let nu = Field::read("nu", nu)?;
                 Field {
-                    value: compliance_ratio_of_poisson(&nu.value)?,
+                    value: compliance_ratio_of_poisson(&nu.value, &nu.text)?,
                     ..nu
                 }
             }
@@ -284,6 +284,7 @@ impl CaseSpec {
             tangential_amplitude: &self.tangential_amplitude.value,
             friction: &self.friction.value,
             compliance_ratio: &self.compliance_ratio.value,
+            compliance_ratio_text: &self.compliance_ratio.text,
             phase: &self.phase,
         }
     }

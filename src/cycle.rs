@@ -107,14 +107,14 @@ pub enum CycleError {
     /// λ outside [1, 2].
     #[error("the compliance ratio λ = {lambda} lies outside [1, 2] (λ = (2 − ν)/(2(1 − ν)) is 1 for ν = 0 and 1.5 for ν = 0.5)")]
     ComplianceRatioOutOfRange {
-        /// The compliance ratio given.
-        lambda: f64,
+        /// The compliance ratio given, as written.
+        lambda: String,
     },
     /// Poisson's ratio that gives λ outside [1, 2].
     #[error("Poisson's ratio ν = {nu} gives λ outside [1, 2]; ν must lie in [0, 2/3]")]
     PoissonRatioOutOfRange {
-        /// Poisson's ratio given.
-        nu: f64,
+        /// Poisson's ratio given, as written.
+        nu: String,
     },
     /// |φ| beyond [`MAX_PHASE`]: reducing it exactly costs working bits in proportion to its exponent.
     #[error("the phase φ = {phi:e} rad is too large: |φ| must be at most 1e100 rad (reducing it modulo 2π exactly needs as many extra bits as its binary exponent)")]
@@ -160,7 +160,7 @@ pub fn compliance_ratio_from_poisson<R: Real>(nu: &R) -> Result<R, CycleError> {
         });
     }
     if *nu < nu.int(0) || *nu > nu.ratio(2, 3) {
-        return Err(CycleError::PoissonRatioOutOfRange { nu: value });
+        return Err(CycleError::PoissonRatioOutOfRange { nu: value.to_string() });
     }
     Ok((nu.int(2) - nu) / (nu.int(2) * &(nu.int(1) - nu)))
 }
@@ -262,7 +262,7 @@ impl<R: Real> LoadCycle<R> {
         }
         if self.compliance_ratio < zero.int(1) || self.compliance_ratio > zero.int(2) {
             return Err(CycleError::ComplianceRatioOutOfRange {
-                lambda: self.compliance_ratio.to_f64_lossy(),
+                lambda: self.compliance_ratio.to_f64_lossy().to_string(),
             });
         }
         if self.phase.abs() > R::from_f64(MAX_PHASE, self.phase.precision()) {

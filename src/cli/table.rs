@@ -7,7 +7,7 @@ use serde::Serialize;
 use microslip::case::{Case, CaseText, InputError};
 use microslip::compliance::{spec_help, spec_summary};
 use microslip::cycle::CycleError;
-use microslip::dissipation::{dissipation, DissipationError, ExactZero, Options};
+use microslip::dissipation::{dissipation, ExactZero, Options};
 use microslip::files::csv_text;
 use microslip::real::{Precision, Real};
 
@@ -161,20 +161,25 @@ impl TableArgs {
             let phi = format!("{k}pi/{steps}");
             for q1 in &self.q1 {
                 let cell_failure = |message: String| Failure::refused(format!("φ = {phi}, Q1 = {q1}: {message}"));
-                let spec = self.case(q1, &phi).spec().map_err(|e| cell_failure(e.to_string()))?;
                 let gross_slip = |error: &CycleError| matches!(error, CycleError::GrossSlip { .. });
-                let w = match spec.at::<f64>(Precision::DOUBLE) {
+                // A cycle in gross slip is refused when read (decided exactly): the cell says so.
+                let spec = match self.case(q1, &phi).spec() {
+                    Ok(spec) => Some(spec),
                     Err(InputError::Cycle(error)) if gross_slip(&error) => None,
                     Err(error) => return Err(cell_failure(error.to_string())),
-                    Ok(Case { cycle, compliance }) => {
-                        match dissipation(&cycle, compliance.as_ref(), &Options::default()) {
-                            Ok(result) => Some(result.total),
-                            Err(DissipationError::Cycle(error)) if gross_slip(&error) => None,
-                            Err(error) => return Err(cell_failure(error.to_string())),
-                        }
+                };
+                let w = match &spec {
+                    None => None,
+                    Some(spec) => {
+                        let Case { cycle, compliance } = spec
+                            .at::<f64>(Precision::DOUBLE)
+                            .map_err(|e| cell_failure(e.to_string()))?;
+                        let result = dissipation(&cycle, compliance.as_ref(), &Options::default())
+                            .map_err(|e| cell_failure(e.to_string()))?;
+                        Some(result.total)
                     }
                 };
-                let exact_zero = spec.exact_zero();
+                let exact_zero = spec.as_ref().and_then(|spec| spec.exact_zero());
                 let regime = match (w, exact_zero) {
                     (None, _) => "gross slip",
                     (_, Some(ExactZero::InPhaseWithoutSlip | ExactZero::NoTangentialOscillation)) => "no slip",
