@@ -49,7 +49,7 @@ enum Command {
     /// A table of Ŵ = W/(γσλf²) against the phase φ for Persson's compliance
     /// v' = γσ/P, P0 = 1, P1 = 0.4 (the paper's Fig. 5).
     Table,
-    /// Regenerate the paper's Figures 4–8 (CSV, SVG, PNG) and the facts it states (facts.json).
+    /// Regenerate the paper's Figures 4–8 (CSV; SVG, PNG or PDF) and the facts it states (facts.json).
     Figures(FiguresArgs),
     /// W for every load cycle (row) of a CSV file, on all cores, in input order.
     Batch(BatchArgs),
