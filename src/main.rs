@@ -53,7 +53,7 @@ enum Command {
     /// A table of W against the phase φ for a few amplitudes Q1, as text, CSV or JSON; by default
     /// Ŵ = W/(γσλf²) for Persson's compliance v' = γσ/P, P0 = 1, P1 = 0.4 (the paper's Fig. 5).
     Table(Box<TableArgs>),
-    /// Regenerate the paper's Figures 4–8 (CSV, SVG, PNG) and the facts it states (facts.json).
+    /// Regenerate the paper's Figures 4–8 (CSV; SVG, PNG or PDF) and the facts it states (facts.json).
     Figures(FiguresArgs),
     /// W for every load cycle (row) of a CSV file, on all cores, in input order.
     Batch(BatchArgs),

@@ -1,18 +1,21 @@
 //! Pictures of a simulated cycle: the load ellipse in the (P, Q) plane with the
 //! friction wedge |Q| = fP and the points B, C, H, E, beside the Q–u hysteresis
-//! loop with its four segments coloured. SVG or PNG by the file name's extension
-//! (others are refused).
+//! loop with its four segments told apart by colour and dash. SVG, PNG or PDF by the
+//! file name's extension (others are refused).
 //!
 //! Every chart is drawn once, as SVG; a PNG is that SVG rendered anti-aliased at
-//! [`RASTER_SCALE`] times its size. Text is laid out and rendered with the DejaVu
-//! Sans font built into the program (assets/, with its license), so pictures do not
-//! depend on the fonts installed. Legends and labels are placed from the data where
-//! they cover none of it, and each picture comes with that geometry ([`ChartLayout`]).
+//! [`RASTER_SCALE`] times its size, a PDF the same SVG as vector graphics. Text is laid
+//! out and rendered with the DejaVu Sans font built into the program (assets/, with its
+//! license), named in the SVG and embedded in the PDF, so pictures do not depend on the
+//! fonts installed; its size prints at 8 pt or more ([`style`]). Legends and labels are
+//! placed from the data where they cover none of it, and each picture comes with that
+//! geometry ([`ChartLayout`]).
 
 pub mod accuracy;
 pub mod layout;
 pub(crate) mod overlay;
-mod raster;
+mod render;
+pub mod style;
 pub mod ticks;
 
 use std::ops::Range;
@@ -27,14 +30,15 @@ use self::layout::{
     beside, draw_legend, free_place, legend_size, text_size, Frame, Label, LegendEntry, Obstacles, Rect, Swatch,
 };
 use self::overlay::{Overlay, Stroke};
-pub use self::raster::RASTER_SCALE;
+pub use self::render::RASTER_SCALE;
+use self::style::{series, FAMILY, LINE_WIDTH, TEXT, TITLE, UNITS_PER_MM};
 use crate::cycle::LoadCycle;
 use crate::dissipation::{Segment, Segments};
 use crate::files::OutputError;
 use crate::simulate::SimulationResult;
 
 /// The font text is drawn, measured and rendered with; an SVG names its family,
-/// `sans-serif`.
+/// [`FAMILY`], and a PDF embeds it.
 const FONT: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
 
 /// Why a picture could not be drawn.
@@ -49,33 +53,51 @@ pub enum PlotError {
     /// The drawing or rendering library failed.
     #[error("drawing the picture: {0}")]
     Draw(String),
-    /// The file could not be written, or has an extension other than .svg or .png.
+    /// The file could not be written, or has an extension other than .svg, .png or .pdf.
     #[error(transparent)]
     Output(#[from] OutputError),
 }
 
 /// The extensions a plot can be written as.
-pub const PLOT_EXTENSIONS: [&str; 2] = ["svg", "png"];
+pub const PLOT_EXTENSIONS: [&str; 3] = ["svg", "png", "pdf"];
 
 /// What a picture is written as.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Format {
+    /// The SVG text, naming the font family.
     Svg,
+    /// Rendered anti-aliased at [`RASTER_SCALE`].
     Png,
+    /// Vector PDF with the font embedded, the page as wide as the picture prints.
+    Pdf,
 }
 
 impl Format {
-    /// The format `path` names by its extension (.svg or .png, any case); others are refused.
-    pub fn of(path: &Path) -> Result<Format, PlotError> {
-        match path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase()) {
-            Some(e) if e == "png" => Ok(Format::Png),
-            Some(e) if e == "svg" => Ok(Format::Svg),
-            _ => Err(OutputError::Extension {
-                path: path.display().to_string(),
-                expected: ".svg or .png".to_string(),
-            }
-            .into()),
+    /// Every format, in the order of [`PLOT_EXTENSIONS`].
+    pub const ALL: [Format; 3] = [Format::Svg, Format::Png, Format::Pdf];
+
+    /// The file extension, without its dot.
+    pub fn extension(self) -> &'static str {
+        match self {
+            Format::Svg => "svg",
+            Format::Png => "png",
+            Format::Pdf => "pdf",
         }
+    }
+
+    /// The format `path` names by its extension (.svg, .png or .pdf, any case); others are refused.
+    pub fn of(path: &Path) -> Result<Format, PlotError> {
+        let extension = path.extension().map(|e| e.to_string_lossy().to_ascii_lowercase());
+        Format::ALL
+            .into_iter()
+            .find(|format| extension.as_deref() == Some(format.extension()))
+            .ok_or_else(|| {
+                OutputError::Extension {
+                    path: path.display().to_string(),
+                    expected: ".svg, .png or .pdf".to_string(),
+                }
+                .into()
+            })
     }
 }
 
@@ -95,20 +117,28 @@ pub struct ChartLayout {
 pub struct Picture {
     /// The SVG document.
     pub svg: String,
-    /// Each chart's geometry, left to right.
+    /// Each chart's geometry, left to right and top to bottom.
     pub charts: Vec<ChartLayout>,
+    /// The width and height in drawing units.
+    pub size: (u32, u32),
 }
 
 impl Picture {
-    /// The file's bytes in `format`: the SVG text, or the PNG rendered from it.
+    /// The file's bytes in `format`: the SVG text, or the PNG or PDF rendered from it.
     pub fn encode(&self, format: Format) -> Result<Vec<u8>, PlotError> {
         match format {
             Format::Svg => Ok(self.svg.clone().into_bytes()),
-            Format::Png => raster::png(&self.svg),
+            Format::Png => render::png(&self.svg),
+            Format::Pdf => render::pdf(&self.svg),
         }
     }
 
-    /// Writes the picture to `path` atomically, as SVG or PNG by its extension.
+    /// The width it prints at, in millimetres ([`UNITS_PER_MM`]).
+    pub fn print_width_mm(&self) -> f64 {
+        f64::from(self.size.0) / UNITS_PER_MM
+    }
+
+    /// Writes the picture to `path` atomically, as SVG, PNG or PDF by its extension.
     pub fn write(&self, path: &Path) -> Result<(), PlotError> {
         let bytes = self.encode(Format::of(path)?)?;
         Ok(write_all_or_none(&[(path.to_path_buf(), bytes)])?)
@@ -145,7 +175,7 @@ pub(crate) fn draw_svg(
         .rfind("</svg>")
         .ok_or_else(|| PlotError::Draw("the SVG has no end tag".to_string()))?;
     svg.insert_str(end, &overlay.into_svg());
-    Ok(Picture { svg, charts })
+    Ok(Picture { svg, charts, size })
 }
 
 /// Writes every file, each atomically, or none: on a failure the files this call has
@@ -166,8 +196,7 @@ pub fn write_all_or_none(files: &[(PathBuf, Vec<u8>)]) -> Result<(), OutputError
 /// Registers the font once per process: text layout needs its metrics.
 pub(crate) fn register_font() -> Result<(), PlotError> {
     static REGISTERED: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
-    let registered =
-        REGISTERED.get_or_init(|| plotters::style::register_font("sans-serif", FontStyle::Normal, FONT).is_ok());
+    let registered = REGISTERED.get_or_init(|| plotters::style::register_font(FAMILY, FontStyle::Normal, FONT).is_ok());
     if *registered {
         Ok(())
     } else {
@@ -197,13 +226,6 @@ pub(crate) fn chart_with_legend<'a, 'b>(
     Err("no place for the legend that leaves the data visible".into())
 }
 
-const SEGMENT_COLOURS: [RGBColor; 4] = [
-    RGBColor(31, 119, 180),
-    RGBColor(44, 160, 44),
-    RGBColor(214, 39, 40),
-    RGBColor(255, 127, 14),
-];
-
 /// What is drawn, computed once.
 struct Scene {
     ellipse: Vec<(f64, f64)>,
@@ -214,7 +236,7 @@ struct Scene {
     dissipation: f64,
 }
 
-/// Draws the ellipse and the loop side by side into `path` (.svg or .png).
+/// Draws the ellipse and the loop side by side into `path` (.svg, .png or .pdf).
 pub fn plot_cycle(path: &Path, cycle: &LoadCycle<f64>, result: &SimulationResult) -> Result<(), PlotError> {
     Format::of(path)?;
     cycle_picture(cycle, result)?.write(path)
@@ -273,11 +295,10 @@ pub fn cycle_picture(cycle: &LoadCycle<f64>, result: &SimulationResult) -> Resul
         segments,
         dissipation: result.w_work,
     };
-    draw_svg((1200, 520), |root, overlay| draw_cycle(root, overlay, &scene))
+    draw_svg((1200, 600), |root, overlay| draw_cycle(root, overlay, &scene))
 }
 
-const MARKER_RADIUS: f64 = 4.0;
-const LABEL_FONT: u32 = 16;
+const MARKER_RADIUS: f64 = 5.0;
 
 fn draw_cycle(root: &Canvas<'_>, overlay: &mut Overlay, scene: &Scene) -> Drawn {
     let (left, right) = root.split_horizontally(root.dim_in_pixel().0 / 2);
@@ -287,26 +308,40 @@ fn draw_cycle(root: &Canvas<'_>, overlay: &mut Overlay, scene: &Scene) -> Drawn 
     ])
 }
 
+/// A chart over `x` × `y` on `area` (its title already drawn), with room for tick
+/// labels and axis names in the type of [`TEXT`].
+pub(crate) fn chart_on<'a, 'b>(
+    area: &'a Canvas<'b>,
+    x: Range<f64>,
+    y: Range<f64>,
+) -> Result<Chart<'a, 'b>, Box<dyn std::error::Error>> {
+    Ok(ChartBuilder::on(area)
+        .margin(10)
+        .margin_right(24)
+        .x_label_area_size(72)
+        .y_label_area_size(112)
+        .build_cartesian_2d(x, y)?)
+}
+
 /// A linear chart on `area` (its title already drawn).
 fn linear_chart<'a, 'b>(
     area: &'a Canvas<'b>,
 ) -> impl Fn(Range<f64>, Range<f64>) -> Result<Chart<'a, 'b>, Box<dyn std::error::Error>> {
-    move |x, y| {
-        Ok(ChartBuilder::on(area)
-            .margin(12)
-            .x_label_area_size(36)
-            .y_label_area_size(64)
-            .build_cartesian_2d(x, y)?)
-    }
+    move |x, y| chart_on(area, x, y)
 }
 
-/// Draws the mesh of a linear chart with its axis names.
+/// Draws the mesh of a linear chart with its axis names (and units).
 fn linear_mesh(chart: &mut Chart<'_, '_>, frame: &Frame, x: &str, y: &str) -> Result<(), Box<dyn std::error::Error>> {
     let (x_range, y_range) = (frame.x.clone(), frame.y.clone());
     chart
         .configure_mesh()
         .x_desc(x)
         .y_desc(y)
+        .x_labels(6)
+        .y_labels(8)
+        .label_style((FAMILY, TEXT))
+        .axis_desc_style((FAMILY, TEXT))
+        .light_line_style(WHITE)
         .x_label_formatter(&|v| ticks::linear(*v, &x_range))
         .y_label_formatter(&|v| ticks::linear(*v, &y_range))
         .draw()?;
@@ -319,12 +354,12 @@ fn draw_ellipse(
     overlay: &mut Overlay,
     scene: &Scene,
 ) -> Result<ChartLayout, Box<dyn std::error::Error>> {
-    let area = area.titled("load cycle in the (P, Q) plane", ("sans-serif", 18))?;
+    let area = area.titled("load cycle in the (P, Q) plane", (FAMILY, TITLE))?;
     let (top, extent) = (scene.top_load * 1.05, scene.tangential_extent);
     let wedge = BLACK.mix(0.5);
     let entries = [LegendEntry {
         label: "|Q| = fP".to_string(),
-        swatch: Swatch::Line(wedge, 1.0),
+        swatch: Swatch::Dashed(wedge, 1.5),
     }];
     let wedge_lines = [[(0.0, 0.0), (top, extent)], [(0.0, 0.0), (top, -extent)]];
     let obstacles = |frame: &Frame| {
@@ -346,28 +381,38 @@ fn draw_ellipse(
         legend_size(&entries),
         obstacles,
     )?;
-    linear_mesh(&mut chart, &frame, "P", "Q")?;
+    linear_mesh(
+        &mut chart,
+        &frame,
+        "normal load P (load units)",
+        "tangential load Q (load units)",
+    )?;
     let pixels = |points: &[(f64, f64)]| points.iter().map(|p| frame.pixel(*p)).collect::<Vec<_>>();
     overlay.clip(&frame.area);
     for line in wedge_lines {
-        overlay.polyline(&pixels(&line), Stroke::solid(wedge, 1.0));
+        overlay.polyline(&pixels(&line), Stroke::dashed(wedge, 1.5));
     }
-    overlay.polyline(&pixels(&scene.ellipse), Stroke::solid(BLACK.to_rgba(), 1.5));
+    overlay.polyline(&pixels(&scene.ellipse), Stroke::solid(BLACK.to_rgba(), LINE_WIDTH));
     overlay.end_clip();
     for (_, p, q) in &scene.points {
-        overlay.circle(frame.pixel((*p, *q)), MARKER_RADIUS, None, Some(RED.to_rgba()));
+        overlay.circle(
+            frame.pixel((*p, *q)),
+            MARKER_RADIUS,
+            None,
+            Some(style::PALETTE[1].to_rgba()),
+        );
     }
     let mut labels = Vec::new();
     for (name, p, q) in &scene.points {
         let rect = beside(
             frame.pixel((*p, *q)),
             MARKER_RADIUS,
-            text_size(name, LABEL_FONT),
+            text_size(name, TEXT),
             &frame.area,
             &around,
         );
         around.taken(rect);
-        overlay.text(name, (rect.left, 0.5 * (rect.top + rect.bottom)), LABEL_FONT);
+        overlay.text(name, (rect.left, 0.5 * (rect.top + rect.bottom)), TEXT);
         labels.push(Label {
             text: name.to_string(),
             at: (*p, *q),
@@ -391,7 +436,7 @@ fn joined(pairs: &[(f64, f64)]) -> Vec<Vec<(f64, f64)>> {
     runs
 }
 
-/// The hysteresis loop, its four segments coloured.
+/// The hysteresis loop, its four segments in four colours and dash patterns.
 fn draw_loop(
     area: &Canvas<'_>,
     overlay: &mut Overlay,
@@ -399,7 +444,7 @@ fn draw_loop(
 ) -> Result<ChartLayout, Box<dyn std::error::Error>> {
     let area = area.titled(
         &format!("hysteresis loop, W = {:.6e}", scene.dissipation),
-        ("sans-serif", 18),
+        (FAMILY, TITLE),
     )?;
     let all = scene.segments.iter().flat_map(|(_, points)| points);
     let (u_min, u_max, q_min, q_max) = all.fold(
@@ -409,10 +454,10 @@ fn draw_loop(
     let pad = |a: f64, b: f64| 0.05 * (b - a).abs().max(1e-300);
     let entries: Vec<LegendEntry> = Segment::ALL
         .into_iter()
-        .zip(SEGMENT_COLOURS)
-        .map(|(segment, colour)| LegendEntry {
+        .enumerate()
+        .map(|(index, segment)| LegendEntry {
             label: segment.name().to_string(),
-            swatch: Swatch::Line(colour.to_rgba(), 2.0),
+            swatch: Swatch::Series(series(index), false),
         })
         .collect();
     let obstacles = |frame: &Frame| {
@@ -432,12 +477,18 @@ fn draw_loop(
         legend_size(&entries),
         obstacles,
     )?;
-    linear_mesh(&mut chart, &frame, "u", "Q")?;
+    linear_mesh(
+        &mut chart,
+        &frame,
+        "tangential displacement u (approach units)",
+        "tangential load Q (load units)",
+    )?;
     overlay.clip(&frame.area);
-    for (segment, colour) in Segment::ALL.into_iter().zip(SEGMENT_COLOURS) {
+    for (index, segment) in Segment::ALL.into_iter().enumerate() {
+        let style = series(index);
         for run in joined(scene.segments.get(segment)) {
             let pixels: Vec<(f64, f64)> = run.iter().map(|p| frame.pixel(*p)).collect();
-            overlay.polyline(&pixels, Stroke::solid(colour.to_rgba(), 2.0));
+            overlay.polyline(&pixels, Stroke::of(&style, LINE_WIDTH));
         }
     }
     overlay.end_clip();

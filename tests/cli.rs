@@ -541,9 +541,9 @@ fn output_paths_are_checked_before_computing_and_failures_are_one_human_line() {
     let directory = scratch("paths");
     let in_dir = |name: &str| directory.join(name).display().to_string();
     assert_one_line_failure(
-        on_case("simulate", &["--plot", &in_dir("x.pdf")]),
+        on_case("simulate", &["--plot", &in_dir("x.eps")]),
         2,
-        "x.pdf: the file name must end in .svg or .png",
+        "x.eps: the file name must end in .svg or .png or .pdf",
     );
     assert_one_line_failure(
         on_case("simulate", &["--loop", &in_dir("x.txt")]),

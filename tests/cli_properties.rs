@@ -614,7 +614,7 @@ fn simulate_on_any_flags_never_panics_hangs_or_prints_on_failure() {
             1 => Just(vec![("--loop", "loop.csv")]),
             1 => Just(vec![("--plot", "cycle.svg")]),
             1 => Just(vec![("--loop", "same.csv"), ("--plot", "same.csv")]),
-            1 => Just(vec![("--plot", "cycle.pdf")]),
+            1 => Just(vec![("--plot", "cycle.eps")]),
             1 => Just(vec![("--loop", "missing/loop.csv")]),
         ],
     );

@@ -2,8 +2,10 @@
 
 use std::path::PathBuf;
 
-use clap::Args;
+use clap::{Args, ValueEnum};
+use microslip::figures::output::DEFAULT_FORMATS;
 use microslip::figures::FiguresError;
+use microslip::plot::Format;
 
 use super::case::Jobs;
 use super::progress::Progress;
@@ -11,16 +13,48 @@ use super::report::Failure;
 
 #[derive(Args)]
 pub struct FiguresArgs {
-    /// Directory for fig4…fig8 (.csv, .svg, .png), limit_slopes.csv and facts.json.
+    /// Directory for fig4…fig8 (.csv and the pictures), limit_slopes.csv and facts.json.
     #[arg(long)]
     pub out: PathBuf,
+    /// The picture formats, comma-separated or repeated: svg, png (at 2×) and pdf
+    /// (vector, the font embedded, 85 mm wide). Default: svg,png.
+    #[arg(long, value_enum, value_delimiter = ',')]
+    pub format: Vec<PictureFormat>,
     #[command(flatten)]
     pub jobs: Jobs,
 }
 
+/// A picture format of `--format`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, ValueEnum)]
+pub enum PictureFormat {
+    Svg,
+    Png,
+    Pdf,
+}
+
+impl From<PictureFormat> for Format {
+    fn from(format: PictureFormat) -> Self {
+        match format {
+            PictureFormat::Svg => Format::Svg,
+            PictureFormat::Png => Format::Png,
+            PictureFormat::Pdf => Format::Pdf,
+        }
+    }
+}
+
 pub fn run(args: &FiguresArgs) -> Result<String, Failure> {
+    let mut formats: Vec<Format> = Vec::new();
+    for format in args.format.iter().map(|&f| Format::from(f)) {
+        if !formats.contains(&format) {
+            formats.push(format);
+        }
+    }
+    if formats.is_empty() {
+        formats = DEFAULT_FORMATS.to_vec();
+    }
     let progress = Progress::new(0);
-    let summary = microslip::figures::regenerate(&args.out, &|done, total| progress.at_of(done, total, "steps"));
+    let summary =
+        microslip::figures::regenerate(&args.out, &formats, &|done, total| progress.at_of(done, total, "steps"));
     progress.finish();
     // Only an unusable directory is refused input; anything failing after it was checked
     // is a failed run.

@@ -43,7 +43,7 @@ pub struct SimulateArgs {
     /// (the report then goes to standard error).
     #[arg(long = "loop")]
     pub loop_csv: Option<PathBuf>,
-    /// Draw the load ellipse and the hysteresis loop to this .svg or .png file.
+    /// Draw the load ellipse and the hysteresis loop to this .svg, .png or .pdf file.
     #[arg(long)]
     pub plot: Option<PathBuf>,
     /// Print one JSON object.

@@ -6,7 +6,7 @@
 //!   cannot vouch for it), the gross-slip limits, local and fitted log–log slopes;
 //! - [`sweeps`]: the curves of each figure and the facts;
 //! - [`output`]: the CSV files, `facts.json`, written atomically;
-//! - [`draw`]: the pictures (SVG and PNG).
+//! - [`draw`]: the pictures (SVG, PNG and PDF).
 //!
 //! What the numbers show against the paper's words is in proofs/figures.md.
 

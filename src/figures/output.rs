@@ -1,4 +1,5 @@
-//! Writing the figures: per figure a CSV, an SVG and a PNG, plus `limit_slopes.csv`
+//! Writing the figures: per figure a CSV and a picture in each format asked for (SVG,
+//! PNG, PDF), plus `limit_slopes.csv`
 //! (every local slope of every limit sequence) and `facts.json`. Everything is rendered
 //! in memory first; each file is then written to a temporary name in the output
 //! directory and renamed into place, so a reader never sees a half-written file, and
@@ -47,12 +48,16 @@ pub struct Summary {
     pub figures: Figures,
 }
 
-/// The names of the files written, in the order written.
-pub fn file_names() -> Vec<String> {
+/// The formats the pictures are written in unless others are asked for.
+pub const DEFAULT_FORMATS: [Format; 2] = [Format::Svg, Format::Png];
+
+/// The names of the files written with pictures in `formats`, in the order written.
+pub fn file_names(formats: &[Format]) -> Vec<String> {
     let mut names = Vec::new();
     for number in 4..=8 {
-        for extension in ["csv", "svg", "png"] {
-            names.push(format!("fig{number}.{extension}"));
+        names.push(format!("fig{number}.csv"));
+        for format in formats {
+            names.push(format!("fig{number}.{}", format.extension()));
         }
     }
     names.extend(["limit_slopes.csv".to_string(), "facts.json".to_string()]);
@@ -60,10 +65,14 @@ pub fn file_names() -> Vec<String> {
 }
 
 /// Checks `directory`, computes every figure (reporting (done, total) steps), renders
-/// every file in memory and then writes them all into it, or none: a failed write
-/// removes the files this run had written.
-pub fn regenerate(directory: &Path, report: &(dyn Fn(usize, usize) + Sync)) -> Result<Summary, FiguresError> {
-    check_directory(directory)?;
+/// every file in memory, the pictures in each of `formats`, and then writes them all
+/// into it, or none: a failed write removes the files this run had written.
+pub fn regenerate(
+    directory: &Path,
+    formats: &[Format],
+    report: &(dyn Fn(usize, usize) + Sync),
+) -> Result<Summary, FiguresError> {
+    check_directory(directory, formats)?;
     let progress = Progress::new(step_count(), report);
     let figures = compute(&progress)?;
     let mut contents: Vec<(PathBuf, Vec<u8>)> = Vec::new();
@@ -71,9 +80,9 @@ pub fn regenerate(directory: &Path, report: &(dyn Fn(usize, usize) + Sync)) -> R
         let stem = format!("fig{}", figure.number);
         contents.push((directory.join(format!("{stem}.csv")), figure_csv(figure)?));
         let picture = figure_picture(figure)?;
-        for format in [Format::Svg, Format::Png] {
-            let extension = if format == Format::Svg { "svg" } else { "png" };
-            contents.push((directory.join(format!("{stem}.{extension}")), picture.encode(format)?));
+        for format in formats {
+            let name = format!("{stem}.{}", format.extension());
+            contents.push((directory.join(name), picture.encode(*format)?));
         }
     }
     contents.push((directory.join("limit_slopes.csv"), limit_slopes_csv(&figures.facts)?));
@@ -89,13 +98,13 @@ pub fn regenerate(directory: &Path, report: &(dyn Fn(usize, usize) + Sync)) -> R
 
 /// Creates `directory` if needed, proves a file can be written and renamed in it, and
 /// that none of the names to be written is taken by a directory.
-fn check_directory(directory: &Path) -> Result<(), FiguresError> {
+fn check_directory(directory: &Path, formats: &[Format]) -> Result<(), FiguresError> {
     let unusable = |message: String| FiguresError::Directory {
         path: directory.display().to_string(),
         message,
     };
     std::fs::create_dir_all(directory).map_err(|e| unusable(e.to_string()))?;
-    for name in file_names() {
+    for name in file_names(formats) {
         crate::files::check_writable(&directory.join(name), &[]).map_err(|e| unusable(e.to_string()))?;
     }
     Ok(())

@@ -155,6 +155,77 @@ fn sweep(
         .collect()
 }
 
+/// The largest rise or fall of a drawn chord between consecutive samples of a line, as
+/// a fraction of the curve's own span of drawn ordinates (log10 Ŵ on log–log figures,
+/// Ŵ from 0 on linear ones); the axis spans every curve, so no chord rises more than
+/// this fraction of it.
+pub const CHORD_FRACTION: f64 = 0.01;
+
+/// The most samples refinement lets a curve have.
+const REFINED_SAMPLES_CAP: usize = 4000;
+
+/// The drawn ordinate of a sample: log10 Ŵ on log–log figures (None where Ŵ ≤ 0), Ŵ otherwise.
+fn drawn_ordinate(w: f64, log_log: bool) -> Option<f64> {
+    if log_log {
+        (w > 0.0).then(|| w.log10())
+    } else {
+        Some(w)
+    }
+}
+
+/// The chords of `samples` that rise or fall more than [`CHORD_FRACTION`] of the
+/// curve's span, by the index of their left end.
+fn steep_chords(samples: &[(f64, f64, u32)], log_log: bool) -> Vec<usize> {
+    let drawn: Vec<Option<f64>> = samples.iter().map(|(_, w, _)| drawn_ordinate(*w, log_log)).collect();
+    let (low, high) = drawn
+        .iter()
+        .flatten()
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), y| (a.min(*y), b.max(*y)));
+    // A linear axis starts at 0.
+    let (low, high) = if log_log {
+        (low, high)
+    } else {
+        (low.min(0.0), high.max(0.0))
+    };
+    let limit = CHORD_FRACTION * (high - low);
+    (0..samples.len().saturating_sub(1))
+        .filter(|&i| match (drawn[i], drawn[i + 1]) {
+            (Some(a), Some(b)) => (b - a).abs() > limit && samples[i].0 < samples[i + 1].0,
+            _ => false,
+        })
+        .collect()
+}
+
+/// The samples of a line with more added where the curve is steep: every chord that
+/// rises or falls more than [`CHORD_FRACTION`] of the curve's span is bisected (at the
+/// geometric middle on log–log figures), round after round, until none does (or the
+/// curve holds [`REFINED_SAMPLES_CAP`] samples). Near gross slip, where Ŵ grows like
+/// ln(1/P_T), this puts the samples where the curve turns up.
+fn refined(
+    figure: u32,
+    mut samples: Vec<(f64, f64, u32)>,
+    log_log: bool,
+    at: &(dyn Fn(f64) -> Point + Sync),
+    formula: Formula,
+) -> Result<Vec<(f64, f64, u32)>, SweepError> {
+    loop {
+        let steep = steep_chords(&samples, log_log);
+        if steep.is_empty() || samples.len() + steep.len() > REFINED_SAMPLES_CAP {
+            return Ok(samples);
+        }
+        let middles: Vec<(f64, Point)> = steep
+            .iter()
+            .map(|&i| {
+                let (a, b) = (samples[i].0, samples[i + 1].0);
+                let x = if log_log { (a * b).sqrt() } else { 0.5 * (a + b) };
+                (x, at(x))
+            })
+            .collect();
+        samples.extend(sweep(figure, &middles, formula, &Progress::new(0, &|_, _| {}))?);
+        samples.sort_by(|a, b| a.0.total_cmp(&b.0));
+    }
+}
+
 /// The number of progress steps [`compute`] reports.
 pub fn step_count() -> usize {
     let fig4 = FIG4_POINTS.len() * 2 + FIG4_LINE_SAMPLES;
@@ -220,6 +291,7 @@ fn figure4(progress: &Progress) -> Result<(Figure, f64), SweepError> {
         .map(|i| at(limit * (1.0 - GROSS_SLIP_MARGIN) * i as f64 / FIG4_LINE_SAMPLES as f64))
         .collect();
     let line = sweep(4, &line_points, Formula::ConstantNormalLoad, progress)?;
+    let line = refined(4, line, false, &|q| at(q).1, Formula::ConstantNormalLoad)?;
     let figure = Figure {
         number: 4,
         x_label: "Q1/(f P0)",
@@ -321,6 +393,7 @@ fn figure5(progress: &Progress) -> Result<Fig5Facts, SweepError> {
         let in_phase = samples[0].1;
         let gain = (gross_slip_at.is_empty() && in_phase > 0.0).then(|| w_max / in_phase);
         gains.insert(key.to_string(), gain);
+        let samples = refined(5, samples, false, &at, Formula::Chosen)?;
         curves.push(Curve {
             key: key.to_string(),
             label: format!("Q1/(f P0) = {key}"),
@@ -380,6 +453,7 @@ fn curve_to_gross_slip(
     progress: &Progress,
 ) -> Result<(Curve, LimitSlope), SweepError> {
     let samples = amplitude_curve(figure, low, limit, at, progress)?;
+    let samples = refined(figure, samples, true, at, Formula::Chosen)?;
     let slope = slope_of(figure, key, at)?;
     progress.step();
     let curve = Curve {
@@ -484,7 +558,7 @@ fn figure8(progress: &Progress) -> Result<Fig8Facts, SweepError> {
         log_log: true,
         panels,
         notes: vec![format!(
-            "dashed: slope 2, the limit as Q1 → 0 at fixed P1; facts.json fits the slope over Q1/(f P0) ∈ [{}, {}]",
+            "grey dashes: slope 2, the limit as Q1 → 0 at fixed P1; facts.json fits the slope over Q1/(f P0) ∈ [{},\u{a0}{}]",
             FIG8_RANGE.0, FIG8_RANGE.1
         )],
     };

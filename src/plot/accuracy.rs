@@ -1,147 +1,224 @@
-//! The accuracy-against-cost chart: one curve per (rule, precision), relative error
-//! against seconds on logarithmic axes labelled in powers of ten, the Pareto front
-//! circled, the legend beside the chart.
+//! The accuracy-against-cost chart: one panel per case, stacked, relative error
+//! against seconds on logarithmic axes labelled in powers of ten. A rule has one
+//! colour and dash pattern, a working precision one marker, so thirteen series are
+//! read off two short keys. The error axis ends at the reference's precision
+//! (10⁻¹⁰⁰): an error below it is not measured, and is drawn as a filled marker on
+//! that floor, off the lines. The Pareto front is circled.
 
 use std::path::Path;
 
 use plotters::prelude::*;
 
-use super::layout::{draw_legend, legend_size, Frame, LegendEntry, Rect, Swatch};
+use super::layout::{draw_legend_in, legend_columns, legend_size_in, Frame, LegendEntry, Rect, Swatch};
 use super::overlay::{Overlay, Stroke};
-use super::{draw_svg, ticks, Canvas, ChartLayout, Format, Picture, PlotError};
+use super::style::{series, Marker, SeriesStyle, FAMILY, LINE_WIDTH, MARKERS, MARKER_SIZE, TEXT, TITLE};
+use super::{chart_on, draw_svg, register_font, ticks, Canvas, ChartLayout, Format, Picture, PlotError};
 use crate::accuracy::{pareto_front, Measurement};
 
-/// Draws the chart of `measurements` into `path` (.svg or .png).
+/// Draws the chart of `measurements` into `path` (.svg, .png or .pdf).
 pub fn plot_accuracy(path: &Path, measurements: &[Measurement]) -> Result<(), PlotError> {
     Format::of(path)?;
     accuracy_picture(measurements)?.write(path)
 }
 
-/// A legend key and its lines (one per case).
-type Curve = (String, Vec<Vec<(f64, f64)>>);
+/// log10 of the smallest relative error the 100-digit references resolve: the floor of
+/// the error axis.
+pub const FLOOR_EXPONENT: f64 = -100.0;
 
-/// The curves: one per rule and precision, a polyline per case, in log10 of seconds
-/// and of the relative error.
-fn curves(measurements: &[Measurement]) -> Vec<Curve> {
-    let mut grouped: Vec<(String, Vec<&Measurement>)> = Vec::new();
+/// The precisions the markers stand for, in bits (53: f64).
+const PRECISIONS: [u32; 5] = [53, 128, 256, 512, 1024];
+
+const WIDTH: u32 = 600;
+const PANEL_HEIGHT: u32 = 440;
+const MARGIN: f64 = 12.0;
+
+/// A measurement in drawn coordinates: log10 seconds, log10 relative error, the
+/// error raised to the floor where it lies below.
+pub fn point(m: &Measurement) -> (f64, f64) {
+    (m.seconds.max(1e-9).log10(), m.rel_error.log10().max(FLOOR_EXPONENT))
+}
+
+/// Whether a measurement's error lies below what the reference resolves.
+pub fn below_floor(m: &Measurement) -> bool {
+    m.rel_error.log10() < FLOOR_EXPONENT
+}
+
+/// The rules, in order of first appearance.
+fn rules(measurements: &[Measurement]) -> Vec<&'static str> {
+    let mut rules: Vec<&'static str> = Vec::new();
     for m in measurements {
-        let key = if m.precision_bits == 53 {
-            format!("{} f64", m.rule)
-        } else {
-            format!("{} {} bits", m.rule, m.precision_bits)
-        };
-        match grouped.iter_mut().find(|(k, _)| *k == key) {
-            Some((_, list)) => list.push(m),
-            None => grouped.push((key, vec![m])),
+        if !rules.contains(&m.rule) {
+            rules.push(m.rule);
         }
     }
-    grouped
+    rules
+}
+
+/// The cases, in order of first appearance.
+fn cases(measurements: &[Measurement]) -> Vec<&str> {
+    let mut cases: Vec<&str> = Vec::new();
+    for m in measurements {
+        if !cases.contains(&m.case.as_str()) {
+            cases.push(&m.case);
+        }
+    }
+    cases
+}
+
+/// The marker of a precision.
+fn precision_marker(bits: u32) -> Marker {
+    let index = PRECISIONS.iter().position(|&b| b == bits).unwrap_or(PRECISIONS.len());
+    MARKERS[index % MARKERS.len()]
+}
+
+fn precision_name(bits: u32) -> String {
+    if bits == 53 {
+        "f64".to_string()
+    } else {
+        format!("{bits} bits")
+    }
+}
+
+/// The legend: the rules (line and dash), the precisions (markers), the floor and the front.
+fn legend_entries(measurements: &[Measurement]) -> Vec<LegendEntry> {
+    let mut entries: Vec<LegendEntry> = rules(measurements)
         .into_iter()
-        .map(|(key, mut list)| {
-            list.sort_by(|a, b| a.case.cmp(&b.case).then(a.parameter.total_cmp(&b.parameter)));
-            let mut by_case: Vec<Vec<(f64, f64)>> = Vec::new();
-            let mut last_case = None;
-            for m in list {
-                if last_case != Some(&m.case) {
-                    by_case.push(Vec::new());
-                    last_case = Some(&m.case);
-                }
-                if let Some(curve) = by_case.last_mut() {
-                    curve.push(point(m));
-                }
-            }
-            (key, by_case)
-        })
-        .collect()
-}
-
-/// A measurement in drawn coordinates: log10 seconds, log10 relative error.
-pub fn point(m: &Measurement) -> (f64, f64) {
-    (m.seconds.max(1e-9).log10(), m.rel_error.max(1e-300).log10())
-}
-
-/// The chart of `measurements` as a picture (one chart; its legend lies outside the
-/// plotting area, on the right).
-pub fn accuracy_picture(measurements: &[Measurement]) -> Result<Picture, PlotError> {
-    let curves = curves(measurements);
-    let mut entries: Vec<LegendEntry> = curves
-        .iter()
         .enumerate()
-        .map(|(index, (key, _))| LegendEntry {
-            label: key.clone(),
-            swatch: Swatch::Line(Palette99::pick(index).to_rgba(), 2.0),
+        .map(|(index, rule)| LegendEntry {
+            label: rule.to_string(),
+            swatch: Swatch::Series(series(index), false),
         })
         .collect();
+    let mut precisions: Vec<u32> = measurements.iter().map(|m| m.precision_bits).collect();
+    precisions.sort_unstable();
+    precisions.dedup();
+    for bits in precisions {
+        let style = SeriesStyle {
+            colour: RGBColor(0, 0, 0),
+            dash: &[],
+            marker: precision_marker(bits),
+        };
+        entries.push(LegendEntry {
+            label: precision_name(bits),
+            swatch: Swatch::Marker(style),
+        });
+    }
+    entries.push(LegendEntry {
+        label: "error below 10⁻¹⁰⁰ (the reference's digits)".to_string(),
+        swatch: Swatch::Floor(RGBColor(0, 0, 0).to_rgba()),
+    });
     entries.push(LegendEntry {
         label: "Pareto front".to_string(),
-        swatch: Swatch::Circle(BLACK.to_rgba(), 5.0),
+        swatch: Swatch::Circle(BLACK.to_rgba(), 7.0),
     });
-    // The legend's width decides the picture's.
-    super::register_font()?;
-    let (legend_w, _) = legend_size(&entries);
-    let width = 1000 + legend_w.ceil() as u32 + 30;
-    draw_svg((width, 700), |root, overlay| {
-        draw(root, overlay, measurements, &curves, &entries, legend_w).map(|chart| vec![chart])
+    entries
+}
+
+/// The chart of `measurements` as a picture: a panel per case, the legend under them.
+pub fn accuracy_picture(measurements: &[Measurement]) -> Result<Picture, PlotError> {
+    register_font()?;
+    let entries = legend_entries(measurements);
+    let columns = legend_columns(&entries, f64::from(WIDTH) - 2.0 * MARGIN);
+    let legend = legend_size_in(&entries, columns);
+    let panels = cases(measurements).len().max(1) as u32;
+    let height = PANEL_HEIGHT * panels + (legend.1 + 2.0 * MARGIN).ceil() as u32;
+    draw_svg((WIDTH, height), |root, overlay| {
+        let (charts, _) = root.split_vertically(PANEL_HEIGHT * panels);
+        let rect = Rect::at(
+            0.5 * (f64::from(WIDTH) - legend.0),
+            f64::from(PANEL_HEIGHT * panels) + MARGIN,
+            legend,
+        );
+        let mut layouts = Vec::new();
+        for (area, case) in charts
+            .split_evenly((panels as usize, 1))
+            .iter()
+            .zip(cases(measurements))
+        {
+            let frame = draw_case(area, overlay, measurements, case)?;
+            layouts.push(ChartLayout {
+                frame,
+                legend: rect,
+                labels: Vec::new(),
+            });
+        }
+        draw_legend_in(overlay, &rect, &entries, columns);
+        Ok(layouts)
     })
 }
 
-fn draw(
-    root: &Canvas<'_>,
+/// One case's panel: a line per rule and precision through the measured errors, a
+/// marker on each, the ones below the floor on it.
+fn draw_case(
+    area: &Canvas<'_>,
     overlay: &mut Overlay,
     measurements: &[Measurement],
-    curves: &[Curve],
-    entries: &[LegendEntry],
-    legend_w: f64,
-) -> Result<ChartLayout, Box<dyn std::error::Error>> {
-    let area = root.titled("accuracy against cost (all cases)", ("sans-serif", 20))?;
-    let (x_min, x_max, y_min) = measurements.iter().map(point).fold(
-        (f64::INFINITY, f64::NEG_INFINITY, f64::INFINITY),
-        |(a, b, c), (x, y)| (a.min(x), b.max(x), c.min(y)),
-    );
-    let (x_range, y_range) = ((x_min - 0.1).floor()..(x_max + 0.1).ceil(), (y_min.floor() - 1.0)..1.0);
-    let width = area.dim_in_pixel().0;
-    let (plot, _) = area.split_horizontally(width - (legend_w.ceil() as u32 + 30));
-    let mut chart = ChartBuilder::on(&plot)
-        .margin(14)
-        .x_label_area_size(44)
-        .y_label_area_size(70)
-        .build_cartesian_2d(x_range.clone(), y_range.clone())?;
+    case: &str,
+) -> Result<Frame, Box<dyn std::error::Error>> {
+    let area = area.titled(&format!("case {case}"), (FAMILY, TITLE))?;
+    // One time axis for every panel, so that the cases compare.
+    let (x_min, x_max) = measurements
+        .iter()
+        .map(point)
+        .fold((f64::INFINITY, f64::NEG_INFINITY), |(a, b), (x, _)| {
+            (a.min(x), b.max(x))
+        });
+    let (x_range, y_range) = ((x_min - 0.1).floor()..(x_max + 0.1).ceil(), FLOOR_EXPONENT..0.0);
+    let mut chart = chart_on(&area, x_range.clone(), y_range.clone())?;
     chart
         .configure_mesh()
-        .x_labels(ticks::decade_ticks(&x_range, 12))
-        .y_labels(ticks::decade_ticks(&y_range, 16))
+        .x_labels(ticks::decade_ticks(&x_range, 8))
+        .y_labels(6)
         .x_label_formatter(&|v| ticks::power_of_ten(*v))
         .y_label_formatter(&|v| ticks::power_of_ten(*v))
         .x_desc("seconds per W")
-        .y_desc("relative error")
-        .axis_desc_style(("sans-serif", 16))
+        .y_desc("relative error of W")
+        .label_style((FAMILY, TEXT))
+        .axis_desc_style((FAMILY, TEXT))
+        .light_line_style(WHITE)
         .draw()?;
     let frame = Frame::of(&chart);
-    overlay.clip(&frame.area);
-    for (entry, (_, by_case)) in entries.iter().zip(curves) {
-        let Swatch::Line(colour, width) = entry.swatch else {
-            continue;
-        };
-        for curve in by_case {
-            let pixels: Vec<(f64, f64)> = curve.iter().map(|p| frame.pixel(*p)).collect();
-            overlay.polyline(&pixels, Stroke::solid(colour, width));
+    let ours: Vec<&Measurement> = measurements.iter().filter(|m| m.case == case).collect();
+    overlay.clip(&frame.area.inflate(MARKER_SIZE + 2.0));
+    for (index, rule) in rules(measurements).into_iter().enumerate() {
+        let style = series(index);
+        let mut precisions: Vec<u32> = ours
+            .iter()
+            .filter(|m| m.rule == rule)
+            .map(|m| m.precision_bits)
+            .collect();
+        precisions.dedup();
+        for bits in precisions {
+            let mut list: Vec<&&Measurement> = ours
+                .iter()
+                .filter(|m| m.rule == rule && m.precision_bits == bits)
+                .collect();
+            list.sort_by(|a, b| a.parameter.total_cmp(&b.parameter));
+            // The line joins measured errors only: it breaks where an error is below the floor.
+            for run in list.split(|m| below_floor(m)) {
+                let pixels: Vec<(f64, f64)> = run.iter().map(|m| frame.pixel(point(m))).collect();
+                overlay.polyline(&pixels, Stroke::of(&style, LINE_WIDTH));
+            }
+            let outline = Stroke::solid(style.colour.to_rgba(), 1.5);
+            for m in &list {
+                let at = frame.pixel(point(m));
+                if below_floor(m) {
+                    overlay.floor_marker(at, MARKER_SIZE, style.colour.to_rgba());
+                } else {
+                    overlay.marker(precision_marker(bits), at, MARKER_SIZE, outline);
+                }
+            }
         }
     }
-    overlay.end_clip();
-    for m in pareto_front(measurements) {
+    let case_measurements: Vec<Measurement> = ours.iter().map(|m| (*m).clone()).collect();
+    for m in pareto_front(&case_measurements) {
         overlay.circle(
             frame.pixel(point(m)),
-            6.0,
-            Some(Stroke::solid(BLACK.to_rgba(), 2.0)),
+            MARKER_SIZE + 3.0,
+            Some(Stroke::solid(BLACK.to_rgba(), 1.5)),
             None,
         );
     }
-    let (w, h) = legend_size(entries);
-    let legend = Rect::at(frame.area.right + 24.0, frame.area.top, (w, h));
-    draw_legend(overlay, &legend, entries);
-    Ok(ChartLayout {
-        frame,
-        legend,
-        labels: Vec::new(),
-    })
+    overlay.end_clip();
+    Ok(frame)
 }

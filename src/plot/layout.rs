@@ -8,6 +8,7 @@ use plotters::coord::types::RangedCoordf64;
 use plotters::prelude::*;
 
 use super::overlay::{Overlay, Stroke};
+use super::style::{SeriesStyle, FAMILY, LINE_WIDTH, MARKER_SIZE, TEXT};
 
 /// A rectangle in pixels (y grows downwards).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -174,10 +175,14 @@ impl Obstacles {
 /// How a legend entry shows its series: as drawn in the chart.
 #[derive(Clone, Copy, Debug)]
 pub enum Swatch {
-    /// A solid line of the given width.
-    Line(RGBAColor, f64),
     /// A dashed line of the given width (dashes of 6 pixels, gaps of 4, as in the chart).
     Dashed(RGBAColor, f64),
+    /// A series' line in its colour and dash pattern, with its marker if `true`.
+    Series(SeriesStyle, bool),
+    /// A series' marker alone.
+    Marker(SeriesStyle),
+    /// The filled marker of a value below an axis' floor.
+    Floor(RGBAColor),
     /// An open circle of the given radius.
     Circle(RGBAColor, f64),
     /// A filled circle of the given radius.
@@ -196,29 +201,47 @@ pub struct LegendEntry {
     pub swatch: Swatch,
 }
 
-const LEGEND_FONT: u32 = 15;
-const SWATCH: f64 = 24.0;
+const SWATCH: f64 = 52.0;
 const PADDING: f64 = 8.0;
-const ROW: f64 = 20.0;
+const ROW: f64 = 30.0;
+/// The space between a swatch and its text, and between columns.
+const GAP: f64 = 8.0;
 /// The clearance kept between a legend or label and the data, in pixels.
 pub const CLEARANCE: f64 = 3.0;
 
 /// The size of `text` in pixels, in the built-in font of `size` pixels.
 pub fn text_size(text: &str, size: u32) -> (f64, f64) {
-    let (w, h) = ("sans-serif", size).into_font().box_size(text).unwrap_or((0, 0));
+    let (w, h) = (FAMILY, size).into_font().box_size(text).unwrap_or((0, 0));
     (f64::from(w), f64::from(h))
 }
 
-/// The size of the legend of `entries` in pixels.
+/// The size of the legend of `entries` in pixels, in one column.
 pub fn legend_size(entries: &[LegendEntry]) -> (f64, f64) {
-    let widest = entries
-        .iter()
-        .map(|e| text_size(&e.label, LEGEND_FONT).0)
-        .fold(0.0, f64::max);
+    legend_size_in(entries, 1)
+}
+
+/// The width of one column of a legend of `entries`.
+fn column_width(entries: &[LegendEntry]) -> f64 {
+    let widest = entries.iter().map(|e| text_size(&e.label, TEXT).0).fold(0.0, f64::max);
+    SWATCH + GAP + widest
+}
+
+/// The size of the legend of `entries` in pixels, set in `columns` columns (filled row by row).
+pub fn legend_size_in(entries: &[LegendEntry], columns: usize) -> (f64, f64) {
+    let columns = columns.clamp(1, entries.len().max(1));
+    let rows = entries.len().div_ceil(columns);
     (
-        2.0 * PADDING + SWATCH + 8.0 + widest,
-        2.0 * PADDING + ROW * entries.len() as f64 - 4.0,
+        2.0 * PADDING + columns as f64 * column_width(entries) + (columns - 1) as f64 * 2.0 * GAP,
+        2.0 * PADDING + ROW * rows as f64 - 4.0,
     )
+}
+
+/// The most columns (at most one per entry) in which the legend of `entries` fits `width`.
+pub fn legend_columns(entries: &[LegendEntry], width: f64) -> usize {
+    (1..=entries.len().max(1))
+        .rev()
+        .find(|&columns| legend_size_in(entries, columns).0 <= width)
+        .unwrap_or(1)
 }
 
 /// The first of the plotting area's corners and edge middles (upper right first) where
@@ -244,14 +267,22 @@ pub fn free_place(area: &Rect, size: (f64, f64), obstacles: &Obstacles) -> Optio
     .find(|rect| area.encloses(rect) && obstacles.hits(&rect.inflate(CLEARANCE)) == 0)
 }
 
-/// Draws a legend box at `rect` (pixels) into `overlay`.
+/// Draws a legend box at `rect` (pixels) into `overlay`, in one column.
 pub fn draw_legend(overlay: &mut Overlay, rect: &Rect, entries: &[LegendEntry]) {
+    draw_legend_in(overlay, rect, entries, 1);
+}
+
+/// Draws a legend box at `rect` (pixels) into `overlay`, in `columns` columns filled row by row.
+pub fn draw_legend_in(overlay: &mut Overlay, rect: &Rect, entries: &[LegendEntry], columns: usize) {
+    let columns = columns.clamp(1, entries.len().max(1));
+    let step = column_width(entries) + 2.0 * GAP;
     overlay.rect(rect, Some(WHITE.mix(0.9)), Some(Stroke::solid(BLACK.to_rgba(), 1.0)));
     for (index, entry) in entries.iter().enumerate() {
-        let x = rect.left + PADDING;
-        let middle = rect.top + PADDING + ROW * index as f64 + 0.5 * (ROW - 4.0);
+        let (row, column) = (index / columns, index % columns);
+        let x = rect.left + PADDING + step * column as f64;
+        let middle = rect.top + PADDING + ROW * row as f64 + 0.5 * (ROW - 4.0);
         draw_swatch(overlay, entry.swatch, x, middle);
-        overlay.text(&entry.label, (x + SWATCH + 8.0, middle), LEGEND_FONT);
+        overlay.text(&entry.label, (x + SWATCH + GAP, middle), TEXT);
     }
 }
 
@@ -259,8 +290,21 @@ fn draw_swatch(overlay: &mut Overlay, swatch: Swatch, x: f64, y: f64) {
     let centre = (x + 0.5 * SWATCH, y);
     let line = [(x, y), (x + SWATCH, y)];
     match swatch {
-        Swatch::Line(colour, width) => overlay.polyline(&line, Stroke::solid(colour, width)),
         Swatch::Dashed(colour, width) => overlay.polyline(&line, Stroke::dashed(colour, width)),
+        Swatch::Series(style, marked) => {
+            overlay.polyline(&line, Stroke::of(&style, LINE_WIDTH));
+            if marked {
+                let outline = Stroke::solid(style.colour.to_rgba(), 1.5);
+                overlay.marker(style.marker, centre, MARKER_SIZE, outline);
+            }
+        }
+        Swatch::Marker(style) => overlay.marker(
+            style.marker,
+            centre,
+            MARKER_SIZE,
+            Stroke::solid(style.colour.to_rgba(), 1.5),
+        ),
+        Swatch::Floor(colour) => overlay.floor_marker(centre, MARKER_SIZE, colour),
         Swatch::Circle(colour, radius) => overlay.circle(centre, radius, Some(Stroke::solid(colour, 2.0)), None),
         Swatch::Dot(colour, radius) => overlay.circle(centre, radius, None, Some(colour)),
         Swatch::Cross(colour) => overlay.cross(centre, CROSS, Stroke::solid(colour, 2.0)),

@@ -8,6 +8,7 @@ use std::fmt::Write;
 use plotters::style::{Color, RGBAColor};
 
 use super::layout::Rect;
+use super::style::{Marker, SeriesStyle, FAMILY};
 
 /// SVG elements to be drawn over the axes, in order.
 #[derive(Debug, Default)]
@@ -30,12 +31,12 @@ fn escape(text: &str) -> String {
     text.replace('&', "&amp;").replace('<', "&lt;").replace('>', "&gt;")
 }
 
-/// How a line is stroked: its colour, width and, if dashed, dash and gap lengths.
+/// How a line is stroked: its colour, width and dash pattern (dash, gap, …; empty: solid).
 #[derive(Clone, Copy, Debug)]
 pub struct Stroke {
     pub colour: RGBAColor,
     pub width: f64,
-    pub dash: Option<(f64, f64)>,
+    pub dash: &'static [f64],
 }
 
 impl Stroke {
@@ -44,16 +45,25 @@ impl Stroke {
         Stroke {
             colour,
             width,
-            dash: None,
+            dash: &[],
         }
     }
 
-    /// A dashed line: dashes of 6 pixels, gaps of 4, in charts and legends alike.
+    /// The line of a series: its colour and dash pattern.
+    pub fn of(style: &SeriesStyle, width: f64) -> Self {
+        Stroke {
+            colour: style.colour.to_rgba(),
+            width,
+            dash: style.dash,
+        }
+    }
+
+    /// A dashed line: dashes of 6 units, gaps of 4, in charts and legends alike.
     pub fn dashed(colour: RGBAColor, width: f64) -> Self {
         Stroke {
             colour,
             width,
-            dash: Some((6.0, 4.0)),
+            dash: &[6.0, 4.0],
         }
     }
 
@@ -63,8 +73,9 @@ impl Stroke {
             paint("stroke", &self.colour),
             self.width
         );
-        if let Some((dash, gap)) = self.dash {
-            let _ = write!(text, " stroke-dasharray=\"{dash} {gap}\"");
+        if !self.dash.is_empty() {
+            let pattern: Vec<String> = self.dash.iter().map(f64::to_string).collect();
+            let _ = write!(text, " stroke-dasharray=\"{}\"", pattern.join(" "));
         }
         text
     }
@@ -105,6 +116,66 @@ impl Overlay {
         );
     }
 
+    /// A marker of half-size `size` at `centre`, outlined in `stroke` and filled white
+    /// (so that it reads over the lines beneath it).
+    pub fn marker(&mut self, marker: Marker, (x, y): (f64, f64), size: f64, stroke: Stroke) {
+        let white = Some(RGBAColor(255, 255, 255, 1.0));
+        let polygon = |overlay: &mut Self, corners: &[(f64, f64)]| {
+            let mut list = String::new();
+            for (dx, dy) in corners {
+                let _ = write!(list, "{:.2},{:.2} ", x + dx * size, y + dy * size);
+            }
+            let _ = writeln!(
+                overlay.svg,
+                "<polygon {} {} points=\"{}\"/>",
+                fill(white),
+                stroke.attributes(),
+                list.trim_end()
+            );
+        };
+        match marker {
+            Marker::Circle => self.circle((x, y), size, Some(stroke), white),
+            Marker::Square => polygon(self, &[(-0.85, -0.85), (0.85, -0.85), (0.85, 0.85), (-0.85, 0.85)]),
+            Marker::TriangleUp => polygon(self, &[(0.0, -1.15), (1.0, 0.6), (-1.0, 0.6)]),
+            Marker::TriangleDown => polygon(self, &[(0.0, 1.15), (1.0, -0.6), (-1.0, -0.6)]),
+            Marker::Diamond => polygon(self, &[(0.0, -1.2), (1.0, 0.0), (0.0, 1.2), (-1.0, 0.0)]),
+            Marker::Star | Marker::Pentagon => {
+                // Five points out (a star's alternate with inner ones).
+                let star = marker == Marker::Star;
+                let corners: Vec<(f64, f64)> = (0..if star { 10 } else { 5 })
+                    .map(|k| {
+                        let turns = if star { f64::from(k) / 10.0 } else { f64::from(k) / 5.0 };
+                        let angle = 2.0 * std::f64::consts::PI * turns - 0.5 * std::f64::consts::PI;
+                        let r = if star && k % 2 == 1 { 0.5 } else { 1.2 };
+                        (r * angle.cos(), r * angle.sin())
+                    })
+                    .collect();
+                polygon(self, &corners);
+            }
+            Marker::Plus => {
+                let d = 1.15 * size;
+                self.polyline(&[(x - d, y), (x + d, y)], stroke);
+                self.polyline(&[(x, y - d), (x, y + d)], stroke);
+            }
+        }
+    }
+
+    /// A filled triangle pointing down onto `(x, y)`: a value below the axis' floor,
+    /// drawn there.
+    pub fn floor_marker(&mut self, (x, y): (f64, f64), size: f64, colour: RGBAColor) {
+        let _ = writeln!(
+            self.svg,
+            "<polygon {} points=\"{:.2},{:.2} {:.2},{:.2} {:.2},{:.2}\"/>",
+            fill(Some(colour)),
+            x,
+            y,
+            x + size,
+            y - 1.7 * size,
+            x - size,
+            y - 1.7 * size
+        );
+    }
+
     /// A circle, open (stroked) or filled.
     pub fn circle(&mut self, (x, y): (f64, f64), radius: f64, stroke: Option<Stroke>, inside: Option<RGBAColor>) {
         let fill = fill(inside);
@@ -139,7 +210,7 @@ impl Overlay {
     pub fn text(&mut self, text: &str, (x, y): (f64, f64), size: u32) {
         let _ = writeln!(
             self.svg,
-            "<text x=\"{x:.2}\" y=\"{y:.2}\" dy=\"0.35em\" font-family=\"sans-serif\" font-size=\"{}\" fill=\"#000000\">{}</text>",
+            "<text x=\"{x:.2}\" y=\"{y:.2}\" dy=\"0.35em\" font-family=\"{FAMILY}\" font-size=\"{}\" fill=\"#000000\">{}</text>",
             f64::from(size) / 1.24,
             escape(text)
         );
