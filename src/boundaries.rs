@@ -126,7 +126,7 @@ impl Side {
         let sign = self.sign();
         let friction_limit = Rational::from(cycle.friction * cycle.mean_normal_load);
         // fP0 ∓ Q0: how far the mean load lies inside this side's line.
-        let room = Rational::from(&friction_limit - Rational::from(cycle.mean_tangential_load * sign));
+        let room = &friction_limit - Rational::from(cycle.mean_tangential_load * sign);
         let (q1, fp1) = (
             cycle.tangential_amplitude,
             Rational::from(cycle.friction * cycle.normal_amplitude),
