@@ -30,12 +30,9 @@ pub fn prove_admissible(case: &CaseSpec) -> Result<(), AdmissibilityError> {
     if by_form_in_f64(case) {
         return Ok(());
     }
-    // The range in MPFR, from the cycle at 128 bits.
-    let Ok(Case { cycle, compliance }) = case.at::<Float>(Precision::bits(128)) else {
+    let Some((compliance, low, high)) = load_range(case) else {
         return Ok(());
     };
-    let low = (cycle.mean_normal_load.clone() - &cycle.normal_amplitude).min_of(&cycle.permanent_stick_load());
-    let high = cycle.mean_normal_load.clone() + &cycle.normal_amplitude;
     if compliance.admissible_by_form(&low, &high) {
         return Ok(());
     }
@@ -47,6 +44,31 @@ pub fn prove_admissible(case: &CaseSpec) -> Result<(), AdmissibilityError> {
     }
     by_balls(case, &low, &high).unwrap_or_else(|| check_admissible(compliance.as_ref(), &low, &high))
 }
+
+/// The compliance in MPFR and the range [min(P_T, P0 − P1), P0 + P1] of the loads the cycle
+/// reaches. P_T > 0 for every cycle inside the theory (no gross slip means σ₊ + σ₋ < 2fP0), but
+/// near separation its formula cancels: the bits rise until its lower end is positive, and past
+/// [`MAX_RANGE_BITS`] the end is taken as 2^(−2^20) P0, below the true one. None where MPFR cannot
+/// read the case.
+fn load_range(case: &CaseSpec) -> Option<(Box<dyn Compliance<Float>>, Float, Float)> {
+    let mut bits = 128;
+    loop {
+        let Case { cycle, compliance } = case.at::<Float>(Precision::bits(bits)).ok()?;
+        let low = (cycle.mean_normal_load.clone() - &cycle.normal_amplitude).min_of(&cycle.permanent_stick_load());
+        let high = cycle.mean_normal_load.clone() + &cycle.normal_amplitude;
+        if low > 0 {
+            return Some((compliance, low, high));
+        }
+        if bits >= MAX_RANGE_BITS {
+            let floor = cycle.mean_normal_load.clone() >> (1 << 20);
+            return Some((compliance, floor, high));
+        }
+        bits *= 8;
+    }
+}
+
+/// The most bits the load range is computed with.
+const MAX_RANGE_BITS: u32 = 8192;
 
 /// v'(high) > 0, the least v' on a range where v'' ≤ 0: proven in balls where built with
 /// them, else in MPFR.

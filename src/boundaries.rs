@@ -25,7 +25,7 @@ use crate::phase::ReducedPhase;
 pub const MAX_BITS: u32 = 1 << 14;
 
 /// The bits the enclosure of cos φ starts with.
-const FIRST_BITS: u32 = 128;
+const FIRST_BITS: u32 = 64;
 
 /// A cycle's exact quantities: every decimal as the rational it denotes, λ exactly (from ν
 /// where ν was given), and the phase reduced exactly modulo π.
@@ -92,10 +92,30 @@ pub(crate) fn decide(cycle: &ExactCycle) -> Result<(), CycleError> {
             lambda: cycle.compliance_ratio_text.to_string(),
         });
     }
-    for side in [Side::Forward, Side::Reverse] {
-        side.decide(cycle)?;
+    let sides = [Side::Forward, Side::Reverse].map(|side| Margin::of(side, cycle));
+    // cos φ once per precision for both sides, the precision raised while a side is unsettled.
+    let mut bits = FIRST_BITS;
+    loop {
+        let cosine = cosine_of_phase(cycle.phase, bits);
+        let settled = sides.each_ref().map(|margin| margin.inside(&cosine));
+        if let Some(margin) = sides
+            .iter()
+            .zip(&settled)
+            .find_map(|(m, s)| (*s == Some(false)).then_some(m))
+        {
+            return Err(margin.gross_slip(&cosine));
+        }
+        if settled.iter().all(|s| *s == Some(true)) {
+            return Ok(());
+        }
+        if bits >= MAX_BITS {
+            return Err(CycleError::Undecidable {
+                boundary: "gross slip (|Q| = fP somewhere in the cycle)",
+                bits,
+            });
+        }
+        bits *= 4;
     }
-    Ok(())
 }
 
 /// A side of the friction cone: Q = fP (forward) or Q = −fP (reverse).
@@ -111,19 +131,21 @@ enum Cosine {
     Between(Rational, Rational),
 }
 
-impl Side {
-    /// ±1: the sign of Q on this side's line.
-    fn sign(self) -> i32 {
-        match self {
+/// One side's margin, room² − σ², as `fixed + coupling·cos φ` (rationals), with room = fP0 ∓ Q0.
+struct Margin {
+    side: Side,
+    room: Rational,
+    fixed: Rational,
+    coupling: Rational,
+    friction_limit: Rational,
+}
+
+impl Margin {
+    fn of(side: Side, cycle: &ExactCycle) -> Margin {
+        let sign = match side {
             Side::Forward => 1,
             Side::Reverse => -1,
-        }
-    }
-
-    /// Refuses the cycle if it reaches this side's line, or if no precision up to
-    /// [`MAX_BITS`] settles whether it does.
-    fn decide(self, cycle: &ExactCycle) -> Result<(), CycleError> {
-        let sign = self.sign();
+        };
         let friction_limit = Rational::from(cycle.friction * cycle.mean_normal_load);
         // fP0 ∓ Q0: how far the mean load lies inside this side's line.
         let room = &friction_limit - Rational::from(cycle.mean_tangential_load * sign);
@@ -131,62 +153,52 @@ impl Side {
             cycle.tangential_amplitude,
             Rational::from(cycle.friction * cycle.normal_amplitude),
         );
-        // margin = room² − Q1² − (fP1)² + coupling·cos φ.
         let fixed =
             Rational::from(room.square_ref()) - Rational::from(q1.square_ref()) - Rational::from(fp1.square_ref());
         let coupling = Rational::from(q1 * &fp1) * (2 * sign);
-        let mut bits = FIRST_BITS;
-        loop {
-            let cosine = cosine_of_phase(cycle.phase, bits);
-            let (low, high) = match &cosine {
-                Cosine::Exact(c) => {
-                    let margin = Rational::from(&coupling * c) + &fixed;
-                    (margin.clone(), margin)
+        Margin {
+            side,
+            room,
+            fixed,
+            coupling,
+            friction_limit,
+        }
+    }
+
+    /// Whether the cycle stays inside this side's line: Some(true) or Some(false) where
+    /// `cosine` settles it, None where it does not.
+    fn inside(&self, cosine: &Cosine) -> Option<bool> {
+        let at = |c: &Rational| Rational::from(&self.coupling * c) + &self.fixed;
+        let (low, high) = match cosine {
+            Cosine::Exact(c) => (at(c), at(c)),
+            Cosine::Between(low, high) => {
+                let (a, b) = (at(low), at(high));
+                if a <= b {
+                    (a, b)
+                } else {
+                    (b, a)
                 }
-                Cosine::Between(low, high) => {
-                    let (a, b) = (
-                        Rational::from(&coupling * low) + &fixed,
-                        Rational::from(&coupling * high) + &fixed,
-                    );
-                    if a <= b {
-                        (a, b)
-                    } else {
-                        (b, a)
-                    }
-                }
-            };
-            if room > 0 && low > 0 {
-                return Ok(());
             }
-            if room <= 0 || high <= 0 {
-                return Err(self.gross_slip(&room, &fixed, &coupling, &cosine, &friction_limit));
-            }
-            if bits >= MAX_BITS {
-                return Err(CycleError::Undecidable {
-                    boundary: "gross slip (|Q| = fP somewhere in the cycle)",
-                    bits,
-                });
-            }
-            bits *= 4;
+        };
+        if self.room <= 0 || high <= 0 {
+            Some(false)
+        } else if low > 0 {
+            Some(true)
+        } else {
+            None
         }
     }
 
     /// The refusal for a cycle that reaches this side's line: max(±Q − fP) = σ − room.
-    fn gross_slip(
-        self,
-        room: &Rational,
-        fixed: &Rational,
-        coupling: &Rational,
-        cosine: &Cosine,
-        friction_limit: &Rational,
-    ) -> CycleError {
+    fn gross_slip(&self, cosine: &Cosine) -> CycleError {
         const BITS: u32 = 128;
         let cos = match cosine {
             Cosine::Exact(c) => c.clone(),
             Cosine::Between(low, high) => Rational::from(low + high) / 2,
         };
         // σ² = room² − margin, and σ − room = −margin/(σ + room) without cancellation.
-        let margin = Rational::from(coupling * &cos) + fixed;
+        let (room, friction_limit) = (&self.room, &self.friction_limit);
+        let margin = Rational::from(&self.coupling * &cos) + &self.fixed;
         let amplitude_squared = Rational::from(room.square_ref()) - &margin;
         let amplitude = Float::with_val(BITS, &amplitude_squared).max(&Float::new(BITS)).sqrt();
         let excess = if *room > 0 {
@@ -195,7 +207,7 @@ impl Side {
             amplitude - Float::with_val(BITS, room)
         };
         let relative = Float::with_val(BITS, &excess / Float::with_val(BITS, friction_limit));
-        let (sign, sign_word) = match self {
+        let (sign, sign_word) = match self.side {
             Side::Forward => ("+", ""),
             Side::Reverse => ("−", "−"),
         };
