@@ -39,7 +39,7 @@ use crate::simulate::SimulationResult;
 
 /// The font text is drawn, measured and rendered with; an SVG names its family,
 /// [`FAMILY`], and a PDF embeds it.
-const FONT: &[u8] = include_bytes!("../assets/DejaVuSans.ttf");
+const FONT: &[u8] = include_bytes!("../../assets/DejaVuSans.ttf");
 
 /// Why a picture could not be drawn.
 #[derive(Debug, thiserror::Error)]
