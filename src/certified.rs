@@ -128,7 +128,7 @@ pub enum CertifiedError {
     },
     /// The deadline passed, or would pass during the next attempt, before the enclosure
     /// was narrow enough.
-    #[error("the time budget ran out after {seconds:.1} s before the enclosure of W was narrow enough: {reached} of the {asked} digits asked reached (working precision {bits} bits)")]
+    #[error("the time budget does not suffice: {reached} of the {asked} digits of W asked reached in {seconds:.1} s (working precision {bits} bits), and the next attempt would not end within the budget")]
     OutOfTime {
         /// The seconds spent.
         seconds: f64,
