@@ -1,7 +1,7 @@
 //! I(ρ, φ), the series coefficients Iₙ and a case's partial sums W_N beside W, as
 //! [`Answer`]s: exact by reason where the input decides the value (I₀ ≡ 0, nothing slips,
 //! the series ends, W's zeros), otherwise rigorous enclosures of the exact input's value
-//! ([`super::enclosure`]) printed by the one rule, and — only where no enclosure can be
+//! (`exact::enclosure`, feature `certified`) printed by the one rule, and — only where no enclosure can be
 //! had (feature `certified` off, or a comparison no precision decides) — two precisions'
 //! agreement, labelled as such.
 

@@ -206,7 +206,7 @@ fn legend_entries(figure: &Figure, panel: &Panel) -> Vec<LegendEntry> {
     entries
 }
 
-/// Points spaced [`MARKER_SPACING`] apart in arc length along the line through `points`,
+/// Points spaced `MARKER_SPACING` apart in arc length along the line through `points`,
 /// the first `offset` from its start.
 pub fn along(points: &[(f64, f64)], offset: f64) -> Vec<(f64, f64)> {
     let mut placed = Vec::new();
