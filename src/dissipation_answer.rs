@@ -204,30 +204,6 @@ pub struct TableEstimate {
     pub quadrature_error: f64,
 }
 
-/// A short machine-readable name of a method (batch rows, JSON).
-pub fn method_key(method: Method) -> &'static str {
-    method_names(method).0
-}
-
-/// How a method is described on W's line.
-pub fn method_description(method: Method) -> &'static str {
-    method_names(method).1
-}
-
-/// The one name table of [`Method`]: its key and its description.
-fn method_names(method: Method) -> (&'static str, &'static str) {
-    match method {
-        Method::FourSegment => (
-            "four-segment",
-            "four-segment integrals of v' − v'(P0) in the cycle angle",
-        ),
-        Method::InPhase => ("in-phase", "in-phase closed form (paper appendix)"),
-        Method::ConstantNormalLoad => ("constant-normal-load", "constant-normal-load closed form"),
-        Method::NoTangentialOscillation => ("no-tangential-oscillation", "no tangential oscillation (W = 0)"),
-        Method::Exact(_) => ("exact", "exact"),
-    }
-}
-
 /// W as printed: [`dissipation_report`] without the reasons.
 pub fn dissipation_answer(case: &CaseText, digits: Option<u32>, budget: Duration) -> Result<Answer, ReferenceError> {
     dissipation_report(case, digits, budget).map(|report| report.answer)

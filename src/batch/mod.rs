@@ -15,7 +15,7 @@ mod input;
 
 pub use input::{check_input, read_input, BatchInput, InputRow, MAX_RECORD_BYTES};
 
-pub use crate::dissipation_answer::{method_key, TableEstimate, TABLE_QUADRATURE_TOLERANCE};
+pub use crate::dissipation_answer::{TableEstimate, TABLE_QUADRATURE_TOLERANCE};
 
 /// Why a case gives no W: the one error of every path to W.
 pub type CaseError = ReferenceError;
@@ -100,7 +100,7 @@ impl RowResult {
             table,
         } = &report;
         let Answer { value, provenance, .. } = answer;
-        let mut method = answer.method.map_or("", method_key).to_string();
+        let mut method = answer.method.map_or("", crate::dissipation::Method::key).to_string();
         if let Some(reason) = fallback {
             method.push_str(&format!(" ({} in place of f64: {reason})", provenance.key()));
         }

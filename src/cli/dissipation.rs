@@ -4,7 +4,7 @@ use clap::Args;
 
 use microslip::answer::Provenance;
 use microslip::dissipation::{DissipationError, Method};
-use microslip::dissipation_answer::{dissipation_report, method_description, DissipationAnswer};
+use microslip::dissipation_answer::{dissipation_report, DissipationAnswer};
 use microslip::reference::ReferenceError;
 use microslip::verified::Decimal;
 
@@ -91,7 +91,7 @@ fn text(report: &DissipationAnswer) -> String {
         }
         return out;
     }
-    let method = method_description(answer.method.unwrap_or(Method::FourSegment));
+    let method = answer.method.unwrap_or(Method::FourSegment).description();
     let mut out = match &report.table {
         Some(table) if answer.value.digits() == 0 => format!(
             "W: no digit determined ({method}; its error, table {:.1e} + quadrature {:.1e}, is as large as W itself: |W| ≤ {:.1e}; a denser table resolves it)\n",

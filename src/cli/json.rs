@@ -13,7 +13,7 @@ use serde::Serialize;
 use microslip::answer::{Answer, Provenance, Value};
 use microslip::batch::{InputRow, RowResult};
 use microslip::case::CaseText;
-use microslip::dissipation_answer::{method_key, DissipationAnswer};
+use microslip::dissipation_answer::DissipationAnswer;
 
 /// Keys and values serialized as a JSON object in the order given.
 pub struct InOrder<K, V>(Vec<(K, V)>);
@@ -123,7 +123,7 @@ pub struct DissipationFields {
     pub f64_fallback: Option<String>,
     /// Why the digits rest on agreement of two precisions rather than an enclosure.
     pub no_enclosure: Option<String>,
-    /// How W was computed ([`method_key`]).
+    /// How W was computed (`Method::key`).
     pub method: Option<&'static str>,
 }
 
@@ -143,7 +143,7 @@ impl DissipationFields {
             smoothing_residual: report.table.as_ref().map(|t| t.smoothing_residual),
             f64_fallback: report.fallback.as_ref().map(ToString::to_string),
             no_enclosure: report.no_enclosure.as_ref().map(ToString::to_string),
-            method: answer.method.map(method_key),
+            method: answer.method.map(microslip::dissipation::Method::key),
         }
     }
 }

@@ -45,12 +45,31 @@ impl Method {
     /// assert_eq!(Method::InPhase.description(), "in-phase closed form (paper appendix)");
     /// ```
     pub fn description(self) -> &'static str {
+        self.names().1
+    }
+
+    /// A short machine-readable name (batch rows, JSON).
+    ///
+    /// ```
+    /// use microslip::dissipation::Method;
+    ///
+    /// assert_eq!(Method::FourSegment.key(), "four-segment");
+    /// ```
+    pub fn key(self) -> &'static str {
+        self.names().0
+    }
+
+    /// The one name table: the key and the description.
+    fn names(self) -> (&'static str, &'static str) {
         match self {
-            Method::FourSegment => "four-segment integrals of v' − v'(P0) in the cycle angle",
-            Method::InPhase => "in-phase closed form (paper appendix)",
-            Method::ConstantNormalLoad => "constant-normal-load closed form",
-            Method::NoTangentialOscillation => "no tangential oscillation (W = 0)",
-            Method::Exact(_) => "exact zero",
+            Method::FourSegment => (
+                "four-segment",
+                "four-segment integrals of v' − v'(P0) in the cycle angle",
+            ),
+            Method::InPhase => ("in-phase", "in-phase closed form (paper appendix)"),
+            Method::ConstantNormalLoad => ("constant-normal-load", "constant-normal-load closed form"),
+            Method::NoTangentialOscillation => ("no-tangential-oscillation", "no tangential oscillation (W = 0)"),
+            Method::Exact(_) => ("exact", "exact"),
         }
     }
 }
