@@ -432,6 +432,16 @@ impl<R: Real> Compliance<R> for Rational<R> {
         let ratio = offset.clone() / &shifted;
         -(self.numerator.clone() * &ratio / &(shifted + offset))
     }
+    fn admissible_by_form(&self, low: &R, high: &R) -> bool {
+        // v' = a + b/(P + c) > 0 and v'' = −b/(P + c)² ≤ 0 at every positive load for a, b,
+        // c ≥ 0 (not a = b = 0).
+        let zero = low.int(0);
+        self.numerator >= zero
+            && self.constant >= zero
+            && self.offset >= zero
+            && (self.numerator > zero || self.constant > zero)
+            && regular_at_ends(self, low, high)
+    }
     fn describe(&self) -> String {
         format!(
             "rational v' = {} + {}/(P + {})",
