@@ -127,7 +127,8 @@ pub fn run(args: &BatchArgs) -> Result<usize, Failure> {
     }
     if failed > 0 || args.output != "-" {
         warn(&format!(
-            "{rows_done} rows in {:.2} s, {failed} failed{}",
+            "{rows_done} {} in {:.2} s, {failed} failed{}",
+            if rows_done == 1 { "row" } else { "rows" },
             started.elapsed().as_secs_f64(),
             if failed > 0 { " (see their error column)" } else { "" }
         ));
