@@ -4,8 +4,9 @@
 //! In order:
 //! 1. a compliance with a table: f64 from the table's interpolant, with the table's error
 //!    beside the quadrature's ([`Provenance::Table`]); with `--digits N`, N digits of W
-//!    for the interpolant by steps 2 and 3, the table's error stated beside them (a model
-//!    error: how far the physical contact's W may be from the interpolant's);
+//!    for the interpolant by steps 2 and 3, the table's error stated beside them (the
+//!    estimated error of interpolating the given points, not of the solver or the surface
+//!    that produced them);
 //! 2. W exactly 0 for a reason read from the exact input ([`CaseSpec::exact_zero`]): at
 //!    once, at any `--digits` ([`Provenance::Exact`]);
 //! 3. with `--digits N`: a rigorous enclosure in ball arithmetic ([`Provenance::Certified`]),
@@ -23,7 +24,7 @@ use rug::Float;
 use crate::admissibility::prove_admissible;
 use crate::answer::{Answer, ExactReason, Provenance, Value};
 use crate::case::{Case, CaseSpec, CaseText, InputError};
-use crate::compliance::{Compliance, ComplianceTable, TableInterpolant};
+use crate::compliance::{Compliance, ComplianceTable, TableInterpolant, TABLE_ORDER};
 use crate::cycle::{CycleError, LoadCycle};
 use crate::dissipation::{dissipation, Dissipation, DissipationError, ExactZero, Method, Options, Segment, Segments};
 use crate::real::{Precision, Real};
@@ -194,7 +195,8 @@ impl std::fmt::Display for NoEnclosure {
 pub struct TableEstimate {
     /// Estimated absolute error of W due to the table: the larger |W\[half table\] − W\[table\]|
     /// of the two half tables (plus the quadrature errors of the difference), scaled by
-    /// the order of the construction.
+    /// the order of the construction and by how much coarser each half is on the table's
+    /// actual spacing, plus how far rounding of the data moves W.
     pub error: f64,
     /// The largest relative change the smoothing fit made to the data (0 when none).
     pub smoothing_residual: f64,
@@ -549,18 +551,68 @@ fn slope_change_differs_from_mpfr(
 pub const TABLE_QUADRATURE_TOLERANCE: f64 = 1e-12;
 
 /// What |W[half table] − W[table]| is divided by to estimate the error of W[table], for
-/// a table of `rows` rows. For a construction of order p = 4 the quotient tends to
-/// 2^p − 1 = 15, but before the data are asymptotic it is smaller: over the scan of
-/// proofs/table-compliance.md it fell to 6 at 16 to 24 rows, to 1 at 9 rows, and below 1
-/// for tables of up to 5 rows (halves of three rows, one parabola of node values, can be
+/// a table of `rows` evenly spaced rows. For a construction of order p = 4 the quotient
+/// tends to 2^p − 1 = 15, but before the data are asymptotic it is smaller: over the scan
+/// of proofs/table-compliance.md it fell to 6 at 16 to 24 rows, to 1 at 9 rows, and below
+/// 1 for tables of up to 5 rows (halves of three rows, one parabola of node values, can be
 /// as close to the full table as its own error). The divisor keeps a factor of about two
-/// below the least quotient measured at each size.
+/// below the least quotient measured at each size; [`refinement_scale`] lowers it where
+/// the rows are not evenly spaced.
 fn half_table_divisor(rows: usize) -> f64 {
     match rows {
         0..=5 => 0.25,
         6..=12 => 0.5,
         _ => 3.0,
     }
+}
+
+/// Σ H^(p+1) / Σ h^(p+1) of a half table of evenly spaced rows: 2^p.
+const EVEN_REFINEMENT: f64 = (1 << TABLE_ORDER) as f64;
+
+/// The share of [`half_table_divisor`] that a half table keeps whose refinement
+/// ([`ComplianceTable::half_refinements`], 2^p for even spacing) is `refinement`:
+/// ((refinement − 1)/(2^p − 1))², 1 for even spacing. The first power is what an error
+/// spread evenly over the pieces gives; on irregular spacing the pieces that carry the
+/// error are the widest, which widen least when a row is dropped, so the measured
+/// quotient falls further (proofs/table-compliance.md: the square keeps a factor of
+/// about two on random spacing, the first power did not).
+fn refinement_scale(refinement: f64) -> f64 {
+    ((refinement - 1.0) / (EVEN_REFINEMENT - 1.0)).clamp(0.0, 1.0).powi(2)
+}
+
+/// How many times the move of W under [`TableInterpolant::DataRounding`] enters the table
+/// error: rounding moves W in no fixed direction, and one move of the data samples it.
+const ROUNDING_FACTOR: f64 = 2.0;
+
+/// An f64 failure on a table, for which no more precision is offered.
+fn table_in_f64(error: DissipationError) -> ReferenceError {
+    match error {
+        DissipationError::IllConditioned { .. }
+        | DissipationError::NotConverged { .. }
+        | DissipationError::OutOfRange { .. }
+        | DissipationError::OutsideRange { .. } => ReferenceError::TableInF64 { source: error },
+        other => other.into(),
+    }
+}
+
+/// How far W and each segment move from `result` when the tables' interpolant gives way
+/// to `interpolant`, each with the quadrature errors of both added.
+fn table_shift(
+    case: &CaseSpec,
+    cycle: &LoadCycle<f64>,
+    options: &Options<f64>,
+    result: &Dissipation<f64>,
+    interpolant: TableInterpolant,
+) -> Result<(f64, Segments<f64>), ReferenceError> {
+    let other = case
+        .compliance()
+        .build_with::<f64>(Precision::DOUBLE, interpolant)
+        .map_err(|e| ReferenceError::Input(InputError::from(e)))?;
+    let moved = dissipation(cycle, other.as_ref(), options).map_err(table_in_f64)?;
+    let uncertainty = moved.error_estimate + result.error_estimate;
+    let segments =
+        Segments::from_fn(|segment| (moved.segments.get(segment) - result.segments.get(segment)).abs() + uncertainty);
+    Ok(((moved.total - result.total).abs() + uncertainty, segments))
 }
 
 /// W in f64 from the tables' interpolant, for the absolute error its quadrature error
@@ -573,37 +625,37 @@ fn table_answer(
     let Case { cycle, compliance } = case.at::<f64>(Precision::DOUBLE)?;
     cycle.validate().map_err(DissipationError::from)?;
     tables_cover(tables, &cycle)?;
-    let in_f64 = |error: DissipationError| match error {
-        DissipationError::IllConditioned { .. }
-        | DissipationError::NotConverged { .. }
-        | DissipationError::OutOfRange { .. }
-        | DissipationError::OutsideRange { .. } => ReferenceError::TableInF64 { source: error },
-        other => other.into(),
-    };
     let options = Options {
         relative_tolerance: Some(TABLE_QUADRATURE_TOLERANCE),
         deadline: Some(deadline),
         ..Options::default()
     };
-    let result = dissipation(&cycle, compliance.as_ref(), &options).map_err(in_f64)?;
-    // The table error: how far W moves when the table loses its odd rows, or its even rows.
+    let result = dissipation(&cycle, compliance.as_ref(), &options).map_err(table_in_f64)?;
+    // The table error: how far W moves when the table loses its odd rows, or its even rows,
+    // over how much coarser that half is where the cycle reads it; and how far rounding of
+    // the data moves it.
     let divisor = half_table_divisor(tables.iter().map(|t| t.loads.len()).min().unwrap_or(0));
+    let (low, high) = cycle_loads(&cycle);
     let (mut table_error, mut segment_shifts) = (0.0f64, Segments::from_fn(|_| 0.0f64));
-    for interpolant in [TableInterpolant::HalfTable, TableInterpolant::OtherHalfTable] {
-        let half = case
-            .compliance()
-            .build_with::<f64>(Precision::DOUBLE, interpolant)
-            .map_err(|e| ReferenceError::Input(InputError::from(e)))?;
-        let moved = dissipation(&cycle, half.as_ref(), &options).map_err(in_f64)?;
-        let uncertainty = moved.error_estimate + result.error_estimate;
-        table_error = table_error.max(((moved.total - result.total).abs() + uncertainty) / divisor);
+    let halves = [TableInterpolant::HalfTable, TableInterpolant::OtherHalfTable];
+    for (index, interpolant) in halves.into_iter().enumerate() {
+        let (moved, segments_moved) = table_shift(case, &cycle, &options, &result, interpolant)?;
+        let refinement = tables
+            .iter()
+            .filter_map(|table| table.half_refinements(low, high).get(index).copied())
+            .fold(EVEN_REFINEMENT, f64::min);
+        let divisor = divisor * refinement_scale(refinement);
+        table_error = table_error.max(moved / divisor);
         for segment in Segment::ALL {
-            let moved_by = (moved.segments.get(segment) - result.segments.get(segment)).abs();
             let shift = segment_shifts.get_mut(segment);
-            *shift = shift.max((moved_by + uncertainty) / divisor);
+            *shift = shift.max(segments_moved.get(segment) / divisor);
         }
     }
-    let segment_errors = Segments::from_fn(|segment| result.error_estimate + segment_shifts.get(segment));
+    let (rounding, segments_rounding) = table_shift(case, &cycle, &options, &result, TableInterpolant::DataRounding)?;
+    table_error += ROUNDING_FACTOR * rounding;
+    let segment_errors = Segments::from_fn(|segment| {
+        result.error_estimate + segment_shifts.get(segment) + ROUNDING_FACTOR * segments_rounding.get(segment)
+    });
     let smoothing_residual = tables.iter().map(|t| t.smoothing_residual).fold(0.0, f64::max);
     let answer = Answer {
         provenance: Provenance::Table {
@@ -628,7 +680,8 @@ fn table_answer(
 /// W of the tables' interpolant to `digits` digits, as for any compliance (exact by
 /// reason, certified, or by agreement), with the table's own error from `estimate`
 /// beside it: the digits are those of the smooth function integrated, the table error
-/// says how far the physical contact's W may be from it.
+/// estimates how far interpolating the given points may have moved it (nothing of how
+/// the points were produced).
 fn table_to_digits(
     case: &CaseSpec,
     estimate: DissipationAnswer,
@@ -651,7 +704,12 @@ pub(crate) fn tables_cover(
     tables: &[Arc<ComplianceTable>],
     cycle: &LoadCycle<f64>,
 ) -> Result<(), crate::compliance::TableError> {
-    let low = (cycle.mean_normal_load - cycle.normal_amplitude).min(cycle.permanent_stick_load());
-    let high = cycle.mean_normal_load + cycle.normal_amplitude;
+    let (low, high) = cycle_loads(cycle);
     tables.iter().try_for_each(|table| table.check_covers(low, high))
+}
+
+/// The loads W reads v' at: min(P_T, P0 − P1) to P0 + P1.
+fn cycle_loads(cycle: &LoadCycle<f64>) -> (f64, f64) {
+    let low = (cycle.mean_normal_load - cycle.normal_amplitude).min(cycle.permanent_stick_load());
+    (low, cycle.mean_normal_load + cycle.normal_amplitude)
 }

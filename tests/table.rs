@@ -919,3 +919,29 @@ fn eighty_rows_over_three_decades_give_w_to_a_tenth_of_a_millionth() {
         }
     }
 }
+
+/// On evenly spaced rows (in ln P) a half table of an odd number of rows is 2^4 times
+/// as coarse as the table (Σ H⁵ / Σ h⁵); where a half drops only rows that sit close to
+/// a neighbour, it is hardly coarser at all, and its distance from the table says little
+/// of the table's error.
+#[test]
+fn half_tables_are_as_coarse_as_their_actual_gaps_make_them() {
+    use microslip::compliance::ComplianceTable;
+    let dir = scratch("refinement");
+    let write = |name: &str, loads: &[f64]| {
+        let path = dir.join(name);
+        let rows: String = loads.iter().map(|p| format!("{p:e},{:e}\n", 1.0 / p)).collect();
+        std::fs::write(&path, format!("load,slope\n{rows}")).expect("write table");
+        ComplianceTable::read(path.to_str().expect("path"), 0.0).expect("table")
+    };
+    let even: Vec<f64> = (0..9).map(|i| 0.2 * 1.25f64.powi(i)).collect();
+    let refinements = write("even.csv", &even).half_refinements(0.2, 1.0);
+    assert!((refinements[0] - 16.0).abs() < 1e-9, "{refinements:?}");
+    assert!(refinements[1] > 2.0 && refinements[1] < 16.0, "{refinements:?}");
+    // Rows in close pairs: the odd rows are the near partners, and dropping them leaves
+    // every wide gap as it was.
+    let pairs: Vec<f64> = (0..5).flat_map(|i| [1.0 + i as f64, 1.001 + i as f64]).collect();
+    let refinements = write("pairs.csv", &pairs[..9]).half_refinements(1.0, 5.0);
+    assert!(refinements[0] < 1.01, "{refinements:?}");
+    std::fs::remove_dir_all(&dir).expect("remove the scratch tables");
+}

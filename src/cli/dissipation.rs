@@ -117,17 +117,21 @@ fn text(report: &DissipationAnswer) -> String {
         };
         out.push_str(&match answer.provenance.is_proven() {
             true => format!(
-                "  model error: the table itself is accurate to about {:.1e} in W (from the table without its odd rows, and without its even rows; an estimate, not proven){smoothing}\n",
+                "  model error: the table itself is accurate to about {:.1e} in W (from the table without its odd rows and without its even rows, on its own spacing, and with its values moved by their rounding; an estimate, not proven){smoothing}\n",
                 table.error,
             ),
             false => format!(
-                "  error estimates: table {:.1e} (from the table without its odd rows, and without its even rows), quadrature {:.1e}{smoothing}\n",
+                "  error estimates: table {:.1e} (from the table without its odd rows and without its even rows, on its own spacing, and with its values moved by their rounding), quadrature {:.1e}{smoothing}\n",
                 table.error, table.quadrature_error,
             ),
         });
     }
     out.trim_end().to_string()
 }
+
+/// What a table's W is, and what it is not.
+const TABLE_W: &str =
+    "the W of the interpolated table, not a statement about the surface or the solver that produced it";
 
 /// How many digits W has and what vouches for them (proven or estimated, and by what),
 /// and why the policy left f64 or found no enclosure, as W's line says it.
@@ -141,11 +145,13 @@ fn provenance(report: &DissipationAnswer) -> String {
         n => format!("{n} significant digits"),
     };
     let mut out = format!("{digits}, {}", answer.provenance);
-    if let (Some(table), true) = (&report.table, answer.provenance.is_proven()) {
-        out.push_str(&format!(
-            ", for the table's interpolant; W of the physical contact is known only to the table's error, about {:.1e}",
+    match (&report.table, answer.provenance.is_proven()) {
+        (Some(table), true) => out.push_str(&format!(
+            ", for the table's interpolant; the table error, about {:.1e}, estimates only the interpolation of the given points, not the discretisation of the solver that produced them nor the surface",
             table.error
-        ));
+        )),
+        (Some(_), false) => out.push_str(&format!(", from the data: {TABLE_W}")),
+        (None, _) => {}
     }
     if let Some(why) = &report.no_enclosure {
         out.push_str(&format!("; no enclosure: {why}"));

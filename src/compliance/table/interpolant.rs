@@ -26,7 +26,7 @@ impl Coordinates {
     }
 
     /// The abscissa of a load.
-    fn abscissa<R: Real>(self, load: &R) -> R {
+    pub(super) fn abscissa<R: Real>(self, load: &R) -> R {
         match self {
             Coordinates::LogLog => load.ln(),
             Coordinates::Linear => load.clone(),

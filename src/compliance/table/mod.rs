@@ -6,8 +6,10 @@
 //! differentiating the approach column); between them v' is a monotone cubic Hermite
 //! interpolant of ln v' in ln P (of v' in P where a load is ≤ 0), which is positive and
 //! non-increasing wherever its node values are, has a continuous v'', and is exact for
-//! power laws. The same construction from the even rows and from the odd rows gives an
-//! estimate of the error the table introduces (proofs/table-compliance.md).
+//! power laws. The same construction from the even rows and from the odd rows, weighed
+//! by how much coarser each is on the table's actual spacing, and on the values moved by
+//! their rounding, gives an estimate of the error interpolating the table introduces
+//! (proofs/table-compliance.md); nothing of the error of the data themselves.
 //! Loads outside the table are never extrapolated: v' is not finite there.
 
 mod interpolant;
@@ -58,12 +60,23 @@ pub enum TableInterpolant {
     /// The same from the odd rows (first and last kept): a second such estimate, which
     /// does not share the first one's accidental cancellations.
     OtherHalfTable,
+    /// The same construction on all rows with each value moved by [`DATA_ROUNDING`]
+    /// relative, up and down on alternate rows, and each interior load the other way
+    /// (where that keeps them in order; the ends stay, so the table covers what it
+    /// covered): how far rounding of the data and of the construction's arithmetic moves
+    /// W, which derivatives over rows close together amplify and halving the rows does not
+    /// show.
+    DataRounding,
 }
 
 /// The order in the load spacing that the table's construction has (cubic Hermite
 /// pieces with fourth-order node derivatives), used to scale the half-table
 /// differences into an error estimate.
 pub const TABLE_ORDER: i32 = 4;
+
+/// The relative move of each value in [`TableInterpolant::DataRounding`]: a few units
+/// of f64 rounding, as the data and the arithmetic on them carry.
+pub const DATA_ROUNDING: f64 = 4.0 * f64::EPSILON;
 
 /// A table that cannot be used, with the line of the file at fault where there is one.
 #[non_exhaustive]
@@ -123,6 +136,8 @@ pub struct ComplianceTable {
     /// The construction from the even rows and from the odd rows, first and last row
     /// kept in both (empty for those tables themselves).
     halves: Vec<ComplianceTable>,
+    /// The construction on the data moved by their rounding (empty for the derived tables).
+    rounded: Vec<ComplianceTable>,
     /// v at the first load.
     first_approach: f64,
     /// The largest relative change smoothing made to the data (0 when none was needed).
@@ -239,13 +254,35 @@ impl ComplianceTable {
                 .collect(),
         };
         let with_halves = |coordinates: Coordinates| {
-            let mut table = Self::build(path, raw.column, coordinates, &raw.loads, &values);
+            let build = |loads: &[f64], values: &[f64]| Self::build(path, raw.column, coordinates, loads, values);
+            let mut table = build(&raw.loads, &values);
             for parity in [0, 1] {
                 let rows: Vec<usize> = (0..n).filter(|&i| i % 2 == parity || i == 0 || i == n - 1).collect();
                 let pick = |data: &[f64]| rows.iter().map(|&i| data[i]).collect::<Vec<f64>>();
-                let half = Self::build(path, raw.column, coordinates, &pick(&raw.loads), &pick(&values));
-                table.halves.push(half);
+                table.halves.push(build(&pick(&raw.loads), &pick(&values)));
             }
+            let alternate = |i: usize| if i % 2 == 0 { DATA_ROUNDING } else { -DATA_ROUNDING };
+            let moved: Vec<f64> = values
+                .iter()
+                .enumerate()
+                .map(|(i, v)| v * (1.0 + alternate(i)))
+                .collect();
+            let mut moved_loads: Vec<f64> = raw
+                .loads
+                .iter()
+                .enumerate()
+                .map(|(i, p)| {
+                    if i == 0 || i == n - 1 {
+                        *p
+                    } else {
+                        p * (1.0 - alternate(i))
+                    }
+                })
+                .collect();
+            if moved_loads.windows(2).any(|pair| pair[1] <= pair[0]) {
+                moved_loads = raw.loads.clone();
+            }
+            table.rounded.push(build(&moved_loads, &moved));
             table
         };
         // Log–log where the loads allow it, unless the data are better predicted in the
@@ -288,6 +325,7 @@ impl ComplianceTable {
             slopes,
             coordinates,
             halves: Vec::new(),
+            rounded: Vec::new(),
             first_approach,
             smoothing_residual: 0.0,
         }
@@ -308,6 +346,27 @@ impl ComplianceTable {
     /// [first load, last load].
     pub fn range(&self) -> (f64, f64) {
         self.interpolant.range()
+    }
+
+    /// How much coarser each half table is than the table where W reads it, loads
+    /// [low, high]: Σ H^(p+1) over the half's pieces against Σ h^(p+1) over the table's
+    /// (gaps in the interpolant's abscissa, p = [`TABLE_ORDER`]). An error of order p
+    /// gathers h^p over each piece of width h, so this is the factor by which the half's
+    /// error exceeds the table's where that error is spread evenly: 2^p for even spacing,
+    /// down to 1 where merging a piece with its neighbour hardly widens it.
+    pub fn half_refinements(&self, low: f64, high: f64) -> Vec<f64> {
+        let gathered = |loads: &[f64]| -> f64 {
+            loads
+                .windows(2)
+                .filter(|piece| piece[1] > low && piece[0] < high)
+                .map(|piece| {
+                    let width = self.coordinates.abscissa(&piece[1]) - self.coordinates.abscissa(&piece[0]);
+                    width.powi(TABLE_ORDER + 1)
+                })
+                .sum()
+        };
+        let own = gathered(&self.loads);
+        self.halves.iter().map(|half| gathered(&half.loads) / own).collect()
     }
 
     /// Whether the interpolated v' is one constant (every node slope the same, as a
@@ -444,6 +503,7 @@ impl TableCompliance {
             TableInterpolant::Cubic => &self.table,
             TableInterpolant::HalfTable => half(0),
             TableInterpolant::OtherHalfTable => half(1),
+            TableInterpolant::DataRounding => self.table.rounded.first().unwrap_or(&self.table),
         }
     }
 }
@@ -498,6 +558,7 @@ impl<R: Real> Compliance<R> for TableCompliance {
                 TableInterpolant::Cubic => "",
                 TableInterpolant::HalfTable => " from the even rows",
                 TableInterpolant::OtherHalfTable => " from the odd rows",
+                TableInterpolant::DataRounding => " with its values moved by their rounding",
             }
         )
     }
