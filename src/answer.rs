@@ -38,8 +38,8 @@ pub enum Provenance {
         /// The absolute error estimate.
         error_estimate: f64,
     },
-    /// A table compliance: the quadrature's estimate plus the table's estimated error
-    /// (a model error, not a proof).
+    /// A table compliance: the quadrature's estimate plus the table's estimated error of
+    /// interpolating its points (an estimate from the data, not a proof).
     Table {
         /// The estimated absolute error due to the table.
         table_error: f64,
