@@ -202,3 +202,20 @@ fn a_budget_that_runs_out_is_a_failure_not_an_unproven_answer() {
         ),
     }
 }
+
+#[test]
+fn the_default_carries_the_rounding_of_a_cancelling_compliance() {
+    // f64 once printed 1.23418224274e-5 and 5.89194115377e-7 here: the last digit wrong.
+    for spec in [
+        "power:c=1,beta=-2+power:c=-0.99999,beta=-2",
+        "-0.99999*hertz:r=1,estar=1+hertz:r=1,estar=1",
+    ] {
+        let [default, digits] = both_modes(&case().compliance(spec).text());
+        let (default, digits) = (default.unwrap(), digits.unwrap());
+        assert!(digits.1, "{spec}: {digits:?}");
+        assert!(
+            rounds_to(&default.0, &digits.0),
+            "{spec}: {default:?} against {digits:?}"
+        );
+    }
+}

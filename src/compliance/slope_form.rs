@@ -26,10 +26,15 @@ enum Shape {
 }
 
 /// v' as a sum of coefficients times shapes (constants dropped), or a term that has no
-/// such form (Hertz, a table).
+/// such form (Hertz, a table). Hertz terms are kept apart, each (R, E*) with its summed
+/// factor: their v' carries a cube root, so they never make v' exactly constant, but their
+/// signs decide concavity.
 #[derive(Debug, Default)]
 struct SlopeForm {
     terms: Vec<(Shape, Rational)>,
+    hertz: Vec<((Rational, Rational), Rational)>,
+    /// A table term whose slopes are not all equal.
+    table: bool,
     opaque: bool,
 }
 
@@ -90,7 +95,21 @@ impl SlopeForm {
             Term::Constant { .. } => {}
             // A table whose slopes are all equal is interpolated by that constant.
             Term::Table(table) if table.has_constant_slope() => {}
-            Term::Hertz { .. } | Term::Table(_) => self.opaque = true,
+            Term::Hertz {
+                radius,
+                contact_modulus,
+            } => {
+                let key = (radius.value.clone(), contact_modulus.value.clone());
+                match self.hertz.iter_mut().find(|(k, _)| *k == key) {
+                    Some((_, sum)) => *sum += factor,
+                    None => self.hertz.push((key, factor.clone())),
+                }
+                self.opaque = true;
+            }
+            Term::Table(_) => {
+                self.table = true;
+                self.opaque = true;
+            }
             Term::Scaled { factor: scale, inner } => self.add_term(inner, &(scale.value.clone() * factor)),
         }
     }
@@ -106,11 +125,13 @@ impl ComplianceSpec {
 
     /// Whether v'' ≤ 0 at every positive load follows from the exact form: after exact
     /// cancellation, every function that remains has a coefficient whose sign makes its own
-    /// v'' ≤ 0 (c·β ≤ 0 for c·P^β; c ≥ 0 for c/(P + o) with o ≥ 0; c/o ≥ 0 for c·e^(−P/o)).
-    /// False for a form that has a Hertz or table term, or a term of either sign.
+    /// v'' ≤ 0 (c·β ≤ 0 for c·P^β; c ≥ 0 for c/(P + o) with o ≥ 0; c/o ≥ 0 for c·e^(−P/o);
+    /// c ≥ 0 for c times a Hertz v' ∝ P^(−1/3)). False for a form with a table term, or with a
+    /// term of the wrong sign.
     pub fn is_concave_by_form(&self) -> bool {
         let form = SlopeForm::of(self.terms());
-        !form.opaque
+        !form.table
+            && form.hertz.iter().all(|(_, c)| *c >= 0)
             && form.terms.iter().all(|(shape, c)| match shape {
                 Shape::Power(beta) => Rational::from(c * beta) <= 0,
                 Shape::Reciprocal(offset) => *c >= 0 && *offset >= 0,
