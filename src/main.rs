@@ -14,8 +14,8 @@ use cli::parse::radians_warning;
 use cli::report::{emit, emit_on_stderr, fail, parse_error, warn};
 use cli::{
     accuracy::AccuracyArgs, batch::BatchArgs, completions::CompletionsArgs, dissipation::DissipationArgs,
-    figures::FiguresArgs, man::ManArgs, reference::ReferenceArgs, series::SeriesArgs, simulate::SimulateArgs,
-    small_amplitude::SmallAmplitudeArgs, table::TableArgs, verify::VerifyArgs,
+    figures::FiguresArgs, man::ManArgs, path::PathArgs, reference::ReferenceArgs, series::SeriesArgs,
+    simulate::SimulateArgs, small_amplitude::SmallAmplitudeArgs, table::TableArgs, verify::VerifyArgs,
 };
 
 #[derive(Parser)]
@@ -39,6 +39,8 @@ enum Command {
     Dissipation(Box<DissipationArgs>),
     /// W by brute-force simulation of the contact's loading history (an independent check).
     Simulate(Box<SimulateArgs>),
+    /// W, amplitudes, loss factor and harmonics of Q and u for any periodic load path (a file).
+    Path(Box<PathArgs>),
     /// Accuracy against cost of every quadrature rule and precision, against 100-digit references.
     Accuracy(AccuracyArgs),
     /// Run the theorem gate: every claim over seeded random draws, in f64 and at 256 bits.
@@ -123,6 +125,11 @@ fn main() -> ExitCode {
                 warn_of_phase();
                 return emit_on_stderr(&text);
             }
+            outcome => outcome,
+        },
+        Command::Path(args) => match within(args.max_seconds, || cli::path::run(args)) {
+            // The loop took standard output: the report goes to standard error.
+            Ok(text) if args.loop_on_standard_output() => return emit_on_stderr(&text),
             outcome => outcome,
         },
         Command::Accuracy(args) => cli::accuracy::run(args),

@@ -31,6 +31,13 @@ pub struct CaseArgs {
     /// plus or minus radians (`pi-1e-6`), or degrees (`72deg`, `72°`); read exactly
     #[arg(long, allow_hyphen_values = true)]
     pub phi: String,
+    #[command(flatten)]
+    pub contact: ContactArgs,
+}
+
+/// The contact a load acts on: friction, compliance ratio and compliance.
+#[derive(Args)]
+pub struct ContactArgs {
     /// Coulomb friction coefficient f (> 0).
     #[arg(long, allow_hyphen_values = true)]
     pub friction: String,
@@ -57,10 +64,10 @@ impl CaseArgs {
             q0: self.q0.clone(),
             q1: self.q1.clone(),
             phi: self.phi.clone(),
-            friction: self.friction.clone(),
-            lambda: self.lambda.clone(),
-            nu: self.nu.clone(),
-            compliance: self.compliance.clone(),
+            friction: self.contact.friction.clone(),
+            lambda: self.contact.lambda.clone(),
+            nu: self.contact.nu.clone(),
+            compliance: self.contact.compliance.clone(),
         }
     }
 }

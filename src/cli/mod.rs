@@ -14,6 +14,7 @@ pub mod figures;
 pub mod json;
 pub mod man;
 pub mod parse;
+pub mod path;
 pub mod progress;
 pub mod reference;
 pub mod report;

@@ -1,0 +1,778 @@
+//! The event decomposition of the steady cycle.
+//!
+//! With q = Q/f, x = ξ₋/f = q − P and y = ξ₊/f = q + P, the memory is one function F(s)
+//! of the activation load, non-increasing with F' ≥ −2, F(P) = x, and every change is a
+//! clamp F ← min(y − 2s, max(x, F)) plus the elements that enter at F = x while P rises.
+//! Between consecutive turning points of P, x and y the three are monotone, so the clamp
+//! acts from one side only and the slip fronts s₋ = inf{F ≤ x}, s₊ = inf{F + 2s ≥ y} move
+//! through the memory left at the interval's start. Their formula changes only where a
+//! front crosses the end of one of its pieces (a flat piece crossed at once is a
+//! wipe-out), where P crosses one, or where a front meets the top of the contact; the
+//! cycle is split there, so that every piece's integrand is smooth.
+//!
+//! The memory's pieces are F = a + b s (b = 0 after forward slip, −2 after backward slip,
+//! −1 for the elements that never slip) and entry pieces F(P(θ)) = x(θ), elements that
+//! entered while the contact stuck with P rising. A front in an affine piece lies at a
+//! load affine in x or y; in an entry piece, at P(θₑ) of the earlier angle θₑ where x (or
+//! y) had its current value.
+
+use crate::compliance::Compliance;
+use crate::real::Real;
+
+use super::input::{padded, LoadPath, Multiples, PathError, TrigPoly};
+use super::Contact;
+
+/// Sample points per harmonic when isolating the roots of a trigonometric polynomial.
+const SAMPLES_PER_HARMONIC: usize = 64;
+
+/// The loads and their rates, scaled by f: P and q = Q/f.
+#[derive(Clone, Debug)]
+pub(crate) struct Loads<R> {
+    normal: TrigPoly<R>,
+    tangential: TrigPoly<R>,
+    normal_rate: TrigPoly<R>,
+    tangential_rate: TrigPoly<R>,
+}
+
+/// P, q and their rates at one angle.
+#[derive(Clone, Debug)]
+pub(crate) struct Point<R> {
+    pub p: R,
+    pub q: R,
+    pub dp: R,
+    pub dq: R,
+}
+
+impl<R: Real> Point<R> {
+    pub fn x(&self) -> R {
+        self.q.clone() - &self.p
+    }
+    pub fn y(&self) -> R {
+        self.q.clone() + &self.p
+    }
+    pub fn dx(&self) -> R {
+        self.dq.clone() - &self.dp
+    }
+    pub fn dy(&self) -> R {
+        self.dq.clone() + &self.dp
+    }
+    /// (x − value, x').
+    fn x_and_rate(&self, value: &R) -> (R, R) {
+        (self.x() - value, self.dx())
+    }
+    /// (y − value, y').
+    fn y_and_rate(&self, value: &R) -> (R, R) {
+        (self.y() - value, self.dy())
+    }
+    /// (P − value, P').
+    fn p_and_rate(&self, value: &R) -> (R, R) {
+        (self.p.clone() - value, self.dp.clone())
+    }
+}
+
+impl<R: Real> Loads<R> {
+    fn new(path: &LoadPath<R>, friction: &R) -> Self {
+        let path = padded(path);
+        let inverse = friction.int(1) / friction;
+        let tangential = path.tangential.scaled(&inverse);
+        Loads {
+            normal_rate: path.normal.derivative(),
+            tangential_rate: tangential.derivative(),
+            normal: path.normal,
+            tangential,
+        }
+    }
+
+    pub fn at(&self, theta: &R) -> Point<R> {
+        let multiples = Multiples::of(theta, self.normal.highest());
+        Point {
+            p: self.normal.at(&multiples),
+            q: self.tangential.at(&multiples),
+            dp: self.normal_rate.at(&multiples),
+            dq: self.tangential_rate.at(&multiples),
+        }
+    }
+
+    fn p(&self, theta: &R) -> R {
+        self.normal.value(theta)
+    }
+    fn x(&self, theta: &R) -> R {
+        self.at(theta).x()
+    }
+}
+
+/// The sign of a value: −1, 0 or 1.
+fn sign<R: Real>(value: &R) -> i8 {
+    let zero = value.int(0);
+    if *value > zero {
+        1
+    } else if *value < zero {
+        -1
+    } else {
+        0
+    }
+}
+
+/// The point of [a, b] where `f` changes sign (f(a) and f(b) of opposite signs or zero),
+/// `f` giving its value and derivative: Newton kept inside a shrinking bracket, bisecting
+/// where a step would leave it, to the working precision.
+fn solve<R: Real>(f: impl Fn(&R) -> (R, R), a: &R, b: &R) -> R {
+    let (mut low, mut high) = (a.clone(), b.clone());
+    let low_sign = sign(&f(&low).0);
+    if low_sign == 0 {
+        return low;
+    }
+    if sign(&f(&high).0) == 0 {
+        return high;
+    }
+    let two = a.int(2);
+    let tolerance = a.abs().max_of(&b.abs()).max_of(&a.int(1)) * &a.epsilon_like() * &a.int(4);
+    let mut x = (low.clone() + &high) / &two;
+    for _ in 0..a.precision().in_bits() + 8 {
+        let (value, slope) = f(&x);
+        let s = sign(&value);
+        if s == 0 {
+            return x;
+        }
+        if s == low_sign {
+            low = x.clone();
+        } else {
+            high = x.clone();
+        }
+        if (high.clone() - &low).abs() <= tolerance {
+            break;
+        }
+        let newton = x.clone() - &(value / &slope);
+        let inside = newton.is_finite() && (newton > low.min_of(&high)) && (newton < low.max_of(&high));
+        let next = if inside { newton } else { (low.clone() + &high) / &two };
+        if (next.clone() - &x).abs() <= tolerance {
+            return next;
+        }
+        x = next;
+    }
+    (low + &high) / &two
+}
+
+/// The point of [a, b] where the predicate turns (false at a, true at b), by bisection.
+fn bisect_predicate<R: Real>(turned: impl Fn(&R) -> bool, a: &R, b: &R) -> R {
+    let (mut low, mut high) = (a.clone(), b.clone());
+    let two = a.int(2);
+    for _ in 0..a.precision().in_bits() + 8 {
+        let middle = (low.clone() + &high) / &two;
+        if middle <= low || middle >= high {
+            break;
+        }
+        if turned(&middle) {
+            high = middle;
+        } else {
+            low = middle;
+        }
+    }
+    (low + &high) / &two
+}
+
+/// The angles in [0, 2π) where a trigonometric polynomial changes sign, increasing:
+/// sampled, then every sample interval searched by [`Isolation`], which proves the
+/// intervals it drops root-free and refines each sign change where the polynomial is
+/// proven monotone.
+pub(crate) fn sign_changes<R: Real>(poly: &TrigPoly<R>) -> Vec<R> {
+    if poly.is_constant() {
+        return Vec::new();
+    }
+    let like = &poly.cos[0];
+    let count = SAMPLES_PER_HARMONIC * poly.highest().max(1);
+    let step = like.pi_like() * &like.int(2) / &like.int(count as i64);
+    let angle = |j: usize| step.clone() * &like.int(j as i64);
+    let values: Vec<R> = (0..count).map(|j| poly.value(&angle(j))).collect();
+    let isolation = Isolation::new(poly);
+    let mut roots = Vec::new();
+    for j in 0..count {
+        let (before, here, after) = (
+            sign(&values[(j + count - 1) % count]),
+            sign(&values[j]),
+            sign(&values[(j + 1) % count]),
+        );
+        if here == 0 && before * after < 0 {
+            roots.push(angle(j));
+        }
+        isolation.search(
+            (&angle(j), &values[j]),
+            (&angle(j + 1), &values[(j + 1) % count]),
+            0,
+            &mut roots,
+        );
+    }
+    roots
+}
+
+/// Bounds that make root isolation safe: |f'| ≤ Σ k|aₖ| and |f''| ≤ Σ k²|aₖ|, |aₖ| the
+/// amplitude of harmonic k.
+struct Isolation<'a, R> {
+    poly: &'a TrigPoly<R>,
+    rate: TrigPoly<R>,
+    rate_bound: R,
+    curvature_bound: R,
+}
+
+/// Halvings of a sample interval before a sign change is taken as one root.
+const MAX_HALVINGS: u32 = 16;
+
+impl<'a, R: Real> Isolation<'a, R> {
+    fn new(poly: &'a TrigPoly<R>) -> Self {
+        let like = &poly.cos[0];
+        let (mut rate_bound, mut curvature_bound) = (like.int(0), like.int(0));
+        for k in 1..=poly.highest() {
+            let amplitude = poly.cos[k].hypot(&poly.sin[k]);
+            let kk = like.int(k as i64);
+            rate_bound += amplitude.clone() * &kk;
+            curvature_bound += amplitude * &kk * &kk;
+        }
+        // A margin for the rounding of the values compared with the bounds.
+        let margin = like.int(1) + &(like.epsilon_like() * &like.int(1 << 20));
+        Isolation {
+            poly,
+            rate: poly.derivative(),
+            rate_bound: rate_bound * &margin,
+            curvature_bound: curvature_bound * &margin,
+        }
+    }
+
+    /// Pushes the sign changes strictly inside (a, b), in increasing order.
+    fn search(&self, (a, fa): (&R, &R), (b, fb): (&R, &R), depth: u32, roots: &mut Vec<R>) {
+        let width = b.clone() - a;
+        // f cannot reach 0 from both ends within the interval.
+        if fa.abs() + &fb.abs() > self.rate_bound.clone() * &width {
+            return;
+        }
+        let two = a.int(2);
+        let middle = (a.clone() + b) / &two;
+        let monotone = self.rate.value(&middle).abs() > self.curvature_bound.clone() * &width / &two;
+        if monotone || depth >= MAX_HALVINGS {
+            if sign(fa) * sign(fb) < 0 {
+                roots.push(solve(|t: &R| (self.poly.value(t), self.rate.value(t)), a, b));
+            }
+            return;
+        }
+        let fm = self.poly.value(&middle);
+        self.search((a, fa), (&middle, &fm), depth + 1, roots);
+        if sign(&fm) == 0 && sign(fa) * sign(fb) < 0 {
+            roots.push(middle.clone());
+        }
+        self.search((&middle, &fm), (b, fb), depth + 1, roots);
+    }
+}
+
+/// The extreme of a trigonometric polynomial over the period, and where: the largest
+/// (`largest`) or smallest value at its turning points (at 0 for a constant).
+pub(crate) fn extreme<R: Real>(poly: &TrigPoly<R>, largest: bool) -> (R, R) {
+    let zero = poly.cos[0].int(0);
+    let mut candidates = sign_changes(&poly.derivative());
+    candidates.push(zero);
+    let mut best: Option<(R, R)> = None;
+    for theta in candidates {
+        let value = poly.value(&theta);
+        let better = match &best {
+            None => true,
+            Some((_, b)) => (largest && value > *b) || (!largest && value < *b),
+        };
+        if better {
+            best = Some((theta, value));
+        }
+    }
+    best.unwrap_or_else(|| (poly.cos[0].int(0), poly.cos[0].clone()))
+}
+
+/// Checks that the path stays in contact (P > 0) and free of gross slip (|Q| < fP),
+/// naming the angle where it fails; returns the lowest slipping load
+/// s_T = [min(q + P) − max(q − P)]/2 and the midpoint c = [max x + min y]/2 of the
+/// permanent stick band.
+fn validate<R: Real>(loads: &Loads<R>) -> Result<(R, R), PathError> {
+    let zero = loads.normal.cos[0].int(0);
+    let (theta, lowest) = extreme(&loads.normal, false);
+    if lowest <= zero {
+        return Err(PathError::Separation {
+            theta: theta.to_f64_lossy(),
+            load: lowest.to_f64_lossy(),
+        });
+    }
+    let x = loads.tangential.combined(&loads.normal, -1);
+    let y = loads.tangential.combined(&loads.normal, 1);
+    let (theta_x, largest_x) = extreme(&x, true);
+    let (theta_y, smallest_y) = extreme(&y, false);
+    for (theta, excess, sign) in [(theta_x, largest_x.clone(), "+"), (theta_y, -smallest_y.clone(), "−")] {
+        if excess >= zero {
+            return Err(PathError::GrossSlip {
+                theta: theta.to_f64_lossy(),
+                sign,
+                excess: excess.to_f64_lossy(),
+            });
+        }
+    }
+    let two = zero.int(2);
+    Ok((
+        (smallest_y.clone() - &largest_x) / &two,
+        (largest_x + &smallest_y) / &two,
+    ))
+}
+
+/// How a piece of the memory depends on the load s.
+#[derive(Clone, Debug)]
+enum Shape<R> {
+    /// F = a + b s.
+    Affine { a: R, b: i64 },
+    /// F(P(θ)) = x(θ) for θ in [from, to], P rising there.
+    Entry { from: R, to: R },
+}
+
+/// One piece of the memory over loads [lo, hi], with F at both ends.
+#[derive(Clone, Debug)]
+struct Piece<R> {
+    lo: R,
+    hi: R,
+    f_lo: R,
+    f_hi: R,
+    shape: Shape<R>,
+}
+
+impl<R: Real> Piece<R> {
+    fn affine(lo: R, hi: R, a: R, b: i64) -> Self {
+        let at = |s: &R| a.clone() + &(s.clone() * &a.int(b));
+        Piece {
+            f_lo: at(&lo),
+            f_hi: at(&hi),
+            lo,
+            hi,
+            shape: Shape::Affine { a, b },
+        }
+    }
+
+    /// G = F + 2s at the ends.
+    fn g_lo(&self) -> R {
+        self.f_lo.clone() + &(self.lo.clone() * &self.lo.int(2))
+    }
+    fn g_hi(&self) -> R {
+        self.f_hi.clone() + &(self.hi.clone() * &self.hi.int(2))
+    }
+
+    /// The load in the piece where F = x (`forward`) or F + 2s = y, the value lying
+    /// between the piece's end values.
+    fn load_where(&self, loads: &Loads<R>, value: &R, forward: bool) -> R {
+        match &self.shape {
+            Shape::Affine { a, b } => {
+                let slope = if forward { *b } else { b + 2 };
+                if slope == 0 {
+                    return self.lo.clone();
+                }
+                (value.clone() - a) / &a.int(slope)
+            }
+            Shape::Entry { from, to } => {
+                let theta = if forward {
+                    solve(|t: &R| loads.at(t).x_and_rate(value), from, to)
+                } else {
+                    solve(|t: &R| loads.at(t).y_and_rate(value), from, to)
+                };
+                loads.p(&theta)
+            }
+        }
+    }
+
+    /// The piece cut to end at load `s` inside it.
+    fn cut_at(&mut self, loads: &Loads<R>, s: &R) {
+        match &mut self.shape {
+            Shape::Affine { a, b } => {
+                self.f_hi = a.clone() + &(s.clone() * &a.int(*b));
+            }
+            Shape::Entry { from, to } => {
+                let theta = solve(|t: &R| loads.at(t).p_and_rate(s), from, to);
+                self.f_hi = loads.x(&theta);
+                *to = theta;
+            }
+        }
+        self.hi = s.clone();
+    }
+}
+
+/// The memory F(s) over [floor, P], pieces in increasing s.
+#[derive(Clone, Debug)]
+pub(crate) struct Memory<R> {
+    pieces: Vec<Piece<R>>,
+}
+
+impl<R: Real> Memory<R> {
+    /// The state where every element holds Φ_s = c (F = c − s) clamped to the current
+    /// bounds [x, y − 2s]: the elements below s_T then never slip.
+    fn initial(floor: &R, point: &Point<R>, center: &R) -> Self {
+        let (x, y, top) = (point.x(), point.y(), point.p.clone());
+        let lower_meets = center.clone() - &x; // c − s = x
+        let upper_meets = y.clone() - center; // c − s = y − 2s
+        let mut pieces = Vec::new();
+        let held = lower_meets.min_of(&upper_meets).min_of(&top);
+        pieces.push(Piece::affine(floor.clone(), held.clone(), center.clone(), -1));
+        if held < top {
+            if lower_meets <= upper_meets {
+                pieces.push(Piece::affine(held, top, x, 0));
+            } else {
+                pieces.push(Piece::affine(held, top, y, -2));
+            }
+        }
+        Memory { pieces }
+    }
+
+    fn top(&self) -> R {
+        self.pieces
+            .last()
+            .map(|p| p.hi.clone())
+            .unwrap_or_else(|| unreachable!("a memory has pieces"))
+    }
+
+    /// inf{s : F(s) ≤ x} (`forward`) or inf{s : F(s) + 2s ≥ y}; `None` when empty.
+    fn front(&self, loads: &Loads<R>, value: &R, forward: bool) -> Option<R> {
+        let reached = |end: &R| if forward { *end <= *value } else { *end >= *value };
+        let piece = self
+            .pieces
+            .iter()
+            .find(|p| reached(&if forward { p.f_hi.clone() } else { p.g_hi() }))?;
+        let low_end = if forward { piece.f_lo.clone() } else { piece.g_lo() };
+        if reached(&low_end) {
+            Some(piece.lo.clone())
+        } else {
+            Some(piece.load_where(loads, value, forward))
+        }
+    }
+
+    /// Forgets every element above load `s`.
+    fn truncate(&mut self, loads: &Loads<R>, s: &R) {
+        while self.pieces.len() > 1 && self.pieces.last().is_some_and(|p| p.lo >= *s) {
+            self.pieces.pop();
+        }
+        if let Some(last) = self.pieces.last_mut() {
+            if last.hi > *s && last.lo < *s {
+                last.cut_at(loads, s);
+            }
+        }
+    }
+
+    /// The memory at the end of a monotone interval [a, b] from the memory at its start.
+    fn advance(&mut self, loads: &Loads<R>, a: &R, b: &R, signs: Signs) {
+        let (start, end) = (loads.at(a), loads.at(b));
+        let top = self.top();
+        if end.p > top {
+            let piece = if signs.x < 0 && signs.y > 0 {
+                Piece {
+                    lo: top.clone(),
+                    hi: end.p.clone(),
+                    f_lo: start.x(),
+                    f_hi: end.x(),
+                    shape: Shape::Entry {
+                        from: a.clone(),
+                        to: b.clone(),
+                    },
+                }
+            } else if signs.x >= 0 && signs.y > 0 {
+                Piece::affine(top.clone(), end.p.clone(), end.x(), 0)
+            } else {
+                Piece::affine(top.clone(), end.p.clone(), end.y(), -2)
+            };
+            self.pieces.push(piece);
+        } else if end.p < top {
+            self.truncate(loads, &end.p);
+        }
+        if signs.x > 0 {
+            if let Some(front) = self.front(loads, &end.x(), true) {
+                self.truncate(loads, &front);
+                self.pieces.push(Piece::affine(front, end.p.clone(), end.x(), 0));
+            }
+        }
+        if signs.y < 0 {
+            if let Some(front) = self.front(loads, &end.y(), false) {
+                self.truncate(loads, &front);
+                self.pieces.push(Piece::affine(front, end.p.clone(), end.y(), -2));
+            }
+        }
+        self.pieces.retain(|p| p.hi > p.lo);
+        if self.pieces.is_empty() {
+            unreachable!("the permanent stick piece stays below every front");
+        }
+    }
+}
+
+/// The directions of P, x and y over a monotone interval.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) struct Signs {
+    pub p: i8,
+    pub x: i8,
+    pub y: i8,
+}
+
+/// A piece of the steady cycle on which the slip fronts are smooth functions of θ.
+#[derive(Clone, Debug)]
+pub struct Segment<R> {
+    /// The first angle.
+    pub start: R,
+    /// The last angle.
+    pub end: R,
+    /// The monotone interval it lies in (its memory and directions).
+    interval: usize,
+}
+
+/// The steady cycle of a path: its monotone intervals with the memory at each one's
+/// start, and the smooth segments they split into.
+#[derive(Clone, Debug)]
+pub struct SteadyCycle<R> {
+    pub(crate) loads: Loads<R>,
+    memories: Vec<Memory<R>>,
+    signs: Vec<Signs>,
+    /// The segments, covering [start, start + 2π] in order.
+    pub segments: Vec<Segment<R>>,
+    /// The angle where the cycle is taken to start (a turning point).
+    pub start: R,
+    /// The lowest slipping load s_T: elements below it stick throughout.
+    pub lowest_slip: R,
+    /// The highest normal load of the path.
+    pub highest_load: R,
+}
+
+/// The slip fronts at one angle: (s₋, s₊), each at the top of the contact when its slip
+/// is not under way.
+pub(crate) struct Fronts<R> {
+    pub forward: R,
+    pub backward: R,
+}
+
+impl<R: Real> SteadyCycle<R> {
+    /// The steady cycle of `path` on a contact: validates the path, runs one cycle from a
+    /// state whose permanent stick zone is right (after it every element that slips has
+    /// forgotten the start), and splits the next cycle into smooth segments.
+    pub fn new(path: &LoadPath<R>, contact: &Contact<R>) -> Result<Self, PathError> {
+        contact.validate()?;
+        let loads = Loads::new(path, &contact.friction);
+        let (lowest_slip, center) = validate(&loads)?;
+        let highest_load = extreme(&loads.normal, true).1;
+        let like = lowest_slip.clone();
+        let tau = like.pi_like() * &like.int(2);
+        let mut breaks: Vec<R> = [
+            loads.normal_rate.clone(),
+            loads.tangential_rate.combined(&loads.normal_rate, -1),
+            loads.tangential_rate.combined(&loads.normal_rate, 1),
+        ]
+        .iter()
+        .flat_map(sign_changes)
+        .collect();
+        breaks.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
+        breaks.dedup();
+        if breaks.is_empty() {
+            // Neither P nor Q varies: nothing moves.
+            breaks.push(like.int(0));
+        }
+        let start = breaks[0].clone();
+        let mut bounds = breaks.clone();
+        bounds.push(start.clone() + &tau);
+        let signs: Vec<Signs> = bounds
+            .windows(2)
+            .map(|w| {
+                let middle = loads.at(&((w[0].clone() + &w[1]) / &like.int(2)));
+                Signs {
+                    p: sign(&middle.dp),
+                    x: sign(&middle.dx()),
+                    y: sign(&middle.dy()),
+                }
+            })
+            .collect();
+        let floor = lowest_slip.clone() / &like.int(2);
+        let mut memory = Memory::initial(&floor, &loads.at(&start), &center);
+        for (w, s) in bounds.windows(2).zip(&signs) {
+            memory.advance(&loads, &w[0], &w[1], *s);
+        }
+        // Where x' or y' is smallest between sign changes, a front in an entry piece moves
+        // fastest: its formula is split there too.
+        let inflections = Inflections {
+            forward: sign_changes(&loads.tangential_rate.combined(&loads.normal_rate, -1).derivative()),
+            backward: sign_changes(&loads.tangential_rate.combined(&loads.normal_rate, 1).derivative()),
+            period: tau.clone(),
+        };
+        let mut memories = Vec::new();
+        let mut segments = Vec::new();
+        for (i, (w, s)) in bounds.windows(2).zip(&signs).enumerate() {
+            memories.push(memory.clone());
+            for (a, b) in split(&loads, &memory, &inflections, &w[0], &w[1], *s) {
+                segments.push(Segment {
+                    start: a,
+                    end: b,
+                    interval: i,
+                });
+            }
+            memory.advance(&loads, &w[0], &w[1], *s);
+        }
+        Ok(SteadyCycle {
+            loads,
+            memories,
+            signs,
+            segments,
+            start,
+            lowest_slip,
+            highest_load,
+        })
+    }
+
+    /// The slip fronts at θ in `segment`.
+    pub(crate) fn fronts(&self, segment: &Segment<R>, point: &Point<R>) -> Fronts<R> {
+        let memory = &self.memories[segment.interval];
+        let signs = self.signs[segment.interval];
+        let front = |active: bool, value: R, forward: bool| {
+            if !active {
+                return point.p.clone();
+            }
+            memory
+                .front(&self.loads, &value, forward)
+                .map_or_else(|| point.p.clone(), |s| s.min_of(&point.p))
+        };
+        Fronts {
+            forward: front(signs.x > 0, point.x(), true),
+            backward: front(signs.y < 0, point.y(), false),
+        }
+    }
+
+    /// dU/dθ at θ in `segment`, U = u/(λf): v'(P) q' + (v'(s₋) − v'(P)) x' + (v'(s₊) − v'(P)) y'.
+    pub fn displacement_rate(&self, segment: &Segment<R>, theta: &R, compliance: &dyn Compliance<R>) -> R {
+        let point = self.loads.at(theta);
+        let slip = self.slip_rate(segment, &point, compliance);
+        compliance.slope(&point.p) * &point.dq + &slip
+    }
+
+    /// The part of dU/dθ that slip adds, (v'(s₋) − v'(P)) x' + (v'(s₊) − v'(P)) y'.
+    pub(crate) fn slip_rate(&self, segment: &Segment<R>, point: &Point<R>, compliance: &dyn Compliance<R>) -> R {
+        let fronts = self.fronts(segment, point);
+        let change = |s: &R| compliance.slope_change(&point.p, &(s.clone() - &point.p));
+        let forward = change(&fronts.forward) * &point.dx();
+        let backward = change(&fronts.backward) * &point.dy();
+        forward + &backward
+    }
+
+    /// The mean of q = Q/f over the cycle.
+    pub(crate) fn mean_tangential(&self) -> R {
+        self.loads.tangential.cos[0].clone()
+    }
+
+    /// P, q = Q/f and their rates at θ.
+    pub(crate) fn point(&self, theta: &R) -> Point<R> {
+        self.loads.at(theta)
+    }
+}
+
+/// A load less a value, with its rate: what [`solve`] takes to find where the load has the value.
+type Offset<R> = dyn Fn(&Point<R>, &R) -> (R, R);
+
+/// The angles in [0, 2π) where x'' (`forward`) and y'' (`backward`) change sign.
+struct Inflections<R> {
+    forward: Vec<R>,
+    backward: Vec<R>,
+    period: R,
+}
+
+impl<R: Real> Inflections<R> {
+    /// Those inside an entry piece of the memory (in either of the two periods its angles span).
+    fn inside_entries(&self, memory: &Memory<R>, forward: bool) -> Vec<R> {
+        let angles = if forward { &self.forward } else { &self.backward };
+        let mut inside = Vec::new();
+        for piece in &memory.pieces {
+            if let Shape::Entry { from, to } = &piece.shape {
+                for angle in angles {
+                    for candidate in [angle.clone(), angle.clone() + &self.period] {
+                        if candidate > *from && candidate < *to {
+                            inside.push(candidate);
+                        }
+                    }
+                }
+            }
+        }
+        inside
+    }
+}
+
+/// The interval [a, b] split where a front's formula changes: a front crossing an end of a
+/// piece of the memory, P crossing one, and a front meeting the top of the contact.
+fn split<R: Real>(
+    loads: &Loads<R>,
+    memory: &Memory<R>,
+    inflections: &Inflections<R>,
+    a: &R,
+    b: &R,
+    signs: Signs,
+) -> Vec<(R, R)> {
+    let (start, end) = (loads.at(a), loads.at(b));
+    let mut cuts: Vec<R> = Vec::new();
+    let between = |v: &R, u: &R, w: &R| (*v > *u && *v < *w) || (*v > *w && *v < *u);
+    let mut add_crossings = |values: Vec<R>, low: R, high: R, f: &Offset<R>| {
+        for v in values {
+            if between(&v, &low, &high) {
+                cuts.push(solve(|t: &R| f(&loads.at(t), &v), a, b));
+            }
+        }
+    };
+    if signs.x > 0 {
+        let mut values: Vec<R> = memory
+            .pieces
+            .iter()
+            .flat_map(|p| [p.f_lo.clone(), p.f_hi.clone()])
+            .collect();
+        values.extend(inflections.inside_entries(memory, true).iter().map(|t| loads.at(t).x()));
+        add_crossings(values, start.x(), end.x(), &Point::x_and_rate);
+    }
+    if signs.y < 0 {
+        let mut values: Vec<R> = memory.pieces.iter().flat_map(|p| [p.g_lo(), p.g_hi()]).collect();
+        values.extend(
+            inflections
+                .inside_entries(memory, false)
+                .iter()
+                .map(|t| loads.at(t).y()),
+        );
+        add_crossings(values, start.y(), end.y(), &Point::y_and_rate);
+    }
+    if signs.p < 0 {
+        let values = memory
+            .pieces
+            .iter()
+            .flat_map(|p| [p.lo.clone(), p.hi.clone()])
+            .collect();
+        add_crossings(values, start.p.clone(), end.p.clone(), &Point::p_and_rate);
+    }
+    cuts.sort_by(|u, v| u.partial_cmp(v).unwrap_or(std::cmp::Ordering::Equal));
+    cuts.dedup();
+    let mut nodes = vec![a.clone()];
+    nodes.extend(cuts);
+    nodes.push(b.clone());
+    // Where a front meets the top of the contact (P falling onto it, or it onto P).
+    let capped = |t: &R, forward: bool| {
+        let point = loads.at(t);
+        let value = if forward { point.x() } else { point.y() };
+        memory.front(loads, &value, forward).is_none_or(|s| s >= point.p)
+    };
+    let mut pieces = Vec::new();
+    for w in nodes.windows(2) {
+        let mut inner = Vec::new();
+        for (active, forward) in [(signs.x > 0, true), (signs.y < 0, false)] {
+            if !active {
+                continue;
+            }
+            let quarter = |k: i64| w[0].clone() + &((w[1].clone() - &w[0]) * &w[0].ratio(k, 4));
+            // Tested just inside the ends: at an end the front may sit exactly at the top.
+            let (first, last) = (
+                quarter(0) + &((w[1].clone() - &w[0]) * &w[0].ratio(1, 1 << 20)),
+                quarter(4) - &((w[1].clone() - &w[0]) * &w[0].ratio(1, 1 << 20)),
+            );
+            let (at_first, at_last) = (capped(&first, forward), capped(&last, forward));
+            if at_first != at_last {
+                inner.push(bisect_predicate(|t: &R| capped(t, forward) == at_last, &first, &last));
+            }
+        }
+        inner.sort_by(|u, v| u.partial_cmp(v).unwrap_or(std::cmp::Ordering::Equal));
+        let mut previous = w[0].clone();
+        for cut in inner {
+            pieces.push((previous, cut.clone()));
+            previous = cut;
+        }
+        pieces.push((previous, w[1].clone()));
+    }
+    pieces.retain(|(u, v)| v > u);
+    pieces
+}

@@ -1,0 +1,474 @@
+//! A periodic load path and how it is read: harmonics `k,P_cos,P_sin,Q_cos,Q_sin`, or one
+//! period of equally spaced samples `P,Q` taken as their trigonometric interpolant.
+
+use crate::compliance::AdmissibilityError;
+use crate::quad::QuadError;
+use crate::real::{Precision, Real};
+
+/// The most harmonics a path may have (k ≤ 64).
+pub const MAX_HARMONICS: usize = 64;
+
+/// The most samples a sampled path may have.
+pub const MAX_SAMPLES: usize = 1_000_000;
+
+/// How far the samples may lie from their interpolant truncated to [`MAX_HARMONICS`],
+/// relative to the largest sample: beyond it the path needs more harmonics than allowed.
+const TRUNCATION_TOLERANCE: f64 = 1e-10;
+
+/// Why a path cannot be computed.
+#[non_exhaustive]
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum PathError {
+    /// The file is not a path in the expected form.
+    #[error("{0}")]
+    Malformed(String),
+    /// More harmonics than [`MAX_HARMONICS`].
+    #[error("the path has harmonic k = {found}, beyond the limit of {MAX_HARMONICS} harmonics")]
+    TooManyHarmonics {
+        /// The highest harmonic found.
+        found: usize,
+    },
+    /// More samples than [`MAX_SAMPLES`].
+    #[error("the path has more than {MAX_SAMPLES} samples, the limit")]
+    TooManySamples,
+    /// Samples whose interpolant has significant harmonics beyond [`MAX_HARMONICS`].
+    #[error(
+        "the samples differ from their first {MAX_HARMONICS} harmonics by {deviation:.1e} of the largest load: the path needs more than the limit of {MAX_HARMONICS} harmonics"
+    )]
+    NeedsMoreHarmonics {
+        /// The largest deviation, relative to the largest sample.
+        deviation: f64,
+    },
+    /// P ≤ 0 somewhere.
+    #[error("the contact separates: P = {load:e} ≤ 0 at θ = {theta:.6} rad; the normal load must stay positive")]
+    Separation {
+        /// The angle of the lowest normal load.
+        theta: f64,
+        /// The lowest normal load.
+        load: f64,
+    },
+    /// |Q| ≥ fP somewhere: gross slip under force driving.
+    #[error(
+        "gross slip: {sign}Q − fP = {excess:e} ≥ 0 at θ = {theta:.6} rad; force driving needs |Q| < fP throughout"
+    )]
+    GrossSlip {
+        /// The angle where the friction limit is exceeded most.
+        theta: f64,
+        /// `+` or `−`.
+        sign: &'static str,
+        /// The excess ±Q − fP there.
+        excess: f64,
+    },
+    /// f or λ out of range.
+    #[error("{0}")]
+    Contact(String),
+    /// The compliance is not physical over the loads of the path.
+    #[error(transparent)]
+    Compliance(#[from] AdmissibilityError),
+    /// The integrals did not converge.
+    #[error(transparent)]
+    Quadrature(#[from] QuadError),
+}
+
+/// Σₖ cₖ cos kθ + sₖ sin kθ, k = 0 … K (s₀ unused).
+#[derive(Clone, Debug, PartialEq)]
+pub struct TrigPoly<R> {
+    /// cₖ.
+    pub cos: Vec<R>,
+    /// sₖ.
+    pub sin: Vec<R>,
+}
+
+/// cos kθ and sin kθ for k = 0 … K at one θ.
+pub struct Multiples<R> {
+    cos: Vec<R>,
+    sin: Vec<R>,
+}
+
+impl<R: Real> Multiples<R> {
+    /// cos kθ.
+    pub fn cos(&self, k: usize) -> R {
+        self.cos[k].clone()
+    }
+
+    /// sin kθ.
+    pub fn sin(&self, k: usize) -> R {
+        self.sin[k].clone()
+    }
+
+    /// The multiples of θ up to `highest`, by the angle-addition recurrence.
+    pub fn of(theta: &R, highest: usize) -> Self {
+        let (s1, c1) = theta.sin_cos();
+        let mut cos = vec![theta.int(1)];
+        let mut sin = vec![theta.int(0)];
+        for k in 1..=highest {
+            let (c, s): (R, R) = (cos[k - 1].clone(), sin[k - 1].clone());
+            cos.push(c.clone() * &c1 - s.clone() * &s1);
+            sin.push(s * &c1 + c * &s1);
+        }
+        Multiples { cos, sin }
+    }
+}
+
+impl<R: Real> TrigPoly<R> {
+    /// The zero polynomial with harmonics up to `highest`.
+    pub fn zero(highest: usize, like: &R) -> Self {
+        TrigPoly {
+            cos: vec![like.int(0); highest + 1],
+            sin: vec![like.int(0); highest + 1],
+        }
+    }
+
+    /// The highest harmonic K.
+    pub fn highest(&self) -> usize {
+        self.cos.len() - 1
+    }
+
+    /// The value at the angle whose multiples are given.
+    pub fn at(&self, multiples: &Multiples<R>) -> R {
+        let mut sum = self.cos[0].clone();
+        for k in 1..self.cos.len() {
+            sum += self.cos[k].clone() * &multiples.cos[k] + self.sin[k].clone() * &multiples.sin[k];
+        }
+        sum
+    }
+
+    /// The value at θ.
+    pub fn value(&self, theta: &R) -> R {
+        self.at(&Multiples::of(theta, self.highest()))
+    }
+
+    /// d/dθ.
+    pub fn derivative(&self) -> Self {
+        let mut result = TrigPoly::zero(self.highest(), &self.cos[0]);
+        for k in 1..self.cos.len() {
+            let kk = self.cos[0].int(k as i64);
+            result.cos[k] = self.sin[k].clone() * &kk;
+            result.sin[k] = -(self.cos[k].clone() * &kk);
+        }
+        result
+    }
+
+    /// `self + sign · other` (same highest harmonic).
+    pub fn combined(&self, other: &Self, sign: i64) -> Self {
+        let weight = self.cos[0].int(sign);
+        let mix = |a: &[R], b: &[R]| {
+            a.iter()
+                .zip(b)
+                .map(|(x, y)| x.clone() + &(y.clone() * &weight))
+                .collect()
+        };
+        TrigPoly {
+            cos: mix(&self.cos, &other.cos),
+            sin: mix(&self.sin, &other.sin),
+        }
+    }
+
+    /// `self` times a constant.
+    pub fn scaled(&self, factor: &R) -> Self {
+        TrigPoly {
+            cos: self.cos.iter().map(|c| c.clone() * factor).collect(),
+            sin: self.sin.iter().map(|s| s.clone() * factor).collect(),
+        }
+    }
+
+    /// Whether every coefficient but the constant is zero.
+    pub fn is_constant(&self) -> bool {
+        let zero = self.cos[0].int(0);
+        self.cos[1..].iter().chain(&self.sin[1..]).all(|c| *c == zero)
+    }
+
+    /// The polynomial at θ + shift (a time shift of the path).
+    pub fn shifted(&self, shift: &R) -> Self {
+        let multiples = Multiples::of(shift, self.highest());
+        let mut result = self.clone();
+        for k in 1..self.cos.len() {
+            let (c, s) = (&multiples.cos[k], &multiples.sin[k]);
+            // cos k(θ + δ) = cos kθ cos kδ − sin kθ sin kδ, sin k(θ + δ) = sin kθ cos kδ + cos kθ sin kδ.
+            result.cos[k] = self.cos[k].clone() * c + self.sin[k].clone() * s;
+            result.sin[k] = self.sin[k].clone() * c - self.cos[k].clone() * s;
+        }
+        result
+    }
+}
+
+/// A periodic load path: the normal load P(θ) and the tangential load Q(θ).
+#[derive(Clone, Debug, PartialEq)]
+pub struct LoadPath<R> {
+    /// P(θ).
+    pub normal: TrigPoly<R>,
+    /// Q(θ).
+    pub tangential: TrigPoly<R>,
+}
+
+impl<R: Real> LoadPath<R> {
+    /// One harmonic in each: P0 + P1 cos θ and Q0 + Q1 cos(θ − φ), the paper's cycle.
+    pub fn harmonic(p0: &R, p1: &R, q0: &R, q1: &R, phase: &R) -> Self {
+        let (sin, cos) = phase.sin_cos();
+        let zero = p0.int(0);
+        LoadPath {
+            normal: TrigPoly {
+                cos: vec![p0.clone(), p1.clone()],
+                sin: vec![zero.clone(), zero.clone()],
+            },
+            tangential: TrigPoly {
+                cos: vec![q0.clone(), q1.clone() * &cos],
+                sin: vec![zero, q1.clone() * &sin],
+            },
+        }
+    }
+
+    /// The highest harmonic of either load.
+    pub fn highest(&self) -> usize {
+        self.normal.highest()
+    }
+}
+
+/// The cells of one CSV line, trimmed, with its 1-based line number; blank lines and
+/// lines starting with `#` are skipped.
+fn records(text: &str) -> impl Iterator<Item = (usize, Vec<&str>)> {
+    text.lines()
+        .enumerate()
+        .map(|(i, line)| (i + 1, line.trim()))
+        .filter(|(_, line)| !line.is_empty() && !line.starts_with('#'))
+        .map(|(n, line)| (n, line.split(',').map(str::trim).collect()))
+}
+
+/// The positions of the named columns in a header line.
+fn columns(header: &[&str], line: usize, names: &[&str]) -> Result<Vec<usize>, PathError> {
+    names
+        .iter()
+        .map(|name| {
+            header.iter().position(|cell| cell == name).ok_or_else(|| {
+                PathError::Malformed(format!(
+                    "line {line}: the header lacks the column {name} (expected {})",
+                    names.join(",")
+                ))
+            })
+        })
+        .collect()
+}
+
+fn number<R: Real>(cells: &[&str], at: usize, line: usize, name: &str, precision: Precision) -> Result<R, PathError> {
+    let text = cells.get(at).copied().unwrap_or("");
+    let value = R::parse_decimal(text, precision)
+        .map_err(|_| PathError::Malformed(format!("line {line}: {name} = '{text}' is not a decimal number")))?;
+    if value.is_finite() {
+        Ok(value)
+    } else {
+        Err(PathError::Malformed(format!(
+            "line {line}: {name} = '{text}' is not finite"
+        )))
+    }
+}
+
+/// A path from CSV text with the header `k,P_cos,P_sin,Q_cos,Q_sin` (any order), one line
+/// per harmonic k (0 … 64, each at most once, missing ones zero), read exactly at `precision`.
+pub fn read_harmonics<R: Real>(text: &str, precision: Precision) -> Result<LoadPath<R>, PathError> {
+    const NAMES: [&str; 5] = ["k", "P_cos", "P_sin", "Q_cos", "Q_sin"];
+    let mut lines = records(text);
+    let (header_line, header) = lines
+        .next()
+        .ok_or_else(|| PathError::Malformed(format!("the file is empty; expected the header {}", NAMES.join(","))))?;
+    let at = columns(&header, header_line, &NAMES)?;
+    let zero = R::from_i64(0, precision);
+    let mut rows: Vec<(usize, [R; 4])> = Vec::new();
+    for (line, cells) in lines {
+        let k_text = cells.get(at[0]).copied().unwrap_or("");
+        let k: usize = k_text
+            .parse()
+            .map_err(|_| PathError::Malformed(format!("line {line}: k = '{k_text}' is not a whole number ≥ 0")))?;
+        if k > MAX_HARMONICS {
+            return Err(PathError::TooManyHarmonics { found: k });
+        }
+        if rows.iter().any(|(seen, _)| *seen == k) {
+            return Err(PathError::Malformed(format!(
+                "line {line}: harmonic k = {k} is given twice"
+            )));
+        }
+        let value = |i: usize| number::<R>(&cells, at[i], line, NAMES[i], precision);
+        rows.push((k, [value(1)?, value(2)?, value(3)?, value(4)?]));
+    }
+    if rows.is_empty() {
+        return Err(PathError::Malformed(
+            "the file has a header but no harmonics".to_string(),
+        ));
+    }
+    let highest = rows.iter().map(|(k, _)| *k).max().unwrap_or(0).max(1);
+    let mut path = LoadPath {
+        normal: TrigPoly::zero(highest, &zero),
+        tangential: TrigPoly::zero(highest, &zero),
+    };
+    for (k, [p_cos, p_sin, q_cos, q_sin]) in rows {
+        path.normal.cos[k] = p_cos;
+        path.tangential.cos[k] = q_cos;
+        if k > 0 {
+            path.normal.sin[k] = p_sin;
+            path.tangential.sin[k] = q_sin;
+        }
+    }
+    Ok(path)
+}
+
+/// A path from CSV text with the header `P,Q`, one line per sample of one period at equal
+/// steps of θ from 0 (the last not repeating the first), taken as its trigonometric
+/// interpolant, read exactly at `precision`. With N samples the interpolant has harmonics
+/// up to N/2 (the Nyquist term cos(Nθ/2) alone when N is even); beyond [`MAX_HARMONICS`]
+/// they must vanish to 1e-10 of the largest sample.
+pub fn read_samples<R: Real>(text: &str, precision: Precision) -> Result<LoadPath<R>, PathError> {
+    let mut lines = records(text);
+    let (header_line, header) = lines
+        .next()
+        .ok_or_else(|| PathError::Malformed("the file is empty; expected the header P,Q".to_string()))?;
+    let at = columns(&header, header_line, &["P", "Q"])?;
+    let mut normal = Vec::new();
+    let mut tangential = Vec::new();
+    for (line, cells) in lines {
+        if normal.len() == MAX_SAMPLES {
+            return Err(PathError::TooManySamples);
+        }
+        normal.push(number::<R>(&cells, at[0], line, "P", precision)?);
+        tangential.push(number::<R>(&cells, at[1], line, "Q", precision)?);
+    }
+    if normal.len() < 3 {
+        return Err(PathError::Malformed(format!(
+            "the path has {} samples; one period needs at least 3",
+            normal.len()
+        )));
+    }
+    Ok(LoadPath {
+        normal: interpolant(&normal)?,
+        tangential: interpolant(&tangential)?,
+    })
+}
+
+/// The trigonometric interpolant of N equally spaced samples, its harmonics up to
+/// min(N/2, [`MAX_HARMONICS`]); refused when the samples need more.
+pub fn interpolant<R: Real>(samples: &[R]) -> Result<TrigPoly<R>, PathError> {
+    let n = samples.len();
+    let like = &samples[0];
+    let highest = (n / 2).min(MAX_HARMONICS);
+    let mut poly = TrigPoly::zero(highest, like);
+    let step = like.pi_like() * &like.int(2) / &like.int(n as i64);
+    let count = like.int(n as i64);
+    for (j, sample) in samples.iter().enumerate() {
+        let multiples = Multiples::of(&(step.clone() * &like.int(j as i64)), highest);
+        for k in 0..=highest {
+            poly.cos[k] += sample.clone() * &multiples.cos[k];
+            poly.sin[k] += sample.clone() * &multiples.sin[k];
+        }
+    }
+    for k in 0..=highest {
+        // The constant and the Nyquist term cos(Nθ/2) appear once in the sum, the others twice.
+        let weight = if k == 0 || 2 * k == n {
+            count.clone()
+        } else {
+            count.clone() / &like.int(2)
+        };
+        poly.cos[k] /= &weight;
+        poly.sin[k] = if k == 0 || 2 * k == n {
+            like.int(0)
+        } else {
+            poly.sin[k].clone() / &weight
+        };
+    }
+    if highest < n / 2 {
+        let largest = samples.iter().map(|s| s.abs().to_f64_lossy()).fold(0.0, f64::max);
+        let deviation = samples
+            .iter()
+            .enumerate()
+            .map(|(j, sample)| {
+                let value = poly.value(&(step.clone() * &like.int(j as i64)));
+                (value - sample).abs().to_f64_lossy()
+            })
+            .fold(0.0, f64::max)
+            / largest.max(f64::MIN_POSITIVE);
+        if deviation > TRUNCATION_TOLERANCE {
+            return Err(PathError::NeedsMoreHarmonics { deviation });
+        }
+    }
+    Ok(poly)
+}
+
+/// Pads both loads to the same highest harmonic.
+pub(crate) fn padded<R: Real>(path: &LoadPath<R>) -> LoadPath<R> {
+    let highest = path.normal.highest().max(path.tangential.highest());
+    let pad = |poly: &TrigPoly<R>| {
+        let mut result = TrigPoly::zero(highest, &poly.cos[0]);
+        result.cos[..poly.cos.len()].clone_from_slice(&poly.cos);
+        result.sin[..poly.sin.len()].clone_from_slice(&poly.sin);
+        result
+    };
+    LoadPath {
+        normal: pad(&path.normal),
+        tangential: pad(&path.tangential),
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn samples_of_a_two_harmonic_path_give_back_its_harmonics() {
+        let path = read_harmonics::<f64>(
+            "k,P_cos,P_sin,Q_cos,Q_sin\n0,1,0,0.1,0\n1,0.2,0.1,0.3,-0.2\n2,0.05,-0.02,0.1,0.07\n",
+            Precision::DOUBLE,
+        )
+        .unwrap();
+        for n in [5, 6, 64, 200] {
+            let step = 2.0 * std::f64::consts::PI / n as f64;
+            let samples: Vec<(f64, f64)> = (0..n)
+                .map(|j| {
+                    (
+                        path.normal.value(&(step * j as f64)),
+                        path.tangential.value(&(step * j as f64)),
+                    )
+                })
+                .collect();
+            let text: String = std::iter::once("P,Q\n".to_string())
+                .chain(samples.iter().map(|(p, q)| format!("{p:e},{q:e}\n")))
+                .collect();
+            let sampled = read_samples::<f64>(&text, Precision::DOUBLE).unwrap();
+            for theta in [0.1, 1.3, 4.0] {
+                let (p, q) = (sampled.normal.value(&theta), sampled.tangential.value(&theta));
+                assert!((p - path.normal.value(&theta)).abs() < 1e-14, "N = {n}");
+                assert!((q - path.tangential.value(&theta)).abs() < 1e-14, "N = {n}");
+            }
+        }
+    }
+
+    #[test]
+    fn the_nyquist_term_reproduces_even_samples() {
+        // Four samples of P: the interpolant passes through every one.
+        let text = "P,Q\n1,0\n2,0.5\n0.5,0\n3,-0.1\n";
+        let path = read_samples::<f64>(text, Precision::DOUBLE).unwrap();
+        for (j, p) in [1.0, 2.0, 0.5, 3.0].iter().enumerate() {
+            let theta = j as f64 * std::f64::consts::FRAC_PI_2;
+            assert!((path.normal.value(&theta) - p).abs() < 1e-14);
+        }
+    }
+
+    #[test]
+    fn limits_and_malformed_lines_are_named() {
+        let too_high = read_harmonics::<f64>("k,P_cos,P_sin,Q_cos,Q_sin\n65,1,0,0,0\n", Precision::DOUBLE);
+        assert_eq!(too_high, Err(PathError::TooManyHarmonics { found: 65 }));
+        let bad = read_harmonics::<f64>("k,P_cos,P_sin,Q_cos,Q_sin\n0,1,x,0,0\n", Precision::DOUBLE);
+        assert!(matches!(bad, Err(PathError::Malformed(m)) if m.contains("line 2") && m.contains("P_sin")));
+        let header = read_samples::<f64>("P,R\n1,2\n", Precision::DOUBLE);
+        assert!(matches!(header, Err(PathError::Malformed(m)) if m.contains("column Q")));
+        // 400 samples of a path with a 100th harmonic.
+        let text: String = std::iter::once("P,Q\n".to_string())
+            .chain((0..400).map(|j| {
+                format!(
+                    "{},0\n",
+                    1.0 + 0.1 * (100.0 * j as f64 * std::f64::consts::TAU / 400.0).cos()
+                )
+            }))
+            .collect();
+        assert!(matches!(
+            read_samples::<f64>(&text, Precision::DOUBLE),
+            Err(PathError::NeedsMoreHarmonics { .. })
+        ));
+    }
+}

@@ -1,0 +1,190 @@
+//! `microslip path`: its JSON against docs/schema/path.schema.json, the loop file, the
+//! agreement of two precisions, and one-line refusals that leave nothing behind.
+
+mod common;
+
+use std::path::PathBuf;
+
+use common::{microslip, PERSSON};
+use microslip::compliance::parse_spec;
+use microslip::path::input::read_harmonics;
+use microslip::path::{path_dissipation, Contact};
+use microslip::real::Precision;
+use serde_json::Value;
+
+const TWO_HARMONICS: &str = "k,P_cos,P_sin,Q_cos,Q_sin\n0,1,0,0.05,0\n1,0.25,0.05,0.2,-0.3\n2,0.08,-0.04,0.1,0.06\n";
+
+fn scratch(name: &str) -> PathBuf {
+    let directory = std::env::temp_dir().join(format!("microslip-path-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&directory);
+    std::fs::create_dir_all(&directory).unwrap();
+    directory
+}
+
+/// `microslip path --harmonics FILE --friction 0.8 --lambda 1.2 --compliance persson extra…`
+/// with `contents` in FILE.
+fn path_run(directory: &std::path::Path, contents: &str, extra: &[&str]) -> (i32, String, String) {
+    let file = directory.join("path.csv");
+    std::fs::write(&file, contents).unwrap();
+    let mut args: Vec<String> = ["path", "--harmonics", file.to_str().unwrap()]
+        .iter()
+        .chain(&["--friction", "0.8", "--lambda", "1.2", "--compliance", PERSSON])
+        .map(|s| s.to_string())
+        .collect();
+    args.extend(extra.iter().map(|s| s.to_string()));
+    microslip(&args)
+}
+
+fn schema() -> jsonschema::Validator {
+    let path = format!("{}/docs/schema/path.schema.json", env!("CARGO_MANIFEST_DIR"));
+    let schema: Value = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    jsonschema::meta::validate(&schema).unwrap_or_else(|e| panic!("{path}: {e}"));
+    jsonschema::draft202012::new(&schema).unwrap()
+}
+
+fn library_w() -> f64 {
+    let path = read_harmonics::<f64>(TWO_HARMONICS, Precision::DOUBLE).unwrap();
+    let contact = Contact {
+        friction: 0.8,
+        compliance_ratio: 1.2,
+    };
+    let compliance = parse_spec::<f64>(PERSSON, Precision::DOUBLE).unwrap();
+    path_dissipation(&path, &contact, compliance.as_ref(), None)
+        .unwrap()
+        .total
+}
+
+#[test]
+fn the_json_conforms_to_its_schema_and_carries_the_library_w() {
+    let directory = scratch("json");
+    let validator = schema();
+    for extra in [
+        &["--json"][..],
+        &["--json", "--digits", "20", "--harmonics-out", "5"][..],
+    ] {
+        let (code, stdout, stderr) = path_run(&directory, TWO_HARMONICS, extra);
+        assert_eq!(code, 0, "{stderr}");
+        let document: Value = serde_json::from_str(stdout.trim()).unwrap();
+        let problems: Vec<String> = validator.iter_errors(&document).map(|e| e.to_string()).collect();
+        assert!(problems.is_empty(), "{problems:?}\n{document}");
+        let w = document["W_f64"].as_f64().unwrap();
+        assert!((w / library_w() - 1.0).abs() < 1e-15, "{w}");
+        let printed: f64 = document["W"].as_str().unwrap().parse().unwrap();
+        assert!((printed / w - 1.0).abs() < 1e-12);
+        let eta = document["loss_factor"].as_f64().unwrap();
+        let (qa, ua) = (
+            document["q_amplitude"].as_f64().unwrap(),
+            document["u_amplitude"].as_f64().unwrap(),
+        );
+        assert!((eta * std::f64::consts::PI * qa * ua / w - 1.0).abs() < 1e-14);
+    }
+    let (_, stdout, _) = path_run(&directory, TWO_HARMONICS, &["--json", "--digits", "20"]);
+    let document: Value = serde_json::from_str(stdout.trim()).unwrap();
+    assert_eq!(document["provenance"], "agreement");
+    assert!(document["digits_agreed"].as_u64().unwrap() >= 20);
+    assert_eq!(
+        document["W"]
+            .as_str()
+            .unwrap()
+            .trim_start_matches('-')
+            .replace('.', "")
+            .split('e')
+            .next()
+            .unwrap()
+            .len(),
+        20
+    );
+    assert_eq!(document["harmonics"].as_array().unwrap().len(), 4);
+}
+
+#[test]
+fn samples_of_the_path_give_the_same_w_as_its_harmonics() {
+    let directory = scratch("samples");
+    let path = read_harmonics::<f64>(TWO_HARMONICS, Precision::DOUBLE).unwrap();
+    let samples: String = std::iter::once("P,Q\n".to_string())
+        .chain((0..16).map(|j| {
+            let theta = j as f64 * std::f64::consts::TAU / 16.0;
+            format!("{:e},{:e}\n", path.normal.value(&theta), path.tangential.value(&theta))
+        }))
+        .collect();
+    let file = directory.join("samples.csv");
+    std::fs::write(&file, samples).unwrap();
+    let (code, stdout, stderr) = microslip(&[
+        "path",
+        "--samples",
+        file.to_str().unwrap(),
+        "--friction",
+        "0.8",
+        "--nu",
+        "0.3333333333333333",
+        "--compliance",
+        PERSSON,
+        "--json",
+    ]);
+    assert_eq!(code, 0, "{stderr}");
+    let from_samples = serde_json::from_str::<Value>(stdout.trim()).unwrap()["W_f64"]
+        .as_f64()
+        .unwrap();
+    // ν = 1/3 is λ = 1.25.
+    assert!(
+        (from_samples * 1.2 / 1.25 / library_w() - 1.0).abs() < 1e-12,
+        "{from_samples}"
+    );
+}
+
+#[test]
+fn the_loop_is_written_whole_to_a_file_or_to_standard_output() {
+    let directory = scratch("loop");
+    let out = directory.join("loop.csv");
+    let (code, stdout, stderr) = path_run(&directory, TWO_HARMONICS, &["--loop", out.to_str().unwrap()]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stdout.starts_with("W = "), "{stdout}");
+    let text = std::fs::read_to_string(&out).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines[0], "theta,P,Q,u");
+    assert_eq!(lines.len(), 1025);
+    let row: Vec<f64> = lines[1].split(',').map(|c| c.parse().unwrap()).collect();
+    assert_eq!(row[0], 0.0);
+    assert!(
+        (row[1] - 1.33).abs() < 1e-15 && (row[2] - 0.35).abs() < 1e-15,
+        "{row:?}"
+    );
+    let (code, stdout, stderr) = path_run(&directory, TWO_HARMONICS, &["--loop", "-"]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stdout.starts_with("theta,P,Q,u\n"));
+    assert!(stderr.contains("W = "), "{stderr}");
+}
+
+#[test]
+fn bad_paths_are_refused_in_one_line_naming_the_problem_and_leave_no_file() {
+    let directory = scratch("refusals");
+    let out = directory.join("loop.csv");
+    let cases: [(&str, &str); 6] = [
+        ("k,P_cos,P_sin,Q_cos\n0,1,0,0\n", "column Q_sin"),
+        ("k,P_cos,P_sin,Q_cos,Q_sin\n0,1,0,0,zero\n", "line 2"),
+        (
+            "k,P_cos,P_sin,Q_cos,Q_sin\n0,1,0,0,0\n65,0.1,0,0,0\n",
+            "limit of 64 harmonics",
+        ),
+        (
+            "k,P_cos,P_sin,Q_cos,Q_sin\n0,1,0,0,0\n1,0.5,0,0,0\n2,0.9,0.3,0,0\n",
+            "separates",
+        ),
+        (
+            "k,P_cos,P_sin,Q_cos,Q_sin\n0,1,0,0,0\n1,0.2,0,0,0\n2,0,0,0.7,0.3\n",
+            "gross slip",
+        ),
+        ("", "empty"),
+    ];
+    for (contents, expected) in cases {
+        let (code, stdout, stderr) = path_run(&directory, contents, &["--loop", out.to_str().unwrap()]);
+        assert_eq!(code, 2, "{contents:?}: {stderr}");
+        assert!(stdout.is_empty());
+        assert_eq!(stderr.trim().lines().count(), 1, "{stderr}");
+        assert!(stderr.contains(expected), "{contents:?}: {stderr}");
+        assert!(!out.exists());
+    }
+    // The angle where gross slip is reached is named.
+    let (_, _, stderr) = path_run(&directory, cases[4].0, &[]);
+    assert!(stderr.contains("at θ = "), "{stderr}");
+}
