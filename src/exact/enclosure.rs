@@ -181,6 +181,13 @@ pub fn coefficient_balls(
 /// phase as the exact offset ψ from the nearest multiple nπ (with Q0 reversed for odd
 /// n: the mirror image, which has the same W).
 pub fn partial_sum_balls(case: &CaseSpec, order: usize, precision: Precision) -> Result<Vec<Ball>, ExactAnswerError> {
+    let Case { cycle, compliance } = case_balls(case, precision)?;
+    Ok(partial_sums(&cycle, compliance.as_ref(), order)?)
+}
+
+/// A case read as balls, its phase as the exact offset ψ from the nearest multiple nπ
+/// (with Q0 reversed for odd n: the mirror image, which has the same W).
+pub fn case_balls(case: &CaseSpec, precision: Precision) -> Result<Case<Ball>, ExactAnswerError> {
     let Case { mut cycle, compliance } = case.at::<Ball>(precision)?;
     let (psi, reverses) = phase_offset(case.phase(), precision);
     // `at` reverses Q0 for the mirror image it reads near an odd multiple of π; here it
@@ -189,7 +196,7 @@ pub fn partial_sum_balls(case: &CaseSpec, order: usize, precision: Precision) ->
         cycle.mean_tangential_load = -cycle.mean_tangential_load;
     }
     cycle.phase = psi;
-    Ok(partial_sums(&cycle, compliance.as_ref(), order)?)
+    Ok(Case { cycle, compliance })
 }
 
 #[cfg(test)]
