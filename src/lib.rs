@@ -56,6 +56,7 @@ mod decimal;
 pub mod dissipation;
 pub mod dissipation_answer;
 pub mod exact;
+pub mod ladder;
 pub mod real;
 pub mod reference;
 pub mod simulate;

@@ -95,15 +95,11 @@ impl RowResult {
     fn of(report: DissipationAnswer) -> Self {
         let DissipationAnswer {
             answer,
-            fallback,
             no_enclosure,
             table,
         } = &report;
         let Answer { value, provenance, .. } = answer;
         let mut method = answer.method.map_or("", crate::dissipation::Method::key).to_string();
-        if let Some(reason) = fallback {
-            method.push_str(&format!(" ({} in place of f64: {reason})", provenance.key()));
-        }
         if let Some(why) = no_enclosure {
             method.push_str(&format!(" (no enclosure: {why})"));
         }
