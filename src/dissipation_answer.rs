@@ -105,13 +105,40 @@ pub fn dissipation_report(
     digits: Option<u32>,
     budget: Duration,
 ) -> Result<DissipationAnswer, ReferenceError> {
+    // The case is read once; every precision below is computed from it.
+    dissipation_of(&case.spec()?, digits, budget)
+}
+
+/// [`dissipation_report`] of a case already read (as [`CaseText::builder`] gives it).
+///
+/// ```
+/// use std::time::Duration;
+///
+/// use microslip::case::CaseText;
+/// use microslip::dissipation_answer::dissipation_of;
+///
+/// let case = CaseText::builder()
+///     .p0(1).p1(0.4).q1(0.5).phi("0.4pi").friction(1).lambda(1)
+///     .compliance("persson:gamma=1,sigma=1")
+///     .build()
+///     .unwrap();
+/// let report = dissipation_of(&case, None, Duration::from_secs(60)).unwrap();
+/// let w = &report.answer.value;
+/// assert_eq!(w.decimal.to_string(), "4.06247579245824e-1");
+/// assert!(report.answer.provenance.is_proven());
+/// let (lower, upper) = w.enclosure_f64().unwrap();
+/// assert!(lower <= 0.406247579245824 && 0.406247579245824 <= upper);
+/// ```
+pub fn dissipation_of(
+    case: &CaseSpec,
+    digits: Option<u32>,
+    budget: Duration,
+) -> Result<DissipationAnswer, ReferenceError> {
     let started = Instant::now();
     let deadline = started + budget;
     if let Some(digits) = digits.filter(|&d| d == 0 || d > MAX_DIGITS) {
         return Err(ReferenceError::DigitsOutOfRange(digits));
     }
-    // The case is read once; every precision below is computed from it.
-    let case = &case.spec()?;
     prove_admissible(case).map_err(DissipationError::from)?;
     let tables = case.compliance().tables();
     if !tables.is_empty() {

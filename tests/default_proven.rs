@@ -11,6 +11,7 @@ use std::time::Duration;
 use common::Draws;
 use microslip::case::CaseText;
 use microslip::dissipation_answer::dissipation_report;
+use rug::ops::Pow;
 use rug::Float;
 
 const BUDGET: Duration = Duration::from_secs(120);

@@ -5,9 +5,7 @@
 use std::time::Duration;
 
 use crate::answer::{Answer, Provenance};
-use crate::compliance::{ComplianceSpec, TableError};
-use crate::cycle::LoadCycle;
-use crate::dissipation_answer::{dissipation_report, tables_cover, DissipationAnswer};
+use crate::dissipation_answer::{dissipation_report, DissipationAnswer};
 use crate::messages::printable;
 use crate::reference::ReferenceError;
 
@@ -19,16 +17,6 @@ pub use crate::dissipation_answer::{TableEstimate, TABLE_QUADRATURE_TOLERANCE};
 
 /// Why a case gives no W: the one error of every path to W.
 pub type CaseError = ReferenceError;
-
-/// Refuses a cycle that leaves a table of the compliance SPEC, naming the table's range
-/// (for computations that check the compliance themselves, as the simulation does). A
-/// cycle outside the theory passes here: its own check says what is wrong.
-pub fn check_table_range(spec: &ComplianceSpec, cycle: &LoadCycle<f64>) -> Result<(), TableError> {
-    if cycle.validate().is_err() {
-        return Ok(());
-    }
-    tables_cover(&spec.tables(), cycle)
-}
 
 /// A batch input that cannot be used at all.
 #[derive(Debug, thiserror::Error)]
