@@ -317,7 +317,7 @@ mod tests {
         );
         assert_eq!(
             (&lines[0]["provenance"], &lines[0]["method"]),
-            (&"estimate".into(), &"four-segment".into())
+            (&"certified".into(), &"four-segment".into())
         );
         assert!(lines[0]["error"].is_null() && lines[0]["table_error"].is_null());
         assert!(lines[1]["error"].as_str().unwrap().contains("gross slip"));
