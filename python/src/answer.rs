@@ -11,8 +11,6 @@ use pyo3::types::PyDict;
 #[derive(Clone)]
 pub struct PyAnswer {
     answer: Answer,
-    /// Why a W without `digits` was not computed in f64.
-    fallback: Option<String>,
     /// Why W's digits rest on agreement of two precisions rather than an enclosure.
     no_enclosure: Option<String>,
     /// For a table compliance: the estimated error of W due to the table.
@@ -30,7 +28,6 @@ impl PyAnswer {
         };
         PyAnswer {
             answer,
-            fallback: None,
             no_enclosure: None,
             table_error: None,
             error_estimate,
@@ -42,7 +39,6 @@ impl PyAnswer {
         let table_error = report.table.as_ref().map(|table| table.error);
         let quadrature_error = report.table.as_ref().map(|table| table.quadrature_error);
         PyAnswer {
-            fallback: report.fallback.as_ref().map(ToString::to_string),
             no_enclosure: report.no_enclosure.as_ref().map(ToString::to_string),
             table_error,
             error_estimate: quadrature_error.or(PyAnswer::of(report.answer.clone()).error_estimate),
@@ -148,12 +144,6 @@ impl PyAnswer {
     #[getter]
     fn method(&self) -> Option<&'static str> {
         self.answer.method.map(microslip::dissipation::Method::key)
-    }
-
-    /// Why a W without `digits` was not computed in f64, where it was not.
-    #[getter]
-    fn fallback(&self) -> Option<String> {
-        self.fallback.clone()
     }
 
     /// Why the digits rest on two precisions agreeing rather than an enclosure.

@@ -3,11 +3,9 @@
 
 use std::time::Instant;
 
-use microslip::answer::{Answer, Provenance, Value};
-use microslip::batch;
-use microslip::case::Case;
-use microslip::real::Precision;
-use microslip::simulate::{simulate as simulate_cycle, SimulationError, SimulationOptions, SimulationResult};
+use microslip::answer::Answer;
+use microslip::simulate::SimulationOptions;
+use microslip::simulation_answer::{simulated_answer, SimulatedAnswer};
 use numpy::IntoPyArray;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -19,21 +17,7 @@ use crate::errors;
 /// The simulation's W and steady loop.
 #[pyclass(name = "Simulation", module = "microslip", frozen)]
 pub struct PySimulation {
-    result: SimulationResult,
-}
-
-impl PySimulation {
-    /// A measure of W with the absolute bound the estimated relative error gives it.
-    fn answer(&self, w: f64) -> PyAnswer {
-        let bound = self.result.estimated_rel_error * self.result.w_work.abs();
-        PyAnswer::of(Answer {
-            value: Value::from_f64(w, bound),
-            segments: None,
-            digits_requested: None,
-            provenance: Provenance::Simulated { error_estimate: bound },
-            method: None,
-        })
-    }
+    simulated: SimulatedAnswer,
 }
 
 #[pymethods]
@@ -42,37 +26,40 @@ impl PySimulation {
     #[getter]
     #[allow(non_snake_case)]
     fn W(&self) -> PyAnswer {
-        self.answer(self.result.w_work)
+        PyAnswer::of(self.simulated.answer.clone())
     }
 
     /// W as the frictional work of the slipping elements (agrees with `W`).
     #[getter]
     fn w_friction(&self) -> PyAnswer {
-        self.answer(self.result.w_friction)
+        PyAnswer::of(Answer {
+            value: self.simulated.friction.clone(),
+            ..self.simulated.answer.clone()
+        })
     }
 
     /// The estimated relative error of W (an estimate from the refinements, not a proof).
     #[getter]
     fn estimated_rel_error(&self) -> f64 {
-        self.result.estimated_rel_error
+        self.simulated.result.estimated_rel_error
     }
 
     /// Elements of the finest run.
     #[getter]
     fn elements(&self) -> usize {
-        self.result.elements
+        self.simulated.result.elements
     }
 
     /// Load steps per cycle of the finest run.
     #[getter]
     fn steps(&self) -> usize {
-        self.result.steps
+        self.simulated.result.steps
     }
 
     /// The steady loop as arrays `theta`, `P`, `Q`, `u` (the columns of `--loop`).
     #[getter(r#loop)]
     fn steady_loop<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let samples = &self.result.steady_loop;
+        let samples = &self.simulated.result.steady_loop;
         let column = |of: fn(&microslip::simulate::LoopSample) -> f64| samples.iter().map(of).collect::<Vec<f64>>();
         let dict = PyDict::new(py);
         dict.set_item("theta", column(|s| s.theta).into_pyarray(py))?;
@@ -86,18 +73,10 @@ impl PySimulation {
         format!(
             "Simulation(W={}, estimated_rel_error={:.1e}, elements={}, steps={})",
             self.W().value(),
-            self.result.estimated_rel_error,
-            self.result.elements,
-            self.result.steps
+            self.simulated.result.estimated_rel_error,
+            self.simulated.result.elements,
+            self.simulated.result.steps
         )
-    }
-}
-
-/// The simulation's failures, split as the command line splits them.
-fn simulation_error(error: SimulationError) -> PyErr {
-    match error {
-        SimulationError::ToleranceNotReached { .. } | SimulationError::OutOfTime { .. } => errors::failed(error),
-        other => errors::refused(other),
     }
 }
 
@@ -116,19 +95,6 @@ pub fn simulate(
 ) -> PyResult<PySimulation> {
     let budget = errors::budget(max_seconds)?;
     let spec = case.get().text.spec().map_err(errors::refused)?;
-    let Case { mut cycle, compliance } = spec.at::<f64>(Precision::DOUBLE).map_err(errors::refused)?;
-    if let Err(error) = cycle.validate() {
-        return Err(errors::failed(format!(
-            "rounded to f64 the inputs cross a boundary that the exact cycle keeps off (in f64: {error}); the simulation runs in f64, `dissipation` computes this cycle"
-        )));
-    }
-    // The simulation follows the loads in time: the mirror image a phase near an odd
-    // multiple of π is read as is turned back.
-    if spec.phase().is_mirror_image() {
-        cycle.phase += std::f64::consts::PI;
-        cycle.mean_tangential_load = -cycle.mean_tangential_load;
-    }
-    batch::check_table_range(spec.compliance(), &cycle).map_err(errors::refused)?;
     let options = SimulationOptions {
         elements,
         steps,
@@ -136,13 +102,14 @@ pub fn simulate(
         tolerance: Some(tolerance),
         ..SimulationOptions::default()
     };
-    let result = py
-        .detach(|| simulate_cycle(&cycle, compliance.as_ref(), &options))
-        .map_err(simulation_error)?;
-    if result.w_work == 0.0 && result.w_friction == 0.0 && spec.exact_zero().is_none() {
-        return Err(errors::failed(
-            "the simulation's W rounds to 0 in f64 (the changes of v' over the cycle's loads underflow), though nothing in the input makes W exactly 0; `dissipation` gives W at any size",
-        ));
-    }
-    Ok(PySimulation { result })
+    // The library decides what the command line decides (the f64 cycle, the tables, a W
+    // that underflows), with the same exit code: refused input or a failed run.
+    let simulated = py.detach(|| simulated_answer(&spec, &options)).map_err(|error| {
+        let message = format!("{error}{}", error.hint());
+        match error.exit_code() {
+            1 => errors::failed(message),
+            _ => errors::refused(message),
+        }
+    })?;
+    Ok(PySimulation { simulated })
 }

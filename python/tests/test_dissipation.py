@@ -22,18 +22,18 @@ def assert_as_cli(answer: microslip.Answer, report: dict) -> None:
     assert answer.precision_bits == report["precision_bits"]
     assert answer.enclosure == (tuple(report["enclosure"]) if report["enclosure"] else None)
     assert answer.method == report["method"]
-    assert answer.fallback == report["f64_fallback"]
     assert answer.error_estimate == report["error_estimate"]
     assert answer.segments == report["segments"]
 
 
 def test_the_first_w_of_the_readme():
     answer = microslip.dissipation(case_of(FIRST))
-    assert answer.text == "4.062475792458e-1"
-    assert answer.digits == 13
-    assert answer.provenance == "estimate" and not answer.proven
+    # Proven by default: 15 digits from a rigorous enclosure.
+    assert answer.text == "4.06247579245824e-1"
+    assert answer.digits == 15
+    assert answer.provenance == "certified" and answer.proven
     assert list(answer.segments) == ["EB", "BC", "CH", "HE"]
-    assert answer.segments["HE"] == "2.96789577125e-1"
+    assert answer.segments["HE"] == "2.96789577125153e-1"
     assert_as_cli(answer, cli_json("dissipation", FIRST))
 
 
@@ -79,9 +79,10 @@ def test_thirty_digits_are_proven_and_enclosed():
         # Every point of the enclosure rounds to the 30 digits printed.
         assert low <= high and high - low < mpmath.mpf("1e-30") * abs(mid)
         assert abs(mid - low) <= mpmath.mpf("0.5e-30") and abs(high - mid) <= mpmath.mpf("0.5e-30")
-        # The f64 answer lies within its own error estimate of the proven value.
-        f64 = microslip.dissipation(case)
-        assert abs(mpmath.mpf(f64.value_f64) - mid) <= f64.error_estimate
+        # The default answer's enclosure holds the 30-digit one.
+        default = microslip.dissipation(case)
+        default_low, default_high = (mpmath.mpf(end) for end in default.enclosure)
+        assert default_low <= low and high <= default_high
     assert_as_cli(answer, cli_json("dissipation", FIRST, "--digits", "30"))
     interval, value = answer.to_mpmath(interval=True), answer.to_mpmath()
     with mpmath.workdps(60):
