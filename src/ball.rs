@@ -43,7 +43,6 @@ pub(crate) use crate::doubts::with_analytic;
 use crate::doubts::{analytic_required, not_analytic, undecided};
 pub use crate::doubts::{locate_doubts, watch, Doubts};
 use crate::real::{ParseRealError, Precision, Real};
-use crate::verified::shift_exponent;
 
 /// A complex Arb ball at a working precision; real wherever [`Real`] built it.
 pub struct Ball {
@@ -1072,41 +1071,6 @@ impl Real for Ball {
         unsafe { acb_union(&mut result.raw, &self.raw, &other.raw, result.slong_precision()) };
         result
     }
-}
-
-/// The digits of a real ball that every number in it rounds to: the longest decimal of
-/// at most `max_digits` significant digits (scientific notation, e.g. `1.2345e-3`) to
-/// which both ends of the ball round to nearest. Rounding to nearest is monotone, so
-/// then the whole ball rounds to it. (Agreement at N digits does not imply agreement at
-/// fewer: [0.1234549, 0.1234551] rounds to 1.23455e-1 but not to one 5-digit decimal.)
-/// `None` where not even one digit is determined (or the ball is not real and finite);
-/// an exact zero is `("0", max_digits)`.
-pub fn certain_digits(ball: &Ball, max_digits: u32) -> Option<(String, u32)> {
-    let max_digits = max_digits.max(1);
-    if !ball.is_real() || !ball.is_finite() {
-        return None;
-    }
-    if let Some((scaled, shift)) = ball.decimal_scaled() {
-        return certain_digits(&scaled, max_digits).map(|(text, digits)| (shift_exponent(&text, shift), digits));
-    }
-    // SAFETY: initialised.
-    if unsafe { arb_is_zero(ball.real_part()) } != 0 {
-        return Some(("0".to_string(), max_digits));
-    }
-    let bits = Precision::decimal_digits(max_digits).in_bits() + 64;
-    let (lower, upper) = ball.bounds(bits.max(ball.precision + 64));
-    // No decimal of more digits than the radius allows can hold both ends.
-    let radius = ball.relative_radius();
-    let most = if radius > 0.0 {
-        let log10 = radius.log10().to_f64_round(rug::float::Round::Up);
-        max_digits.min((2.0 - log10).clamp(1.0, f64::from(max_digits)) as u32)
-    } else {
-        max_digits
-    };
-    (1..=most.max(1)).rev().find_map(|digits| {
-        let text = Real::to_scientific(&lower, digits as usize);
-        (text == Real::to_scientific(&upper, digits as usize)).then_some((text, digits))
-    })
 }
 
 /// The smallest ball that contains both real balls.
