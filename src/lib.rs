@@ -37,7 +37,7 @@
 //! - [`verify`]: the theorem gate ([`verify::run`]).
 //!
 //! Modules hidden from this documentation (`quad`, `files`, `batch`, `verified`, `ball`,
-//! `phase`, and with feature `cli` `accuracy`, `catalogue`, `figures`, `plot`) are
+//! `phase`, `doubts`, `interval`, and with feature `cli` `accuracy`, `catalogue`, `figures`, `plot`) are
 //! public only for the command line, the tests and the benches; they are not part of
 //! the API and change without notice.
 //!
@@ -58,6 +58,8 @@ pub mod cycle;
 mod decimal;
 pub mod dissipation;
 pub mod dissipation_answer;
+#[doc(hidden)]
+pub mod doubts;
 pub mod exact;
 pub mod ladder;
 pub mod real;
@@ -84,6 +86,8 @@ pub mod catalogue;
 pub mod figures;
 #[doc(hidden)]
 pub mod files;
+#[doc(hidden)]
+pub mod interval;
 #[doc(hidden)]
 pub mod messages;
 #[doc(hidden)]
