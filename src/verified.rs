@@ -12,6 +12,7 @@ use std::time::Instant;
 use rug::float::Round;
 use rug::Float;
 
+use crate::ladder::{Ladder, Rung, Stop};
 use crate::real::{Precision, Real};
 
 /// Digits agreed beyond the target before a value counts as verified.
@@ -185,24 +186,17 @@ pub fn verify<C: TwoPrecisions>(
 ) -> Result<Verified<C::Output>, VerifyError<C::Error>> {
     let started = Instant::now();
     let required = digits + GUARD_DIGITS;
-    let mut precision = computation.starting_precision(required);
-    let mut best = 0;
-    // The higher precision of the last attempt, as the budget error reports it.
-    let mut last = check_precision(precision);
-    for attempt in 0.. {
-        if Instant::now() >= deadline {
-            return Err(VerifyError::OutOfBudget(OutOfBudget {
-                digits_requested: digits,
-                digits_agreed: best,
-                seconds: started.elapsed().as_secs_f64(),
-                precision_bits: last.in_bits(),
-            }));
-        }
+    let start = computation.starting_precision(required);
+    let ladder = Ladder::new(start, Precision::bits(MAX_PRECISION_BITS)).until(Some(deadline));
+    // The most digits any attempt agreed on, the attempts made, and the last one's precision.
+    let (mut best, mut attempt, mut last) = (0, 0, start);
+    let rung = |precision: Precision| {
+        last = precision;
         let higher = check_precision(precision);
-        last = higher;
         let outcome = computation
             .first(precision, attempt)
             .and_then(|first| Ok((computation.check(&first, higher, attempt)?, first)));
+        attempt += 1;
         let agreed = match outcome {
             Ok((second, first)) => {
                 let exact = computation.zeros_are_exact(&first) && computation.zeros_are_exact(&second);
@@ -215,7 +209,7 @@ pub fn verify<C: TwoPrecisions>(
                         .all(|(a, b)| decimal_ball(b, &agreement_radius(a, b), digits).digits() >= digits)
                 };
                 if agreed >= required && determined() {
-                    return Ok(Verified {
+                    return Rung::Reached(Verified {
                         output: second,
                         first,
                         agreed,
@@ -227,12 +221,37 @@ pub fn verify<C: TwoPrecisions>(
                 agreed.min(required - 1)
             }
             Err(error) if computation.retries(&error) => 0,
-            Err(error) => return Err(VerifyError::Failed(error)),
+            Err(error) => return Rung::Final(Attempt::Failed(error)),
         };
         best = best.max(agreed);
-        precision = next_precision(precision, required, agreed);
+        Rung::Short(Attempt::Agreed(agreed))
+    };
+    let next = |precision: Precision, short: &Attempt<C::Error>| match short {
+        Attempt::Agreed(agreed) => next_precision(precision, required, *agreed),
+        // A failure is final, never short.
+        Attempt::Failed(_) => precision,
+    };
+    match ladder.climb(rung, next) {
+        Ok((verified, _)) => return Ok(verified),
+        Err(Stop::Final(Attempt::Failed(error))) => return Err(VerifyError::Failed(error)),
+        // Out of time, or short at the highest precision (complete cancellation): out of
+        // budget either way.
+        Err(Stop::OutOfTime { .. } | Stop::Exhausted(_) | Stop::Final(Attempt::Agreed(_))) => {}
     }
-    unreachable!("the attempts are unbounded")
+    Err(VerifyError::OutOfBudget(OutOfBudget {
+        digits_requested: digits,
+        digits_agreed: best,
+        seconds: started.elapsed().as_secs_f64(),
+        // The higher precision of the last attempt (of the first, where none was made).
+        precision_bits: check_precision(last).in_bits(),
+    }))
+}
+
+/// What one attempt of [`verify`] gave: the digits two precisions agreed on, or a failure
+/// no precision changes.
+enum Attempt<E> {
+    Agreed(u32),
+    Failed(E),
 }
 
 /// The bound with which agreement vouches for the check's `second`: its distance from
