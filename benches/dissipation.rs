@@ -208,8 +208,39 @@ fn bench_near_separation(c: &mut Criterion) {
     group.finish();
 }
 
+/// The answer printed without `--digits` (proven: an Arb enclosure of up to 15 digits)
+/// beside the f64 run with its error estimate that printed before, in one run, for the
+/// three families of the proven default's speed target (Persson, power −1.5, Hertz).
+/// Goal: ≤ 3× f64.
+fn bench_default_answer(c: &mut Criterion) {
+    let mut group = c.benchmark_group("default_answer");
+    group.sample_size(20);
+    group.warm_up_time(Duration::from_millis(500));
+    group.measurement_time(Duration::from_secs(2));
+    for (name, spec) in [
+        ("persson", common::PERSSON),
+        ("power-1.5", "power:c=1,beta=-1.5"),
+        ("hertz", "hertz:r=1,estar=1"),
+    ] {
+        let text = common::case().compliance(spec).text();
+        let Case { cycle, compliance } = text.read::<f64>(Precision::DOUBLE).unwrap();
+        group.bench_function(format!("{name}/f64-estimate"), |b| {
+            b.iter(|| {
+                let result = dissipation(&cycle, compliance.as_ref(), &Options::default()).unwrap();
+                (result.total, result.error_estimate)
+            })
+        });
+        let budget = Duration::from_secs(60);
+        group.bench_function(format!("{name}/proven"), |b| {
+            b.iter(|| dissipation_answer(&text, None, budget).unwrap().digits())
+        });
+    }
+    group.finish();
+}
+
 criterion_group!(
     benches,
+    bench_default_answer,
     bench_dissipation,
     bench_power_law_f64,
     bench_single_runs,

@@ -9,7 +9,7 @@
 
 use std::time::{Duration, Instant};
 
-use microslip::ball::certain_digits;
+use microslip::answer::Value;
 use microslip::ball::Ball;
 use microslip::case::{Case, CaseText};
 use microslip::certified::{certified_dissipation, enclose_dissipation};
@@ -82,10 +82,7 @@ fn double_beside_arb(name: &str, fields: &str, budget: Duration) {
     let (f64_time, w) = best_of(budget, || dissipation(&cycle, compliance.as_ref(), &Options::default()));
     let (cycle, compliance) = case::<Ball>(fields)(Precision::bits(53)).expect("the case reads as balls");
     let (arb_time, enclosure) = best_of(budget, || enclose_dissipation(&cycle, compliance.as_ref(), 53));
-    let digits = enclosure
-        .ok()
-        .and_then(|e| certain_digits(&e.total, 17))
-        .map_or(0, |(_, n)| n);
+    let digits = enclosure.ok().map_or(0, |e| Value::of_ball(&e.total, 53, 17).digits());
     println!(
         "{name} f64 {:.1} µs  W = {:?}  |  Arb 53 bits {:.1} µs, {digits} certain digits",
         f64_time.as_secs_f64() * 1e6,

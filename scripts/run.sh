@@ -25,6 +25,22 @@ if ! command -v cargo >/dev/null 2>&1; then
     export PATH
 fi
 
+# The Python package (python/): built by pip (maturin, reusing target/ and the caches of
+# the compiled GMP, MPFR and FLINT) into a virtual environment of its own, then its tests
+# against the command line built above.
+python_package_tests() {
+    if ! python3 -c 'import ensurepip, venv' >/dev/null 2>&1; then
+        echo "installing: python3 python3-venv" >&2
+        apt-get update -qq
+        DEBIAN_FRONTEND=noninteractive apt-get install -y -qq python3 python3-venv >/dev/null
+    fi
+    venv=target/python-venv
+    rm -rf "$venv"
+    python3 -m venv "$venv"
+    "$venv/bin/python" -m pip install --quiet --disable-pip-version-check ./python pytest hypothesis numpy mpmath python-flint
+    "$venv/bin/python" -m pytest -q -p no:cacheprovider python/tests
+}
+
 case "${1:-}" in
     main)
         cargo run --release --quiet -- verify
@@ -34,6 +50,8 @@ case "${1:-}" in
         cargo run --release --quiet -- verify --quick
         # The library alone, without the command line's dependencies.
         cargo build --release --quiet --lib --no-default-features
+        cargo build --release --quiet --bin microslip
+        python_package_tests
         ;;
     *)
         echo "usage: sh scripts/run.sh main|test" >&2

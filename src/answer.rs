@@ -154,12 +154,17 @@ pub struct Value {
     /// Decimal strings, rounded outwards, of an interval that contains the value (for a
     /// proven provenance, proven to): `None` for an exact value.
     pub enclosure: Option<(String, String)>,
-    /// The binary64 value computed, where the printed digits come from an f64 run.
+    /// The binary64 number nearest the middle of the enclosure (the value an f64 program
+    /// reads), where it is finite and the value is not exact.
     pub binary64: Option<f64>,
 }
 
 /// The fewest significant digits of the outward-rounded ends of an enclosure.
 const ENCLOSURE_DIGITS: usize = 20;
+
+/// Bits at which [`Value::to_at_most`] reads an enclosure's decimal ends (outwards): far
+/// more than their [`ENCLOSURE_DIGITS`] or more digits need.
+const ENCLOSURE_BITS: u32 = 256;
 
 impl Value {
     /// Exactly zero.
@@ -181,7 +186,9 @@ impl Value {
                 outward(lower, digits, rug::float::Round::Down),
                 outward(upper, digits, rug::float::Round::Up),
             )),
-            binary64: None,
+            binary64: Some(Float::with_val(lower.prec().max(upper.prec()) + 1, lower + upper).to_f64() / 2.0)
+                // Not where f64's range loses the value: infinite, or zero for a value that is not.
+                .filter(|middle| middle.is_finite() && (*middle != 0.0 || (lower.is_zero() && upper.is_zero()))),
         }
     }
 
@@ -196,6 +203,7 @@ impl Value {
         let (lower, upper) = scaled.bounds(bits);
         let value = Value::within(&lower, &upper, most);
         let shift_text = |text: String| crate::verified::shift_exponent(&text, shift);
+        // Beyond MPFR's exponents the value is far beyond f64's too.
         Value {
             decimal: value.decimal.shifted(shift),
             enclosure: value
@@ -229,6 +237,52 @@ impl Value {
     /// determined).
     pub fn digits(&self) -> u32 {
         self.decimal.digits()
+    }
+
+    /// The value printed by the one rule to at most `most` significant digits (fewer
+    /// where its enclosure does not settle them): rounding the printed digits again would
+    /// round twice.
+    pub fn to_at_most(&self, most: u32) -> Decimal {
+        match (&self.decimal, &self.enclosure) {
+            (Decimal::Zero, _) | (_, None) => self.decimal.clone(),
+            (_, Some((lower, upper))) => {
+                // Read outwards, so that the interval still holds the value.
+                let read = |text: &str, round| {
+                    Float::parse(text).map(|parsed| Float::with_val_round(ENCLOSURE_BITS, parsed, round).0)
+                };
+                match (read(lower, rug::float::Round::Down), read(upper, rug::float::Round::Up)) {
+                    (Ok(lower), Ok(upper)) => decimal_interval(&lower, &upper, most),
+                    _ => self.decimal.clone(),
+                }
+            }
+        }
+    }
+
+    /// The enclosure as binary64 numbers rounded outwards, so that every number it holds
+    /// lies between them (`(0, 0)` for an exact zero; `None` for an exact value other than
+    /// zero, which has no enclosure to round).
+    ///
+    /// ```
+    /// use microslip::answer::Value;
+    ///
+    /// let value = Value::from_f64(0.1, 1e-17);
+    /// let (lower, upper) = value.enclosure_f64().unwrap();
+    /// assert!(lower < 0.1 && 0.1 < upper && upper - lower < 1e-16);
+    /// assert_eq!(Value::zero().enclosure_f64(), Some((0.0, 0.0)));
+    /// ```
+    pub fn enclosure_f64(&self) -> Option<(f64, f64)> {
+        if self.decimal == Decimal::Zero {
+            return Some((0.0, 0.0));
+        }
+        let (lower, upper) = self.enclosure.as_ref()?;
+        let outward = |text: &str, round: rug::float::Round| {
+            let (rounded, _) = Float::with_val_round(53, Float::parse(text).ok()?, round);
+            Some(rounded.to_f64())
+        };
+        Some((
+            outward(lower, rug::float::Round::Down)?,
+            outward(upper, rug::float::Round::Up)?,
+        ))
     }
 }
 

@@ -18,7 +18,6 @@
 //! driver retries at a higher precision or refuses). Balls are compared by their real
 //! parts, which on a complex ball is the branch the real points inside it take.
 
-use std::cell::{Cell, RefCell};
 use std::cmp::Ordering;
 use std::ffi::{c_char, CString};
 use std::fmt;
@@ -40,97 +39,10 @@ use num_traits::ToPrimitive;
 use rug::float::Round;
 use rug::Float;
 
+pub(crate) use crate::doubts::with_analytic;
+use crate::doubts::{analytic_required, not_analytic, undecided};
+pub use crate::doubts::{locate_doubts, watch, Doubts};
 use crate::real::{ParseRealError, Precision, Real};
-use crate::verified::shift_exponent;
-
-thread_local! {
-    static UNDECIDED: Cell<u64> = const { Cell::new(0) };
-    static NOT_ANALYTIC: Cell<u64> = const { Cell::new(0) };
-    static ANALYTIC_MODE: Cell<bool> = const { Cell::new(false) };
-    static SITES: RefCell<Option<Vec<String>>> = const { RefCell::new(None) };
-}
-
-/// What a computation on balls could not decide.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Doubts {
-    /// Comparisons of overlapping balls (each answered `false`).
-    pub undecided_comparisons: u64,
-    /// Functions asked for an analytic continuation across a branch cut or a sign change.
-    pub not_analytic: u64,
-}
-
-impl Doubts {
-    /// Whether the computation decided everything it branched on.
-    pub fn none(&self) -> bool {
-        self.undecided_comparisons == 0 && self.not_analytic == 0
-    }
-}
-
-/// Runs `computation` and reports what it could not decide (on this thread).
-pub fn watch<T>(computation: impl FnOnce() -> T) -> (T, Doubts) {
-    let before = (UNDECIDED.get(), NOT_ANALYTIC.get());
-    let value = computation();
-    let doubts = Doubts {
-        undecided_comparisons: UNDECIDED.get() - before.0,
-        not_analytic: NOT_ANALYTIC.get() - before.1,
-    };
-    (value, doubts)
-}
-
-/// Runs `computation` with every function required (`true`) to be analytic on its
-/// complex argument, as Arb's integration asks when it bounds an integrand on a ball.
-pub(crate) fn with_analytic<T>(required: bool, computation: impl FnOnce() -> T) -> T {
-    let before = ANALYTIC_MODE.replace(required);
-    let value = computation();
-    ANALYTIC_MODE.set(before);
-    value
-}
-
-fn undecided() {
-    UNDECIDED.set(UNDECIDED.get() + 1);
-    SITES.with_borrow_mut(|sites| {
-        if let Some(sites) = sites {
-            sites.push(call_site());
-        }
-    });
-}
-
-/// Runs `computation` as [`watch`] does, and also names where each undecided comparison
-/// was asked: per comparison, the frames of this crate's code that led to it, innermost
-/// first (outside the ball module). For locating a tie that no precision resolves; the
-/// frames' names need the debug information the release profile keeps.
-pub fn locate_doubts<T>(computation: impl FnOnce() -> T) -> (T, Doubts, Vec<String>) {
-    let outer = SITES.replace(Some(Vec::new()));
-    let (value, doubts) = watch(computation);
-    let sites = SITES.replace(outer).unwrap_or_default();
-    (value, doubts, sites)
-}
-
-/// The frames of this crate (outside this module) on the current stack, innermost first.
-fn call_site() -> String {
-    let trace = std::backtrace::Backtrace::force_capture().to_string();
-    let mut frames = Vec::new();
-    let mut lines = trace.lines().map(str::trim).peekable();
-    while let Some(line) = lines.next() {
-        let Some((_, function)) = line.split_once(": ") else {
-            continue;
-        };
-        let location = lines.peek().and_then(|next| next.strip_prefix("at ")).unwrap_or("");
-        if function.starts_with("microslip::") && !function.starts_with("microslip::ball::") {
-            let short = location.rsplit_once("/src/").map_or(location, |(_, file)| file);
-            frames.push(format!("{function} (src/{short})"));
-        }
-    }
-    frames.join(" <- ")
-}
-
-fn not_analytic() {
-    NOT_ANALYTIC.set(NOT_ANALYTIC.get() + 1);
-}
-
-fn analytic_required() -> bool {
-    ANALYTIC_MODE.get()
-}
 
 /// A complex Arb ball at a working precision; real wherever [`Real`] built it.
 pub struct Ball {
@@ -1159,41 +1071,6 @@ impl Real for Ball {
         unsafe { acb_union(&mut result.raw, &self.raw, &other.raw, result.slong_precision()) };
         result
     }
-}
-
-/// The digits of a real ball that every number in it rounds to: the longest decimal of
-/// at most `max_digits` significant digits (scientific notation, e.g. `1.2345e-3`) to
-/// which both ends of the ball round to nearest. Rounding to nearest is monotone, so
-/// then the whole ball rounds to it. (Agreement at N digits does not imply agreement at
-/// fewer: [0.1234549, 0.1234551] rounds to 1.23455e-1 but not to one 5-digit decimal.)
-/// `None` where not even one digit is determined (or the ball is not real and finite);
-/// an exact zero is `("0", max_digits)`.
-pub fn certain_digits(ball: &Ball, max_digits: u32) -> Option<(String, u32)> {
-    let max_digits = max_digits.max(1);
-    if !ball.is_real() || !ball.is_finite() {
-        return None;
-    }
-    if let Some((scaled, shift)) = ball.decimal_scaled() {
-        return certain_digits(&scaled, max_digits).map(|(text, digits)| (shift_exponent(&text, shift), digits));
-    }
-    // SAFETY: initialised.
-    if unsafe { arb_is_zero(ball.real_part()) } != 0 {
-        return Some(("0".to_string(), max_digits));
-    }
-    let bits = Precision::decimal_digits(max_digits).in_bits() + 64;
-    let (lower, upper) = ball.bounds(bits.max(ball.precision + 64));
-    // No decimal of more digits than the radius allows can hold both ends.
-    let radius = ball.relative_radius();
-    let most = if radius > 0.0 {
-        let log10 = radius.log10().to_f64_round(rug::float::Round::Up);
-        max_digits.min((2.0 - log10).clamp(1.0, f64::from(max_digits)) as u32)
-    } else {
-        max_digits
-    };
-    (1..=most.max(1)).rev().find_map(|digits| {
-        let text = Real::to_scientific(&lower, digits as usize);
-        (text == Real::to_scientific(&upper, digits as usize)).then_some((text, digits))
-    })
 }
 
 /// The smallest ball that contains both real balls.

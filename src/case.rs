@@ -64,6 +64,12 @@ pub enum InputError {
     /// Neither or both of λ and ν.
     #[error("give exactly one of the compliance ratio λ and Poisson's ratio ν")]
     LambdaOrNu,
+    /// A field the case needs was not given.
+    #[error("{} ({field}) is missing: give it", quantity_of(.field))]
+    Missing {
+        /// The field of the case (`p0`, `phi`, …).
+        field: &'static str,
+    },
     /// The compliance SPEC is wrong, or a table it names cannot be read or is not a
     /// compliance.
     #[error(transparent)]
@@ -148,6 +154,8 @@ pub struct CaseSpec {
     compliance_ratio: Field,
     phase: ReducedPhase,
     compliance: ComplianceSpec,
+    /// The text it was read from, for the reports that echo the inputs.
+    text: CaseText,
 }
 
 impl CaseText {
@@ -197,9 +205,39 @@ impl CaseText {
             compliance_ratio,
             phase,
             compliance,
+            text: self.clone(),
         };
         boundaries::decide(&spec.exact_cycle())?;
         Ok(spec)
+    }
+
+    /// A builder of a case from numbers or exact decimal strings, checked whole by
+    /// [`CaseBuilder::build`].
+    ///
+    /// ```
+    /// use microslip::case::CaseText;
+    ///
+    /// let case = CaseText::builder()
+    ///     .p0(1.0)
+    ///     .p1("0.4")
+    ///     .q1(0.5)
+    ///     .phi("0.4pi")
+    ///     .friction(1)
+    ///     .lambda(1)
+    ///     .compliance("persson:gamma=1,sigma=1")
+    ///     .build()
+    ///     .unwrap();
+    /// assert_eq!(case.text().p1, "0.4");
+    /// assert_eq!(case.text().q0, "0");
+    /// // A case outside the theory does not exist: gross slip is refused on building.
+    /// let refused = CaseText::builder()
+    ///     .p0(1).p1(0.4).q1(2).phi("0.4pi").friction(1).lambda(1)
+    ///     .compliance("persson:gamma=1,sigma=1")
+    ///     .build();
+    /// assert!(refused.unwrap_err().to_string().contains("gross slip"));
+    /// ```
+    pub fn builder() -> CaseBuilder {
+        CaseBuilder::default()
     }
 
     /// The load cycle and compliance at `precision` (`self.spec()?.at(precision)`); a caller
@@ -298,6 +336,11 @@ impl CaseSpec {
     pub fn compliance(&self) -> &ComplianceSpec {
         &self.compliance
     }
+
+    /// The text the case was read from.
+    pub fn text(&self) -> &CaseText {
+        &self.text
+    }
 }
 
 /// The name of the quantity a case field gives, as the theory writes it.
@@ -311,7 +354,118 @@ fn quantity_of(flag: &'static str) -> &'static str {
         "lambda" => "the compliance ratio λ",
         "nu" => "Poisson's ratio ν",
         "phi" => "the phase φ",
+        "compliance" => "the compliance SPEC",
         other => other,
+    }
+}
+
+/// A number of a case as the builder takes it: an exact decimal string (`"0.4"`, `"0.4pi"`,
+/// `"1e-300"`), an integer, or an f64, read as its shortest round-trip decimal (`0.1` is
+/// `"0.1"`, the decimal a user wrote, not the binary64 nearest it).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Number(String);
+
+impl From<&str> for Number {
+    fn from(text: &str) -> Number {
+        Number(text.to_string())
+    }
+}
+
+impl From<String> for Number {
+    fn from(text: String) -> Number {
+        Number(text)
+    }
+}
+
+impl From<f64> for Number {
+    fn from(x: f64) -> Number {
+        // Rust's `Debug` of an f64 is its shortest round-trip decimal; NaN and infinities
+        // stay words, which the reader refuses with their field's name.
+        Number(format!("{x:?}"))
+    }
+}
+
+impl From<i64> for Number {
+    fn from(n: i64) -> Number {
+        Number(n.to_string())
+    }
+}
+
+impl From<i32> for Number {
+    fn from(n: i32) -> Number {
+        Number(n.to_string())
+    }
+}
+
+/// A case put together field by field ([`CaseText::builder`]); Q0 is 0 unless given, and
+/// exactly one of λ and ν must be.
+#[derive(Clone, Debug, Default)]
+pub struct CaseBuilder {
+    p0: Option<String>,
+    p1: Option<String>,
+    q0: Option<String>,
+    q1: Option<String>,
+    phi: Option<String>,
+    friction: Option<String>,
+    lambda: Option<String>,
+    nu: Option<String>,
+    compliance: Option<String>,
+}
+
+/// A setter of the builder per number of a case.
+macro_rules! number_setters {
+    ($($(#[$doc:meta])* $field:ident),+) => {$(
+        $(#[$doc])*
+        pub fn $field(mut self, value: impl Into<Number>) -> Self {
+            self.$field = Some(value.into().0);
+            self
+        }
+    )+};
+}
+
+impl CaseBuilder {
+    number_setters!(
+        /// P0, the mean normal load (> 0).
+        p0,
+        /// P1, the normal load amplitude (0 ≤ P1 < P0).
+        p1,
+        /// Q0, the mean tangential load (default 0).
+        q0,
+        /// Q1, the tangential load amplitude (≥ 0).
+        q1,
+        /// φ, the phase: radians, or a decimal string in any form the command line takes
+        /// (`"0.4pi"`, `"pi/2"`, `"72deg"`, `"pi-1e-100"`).
+        phi,
+        /// f, the friction coefficient (> 0).
+        friction,
+        /// λ, the compliance ratio, in [1, 2].
+        lambda,
+        /// ν, Poisson's ratio, in [0, 2/3], in place of λ.
+        nu
+    );
+
+    /// The compliance SPEC (`"persson:gamma=1,sigma=1"`, `"table:FILE"`, …).
+    pub fn compliance(mut self, spec: impl Into<String>) -> Self {
+        self.compliance = Some(spec.into());
+        self
+    }
+
+    /// The case, read and checked whole as [`CaseText::spec`] does, or why it is not one (a
+    /// missing field is named).
+    pub fn build(self) -> Result<CaseSpec, InputError> {
+        let required = |field: Option<String>, name: &'static str| field.ok_or(InputError::Missing { field: name });
+        CaseText {
+            p0: required(self.p0, "p0")?,
+            p1: required(self.p1, "p1")?,
+            q0: self.q0.unwrap_or_else(zero_text),
+            q1: required(self.q1, "q1")?,
+            phi: required(self.phi, "phi")?,
+            friction: required(self.friction, "friction")?,
+            lambda: self.lambda,
+            nu: self.nu,
+            compliance: required(self.compliance, "compliance")?,
+        }
+        .spec()
     }
 }
 

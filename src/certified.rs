@@ -22,7 +22,8 @@ use flint_sys::acb_types::acb_struct;
 use flint_sys::arb_types::mag_struct;
 use flint_sys::mag::{mag_clear, mag_init, mag_is_zero, mag_mul_2exp_si};
 
-use crate::ball::{certain_digits, watch, with_analytic, Ball, Doubts};
+use crate::answer::{Decimal, Value};
+use crate::ball::{watch, with_analytic, Ball, Doubts};
 use crate::ball_gauss;
 use std::rc::Rc;
 
@@ -33,6 +34,7 @@ use crate::dissipation::closed_forms::{
 };
 use crate::dissipation::slope::knot_offsets;
 use crate::dissipation::{Segment, SegmentIntegrands, Segments, NEAR_SEPARATION};
+use crate::ladder::{doubled, Ladder, Rung, Stop};
 use crate::phase::ReducedPhase;
 use crate::quad::Piece;
 use crate::real::{Precision, Real};
@@ -540,56 +542,56 @@ where
         (phase_bits(cycle), separation_guard_bits(cycle).max(GUARD_BITS))
     });
     let first = whole_limbs(digit_bits + guard + extra);
-    let mut bits = first;
-    // Where no attempt is run in time, the error names the first one's precision.
-    let (mut reached, mut last_bits) = (0, bits);
-    let mut gave_up_before = false;
     let out_of_time = || deadline.is_some_and(|deadline| Instant::now() >= deadline);
     // An attempt at twice the bits costs about four times the last: one that would end
     // past the deadline is not started.
-    let mut next_cost = std::time::Duration::ZERO;
-    if deadline.is_some_and(|deadline| needs_probe(bits, deadline)) {
+    let mut first_cost = std::time::Duration::ZERO;
+    if deadline.is_some_and(|deadline| needs_probe(first, deadline)) {
         // A probe at a low precision foretells the first attempt's cost (quadratic in the bits).
         let started = Instant::now();
         if let Ok((cycle, compliance)) = case(Precision::bits(PROBE_BITS)) {
             let _ = enclose_dissipation(&cycle, compliance.as_ref(), PROBE_BITS);
         }
-        next_cost = started.elapsed() * (bits / PROBE_BITS).pow(2);
+        first_cost = started.elapsed() * (first / PROBE_BITS).pow(2);
     }
-    loop {
-        if deadline.is_some_and(|deadline| Instant::now() + next_cost >= deadline) {
-            return Err(CertifiedError::OutOfTime {
-                seconds: started_at.elapsed().as_secs_f64(),
-                asked: digits,
-                reached,
-                bits: last_bits,
-            });
-        }
-        last_bits = bits;
-        let started = Instant::now();
-        let (cycle, compliance) = match first_read.take() {
-            Some(case) if bits == likely => case,
-            _ => read(bits)?,
+    let ladder = Ladder::new(Precision::bits(first), Precision::bits(MAX_BITS))
+        .until(deadline)
+        .foreseeing(4, first_cost);
+    // The digits the last enclosure settled, and whether Arb gave up on a piece there.
+    let (mut reached, mut gave_up_before) = (0, false);
+    let rung = |precision: Precision| {
+        let bits = precision.in_bits();
+        let case = match first_read.take() {
+            Some(case) if bits == likely => Ok(case),
+            _ => read(bits),
+        };
+        let (cycle, compliance) = match case {
+            Ok(case) => case,
+            Err(error) => return Rung::Final(error),
         };
         // The digits' bits and [`GOAL_GUARD_BITS`] more (and the phase's), not the limb's
         // spare bits; a retry adds what the precision gained.
         let goal = (digit_bits + GOAL_GUARD_BITS + extra).min(first) + (bits - first);
         let error = match enclose_dissipation(&cycle, compliance.as_ref(), goal) {
             Ok(enclosure) if !enclosure.total.decimal_exponent_fits() => {
-                return Err(CertifiedError::BeyondDecimalExponents);
+                return Rung::Final(CertifiedError::BeyondDecimalExponents);
             }
             Ok(enclosure) => {
-                let certain = certain_digits(&enclosure.total, digits);
-                if let Some((text, enough)) = certain.clone().filter(|(_, n)| *n >= digits) {
-                    if !out_of_time() {
-                        return Ok(Certified {
-                            enclosure,
-                            text,
-                            digits: enough,
-                        });
-                    }
+                // The one printing rule decides the digits settled.
+                let value = Value::of_ball(&enclosure.total, bits, digits);
+                let settled = match value.decimal {
+                    Decimal::Zero => digits,
+                    _ => value.digits(),
+                };
+                // Digits that arrive after the deadline are out of time all the same.
+                if settled >= digits && !out_of_time() {
+                    return Rung::Reached(Certified {
+                        enclosure,
+                        text: value.decimal.to_string(),
+                        digits: settled,
+                    });
                 }
-                reached = certain.map_or(0, |(_, n)| n);
+                reached = settled;
                 CertifiedError::TooWide {
                     asked: digits,
                     reached,
@@ -599,18 +601,25 @@ where
             }
             // A cycle outside the theory stays outside at any precision, and so does one
             // too steep for the bounds.
-            Err(error @ (CertifiedError::Cycle(_) | CertifiedError::TooSteep { .. })) => return Err(error),
+            Err(error @ (CertifiedError::Cycle(_) | CertifiedError::TooSteep { .. })) => return Rung::Final(error),
             // Arb gave up on a piece at two precisions in a row: its integrand has a
             // singularity too near the piece for bisection, which more bits do not move.
-            Err(error @ CertifiedError::NotFinite { .. }) if gave_up_before => return Err(error),
+            Err(error @ CertifiedError::NotFinite { .. }) if gave_up_before => return Rung::Final(error),
             Err(error) => error,
         };
         gave_up_before = matches!(error, CertifiedError::NotFinite { .. });
-        next_cost = started.elapsed() * 4;
-        bits *= 2;
-        if bits > MAX_BITS {
-            return Err(error);
-        }
+        Rung::Short(error)
+    };
+    match ladder.climb(rung, doubled) {
+        Ok((certified, _)) => Ok(certified),
+        Err(Stop::Final(error) | Stop::Exhausted(error)) => Err(error),
+        Err(Stop::OutOfTime { last_attempt, .. }) => Err(CertifiedError::OutOfTime {
+            seconds: started_at.elapsed().as_secs_f64(),
+            asked: digits,
+            reached,
+            // Where no attempt was run in time, the first one's precision.
+            bits: last_attempt.map_or(first, Precision::in_bits),
+        }),
     }
 }
 

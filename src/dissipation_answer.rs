@@ -9,35 +9,30 @@
 //!    that produced them);
 //! 2. W exactly 0 for a reason read from the exact input ([`CaseSpec::exact_zero`]): at
 //!    once, at any `--digits` ([`Provenance::Exact`]);
-//! 3. with `--digits N`: a rigorous enclosure in ball arithmetic ([`Provenance::Certified`]),
-//!    or only where none can be had ([`NoEnclosure`] says why) two precisions agreeing
-//!    ([`Provenance::Agreement`], evidence, not proof);
-//! 4. without: f64 with the digits its error estimate determines ([`Provenance::Estimate`]),
-//!    or where f64 does not suffice ([`Fallback`] says why) [`F64_MOST_DIGITS`] digits by
-//!    step 3.
+//! 3. a rigorous enclosure in ball arithmetic ([`Provenance::Certified`]) to the digits
+//!    asked for (`--digits N`; without, [`DEFAULT_DIGITS`]), or only where none can be had
+//!    ([`NoEnclosure`] says why) two precisions agreeing ([`Provenance::Agreement`],
+//!    evidence, not proof). An f64 error estimate never decides a printed digit: it is
+//!    not a bound (the accuracy report still measures it, [`crate::accuracy`]).
 
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use rug::Float;
-
 use crate::admissibility::prove_admissible;
 use crate::answer::{Answer, ExactReason, Provenance, Value};
 use crate::case::{Case, CaseSpec, CaseText, InputError};
-use crate::compliance::{Compliance, ComplianceTable, TableInterpolant, TABLE_ORDER};
-use crate::cycle::{CycleError, LoadCycle};
+use crate::compliance::{ComplianceTable, TableInterpolant, TABLE_ORDER};
+use crate::cycle::LoadCycle;
 use crate::dissipation::{dissipation, Dissipation, DissipationError, ExactZero, Method, Options, Segment, Segments};
-use crate::real::{Precision, Real};
+use crate::real::Precision;
 use crate::reference::{check_case, checked_exact_zero, verified_dissipation_of, ReferenceError, MAX_DIGITS};
-use crate::verified::{resolved_digits, F64_DIGITS_FLOOR, F64_MOST_DIGITS};
+use crate::verified::F64_MOST_DIGITS;
 
 /// W as printed, with why the policy took the path it took.
 #[derive(Clone, Debug, PartialEq)]
 pub struct DissipationAnswer {
     /// W and its segments, and what vouches for them.
     pub answer: Answer,
-    /// Why a run without `--digits` did not print f64.
-    pub fallback: Option<Fallback>,
     /// Why the digits rest on agreement of two precisions rather than an enclosure.
     pub no_enclosure: Option<NoEnclosure>,
     /// For a compliance with a table: the table's error and the quadrature's.
@@ -50,119 +45,6 @@ impl DissipationAnswer {
         match self.answer.value.digits() {
             0 => String::new(),
             _ => self.answer.value.decimal.to_string(),
-        }
-    }
-}
-
-/// Why a run without `--digits` gave up f64 for [`F64_MOST_DIGITS`] digits at higher
-/// precision.
-#[derive(Clone, Debug, PartialEq)]
-#[non_exhaustive]
-pub enum Fallback {
-    /// f64 cannot hold a number of the case (1e-400, c=1e400).
-    CannotRead(InputError),
-    /// Rounded to f64, the inputs cross a boundary of the theory that the exact cycle keeps
-    /// off (P1 = 0.99999999999999999 rounds to P0 = 1).
-    RoundedAcrossBoundary(CycleError),
-    /// An intermediate of the compliance's formula leaves f64's range: its change of v'
-    /// about P0 differs from MPFR's at `load`.
-    ComplianceOverflow {
-        /// The load at which the two differ.
-        load: f64,
-        /// v'(P) − v'(P0) there in f64.
-        in_f64: f64,
-        /// The same in MPFR, to four digits.
-        in_mpfr: String,
-    },
-    /// A magnitude of the case lies outside what f64 carries through the integrals.
-    OutsideRange {
-        /// The quantity's name.
-        quantity: String,
-        /// Its value.
-        value: f64,
-        /// The least magnitude f64 carries.
-        low: f64,
-        /// The largest.
-        high: f64,
-    },
-    /// f64 fails: the result is out of its range or not finite, or the compliance looks
-    /// non-physical there.
-    F64Fails(DissipationError),
-    /// Rounding alone would move W by `expected` (relative).
-    IllConditioned {
-        /// What amplifies the rounding.
-        cause: String,
-        /// The relative change of W that rounding alone can cause.
-        expected: f64,
-    },
-    /// The f64 integrals did not converge.
-    NotConverged,
-    /// W ± its error estimate straddles rounding boundaries of more than its last digits.
-    Straddles {
-        /// The digits f64 determines.
-        resolved: u32,
-        /// Its error estimate.
-        error_estimate: f64,
-    },
-    /// f64 gives W = 0 with an error estimate of 0, as for an exact zero, which no reason
-    /// read from the input makes it (those are answered before f64 runs): every change of
-    /// v' over the cycle's loads, or every integrand value, has rounded to zero in f64
-    /// (v' = a·exp(−P/c) + d at loads of thousands of c).
-    ZeroInF64,
-    /// The segments cancel to a W much smaller than themselves.
-    Cancellation {
-        /// The digits f64 determines.
-        resolved: u32,
-        /// The largest |segment|.
-        largest_segment: f64,
-    },
-}
-
-impl std::fmt::Display for Fallback {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            Fallback::CannotRead(error) => write!(f, "f64 cannot read the case: {error}"),
-            Fallback::RoundedAcrossBoundary(error) => write!(
-                f,
-                "rounded to f64 the inputs cross a boundary that the exact cycle keeps off (in f64: {error})"
-            ),
-            Fallback::ComplianceOverflow { load, in_f64, in_mpfr } => write!(
-                f,
-                "in f64 the compliance gives v'(P) − v'(P0) = {in_f64:.3e} at P = {load:.3e}, in MPFR {in_mpfr}: an intermediate of its formula leaves the range of f64"
-            ),
-            Fallback::OutsideRange {
-                quantity,
-                value,
-                low,
-                high,
-            } => write!(
-                f,
-                "{quantity} = {value:.1e} is outside the magnitudes f64 carries through the integrals without overflow or underflow ({low:.0e} to {high:.0e})"
-            ),
-            Fallback::F64Fails(error) => write!(f, "f64 fails here: {error}"),
-            Fallback::IllConditioned { cause, expected } => write!(
-                f,
-                "f64 is ill-conditioned here ({cause}): rounding alone would move W by ~{expected:.0e}"
-            ),
-            Fallback::NotConverged => f.write_str("the f64 integrals did not converge here"),
-            Fallback::Straddles {
-                resolved,
-                error_estimate,
-            } => write!(
-                f,
-                "f64 resolves {resolved} digits here: W ± its error estimate {error_estimate:.1e} straddles a rounding boundary of digit {}",
-                resolved + 1
-            ),
-            Fallback::ZeroInF64 => f.write_str(
-                "f64 gives W = 0, which no reason read from the input makes exact (in f64 the changes of v' over the cycle's loads, or the integrands, round to 0)",
-            ),
-            Fallback::Cancellation {
-                resolved,
-                largest_segment,
-            } => write!(
-                f,
-                "f64 resolves {resolved} digits here: its segments, up to {largest_segment:.1e}, cancel to W"
-            ),
         }
     }
 }
@@ -211,11 +93,45 @@ pub fn dissipation_answer(case: &CaseText, digits: Option<u32>, budget: Duration
     dissipation_report(case, digits, budget).map(|report| report.answer)
 }
 
-/// W for printing by the policy of this module, within `budget`: with `digits` = Some(N),
-/// N certified digits (or by agreement where no enclosure can be had); without, f64
-/// where it suffices.
+/// The significant digits printed without `--digits`: as many as binary64 carries through
+/// a decimal round trip, each one proven.
+pub const DEFAULT_DIGITS: u32 = F64_MOST_DIGITS;
+
+/// W for printing by the policy of this module, within `budget`: `digits` = Some(N) digits,
+/// or without [`DEFAULT_DIGITS`], proven by an enclosure (by agreement only where no
+/// enclosure can be had, saying why).
 pub fn dissipation_report(
     case: &CaseText,
+    digits: Option<u32>,
+    budget: Duration,
+) -> Result<DissipationAnswer, ReferenceError> {
+    // The case is read once; every precision below is computed from it.
+    dissipation_of(&case.spec()?, digits, budget)
+}
+
+/// [`dissipation_report`] of a case already read (as [`CaseText::builder`] gives it).
+///
+/// ```
+/// use std::time::Duration;
+///
+/// use microslip::case::CaseText;
+/// use microslip::dissipation_answer::dissipation_of;
+///
+/// let case = CaseText::builder()
+///     .p0(1).p1(0.4).q1(0.5).phi("0.4pi").friction(1).lambda(1)
+///     .compliance("persson:gamma=1,sigma=1")
+///     .build()
+///     .unwrap();
+/// let report = dissipation_of(&case, None, Duration::from_secs(60)).unwrap();
+/// let w = &report.answer.value;
+/// assert_eq!(w.decimal.to_string(), "4.06247579245824e-1");
+/// assert!(report.answer.provenance.is_proven());
+/// // The exact W lies in the enclosure, every number of which rounds to the digits printed.
+/// let (lower, upper) = w.enclosure_f64().unwrap();
+/// assert!(lower <= upper && upper - lower < 1e-16);
+/// ```
+pub fn dissipation_of(
+    case: &CaseSpec,
     digits: Option<u32>,
     budget: Duration,
 ) -> Result<DissipationAnswer, ReferenceError> {
@@ -224,36 +140,33 @@ pub fn dissipation_report(
     if let Some(digits) = digits.filter(|&d| d == 0 || d > MAX_DIGITS) {
         return Err(ReferenceError::DigitsOutOfRange(digits));
     }
-    // The case is read once; every precision below is computed from it.
-    let case = &case.spec()?;
     prove_admissible(case).map_err(DissipationError::from)?;
     let tables = case.compliance().tables();
     if !tables.is_empty() {
         let estimate = table_answer(case, &tables, deadline)?;
         return match digits {
-            None => Ok(estimate),
+            // A table of equal slopes dissipates nothing, exactly, as any constant slope.
+            None => match checked_exact_zero(case)? {
+                Some(reason) => Ok(DissipationAnswer {
+                    answer: exact_zero_answer(reason, None),
+                    ..estimate
+                }),
+                None => Ok(estimate),
+            },
             Some(digits) => table_to_digits(case, estimate, digits, (started, deadline)),
         };
     }
     let plain = |answer| DissipationAnswer {
         answer,
-        fallback: None,
         no_enclosure: None,
         table: None,
     };
     if let Some(reason) = checked_exact_zero(case)? {
         return Ok(plain(exact_zero_answer(reason, digits)));
     }
-    let fallback = match digits {
-        Some(_) => None,
-        None => match in_f64(case, deadline)? {
-            Ok(answer) => return Ok(plain(answer)),
-            Err(fallback) => Some(fallback),
-        },
-    };
-    let (answer, no_enclosure) = to_digits(case, digits.unwrap_or(F64_MOST_DIGITS), (started, deadline))?;
+    let (mut answer, no_enclosure) = to_digits(case, digits.unwrap_or(DEFAULT_DIGITS), (started, deadline))?;
+    answer.digits_requested = digits;
     Ok(DissipationAnswer {
-        fallback,
         no_enclosure,
         ..plain(answer)
     })
@@ -367,7 +280,7 @@ mod certified {
         let value = |ball: &Ball| Value::of_ball(ball, bits, digits);
         let total = value(&enclosure.total);
         if total.digits() < digits {
-            // The one printing rule is stricter than the driver's where an end is a tie.
+            // The driver settles its digits by the same rule at the same precision.
             return Err(Ok(NoEnclosure::Refused(CertifiedError::TooWide {
                 asked: digits,
                 reached: total.digits(),
@@ -401,97 +314,6 @@ mod certified {
     }
 }
 
-/// W in f64 with the digits its error estimate determines, or why f64 does not suffice.
-fn in_f64(case: &CaseSpec, deadline: Instant) -> Result<Result<Answer, Fallback>, ReferenceError> {
-    let Case { cycle, compliance } = match case.at::<f64>(Precision::DOUBLE) {
-        Ok(case) => case,
-        // A number f64 cannot hold (1e-400, c=1e400): MPFR reads the text exactly.
-        Err(error) if case.at::<Float>(Precision::bits(64)).is_ok() => return Ok(Err(Fallback::CannotRead(error))),
-        Err(error) => return Err(error.into()),
-    };
-    if let Err(error) = cycle.validate() {
-        return Ok(Err(Fallback::RoundedAcrossBoundary(error)));
-    }
-    let compliance_rounding = match compliance_rounding(case, &cycle, compliance.as_ref()) {
-        Ok(rounding) => rounding,
-        Err(fallback) => return Ok(Err(fallback)),
-    };
-    let within_budget = Options {
-        deadline: Some(deadline),
-        ..Options::default()
-    };
-    let result = match dissipation(&cycle, compliance.as_ref(), &within_budget) {
-        Ok(result) => result,
-        Err(DissipationError::OutsideRange {
-            quantity,
-            value,
-            low,
-            high,
-            ..
-        }) => {
-            return Ok(Err(Fallback::OutsideRange {
-                quantity,
-                value,
-                low,
-                high,
-            }))
-        }
-        // Out of f64's range in the result, not finite, or a compliance f64 sees as
-        // non-physical (v' underflowing to 0, say): MPFR either computes it or says why not.
-        Err(
-            error @ (DissipationError::OutOfRange { .. }
-            | DissipationError::NotFinite { .. }
-            | DissipationError::Compliance(_)),
-        ) => return Ok(Err(Fallback::F64Fails(error))),
-        Err(DissipationError::IllConditioned { cause, expected, .. }) => {
-            return Ok(Err(Fallback::IllConditioned { cause, expected }))
-        }
-        Err(DissipationError::NotConverged { .. }) => return Ok(Err(Fallback::NotConverged)),
-        Err(other) => return Err(other.into()),
-    };
-    // The quadrature's estimate covers the rounding of the loads, not the compliance's own: where
-    // the terms of v' cancel (a sum of power laws of opposite signs), the change of v' carries
-    // the rounding of its terms, measured above against MPFR; beyond ordinary rounding it is
-    // carried into W through the segments, with a factor of ten for the kernels' spread.
-    let mut result = result;
-    if compliance_rounding > 64.0 * f64::EPSILON {
-        let spread: f64 = result.segments.named().iter().map(|(_, v)| v.abs()).sum();
-        result.error_estimate += 10.0 * compliance_rounding * spread;
-    }
-    let segment_errors = Segments::from_fn(|_| result.error_estimate);
-    Ok(f64_suffices(&result).map(|()| estimated(&result, result.error_estimate, &segment_errors)))
-}
-
-/// Whether the digits f64 determines are enough to print: [`F64_DIGITS_FLOOR`] or more,
-/// or one fewer where only the rounding boundary of the next digit is straddled (every
-/// digit printed is still right, and MPFR would cost a thousand times more); never for a
-/// W of 0 ± 0 (an exact zero is answered by its reason before f64 runs).
-fn f64_suffices(result: &Dissipation<f64>) -> Result<(), Fallback> {
-    if result.total == 0.0 && result.error_estimate == 0.0 {
-        return Err(Fallback::ZeroInF64);
-    }
-    let resolved = resolved_digits(result.total, result.error_estimate);
-    if resolved >= F64_DIGITS_FLOOR {
-        return Ok(());
-    }
-    // The digits the estimate's width alone would leave.
-    let width = (result.total.abs() / result.error_estimate).log10();
-    if width >= f64::from(F64_DIGITS_FLOOR) {
-        if resolved + 1 >= F64_DIGITS_FLOOR {
-            return Ok(());
-        }
-        return Err(Fallback::Straddles {
-            resolved,
-            error_estimate: result.error_estimate,
-        });
-    }
-    let largest_segment = result.segments.named().iter().map(|(_, v)| v.abs()).fold(0.0, f64::max);
-    Err(Fallback::Cancellation {
-        resolved,
-        largest_segment,
-    })
-}
-
 /// An f64 result as an estimated answer: W for the absolute `bound` on its error, each
 /// segment for its own in `segment_errors`.
 fn estimated(result: &Dissipation<f64>, bound: f64, segment_errors: &Segments<f64>) -> Answer {
@@ -507,60 +329,6 @@ fn estimated(result: &Dissipation<f64>, bound: f64, segment_errors: &Segments<f6
         },
         method: Some(result.method),
     }
-}
-
-/// Interior loads of the cycle at which [`compliance_rounding`] compares.
-const COMPARED_LOADS: i64 = 16;
-
-/// The rounding of the f64 compliance: the largest difference of its change of v' about P0
-/// (the only function of it the integrals see) from the same change in MPFR, at loads across
-/// the cycle, relative to the largest change (0 where the comparison cannot be made). Beyond
-/// 1e-6 the f64 compliance is not to be trusted at all: that is what an overflow or underflow
-/// inside a compliance formula does (v' = a + b/(P + c) with c = 1e300 makes every change 0 in
-/// f64), and within f64 it may look like a legitimate linear v.
-fn compliance_rounding(
-    case: &CaseSpec,
-    cycle: &LoadCycle<f64>,
-    compliance: &dyn Compliance<f64>,
-) -> Result<f64, Fallback> {
-    let Ok(precise) = case.at::<Float>(Precision::bits(64)) else {
-        return Ok(0.0);
-    };
-    let p0 = cycle.mean_normal_load;
-    let low = (p0 - cycle.normal_amplitude).min(cycle.permanent_stick_load());
-    let high = p0 + cycle.normal_amplitude;
-    if !(low.is_finite() && high.is_finite() && low < high) {
-        return Ok(0.0);
-    }
-    let change = compliance.slope_change_about(&p0);
-    let precise_change = precise.compliance.slope_change_about(&precise.cycle.mean_normal_load);
-    // Compared in MPFR: an exact change below f64's range must not round to the f64 zero.
-    let pairs: Vec<(f64, f64, Float)> = (1..COMPARED_LOADS)
-        .map(|k| {
-            let offset = (low - p0) + (high - low) * (k as f64 / COMPARED_LOADS as f64);
-            let exact = precise_change(&Float::with_val(64, offset));
-            (p0 + offset, change(&offset), exact)
-        })
-        .collect();
-    let zero = Float::with_val(64, 0);
-    let largest = pairs
-        .iter()
-        .fold(zero, |acc, (_, _, exact)| acc.max(&exact.clone().abs()));
-    let tolerance = Float::with_val(64, &largest / 1_000_000u32);
-    let mut worst = Float::with_val(64, 0);
-    for (load, in_f64, exact) in pairs {
-        let difference = (Float::with_val(64, in_f64) - &exact).abs();
-        // NaN on either side counts as a difference.
-        if difference.is_nan() || difference > tolerance {
-            return Err(Fallback::ComplianceOverflow {
-                load,
-                in_f64,
-                in_mpfr: exact.to_scientific(4),
-            });
-        }
-        worst.max_mut(&difference);
-    }
-    Ok(if largest > 0 { (worst / largest).to_f64() } else { 0.0 })
 }
 
 /// Relative quadrature tolerance of W from a table: far below any table's own error,
@@ -683,7 +451,6 @@ fn table_answer(
     };
     Ok(DissipationAnswer {
         answer,
-        fallback: None,
         no_enclosure: None,
         table: Some(TableEstimate {
             error: table_error,

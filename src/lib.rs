@@ -27,14 +27,17 @@
 //!   `certified`: proven digits from Arb ball arithmetic);
 //! - [`answer`]: a printed value with its digits, enclosure and provenance;
 //! - [`exact`]: the small-amplitude series and its exact coefficients;
-//! - [`case`]: a case read once from its text ([`case::CaseText`] → [`case::CaseSpec`]) and
-//!   computed at any precision;
-//! - [`dissipation_answer`]: the one policy that picks how W is computed and vouched for;
-//! - [`simulate`]: the independent check by a time-stepped simulation;
+//! - [`case`]: a case built from numbers or decimals ([`case::CaseText::builder`]) or read
+//!   once from its text ([`case::CaseText`] → [`case::CaseSpec`]), computed at any precision;
+//! - [`dissipation_answer`]: the one policy that picks how W is computed and vouched for
+//!   ([`dissipation_answer::dissipation_of`]);
+//! - [`ladder`]: the one loop over working precisions that every proven digit climbs;
+//! - [`simulate`]: the independent check by a time-stepped simulation, and
+//!   [`simulation_answer`] its W as an answer;
 //! - [`verify`]: the theorem gate ([`verify::run`]).
 //!
 //! Modules hidden from this documentation (`quad`, `files`, `batch`, `verified`, `ball`,
-//! `phase`, and with feature `cli` `accuracy`, `catalogue`, `figures`, `plot`) are
+//! `phase`, `doubts`, `interval`, and with feature `cli` `accuracy`, `catalogue`, `figures`, `plot`) are
 //! public only for the command line, the tests and the benches; they are not part of
 //! the API and change without notice.
 //!
@@ -55,11 +58,15 @@ pub mod cycle;
 mod decimal;
 pub mod dissipation;
 pub mod dissipation_answer;
+#[doc(hidden)]
+pub mod doubts;
 pub mod exact;
+pub mod ladder;
 pub mod path;
 pub mod real;
 pub mod reference;
 pub mod simulate;
+pub mod simulation_answer;
 pub mod verify;
 
 #[cfg(feature = "cli")]
@@ -80,6 +87,8 @@ pub mod catalogue;
 pub mod figures;
 #[doc(hidden)]
 pub mod files;
+#[doc(hidden)]
+pub mod interval;
 #[doc(hidden)]
 pub mod messages;
 #[doc(hidden)]

@@ -89,6 +89,39 @@ impl ReferenceError {
             _ => false,
         }
     }
+
+    /// The exit code of a command that ends on this error: 1 for a failure of the run
+    /// ([`Self::is_failure`]), 2 for refused input.
+    pub fn exit_code(&self) -> u8 {
+        if self.is_failure() {
+            1
+        } else {
+            2
+        }
+    }
+
+    /// What the user may change to get W, as a clause to append to the message (empty
+    /// where no flag helps); `digits_given`: whether `--digits` was.
+    pub fn hint(&self, digits_given: bool) -> &'static str {
+        match self {
+            // A table is computed in f64, where these end; any other W goes up to Arb.
+            ReferenceError::Dissipation(
+                DissipationError::NotConverged { .. }
+                | DissipationError::IllConditioned { .. }
+                | DissipationError::OutOfRange { .. },
+            ) if !digits_given => "; try --digits N (digits in MPFR)",
+            // More time helps an enclosure only where time is what it ran out of.
+            #[cfg(feature = "certified")]
+            ReferenceError::Certified(error)
+                if !matches!(error, crate::certified::CertifiedError::OutOfTime { .. }) =>
+            {
+                ""
+            }
+            _ if !self.is_failure() => "",
+            _ if digits_given => "; raise --max-seconds or ask for fewer --digits",
+            _ => "; raise --max-seconds",
+        }
+    }
 }
 
 fn attempt(
@@ -320,6 +353,25 @@ pub fn verified_dissipation_of(
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    #[test]
+    fn the_digits_hint_is_given_only_where_digits_were_not() {
+        let out_of_range = || ReferenceError::Dissipation(DissipationError::OutOfRange { scale: 1e-310 });
+        assert_eq!(out_of_range().hint(false), "; try --digits N (digits in MPFR)");
+        assert_eq!(out_of_range().hint(true), "");
+        assert_eq!(out_of_range().exit_code(), 2);
+        let budget = || {
+            ReferenceError::Budget(OutOfBudget {
+                digits_requested: 30,
+                digits_agreed: 3,
+                seconds: 1.0,
+                precision_bits: 256,
+            })
+        };
+        assert!(budget().hint(true).contains("fewer --digits"));
+        assert!(!budget().hint(false).contains("--digits"));
+        assert_eq!(budget().exit_code(), 1);
+    }
 
     #[test]
     fn the_budget_error_reads_as_before() {

@@ -12,6 +12,7 @@ use std::time::Instant;
 use rug::float::Round;
 use rug::Float;
 
+use crate::ladder::{Ladder, Rung, Stop};
 use crate::real::{Precision, Real};
 
 /// Digits agreed beyond the target before a value counts as verified.
@@ -185,24 +186,17 @@ pub fn verify<C: TwoPrecisions>(
 ) -> Result<Verified<C::Output>, VerifyError<C::Error>> {
     let started = Instant::now();
     let required = digits + GUARD_DIGITS;
-    let mut precision = computation.starting_precision(required);
-    let mut best = 0;
-    // The higher precision of the last attempt, as the budget error reports it.
-    let mut last = check_precision(precision);
-    for attempt in 0.. {
-        if Instant::now() >= deadline {
-            return Err(VerifyError::OutOfBudget(OutOfBudget {
-                digits_requested: digits,
-                digits_agreed: best,
-                seconds: started.elapsed().as_secs_f64(),
-                precision_bits: last.in_bits(),
-            }));
-        }
+    let start = computation.starting_precision(required);
+    let ladder = Ladder::new(start, Precision::bits(MAX_PRECISION_BITS)).until(Some(deadline));
+    // The most digits any attempt agreed on, the attempts made, and the last one's precision.
+    let (mut best, mut attempt, mut last) = (0, 0, start);
+    let rung = |precision: Precision| {
+        last = precision;
         let higher = check_precision(precision);
-        last = higher;
         let outcome = computation
             .first(precision, attempt)
             .and_then(|first| Ok((computation.check(&first, higher, attempt)?, first)));
+        attempt += 1;
         let agreed = match outcome {
             Ok((second, first)) => {
                 let exact = computation.zeros_are_exact(&first) && computation.zeros_are_exact(&second);
@@ -215,7 +209,7 @@ pub fn verify<C: TwoPrecisions>(
                         .all(|(a, b)| decimal_ball(b, &agreement_radius(a, b), digits).digits() >= digits)
                 };
                 if agreed >= required && determined() {
-                    return Ok(Verified {
+                    return Rung::Reached(Verified {
                         output: second,
                         first,
                         agreed,
@@ -227,12 +221,37 @@ pub fn verify<C: TwoPrecisions>(
                 agreed.min(required - 1)
             }
             Err(error) if computation.retries(&error) => 0,
-            Err(error) => return Err(VerifyError::Failed(error)),
+            Err(error) => return Rung::Final(Attempt::Failed(error)),
         };
         best = best.max(agreed);
-        precision = next_precision(precision, required, agreed);
+        Rung::Short(Attempt::Agreed(agreed))
+    };
+    let next = |precision: Precision, short: &Attempt<C::Error>| match short {
+        Attempt::Agreed(agreed) => next_precision(precision, required, *agreed),
+        // A failure is final, never short.
+        Attempt::Failed(_) => precision,
+    };
+    match ladder.climb(rung, next) {
+        Ok((verified, _)) => return Ok(verified),
+        Err(Stop::Final(Attempt::Failed(error))) => return Err(VerifyError::Failed(error)),
+        // Out of time, or short at the highest precision (complete cancellation): out of
+        // budget either way.
+        Err(Stop::OutOfTime { .. } | Stop::Exhausted(_) | Stop::Final(Attempt::Agreed(_))) => {}
     }
-    unreachable!("the attempts are unbounded")
+    Err(VerifyError::OutOfBudget(OutOfBudget {
+        digits_requested: digits,
+        digits_agreed: best,
+        seconds: started.elapsed().as_secs_f64(),
+        // The higher precision of the last attempt (of the first, where none was made).
+        precision_bits: check_precision(last).in_bits(),
+    }))
+}
+
+/// What one attempt of [`verify`] gave: the digits two precisions agreed on, or a failure
+/// no precision changes.
+enum Attempt<E> {
+    Agreed(u32),
+    Failed(E),
 }
 
 /// The bound with which agreement vouches for the check's `second`: its distance from
@@ -279,46 +298,6 @@ pub fn verified_values<E>(
 /// The most significant digits an f64 result is printed with: binary64 carries 15.95
 /// decimal digits, and 15 always survive a round trip through decimal text.
 pub const F64_MOST_DIGITS: u32 = 15;
-
-/// The fewest significant digits an f64 result may be printed with. Where f64 holds
-/// fewer — rounding or cancellation has cost it more than a few of its 15 — the verified
-/// [`F64_MOST_DIGITS`] digits in MPFR are printed instead: they cost milliseconds, while
-/// most cases (more than four in five ordinary cycles) hold 12 or more and print at f64
-/// speed.
-pub const F64_DIGITS_FLOOR: u32 = 12;
-
-/// What vouches for the digits of a printed value: the kind of its bound.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Bound {
-    /// An f64 computation's error estimate: not proven.
-    Estimate,
-    /// Two computations at different working precisions agree: evidence, not a proof.
-    Agreement,
-    /// A table compliance's error estimate beside the quadrature's: not proven.
-    TableError,
-    /// The value is exact (a closed form's zero).
-    Exact,
-}
-
-impl Bound {
-    /// The machine-readable name (`"estimate"`, `"agreement"`, `"table_error"`, `"exact"`).
-    pub fn key(self) -> &'static str {
-        match self {
-            Bound::Estimate => "estimate",
-            Bound::Agreement => "agreement",
-            Bound::TableError => "table_error",
-            Bound::Exact => "exact",
-        }
-    }
-}
-
-/// The significant digits of `value` that an absolute `error` leaves standing: the most
-/// (up to [`F64_MOST_DIGITS`]) with which every point of [`value` − `error`, `value` +
-/// `error`] rounds to one decimal ([`decimal_f64`]); 0 where not even one digit is
-/// determined, all of them for an exact value (`error` = 0).
-pub fn resolved_digits(value: f64, error: f64) -> u32 {
-    decimal_f64(value, error).digits().min(F64_MOST_DIGITS)
-}
 
 /// A value as printed by the one rule: an N-digit decimal is printed only if every point
 /// of the value's interval [value − bound, value + bound] rounds to it (to nearest);
@@ -574,29 +553,6 @@ fn scientific((negative, mantissa, exponent): &DecimalParts) -> String {
     format!("{sign}{first}{dot}{rest}e{}", exponent - 1)
 }
 
-/// The digits to print the f64 `value` with, given verified digits of the same quantity:
-/// the most (up to [`F64_MOST_DIGITS`]) at which `value` rounds to the same decimal as
-/// `verified` does, so that every digit printed is a verified one — or `None` where that
-/// is fewer than [`F64_DIGITS_FLOOR`], or `value` is outside f64's normal range, and f64
-/// does not suffice. (A count of agreeing
-/// digits would not do: 6.666660000000006e8 and 6.666660000000016e8 agree to 15 digits
-/// and round to different 15th digits.)
-pub fn f64_digits_against(value: f64, verified: &Float) -> Option<u32> {
-    if !value.is_finite() || (value != 0.0 && value.abs() < f64::MIN_POSITIVE) {
-        return None;
-    }
-    (F64_DIGITS_FLOOR..=F64_MOST_DIGITS)
-        .rev()
-        .find(|&digits| value.to_scientific(digits as usize) == verified.to_scientific(digits as usize))
-}
-
-/// The digits to print an f64 result with that holds `digits` significant digits (by its
-/// error estimate, or by agreement with verified digits), or `None` where f64 does not
-/// suffice ([`F64_DIGITS_FLOOR`]).
-pub fn f64_printed_digits(digits: u32) -> Option<u32> {
-    (digits >= F64_DIGITS_FLOOR).then_some(digits.min(F64_MOST_DIGITS))
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -823,34 +779,6 @@ mod tests {
         assert_eq!(
             decimal_f64(14018.010208534673, 7.72750012239026e-10),
             digits("1.40180102085e4", 12)
-        );
-        assert_eq!(resolved_digits(14018.010208534673, 7.72750012239026e-10), 12);
-    }
-
-    #[test]
-    fn f64_suffices_from_twelve_digits() {
-        assert_eq!(resolved_digits(0.4, 1.37e-14), 13);
-        assert_eq!(resolved_digits(0.0, 0.0), F64_MOST_DIGITS);
-        assert_eq!(resolved_digits(0.0, 1e-300), 0);
-        assert_eq!(resolved_digits(1.0, f64::NAN), 0);
-        assert_eq!(resolved_digits(1.0, 0.0), F64_MOST_DIGITS);
-        assert_eq!(resolved_digits(1e-3, 2e-3), 0);
-        assert_eq!(resolved_digits(f64::INFINITY, 1.0), 0);
-        assert_eq!(f64_printed_digits(11), None);
-        assert_eq!(f64_printed_digits(12), Some(12));
-        assert_eq!(f64_printed_digits(u32::MAX), Some(F64_MOST_DIGITS));
-        let third = Float::with_val(200, 1) / 3u32;
-        assert_eq!(f64_digits_against(1.0 / 3.0, &third), Some(15));
-        assert_eq!(f64_digits_against(0.3333333333334, &third), Some(12));
-        assert_eq!(f64_digits_against(0.33333333334, &third), None);
-        assert_eq!(f64_digits_against(0.0, &Float::with_val(64, 0)), Some(F64_MOST_DIGITS));
-        // Agreeing to 15 digits is not enough: the 15th digit must round the same way.
-        let verified = Float::parse_decimal("-6.66666000000001570796329128232e8", Precision::bits(128)).unwrap();
-        assert_eq!(f64_digits_against(-6.666660000000006e8, &verified), Some(14));
-        assert_eq!(f64_digits_against(-6.666660000000016e8, &verified), Some(15));
-        assert_eq!(
-            f64_digits_against(f64::MIN_POSITIVE / 2.0, &Float::with_val(64, f64::MIN_POSITIVE / 2.0)),
-            None
         );
     }
 }

@@ -6,6 +6,8 @@ use std::process::Output;
 
 mod common;
 
+use common::Draws;
+
 fn microslip(args: &[&str], stdin: Option<&str>) -> Output {
     common::run(args).stdin(stdin.unwrap_or("")).output()
 }
@@ -23,19 +25,6 @@ fn scratch(name: &str) -> PathBuf {
 
 fn path_text(path: &Path) -> String {
     path.to_string_lossy().into_owned()
-}
-
-/// A deterministic stream of numbers in [0, 1) (SplitMix64).
-struct Draws(u64);
-
-impl Draws {
-    fn next(&mut self) -> f64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
-    }
 }
 
 const HEADER: &str = "id,p0,p1,q0,q1,phi,friction,lambda,nu,compliance";
@@ -401,22 +390,20 @@ fn jsonl_gives_every_key_one_type_inputs_as_written_and_w_as_a_decimal_string() 
     assert_eq!(rows[0]["W_f64"], single["W_f64"]);
     let printed: f64 = rows[0]["W"].as_str().unwrap().parse().unwrap();
     assert!((printed - rows[0]["W_f64"].as_f64().unwrap()).abs() <= 1e-12 * printed);
-    assert!(rows[0]["error_estimate"].is_number() && rows[0]["table_error"].is_null());
+    assert!(rows[0]["error_estimate"].is_null() && rows[0]["table_error"].is_null());
+    assert_eq!(rows[0]["provenance"], "certified", "{}", rows[0]);
     // A failed row (P0 < P1) has every result null, its inputs as written all the same.
     assert!(rows[1]["error"].is_string() && rows[1]["W"].is_null() && rows[1]["digits"].is_null());
-    // A compliance f64 cannot hold: 15 digits by an enclosure, W text of the same kind, no W_f64.
+    // A compliance f64 cannot hold: 15 digits by an enclosure, W text of the same kind, no W_f64
+    // (the value lies below f64's range).
     assert_eq!(rows[2]["W"], "4.06247579245824e-401", "{}", rows[2]);
-    assert!(
-        rows[2]["W_f64"].is_null() && rows[2]["f64_fallback"].is_string(),
-        "{}",
-        rows[2]
-    );
-    // Verified digits: text again, 25 of them, and no binary64.
+    assert!(rows[2]["W_f64"].is_null(), "{}", rows[2]);
+    // Verified digits: text again, 25 of them, and the binary64 nearest their middle.
     let verified = typed(&["--digits", "25"]);
     let w = verified[0]["W"].as_str().expect("W is text");
     assert_eq!(w.split('e').next().unwrap().replace(['.', '-'], "").len(), 25, "{w}");
     assert!(w.starts_with(&single["W"].as_str().unwrap()[..8]), "{w}");
-    assert!(verified[0]["W_f64"].is_null(), "{}", verified[0]);
+    assert!(verified[0]["W_f64"].is_number(), "{}", verified[0]);
 }
 
 /// W of a row's case at 400 bits by the library's quadrature to a 1e-100 tolerance: an
@@ -509,7 +496,8 @@ fn csv_rows_carry_their_provenance_and_an_enclosure_that_rounds_to_w() {
                     assert_eq!((provenance, cell("digits_certified")), ("certified", "30"), "{context}");
                     assert!(!cell("table_error").is_empty(), "{context}");
                 }
-                (_, None) => assert_eq!((provenance, cell("digits_certified")), ("estimate", "0"), "{context}"),
+                // The default is proven too, to 15 digits.
+                (_, None) => assert_eq!((provenance, cell("digits_certified")), ("certified", "15"), "{context}"),
                 (_, Some(_)) => {
                     assert_eq!((provenance, cell("digits_certified")), ("certified", "30"), "{context}");
                 }

@@ -6,8 +6,8 @@
 
 mod common;
 
-use microslip::answer::{Answer, Provenance, Value};
-use microslip::ball::{certain_digits, hull, watch, Ball};
+use microslip::answer::{Answer, Decimal, Provenance, Value};
+use microslip::ball::{hull, watch, Ball};
 use microslip::case::CaseText;
 use microslip::certified::{certified_dissipation, enclose_dissipation, CertifiedError};
 use microslip::compliance::{parse_spec, Compliance, Polynomial};
@@ -23,6 +23,21 @@ use microslip::reference::ReferenceError;
 use rug::ops::Pow;
 use rug::Float;
 use std::time::Duration;
+
+/// The digits (at most `most`) to which every point of the ball rounds, by the one printing
+/// rule: `None` where not one is determined, all of them for an exact zero.
+fn certain_digits(ball: &Ball, most: u32) -> Option<(String, u32)> {
+    let bits = ball
+        .precision()
+        .in_bits()
+        .max(Precision::decimal_digits(most).in_bits())
+        + 64;
+    match Value::of_ball(ball, bits, most).decimal {
+        Decimal::Zero => Some(("0".to_string(), most)),
+        decimal if decimal.digits() == 0 => None,
+        decimal => Some((decimal.to_string(), decimal.digits())),
+    }
+}
 
 /// A case as exact decimals; a phase ending in `pi` is that multiple of π.
 #[derive(Clone, Debug)]

@@ -654,7 +654,11 @@ fn json_reports_share_one_vocabulary() {
     let w_f64 = f64_run["W_f64"].as_f64().unwrap();
     let w: f64 = f64_run["W"].as_str().unwrap().parse().unwrap();
     assert!((w - w_f64).abs() <= 1e-12 * w, "{f64_run}");
-    assert!(f64_run["digits_verified"].is_null() && f64_run["precision_bits"] == 53);
+    // The default is proven: an enclosure at 64 bits, its digits certified.
+    assert!(
+        f64_run["digits_verified"] == 15 && f64_run["precision_bits"] == 64,
+        "{f64_run}"
+    );
     let eb = f64_run["segments_f64"]["EB"].as_f64().unwrap();
     assert!((f64_run["segments"]["EB"].as_str().unwrap().parse::<f64>().unwrap() - eb).abs() < 1e-12);
     // W_f64 is the library's f64 value in shortest round-trip form: it parses back to itself.
@@ -662,7 +666,8 @@ fn json_reports_share_one_vocabulary() {
     assert_eq!(text.parse::<f64>().unwrap().to_string(), text);
     let (_, stdout, _) = on_case("dissipation", &["--json", "--digits", "20"]);
     let verified = json(&stdout);
-    assert!(verified["W_f64"].is_null() && verified["segments_f64"].is_null());
+    // The binary64 nearest the middle of the enclosure, with or without --digits.
+    assert!(verified["W_f64"].is_number() && verified["segments_f64"]["EB"].is_number());
     assert_eq!(verified["digits_verified"], 20);
     assert_eq!(verified["inputs"]["p0"], "1");
 
@@ -969,7 +974,7 @@ fn encloses(report: &serde_json::Value, reference: &str) -> bool {
 }
 
 #[test]
-fn digits_asked_are_proven_by_an_enclosure_and_f64_digits_say_they_are_estimated() {
+fn digits_asked_and_the_default_digits_are_proven_by_an_enclosure() {
     use microslip::reference::verified_dissipation;
     let budget = std::time::Duration::from_secs(120);
     for flags in [
@@ -992,10 +997,10 @@ fn digits_asked_are_proven_by_an_enclosure_and_f64_digits_say_they_are_estimated
             rug::Float::with_val(400, rug::Float::parse(&rounded).unwrap()),
             "{w} vs {reference}"
         );
-        let estimated = dissipation_json(&args);
-        assert_eq!(estimated["provenance"], "estimate", "{estimated}");
-        assert_eq!(estimated["digits_certified"], 0, "{estimated}");
-        assert!(encloses(&estimated, &reference), "{estimated} vs {reference}");
+        let default = dissipation_json(&args);
+        assert_eq!(default["provenance"], "certified", "{default}");
+        assert!(default["digits_certified"].as_u64().unwrap() >= 12, "{default}");
+        assert!(encloses(&default, &reference), "{default} vs {reference}");
     }
     let (_, stdout, _) = on_case("dissipation", &["--digits", "30"]);
     assert!(
@@ -1012,10 +1017,10 @@ fn digits_asked_are_proven_by_an_enclosure_and_f64_digits_say_they_are_estimated
             .lines()
             .next()
             .unwrap()
-            .contains("estimated (f64, error estimate "),
+            .contains("15 significant digits, proven (rigorous enclosure at "),
         "{stdout}"
     );
-    assert!(stdout.contains("not proven"), "{stdout}");
+    assert!(!stdout.contains("not proven"), "{stdout}");
 }
 
 #[test]
@@ -1023,10 +1028,6 @@ fn a_phase_near_pi_gets_proven_relative_digits_without_digits_asked() {
     let near_pi = dissipation_json(&["--q1", "0.2", "--phi", "3.141592653589793"]);
     assert_eq!(near_pi["W"], "1.79304398627923e-33", "{near_pi}");
     assert_eq!(near_pi["provenance"], "certified", "{near_pi}");
-    assert!(
-        near_pi["f64_fallback"].as_str().unwrap().contains("cancel"),
-        "{near_pi}"
-    );
 }
 
 #[test]

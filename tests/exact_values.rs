@@ -76,16 +76,16 @@ fn a_phase_near_a_multiple_of_pi_gives_w_its_relative_digits() {
     assert!(stdout.contains("I_1   = -4.44444444444444e-201"), "{stdout}");
 }
 
-/// Where sin²φ underflows f64 (φ below about 1e−154), f64's reason for handing W to the
-/// enclosure is the cancellation of its segments, as at larger phases, not a compliance
-/// undefined somewhere: its rounding bound is infinite, not NaN.
+/// Where sin²φ underflows f64 (φ below about 1e−154) the default is proven all the same:
+/// the segments, up to 1.2e-2, cancel to a W of about φ², which the enclosure resolves.
 #[test]
-fn a_phase_whose_square_underflows_f64_is_handed_on_for_cancellation() {
-    for phi in ["1e-100", "1e-160", "1e-300"] {
+fn a_phase_whose_square_underflows_f64_is_proven_by_default() {
+    for (phi, exponent) in [("1e-100", "e-202"), ("1e-160", "e-322"), ("1e-300", "e-602")] {
         let (code, stdout, stderr) = microslip(&case_args("dissipation", &[("--q1", "0.2"), ("--phi", phi)]));
         assert_eq!(code, 0, "{stderr}");
+        let first = stdout.lines().next().unwrap();
         assert!(
-            stdout.contains("in place of f64: f64 resolves 0 digits here: its segments, up to 1.2e-2, cancel to W"),
+            first.contains(exponent) && first.contains("15 significant digits, proven"),
             "φ = {phi}: {stdout}"
         );
     }

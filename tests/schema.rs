@@ -75,7 +75,7 @@ type Overrides<'a> = &'a [(&'a str, &'a str)];
 fn dissipation_json_conforms_in_every_provenance() {
     let table = format!("table:{}", data("rough-surface.csv"));
     let cases: [(Overrides, &[&str], &str); 8] = [
-        (&[], &[], "estimate"),
+        (&[], &[], "certified"),
         (&[], &["--digits", "20"], "certified"),
         (&[("--compliance", "const:c=0.8")], &["--digits", "25"], "exact"),
         (&[("--q1", "0")], &[], "exact"),

@@ -225,7 +225,7 @@ fn scan_spacings(
                         let digits = result.answer.digits() as usize;
                         let rounded = |value: f64| format!("{:.*e}", digits.max(1) - 1, value);
                         // Where W ± its error straddle a rounding boundary, the digit count is the
-                        // printing rule's to lower (verified::resolved_digits), not the estimate's.
+                        // printing rule's to lower (verified::decimal_f64), not the estimate's.
                         let straddles = rounded(estimate.unrounded - bound) != rounded(estimate.unrounded + bound);
                         if digits == 0 {
                             if !result.total().is_empty() {

@@ -326,9 +326,9 @@ fn verify_command_runs_the_gate_and_reports_every_claim() {
     let report: serde_json::Value = serde_json::from_str(stdout.trim()).unwrap();
     assert_eq!(report["passed"], true);
     let claims = report["claims"].as_array().unwrap();
-    // 1, 2 (proved), 2a–2c, 3 and 4 and 5 in f64, at 256 bits and simulated, 6a in f64 and at 256
-    // bits, 6b, 6c, 7a–7c.
-    assert_eq!(claims.len(), 21);
+    // 1 (fitted order, Peano remainder, completely monotone bracket), 2 (proved), 2a–2c, 3 and 4
+    // and 5 in f64, at 256 bits and simulated, 6a in f64 and at 256 bits, 6b, 6c, 7a–7c.
+    assert_eq!(claims.len(), 23);
     let simulated = claims
         .iter()
         .filter(|claim| claim["claim"].as_str().unwrap().contains("simulated"))

@@ -223,11 +223,11 @@ fn command_line_json_carries_w_segments_digits_and_inputs() {
     let value: serde_json::Value = serde_json::from_str(stdout.trim()).expect("one JSON object");
     let w: f64 = value["W"].as_str().unwrap().parse().unwrap();
     assert!(w > 0.0);
-    // f64 states the digits its error estimate vouches for: here 13 of its 15.
+    // The default states the digits its enclosure proves: here all 15.
     let digits = value["digits"].as_u64().unwrap();
-    let error = value["error_estimate"].as_f64().unwrap();
-    assert!((12..=15).contains(&digits), "{value}");
-    assert!(error > 0.0 && error <= 10f64.powi(-(digits as i32)) * w, "{value}");
+    assert_eq!(digits, 15, "{value}");
+    assert_eq!(value["digits_certified"], 15, "{value}");
+    assert!(value["error_estimate"].is_null(), "{value}");
     let printed = value["W"].as_str().unwrap();
     assert_eq!(printed.split('e').next().unwrap().replace('.', "").len() as u64, digits);
     let printed_segments = ["EB", "BC", "CH", "HE"].map(|k| value["segments"][k].as_str().unwrap().to_string());
@@ -256,10 +256,10 @@ fn command_line_json_carries_w_segments_digits_and_inputs() {
 }
 
 #[test]
-fn where_f64_cannot_resolve_w_the_default_run_computes_verified_digits_instead() {
-    // Near in phase with Q1 < fP1, W ~ 1e-13 is the difference of BC and CH ~ ±1.2e-2:
-    // f64 resolves 2 digits. The default run then gives 15 verified digits from MPFR,
-    // says why, and they are the leading digits of a 20-digit verified run.
+fn where_f64_could_not_resolve_w_the_default_run_proves_fifteen_digits() {
+    // Near in phase with Q1 < fP1, W ~ 1e-13 is the difference of BC and CH ~ ±1.2e-2,
+    // which f64 resolved to 2 digits. The default run gives 15 proven digits, and they are
+    // the leading digits of a 20-digit run.
     let run = |p1: &str, q1: &str, phi: &str, extra: &[&str]| {
         let (code, stdout, stderr) = dissipation_overriding(
             &[("--p1", p1), ("--q1", q1), ("--phi", phi)],
@@ -285,7 +285,7 @@ fn where_f64_cannot_resolve_w_the_default_run_computes_verified_digits_instead()
         assert_eq!(default["digits"], 15, "{default}");
         assert_eq!(default["digits_verified"], 15, "{default}");
         assert!(default["error_estimate"].is_null());
-        assert!(default["f64_fallback"].as_str().unwrap().contains(reason), "{default}");
+        assert_eq!(default["provenance"], "certified", "{default} ({reason})");
         let reference = run(p1, q1, phi, &["--digits", "20"]);
         let ((fifteen, e15), (twenty, e20)) = (significand(&default), significand(&reference));
         // Rounding 20 digits to 15 changes the last of the 15 by at most one.
@@ -299,9 +299,9 @@ fn where_f64_cannot_resolve_w_the_default_run_computes_verified_digits_instead()
         dissipation_overriding(&[("--p1", "0.999999"), ("--q1", "0.001"), ("--phi", "0.5pi")], &[]);
     assert_eq!(code, 0, "{stderr}");
     assert!(stdout.starts_with("W = 5.60150945874483e-5"), "{stdout}");
-    // An ordinary cycle stays in f64, with its estimate.
+    // An ordinary cycle is proven too: no estimate decides a printed digit.
     let ordinary = run("0.4", "0.5", "0.4pi", &[]);
-    assert!(ordinary["f64_fallback"].is_null() && ordinary["error_estimate"].as_f64().unwrap() > 0.0);
+    assert!(ordinary["error_estimate"].is_null() && ordinary["provenance"] == "certified");
 }
 
 /// A cycle is validated once, by `ValidCycle::new`, which refuses what `validate` refuses

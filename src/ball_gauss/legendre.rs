@@ -27,9 +27,9 @@ use crate::real::{Precision, Real};
 
 /// The nodes x_k ≥ 0 (k < (n + 1)/2, decreasing) of an n-point Gauss–Legendre rule on
 /// [−1, 1] and their weights, as balls that contain them; the rule's other nodes are −x_k.
-pub(super) struct BallRule {
-    pub(super) bits: u32,
-    pub(super) nodes: Vec<(Ball, Ball)>,
+pub(crate) struct BallRule {
+    pub(crate) bits: u32,
+    pub(crate) nodes: Vec<(Ball, Ball)>,
 }
 
 impl Table for BallRule {
@@ -66,7 +66,7 @@ const REFINE_FROM_BITS: u32 = 512;
 /// down from a table at a higher precision where it holds one). A large table is shared
 /// among the cores of the caller's rayon pool: its cost grows as n² and faster than the
 /// bits, and it is most of the cost of a first run at hundreds of digits.
-pub(super) fn nodes(n: u64, bits: u32) -> Option<Arc<BallRule>> {
+pub(crate) fn nodes(n: u64, bits: u32) -> Option<Arc<BallRule>> {
     cached(n as usize, Precision::bits(bits), || {
         let roots = 0..n.div_ceil(2);
         let root = |k| legendre_root(n, k, bits);

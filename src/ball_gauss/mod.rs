@@ -21,7 +21,7 @@ use flint_sys::mag::{
     mag_mul_ui_lower, mag_one, mag_pow_ui_lower, mag_set, mag_sqrt, mag_sqrt_lower, mag_sub, mag_sub_lower,
 };
 
-mod legendre;
+pub(crate) mod legendre;
 
 use legendre::nodes;
 
@@ -34,14 +34,14 @@ use crate::real::Real;
 /// fine because the nearest singularity of an ordinary piece (where the load vanishes,
 /// off the real axis) usually lies between the X = 2 and X = 3 rectangles, and ρ, which
 /// sets the degree, grows by a sixth from X = 2 to 9/4 and again to 5/2.
-const ELLIPSES: [f64; 8] = [2.0, 2.25, 2.5, 3.0, 4.0, 6.0, 8.0, 16.0];
+pub(crate) const ELLIPSES: [f64; 8] = [2.0, 2.25, 2.5, 3.0, 4.0, 6.0, 8.0, 16.0];
 
 /// The least degree at which a larger ellipse is tried: an evaluation on a complex ball
 /// costs about four on real points, and the next ellipse saves a quarter of the points
 /// where it fits, so below 32 points a probe that fails (the usual case on a piece whose
 /// ends are the integrand's nearest singularities' neighbours) costs more than one that
 /// fits saves.
-const LEAST_DEGREE_TO_WIDEN: u64 = 32;
+pub(crate) const LEAST_DEGREE_TO_WIDEN: u64 = 32;
 
 /// Cells per side of the grid on which the integrand is bounded where one box over the
 /// whole first ellipse bounds it too loosely (see [`Ellipse::cells`]).
@@ -52,7 +52,7 @@ const _: () = assert!(GRID.is_power_of_two());
 /// The half axis X of the ellipse tried below [`GRID_FROM_BITS`] where X = 2 gives no
 /// degree: its rectangle reaches 1.12 half lengths off the axis (X = 2: 1.73), so a box
 /// arithmetic that widens with the box often bounds it (ρ = 2.6 against 3.7).
-const NARROW_ELLIPSE: f64 = 1.5;
+pub(crate) const NARROW_ELLIPSE: f64 = 1.5;
 
 /// The least working precision at which the grid is tried: below it, the halves' rules
 /// cost less than the grid's cells (proofs/certified-digits.md, "Cells on the ellipse").
@@ -213,7 +213,7 @@ impl Mag {
 
 /// The least degree ≥ n on the grid: every n up to 16, then m·2^k with 8 ≤ m ≤ 15 (steps
 /// of 1/15 to 1/8), so that a thread keeps few node tables.
-fn degree_at_least(n: u64) -> u64 {
+pub(crate) fn degree_at_least(n: u64) -> u64 {
     if n <= 16 {
         return n.max(1);
     }

@@ -5,9 +5,7 @@
 use std::time::Duration;
 
 use crate::answer::{Answer, Provenance};
-use crate::compliance::{ComplianceSpec, TableError};
-use crate::cycle::LoadCycle;
-use crate::dissipation_answer::{dissipation_report, tables_cover, DissipationAnswer};
+use crate::dissipation_answer::{dissipation_report, DissipationAnswer};
 use crate::messages::printable;
 use crate::reference::ReferenceError;
 
@@ -19,16 +17,6 @@ pub use crate::dissipation_answer::{TableEstimate, TABLE_QUADRATURE_TOLERANCE};
 
 /// Why a case gives no W: the one error of every path to W.
 pub type CaseError = ReferenceError;
-
-/// Refuses a cycle that leaves a table of the compliance SPEC, naming the table's range
-/// (for computations that check the compliance themselves, as the simulation does). A
-/// cycle outside the theory passes here: its own check says what is wrong.
-pub fn check_table_range(spec: &ComplianceSpec, cycle: &LoadCycle<f64>) -> Result<(), TableError> {
-    if cycle.validate().is_err() {
-        return Ok(());
-    }
-    tables_cover(&spec.tables(), cycle)
-}
 
 /// A batch input that cannot be used at all.
 #[derive(Debug, thiserror::Error)]
@@ -95,15 +83,11 @@ impl RowResult {
     fn of(report: DissipationAnswer) -> Self {
         let DissipationAnswer {
             answer,
-            fallback,
             no_enclosure,
             table,
         } = &report;
         let Answer { value, provenance, .. } = answer;
         let mut method = answer.method.map_or("", crate::dissipation::Method::key).to_string();
-        if let Some(reason) = fallback {
-            method.push_str(&format!(" ({} in place of f64: {reason})", provenance.key()));
-        }
         if let Some(why) = no_enclosure {
             method.push_str(&format!(" (no enclosure: {why})"));
         }

@@ -3,7 +3,7 @@
 use clap::Args;
 
 use microslip::answer::Provenance;
-use microslip::dissipation::{DissipationError, Method};
+use microslip::dissipation::Method;
 use microslip::dissipation_answer::{dissipation_report, DissipationAnswer};
 use microslip::reference::ReferenceError;
 use microslip::verified::Decimal;
@@ -15,8 +15,8 @@ use super::report::Failure;
 #[derive(Args)]
 #[command(
     mut_arg("digits", |digits| digits.help(
-        "Significant digits to compute and prove by a rigorous enclosure (1–1000); without it, f64 \
-         and the digits its error estimate vouches for"
+        "Significant digits to compute and prove by a rigorous enclosure (1–1000); without it, 15, \
+         proven likewise"
     )),
     after_help = UNITS_AND_DIGITS
 )]
@@ -32,42 +32,18 @@ const UNITS_AND_DIGITS: &str = "W is energy per cycle in the units of load × ap
 (N·m for loads in N and a compliance in m/N). The segments are the four integrals of v'(P) − v'(P0) \
 (v'(P0) contributes nothing over the closed cycle, so they sum to W). Every number is printed \
 only with the digits on which its whole error interval rounds alike, so a segment may carry \
-fewer digits than W; the output says whether the digits are proven (a rigorous enclosure with \
---digits, or exact) or estimated (an f64 error estimate, a table's error, or agreement of two \
-precisions where no enclosure can be had). For a table compliance, --digits proves the digits of \
+fewer digits than W; the output says whether the digits are proven (a rigorous enclosure, or \
+exact) or estimated (a table's error, or agreement of two precisions where no enclosure can be \
+had). For a table compliance, --digits proves the digits of \
 its interpolant's W and states the table's own error beside them.";
 
-/// A library error, with the flag that may help where it applies: refused input exits 2,
-/// a result that could not be vouched for in time exits 1.
+/// A library error with the flag that may help, and its exit code (both the library's).
 fn reference_failure(error: ReferenceError, digits_given: bool) -> Failure {
-    let hint = match &error {
-        ReferenceError::Dissipation(
-            DissipationError::NotConverged { .. }
-            | DissipationError::IllConditioned { .. }
-            | DissipationError::OutOfRange { .. },
-        ) if !digits_given => "; try --digits N (digits in MPFR)",
-        // More time helps an enclosure only where time is what it ran out of.
-        #[cfg(feature = "certified")]
-        ReferenceError::Certified(error)
-            if !matches!(error, microslip::certified::CertifiedError::OutOfTime { .. }) =>
-        {
-            ""
-        }
-        _ if !out_of_time(&error) => "",
-        _ if digits_given => "; raise --max-seconds or ask for fewer --digits",
-        _ => "; raise --max-seconds",
-    };
-    let message = format!("{error}{hint}");
-    if out_of_time(&error) {
-        Failure::failed(message)
-    } else {
-        Failure::refused(message)
+    let message = format!("{error}{}", error.hint(digits_given));
+    match error.exit_code() {
+        1 => Failure::failed(message),
+        _ => Failure::refused(message),
     }
-}
-
-/// Whether the digits could not be had in time (or at all): the input was fine.
-fn out_of_time(error: &ReferenceError) -> bool {
-    error.is_failure()
 }
 
 pub fn run(args: &DissipationArgs) -> Result<String, Failure> {
@@ -156,35 +132,8 @@ fn provenance(report: &DissipationAnswer) -> String {
     if let Some(why) = &report.no_enclosure {
         out.push_str(&format!("; no enclosure: {why}"));
     }
-    if let Some(reason) = &report.fallback {
-        out.push_str(&format!("; in place of f64: {reason}"));
-    }
     if matches!(answer.provenance, Provenance::Estimate { .. }) {
         out.push_str("; --digits N gives proven digits");
     }
     out
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn the_digits_hint_is_given_only_where_digits_were_not() {
-        let out_of_range = || ReferenceError::Dissipation(DissipationError::OutOfRange { scale: 1e-310 });
-        assert!(reference_failure(out_of_range(), false)
-            .message
-            .ends_with("try --digits N (digits in MPFR)"));
-        assert!(!reference_failure(out_of_range(), true).message.contains("--digits"));
-        let budget = || {
-            ReferenceError::Budget(microslip::verified::OutOfBudget {
-                digits_requested: 30,
-                digits_agreed: 3,
-                seconds: 1.0,
-                precision_bits: 256,
-            })
-        };
-        assert!(reference_failure(budget(), true).message.contains("fewer --digits"));
-        assert!(!reference_failure(budget(), false).message.contains("--digits"));
-    }
 }

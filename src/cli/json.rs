@@ -119,8 +119,6 @@ pub struct DissipationFields {
     pub table_error: Option<f64>,
     /// For a table compliance: the largest relative move smoothing made to the data.
     pub smoothing_residual: Option<f64>,
-    /// Why a run without --digits did not print f64.
-    pub f64_fallback: Option<String>,
     /// Why the digits rest on agreement of two precisions rather than an enclosure.
     pub no_enclosure: Option<String>,
     /// How W was computed (`Method::key`).
@@ -141,7 +139,6 @@ impl DissipationFields {
             },
             table_error: report.table.as_ref().map(|t| t.error),
             smoothing_residual: report.table.as_ref().map(|t| t.smoothing_residual),
-            f64_fallback: report.fallback.as_ref().map(ToString::to_string),
             no_enclosure: report.no_enclosure.as_ref().map(ToString::to_string),
             method: answer.method.map(microslip::dissipation::Method::key),
         }
@@ -302,9 +299,11 @@ mod tests {
             .iter()
             .map(|row| serde_json::to_value(row).unwrap())
             .collect();
-        assert_eq!(lines[0]["W"], "4.062475792458e-1");
+        assert_eq!(lines[0]["W"], "4.06247579245824e-1");
         assert_eq!(
-            lines[0]["W_f64"].as_f64().map(|w| (w - 0.4062475792458).abs() < 1e-13),
+            lines[0]["W_f64"]
+                .as_f64()
+                .map(|w| (w - 0.406247579245824).abs() < 1e-15),
             Some(true)
         );
         // The input's own W column is echoed among the inputs, as written.
@@ -314,11 +313,11 @@ mod tests {
         assert_eq!(lines[0]["inputs"]["compliance"], "persson:gamma=1,sigma=1");
         assert_eq!(
             (&lines[0]["digits"], &lines[0]["digits_certified"]),
-            (&13.into(), &0.into())
+            (&15.into(), &15.into())
         );
         assert_eq!(
             (&lines[0]["provenance"], &lines[0]["method"]),
-            (&"estimate".into(), &"four-segment".into())
+            (&"certified".into(), &"four-segment".into())
         );
         assert!(lines[0]["error"].is_null() && lines[0]["table_error"].is_null());
         assert!(lines[1]["error"].as_str().unwrap().contains("gross slip"));

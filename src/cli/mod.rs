@@ -19,6 +19,7 @@ pub mod progress;
 pub mod reference;
 pub mod report;
 pub mod series;
+pub mod series_remainder;
 pub mod signals;
 pub mod simulate;
 pub mod small_amplitude;

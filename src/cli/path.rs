@@ -15,7 +15,8 @@ use microslip::path::dissipation::dissipation_of;
 use microslip::path::input::{read_harmonics, read_samples};
 use microslip::path::{path_dissipation, path_outputs, Contact, LoadPath, PathError, PathOutputs, SteadyCycle};
 use microslip::real::{Precision, Real};
-use microslip::verified::{agreement_radius, decimal_ball, decimal_f64, verify, TwoPrecisions, VerifyError};
+use microslip::dissipation_answer::DEFAULT_DIGITS;
+use microslip::verified::{agreement_radius, decimal_ball, verify, TwoPrecisions, VerifyError};
 
 use super::case::ContactArgs;
 use super::parse;
@@ -25,9 +26,8 @@ use super::report::Failure;
 #[command(group(ArgGroup::new("source").required(true).args(["harmonics", "samples"])))]
 #[command(after_help = "W is energy per cycle in the units of load × approach of the inputs. \
 The path must keep P > 0 and |Q| < fP at every θ (force driving); it is refused naming the θ where \
-it does not. Without --digits, W is printed with the digits its f64 error estimate resolves (an \
-estimate); with --digits N, with the N digits on which two working precisions agree (agreement, \
-not a proof).")]
+it does not. W is printed with the digits on which two working precisions agree (agreement, not \
+a proof): 15 without --digits, N with --digits N.")]
 pub struct PathArgs {
     /// CSV with the header k,P_cos,P_sin,Q_cos,Q_sin: P(θ) = Σ P_cos cos kθ + P_sin sin kθ, Q alike (k ≤ 64).
     #[arg(long)]
@@ -235,45 +235,35 @@ pub fn run(args: &PathArgs) -> Result<String, Failure> {
     };
     let inputs = text.read::<f64>(Precision::DOUBLE)?;
     let cycle = SteadyCycle::new(&inputs.path, &inputs.contact).map_err(path_failure)?;
+    // The f64 run checks the path and counts its pieces.
     let w =
         dissipation_of(&cycle, &inputs.contact, inputs.compliance.as_ref(), Some(deadline)).map_err(path_failure)?;
-    let printed = match args.digits {
-        None => PrintedW {
-            text: decimal_f64(w.total, w.error_estimate).to_string(),
-            value: w.total,
-            provenance: "estimate",
+    // Never the f64 estimate: two working precisions must agree (the default asks for
+    // the default's digits), and the output says it is agreement, not proof.
+    let digits = args.digits.unwrap_or(DEFAULT_DIGITS);
+    let printed = {
+        let mut agreement = Agreement { text: &text, deadline };
+        let verified = verify(digits, deadline, &mut agreement).map_err(|error| match error {
+            VerifyError::Failed(failure) => failure,
+            VerifyError::OutOfBudget(out) => Failure::failed(format!(
+                "the time budget ran out before two precisions agreed on {} digits of W ({} agreed); raise --max-seconds",
+                out.digits_required(),
+                out.digits_agreed
+            )),
+        })?;
+        let (first, second) = (&verified.first[0], &verified.output[0]);
+        PrintedW {
+            text: decimal_ball(second, &agreement_radius(first, second), digits).to_string(),
+            value: second.to_f64(),
+            provenance: "agreement",
             detail: format!(
-                "the f64 quadrature's error estimate {:.1e}, not proven",
-                w.error_estimate
+                "two working precisions agree on {} digits, up to {} bits; not proven",
+                verified.agreed,
+                verified.precision.in_bits()
             ),
-            error_estimate: Some(w.error_estimate),
-            digits_agreed: None,
-            precision_bits: 53,
-        },
-        Some(digits) => {
-            let mut agreement = Agreement { text: &text, deadline };
-            let verified = verify(digits, deadline, &mut agreement).map_err(|error| match error {
-                VerifyError::Failed(failure) => failure,
-                VerifyError::OutOfBudget(out) => Failure::failed(format!(
-                    "the time budget ran out before two precisions agreed on {} digits of W ({} agreed); raise --max-seconds",
-                    out.digits_required(),
-                    out.digits_agreed
-                )),
-            })?;
-            let (first, second) = (&verified.first[0], &verified.output[0]);
-            PrintedW {
-                text: decimal_ball(second, &agreement_radius(first, second), digits).to_string(),
-                value: second.to_f64(),
-                provenance: "agreement",
-                detail: format!(
-                    "two working precisions agree on {} digits, up to {} bits; not proven",
-                    verified.agreed,
-                    verified.precision.in_bits()
-                ),
-                error_estimate: None,
-                digits_agreed: Some(verified.agreed),
-                precision_bits: verified.precision.in_bits(),
-            }
+            error_estimate: None,
+            digits_agreed: Some(verified.agreed),
+            precision_bits: verified.precision.in_bits(),
         }
     };
     let outputs = path_outputs(

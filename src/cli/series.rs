@@ -12,6 +12,7 @@ use microslip::exact::printing::{coefficient_answers, partial_sum_answers, Exact
 use super::case::Answer as AnswerArgs;
 use super::json::{printed, ShapeInputs, ValueEnvelope, ValueReport};
 use super::report::Failure;
+use super::series_remainder::{read_ratio, remainders, WithinAnswer};
 
 /// `--rho` for the coefficients Iₙ alone, or a case (`--p0 … --compliance`) for its partial sums.
 #[derive(Args)]
@@ -29,9 +30,13 @@ pub struct SeriesArgs {
     /// radians (`pi-1e-6`), or degrees (`72deg`, `72°`); read exactly
     #[arg(long, allow_hyphen_values = true)]
     pub phi: String,
-    /// The highest order N.
-    #[arg(long)]
-    pub order: usize,
+    /// The highest order N (with `--within`, 1 if not given).
+    #[arg(long, required_unless_present = "within")]
+    pub order: Option<usize>,
+    /// With a case: the largest P1 (ρ = Q1/(fP1), φ, P0, Q0, f, λ and the compliance kept) at
+    /// which |W − W₁| ≤ R·|W| is proven by the series' remainder bound.
+    #[arg(long, value_name = "R", allow_hyphen_values = true, requires = "p0")]
+    pub within: Option<String>,
     /// Mean normal load P0 (with a case).
     #[arg(long, allow_hyphen_values = true, requires_all = ["p1", "q1", "friction", "ratio", "compliance"])]
     pub p0: Option<String>,
@@ -106,10 +111,23 @@ struct PartialSumsReport<'a> {
     w_f64: Option<f64>,
     #[serde(flatten)]
     envelope: ValueEnvelope,
-    partial_sums: Vec<ValueReport>,
+    partial_sums: Vec<PartialSumReport>,
     /// W_N − W for N = 1 … order.
     differences: Vec<ValueReport>,
+    /// W enclosed by the series alone: the tightest W_N ± its remainder bound.
+    series_w: ValueReport,
+    /// With `--within`.
+    within: Option<WithinAnswer>,
     inputs: &'a CaseText,
+}
+
+/// A partial sum W_N with its proven bound on |W − W_N|.
+#[derive(Serialize)]
+struct PartialSumReport {
+    #[serde(flatten)]
+    value: ValueReport,
+    /// An upper bound on |W − W_N|, 3 digits rounded up.
+    remainder_bound: String,
 }
 
 pub fn run(args: &SeriesArgs) -> Result<String, Failure> {
@@ -119,7 +137,10 @@ pub fn run(args: &SeriesArgs) -> Result<String, Failure> {
             .rho
             .as_deref()
             .ok_or_else(|| Failure::refused("give --rho, or a case with --p0 … --compliance"))?;
-        let answers = coefficient_answers(rho, &args.phi, args.order, args.answer.digits, budget).map_err(failure)?;
+        let order = args
+            .order
+            .ok_or_else(|| Failure::refused("--order is needed with --rho"))?;
+        let answers = coefficient_answers(rho, &args.phi, order, args.answer.digits, budget).map_err(failure)?;
         if args.answer.json {
             let in_f64: Option<Vec<f64>> = answers
                 .iter()
@@ -145,7 +166,7 @@ pub fn run(args: &SeriesArgs) -> Result<String, Failure> {
         return Ok(format!(
             "Iₙ(ρ = {rho}, φ = {}), n = 0 … {}:\n{}",
             args.phi,
-            args.order,
+            order,
             rows.join("\n")
         ));
     };
@@ -161,24 +182,42 @@ pub fn run(args: &SeriesArgs) -> Result<String, Failure> {
         nu: args.nu.clone(),
         compliance: args.compliance.clone().ok_or_else(missing)?,
     };
-    let sums = partial_sum_answers(&case, args.order, args.answer.digits, budget).map_err(failure)?;
+    let order = args.order.unwrap_or(1);
+    let ratio = args.within.as_deref().map(read_ratio).transpose()?;
+    let sums = partial_sum_answers(&case, order, args.answer.digits, budget).map_err(failure)?;
     let all_exact = exact_reason(&sums.dissipation);
+    if let (Some(reason), Some(_)) = (all_exact, ratio) {
+        return Err(Failure::refused(format!(
+            "W = 0 exactly here ({reason}): the cubic law is exact at every P1 and --within has nothing to bound; drop --within"
+        )));
+    }
+    let remainders = match all_exact {
+        Some(_) => None,
+        None => Some(remainders(&case, order, ratio)?),
+    };
     if args.answer.json {
         let report = PartialSumsReport {
             w: printed(&sums.dissipation.value),
             w_f64: sums.dissipation.value.binary64,
             envelope: ValueEnvelope::of(&sums.dissipation),
-            partial_sums: sums.sums.iter().map(ValueReport::of).collect(),
+            partial_sums: sums
+                .sums
+                .iter()
+                .enumerate()
+                .map(|(n, sum)| PartialSumReport {
+                    value: ValueReport::of(sum),
+                    remainder_bound: remainders.as_ref().map_or("0".to_string(), |r| r.bounds[n].clone()),
+                })
+                .collect(),
             differences: sums.differences.iter().map(ValueReport::of).collect(),
+            series_w: ValueReport::of(remainders.as_ref().map_or(&sums.dissipation, |r| &r.series_w)),
+            within: remainders.as_ref().and_then(|r| r.within.clone()),
             inputs: &case,
         };
         return Ok(serde_json::to_string(&report)?);
     }
     if let Some(reason) = all_exact {
-        return Ok(format!(
-            "W = 0 and W_N = 0 for N = 1 … {} (exact: {reason})",
-            args.order
-        ));
+        return Ok(format!("W = 0 and W_N = 0 for N = 1 … {order} (exact: {reason})"));
     }
     let width = sums
         .sums
@@ -187,16 +226,19 @@ pub fn run(args: &SeriesArgs) -> Result<String, Failure> {
         .max()
         .unwrap_or(0)
         .max(24);
+    let bounds = remainders.as_ref().map(|r| r.bounds.clone()).unwrap_or_default();
     let mut out = format!(
-        "W (four-segment) = {}\n   N  {:<width$}  W_N − W",
+        "W (four-segment) = {}\n   N  {:<width$}  {:<12}  W_N − W",
         shown(&sums.dissipation),
-        "W_N (series to order N)"
+        "W_N (series to order N)",
+        "|W − W_N| ≤"
     );
     for (n, (sum, difference)) in sums.sums.iter().zip(&sums.differences).enumerate() {
         out.push_str(&format!(
-            "\n{:>4}  {:<width$}  {}",
+            "\n{:>4}  {:<width$}  {:<12}  {}",
             n + 1,
             sum.value.decimal.to_string(),
+            bounds.get(n).map_or("", String::as_str),
             shown(difference)
         ));
     }
@@ -206,5 +248,34 @@ pub fn run(args: &SeriesArgs) -> Result<String, Failure> {
         .map(|sum| sum.provenance.to_string())
         .unwrap_or_default();
     out.push_str(&format!("\nW_N: {provenance}"));
+    if let Some(remainders) = &remainders {
+        out.push_str(&format!(
+            "\nW from the series alone (the narrowest W_N ± its bound) = {}",
+            shown(&remainders.series_w)
+        ));
+        if let Some(within) = &remainders.within {
+            out.push_str(&within_line(within, args.within.as_deref().unwrap_or_default()));
+        }
+    }
     Ok(out)
+}
+
+/// The `--within` answer as a line of text.
+fn within_line(within: &WithinAnswer, ratio: &str) -> String {
+    let Some(p1) = &within.p1_max else {
+        return format!(
+            "\n--within {ratio}: not proven at any P1 tried (down to 1e-12 P0); the cycle leaves the theory at P1 = {}",
+            within.theory_end
+        );
+    };
+    match within.limited_by {
+        "remainder" => format!(
+            "\n--within {ratio}: |W − W₁| ≤ {ratio}·|W| is proven up to P1 = {p1} (ρ, φ, P0, Q0, f, λ kept); the theory ends at P1 = {}",
+            within.theory_end
+        ),
+        limit => format!(
+            "\n--within {ratio}: the cycle leaves the theory ({limit}) at P1 = {} before the bound reaches {ratio}·|W|; proven up to P1 = {p1}",
+            within.theory_end
+        ),
+    }
 }

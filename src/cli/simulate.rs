@@ -6,14 +6,12 @@ use std::time::{Duration, Instant};
 
 use clap::Args;
 
-use microslip::answer::{Answer, Provenance, Value};
-use microslip::batch;
-use microslip::case::{Case, CaseText};
+use microslip::case::CaseText;
 use microslip::files::{check_writable, destination, write_text_atomically, Destination};
 use microslip::plot::{plot_cycle, PLOT_EXTENSIONS};
-use microslip::real::Precision;
-use microslip::simulate::{loop_csv, simulate, SimulationError, SimulationOptions, SimulationResult};
-use microslip::verified::{decimal_f64, Decimal, F64_MOST_DIGITS};
+use microslip::simulate::{loop_csv, SimulationOptions};
+use microslip::simulation_answer::{simulated_answer, SimulatedAnswer, SimulatedError};
+use microslip::verified::F64_MOST_DIGITS;
 
 use super::case::CaseArgs;
 use super::json::{printed, SimulationInputs, SimulationReport, ValueEnvelope};
@@ -70,17 +68,13 @@ fn same_file(a: &Path, b: &Path) -> bool {
     resolve(a) == resolve(b)
 }
 
-/// A simulation failure with the flags that may help.
-fn simulation_failure(error: SimulationError) -> Failure {
-    match error {
-        SimulationError::ToleranceNotReached { .. } => Failure::failed(format!(
-            "{error}; more --elements and --steps may reach it, or a larger --tolerance accepts it"
-        )),
-        SimulationError::TooLarge { .. } => Failure::refused(format!("{error}; use fewer --elements or --steps")),
-        SimulationError::OutOfTime { .. } => Failure::failed(format!(
-            "{error}; raise --max-seconds or use fewer --elements or --steps"
-        )),
-        other => Failure::refused(other.to_string()),
+/// A failure of the simulation's answer, with the flag that may help and the exit code
+/// (both the library's).
+fn simulation_failure(error: SimulatedError) -> Failure {
+    let message = format!("{error}{}", error.hint());
+    match error.exit_code() {
+        1 => Failure::failed(message),
+        _ => Failure::refused(message),
     }
 }
 
@@ -102,21 +96,6 @@ pub fn run(args: &SimulateArgs) -> Result<String, Failure> {
     }
     let case = args.case.text();
     let spec = case.spec()?;
-    let Case { mut cycle, compliance } = spec.at::<f64>(Precision::DOUBLE)?;
-    // The exact cycle is inside the theory (read above); its f64 copy may round across a
-    // boundary it keeps off, and the simulation runs in f64.
-    if let Err(error) = cycle.validate() {
-        return Err(Failure::failed(format!(
-            "rounded to f64 the inputs cross a boundary that the exact cycle keeps off (in f64: {error}); the simulation runs in f64, `microslip dissipation` computes this cycle"
-        )));
-    }
-    // The simulation follows the loads in time: a phase within 2⁻²⁰ of an odd multiple of π is
-    // read as the mirror image of its cycle (the same W), turned back here for the loop and plot.
-    if spec.phase().is_mirror_image() {
-        cycle.phase += std::f64::consts::PI;
-        cycle.mean_tangential_load = -cycle.mean_tangential_load;
-    }
-    batch::check_table_range(spec.compliance(), &cycle)?;
     let options = SimulationOptions {
         elements: args.elements,
         steps: args.steps,
@@ -124,81 +103,47 @@ pub fn run(args: &SimulateArgs) -> Result<String, Failure> {
         tolerance: Some(args.tolerance),
         ..SimulationOptions::default()
     };
-    let result = simulate(&cycle, compliance.as_ref(), &options).map_err(simulation_failure)?;
-    // Where every change of v' over the cycle's loads underflows f64 (an exponential at loads
-    // of hundreds of decay loads) the simulated W is 0; only a W that is 0 by its reason is
-    // printed as 0.
-    if result.w_work == 0.0 && result.w_friction == 0.0 && spec.exact_zero().is_none() {
-        return Err(Failure::failed(
-            "the simulation's W rounds to 0 in f64 (the changes of v' over the cycle's loads underflow), though \
-             nothing in the input makes W exactly 0; `microslip dissipation` gives W at any size"
-                .to_string(),
-        ));
-    }
-    let printed = PrintedSimulation::of(&result);
-    let w = printed.work.to_string();
+    let simulated = simulated_answer(&spec, &options).map_err(simulation_failure)?;
+    let (result, cycle) = (&simulated.result, &simulated.cycle);
+    let w = simulated.answer.value.decimal.to_string();
     // A write that fails after the run still reports W.
     let lost =
         |error: &dyn std::fmt::Display| Failure::failed(format!("{error} (the simulation's W = {w} is not lost)"));
     if let Some(path) = &args.loop_csv {
-        let text = loop_csv(&result).map_err(|e| lost(&e))?;
+        let text = loop_csv(result).map_err(|e| lost(&e))?;
         write_text_atomically(path, &text).map_err(|e| lost(&e))?;
     }
     if let Some(path) = &args.plot {
-        plot_cycle(path, &cycle, &result).map_err(|e| lost(&e))?;
+        plot_cycle(path, cycle, result).map_err(|e| lost(&e))?;
     }
     if args.json {
-        return Ok(serde_json::to_string(&simulation_report(&result, &case, args))?);
+        return Ok(serde_json::to_string(&simulation_report(&simulated, &case, args))?);
     }
-    let digits = match printed.work.digits() {
+    let digits = match simulated.answer.value.digits() {
         0 => "no significant digit determined".to_string(),
         1 => "1 significant digit".to_string(),
         n => format!("{} significant digits", n.min(F64_MOST_DIGITS)),
     };
     Ok(format!(
         "W = {w} (work of the load; the frictional work agrees: {}); estimated relative error {:.1e} (an estimate, not proven), {digits}; {} elements, {} steps per cycle (finest run)",
-        printed.friction,
+        simulated.friction.decimal,
         result.estimated_rel_error,
         result.elements,
         result.steps
     ))
 }
 
-/// The simulation's two measures of W, each printed by the one rule with the absolute
-/// bound its estimated relative error gives W (which includes their difference).
-struct PrintedSimulation {
-    work: Decimal,
-    friction: Decimal,
-}
-
-impl PrintedSimulation {
-    fn of(result: &SimulationResult) -> Self {
-        let bound = result.estimated_rel_error * result.w_work.abs();
-        PrintedSimulation {
-            work: decimal_f64(result.w_work, bound),
-            friction: decimal_f64(result.w_friction, bound),
-        }
-    }
-}
-
 /// The JSON report of a simulation: W with the envelope of a value whose provenance is
 /// the simulation itself (an estimate from its refinements, not a proof).
-fn simulation_report<'a>(result: &SimulationResult, case: &'a CaseText, args: &SimulateArgs) -> SimulationReport<'a> {
+fn simulation_report<'a>(simulated: &SimulatedAnswer, case: &'a CaseText, args: &SimulateArgs) -> SimulationReport<'a> {
     let defaults = SimulationOptions::default();
-    let bound = result.estimated_rel_error * result.w_work.abs();
-    let work = Answer {
-        value: Value::from_f64(result.w_work, bound),
-        segments: None,
-        digits_requested: None,
-        provenance: Provenance::Simulated { error_estimate: bound },
-        method: None,
-    };
+    let (work, result) = (&simulated.answer, &simulated.result);
     SimulationReport {
         w: printed(&work.value),
         w_f64: result.w_work,
-        w_friction: printed(&Value::from_f64(result.w_friction, bound)),
+        w_friction: printed(&simulated.friction),
         w_friction_f64: result.w_friction,
-        envelope: ValueEnvelope::of(&work),
+        envelope: ValueEnvelope::of(work),
         estimated_rel_error: result.estimated_rel_error,
         method: "history-simulation",
         elements: result.elements,

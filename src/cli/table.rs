@@ -4,17 +4,23 @@
 use clap::Args;
 use serde::Serialize;
 
-use microslip::case::{Case, CaseText, InputError};
+use std::time::Duration;
+
+use microslip::answer::Value;
+use microslip::case::{CaseText, InputError};
 use microslip::compliance::{spec_help, spec_summary};
 use microslip::cycle::CycleError;
-use microslip::dissipation::{dissipation, ExactZero, Options};
+use microslip::dissipation::ExactZero;
+use microslip::dissipation_answer::dissipation_answer;
 use microslip::files::csv_text;
-use microslip::real::{Precision, Real};
 
 use super::report::Failure;
 
 /// The most rows (phase steps) a table has.
 const MAX_PHASE_STEPS: usize = 1000;
+
+/// The time each cell's W may take.
+const CELL_BUDGET: Duration = Duration::from_secs(60);
 
 /// The defaults: the paper's Fig. 5, where γσλf² = 1 makes W the normalized Ŵ.
 const FIG5_COMPLIANCE: &str = "persson:gamma=1,sigma=1";
@@ -74,9 +80,13 @@ struct Cell<'a> {
     phi: String,
     #[serde(rename = "Q1")]
     q1: &'a str,
-    /// W (absent in gross slip, where the theory gives none).
+    /// W: the binary64 nearest the middle of its proven enclosure (absent in gross slip,
+    /// where the theory gives none).
     #[serde(rename = "W", skip_serializing_if = "Option::is_none")]
     w: Option<f64>,
+    /// W as proven, for the text.
+    #[serde(skip)]
+    value: Option<Value>,
     /// W is exactly 0, by a reason read from the exact inputs (in phase without slip, say).
     exact_zero: bool,
     /// `partial slip`; `no slip` (in phase within friction, or Q1 = 0), where W is 0; or
@@ -85,13 +95,12 @@ struct Cell<'a> {
 }
 
 impl Cell<'_> {
-    /// W as text: `0` when exactly 0, else `digits` significant digits; the regime in gross slip.
-    fn shown(&self, digits: usize) -> String {
-        match self.w {
+    /// W as text: `0` when exactly 0, else at most `digits` proven significant digits; the
+    /// regime in gross slip.
+    fn shown(&self, digits: u32) -> String {
+        match &self.value {
             None => self.regime.to_string(),
-            Some(_) if self.exact_zero => "0".to_string(),
-            Some(w) if digits == 0 => format!("{w:e}"),
-            Some(w) => w.to_scientific(digits),
+            Some(value) => value.to_at_most(digits).to_string(),
         }
     }
 }
@@ -168,17 +177,15 @@ impl TableArgs {
                     Err(InputError::Cycle(error)) if gross_slip(&error) => None,
                     Err(error) => return Err(cell_failure(error.to_string())),
                 };
-                let w = match &spec {
+                let value = match &spec {
                     None => None,
-                    Some(spec) => {
-                        let Case { cycle, compliance } = spec
-                            .at::<f64>(Precision::DOUBLE)
-                            .map_err(|e| cell_failure(e.to_string()))?;
-                        let result = dissipation(&cycle, compliance.as_ref(), &Options::default())
-                            .map_err(|e| cell_failure(e.to_string()))?;
-                        Some(result.total)
-                    }
+                    Some(_) => Some(
+                        dissipation_answer(&self.case(q1, &phi), None, CELL_BUDGET)
+                            .map_err(|e| cell_failure(e.to_string()))?
+                            .value,
+                    ),
                 };
+                let w = value.as_ref().map(|value| value.binary64.unwrap_or(0.0));
                 let exact_zero = spec.as_ref().and_then(|spec| spec.exact_zero());
                 let regime = match (w, exact_zero) {
                     (None, _) => "gross slip",
@@ -190,6 +197,7 @@ impl TableArgs {
                     phi: phi.clone(),
                     q1,
                     w,
+                    value,
                     exact_zero: w.is_some() && exact_zero.is_some(),
                     regime,
                 });
@@ -205,7 +213,7 @@ impl TableArgs {
             None => format!("λ = {}", self.lambda.as_deref().unwrap_or("1")),
         };
         let mut out = format!(
-            "W per cycle (f64) for compliance {}, P0 = {}, P1 = {}, Q0 = {}, f = {}, {ratio}{}\n{:>8}",
+            "W per cycle (proven digits) for compliance {}, P0 = {}, P1 = {}, Q0 = {}, f = {}, {ratio}{}\n{:>8}",
             self.compliance,
             self.p0,
             self.p1,
@@ -238,7 +246,12 @@ pub fn run(args: &TableArgs) -> Result<String, Failure> {
     match args.format.as_str() {
         "csv" => {
             let rows = cells.iter().map(|cell| {
-                let w = if cell.w.is_some() { cell.shown(0) } else { String::new() };
+                // Every proven digit (15 at most).
+                let w = cell
+                    .value
+                    .as_ref()
+                    .map(|value| value.decimal.to_string())
+                    .unwrap_or_default();
                 [
                     cell.phi_over_pi.to_string(),
                     cell.q1.to_string(),

@@ -75,6 +75,11 @@ impl<R: Real> Compliance<R> for Sum<R> {
             .iter()
             .try_fold(load.int(0), |acc, c| Some(acc + c.derivative(order, load)?))
     }
+    fn derivative_bound(&self, order: usize, low: &R, high: &R) -> Option<R> {
+        self.terms
+            .iter()
+            .try_fold(low.int(0), |acc, c| Some(acc + c.derivative_bound(order, low, high)?))
+    }
 }
 
 /// a·v: a scalar multiple.
@@ -127,6 +132,9 @@ impl<R: Real> Compliance<R> for Scaled<R> {
     }
     fn derivative(&self, order: usize, load: &R) -> Option<R> {
         Some(self.factor.clone() * &self.inner.derivative(order, load)?)
+    }
+    fn derivative_bound(&self, order: usize, low: &R, high: &R) -> Option<R> {
+        Some(self.factor.abs() * &self.inner.derivative_bound(order, low, high)?)
     }
 }
 
@@ -184,6 +192,12 @@ impl<R: Real> Compliance<R> for Shifted<R> {
             1 => inner + &self.extra_slope,
             _ => inner,
         })
+    }
+    fn derivative_bound(&self, order: usize, low: &R, high: &R) -> Option<R> {
+        // Beyond v' the added c·P leaves no trace.
+        (order >= 2)
+            .then(|| self.inner.derivative_bound(order, low, high))
+            .flatten()
     }
 }
 
@@ -248,5 +262,10 @@ impl<R: Real> Compliance<R> for LoadScaled<R> {
         // v_k⁽ⁿ⁾(P) = k¹⁻ⁿ v⁽ⁿ⁾(P/k).
         let inner = self.inner.derivative(order, &(load.clone() / &self.factor))?;
         Some(inner * &self.factor.powi(1 - order as i32))
+    }
+    fn derivative_bound(&self, order: usize, low: &R, high: &R) -> Option<R> {
+        let (a, b) = (low.clone() / &self.factor, high.clone() / &self.factor);
+        let inner = self.inner.derivative_bound(order, &a.min_of(&b), &a.max_of(&b))?;
+        Some(inner * &self.factor.abs().powi(1 - order as i32))
     }
 }

@@ -1,5 +1,6 @@
 //! The built-in compliance families.
 
+use super::derivative_bounds::{at_the_ends, polynomial_bound, positive_range};
 use super::{falling_factorial, regular_at_ends, Compliance, SlopeChange};
 use crate::real::Real;
 
@@ -147,6 +148,12 @@ impl<R: Real> Compliance<R> for PowerLaw<R> {
                 * &load.powr(&(self.exponent.clone() - &load.int(order as i64))),
         )
     }
+    fn derivative_bound(&self, order: usize, low: &R, high: &R) -> Option<R> {
+        // C·β(β − 1)…·P^(β − k + 1): one power of P, monotone on P > 0.
+        (order >= 2 && positive_range(low, high))
+            .then(|| at_the_ends(self, order, low, high))
+            .flatten()
+    }
 }
 
 /// Persson's rough-surface compliance v'(P) = γσ/P (Akarapu et al. 2011; paper Section 5.2),
@@ -220,6 +227,9 @@ impl<R: Real> Compliance<R> for Persson<R> {
             load,
             order + 1,
         ))
+    }
+    fn derivative_bound(&self, order: usize, low: &R, high: &R) -> Option<R> {
+        self.as_power_law().derivative_bound(order, low, high)
     }
 }
 
@@ -306,6 +316,9 @@ impl<R: Real> Compliance<R> for Hertz<R> {
     }
     fn slope_derivative(&self, order: usize, load: &R) -> Option<R> {
         self.as_power_law().slope_derivative(order, load)
+    }
+    fn derivative_bound(&self, order: usize, low: &R, high: &R) -> Option<R> {
+        self.as_power_law().derivative_bound(order, low, high)
     }
 }
 
@@ -394,6 +407,9 @@ impl<R: Real> Compliance<R> for Polynomial<R> {
             .collect();
         Some(Self::horner(&derived, &x))
     }
+    fn derivative_bound(&self, order: usize, low: &R, high: &R) -> Option<R> {
+        (order >= 1).then(|| polynomial_bound(&self.reference, &self.coefficients, order - 1, low, high))
+    }
 }
 
 /// v'(P) = a + b/(P + c): a rational compliance (b > 0 stiffens).
@@ -455,6 +471,13 @@ impl<R: Real> Compliance<R> for Rational<R> {
             0 => self.slope(load),
             k => logarithmic_derivative(&self.numerator, &(load.clone() + &self.offset), k + 1),
         })
+    }
+    fn derivative_bound(&self, order: usize, low: &R, high: &R) -> Option<R> {
+        // b·(k − 2)!·(P + c)^(1 − k) up to sign, monotone while P + c > 0.
+        let (low_shifted, high_shifted) = (low.clone() + &self.offset, high.clone() + &self.offset);
+        (order >= 2 && positive_range(&low_shifted, &high_shifted))
+            .then(|| at_the_ends(self, order, low, high))
+            .flatten()
     }
 }
 
@@ -540,6 +563,12 @@ impl<R: Real> Compliance<R> for Exponential<R> {
                 self.amplitude.clone() * &rate.powi(k as i32) * &(-(load.clone() / &self.decay_load)).exp()
             }
         })
+    }
+    fn derivative_bound(&self, order: usize, low: &R, high: &R) -> Option<R> {
+        // a·(−1/c)^(k − 1)·e^(−P/c): monotone in P.
+        (order >= 2 && *low <= *high)
+            .then(|| at_the_ends(self, order, low, high))
+            .flatten()
     }
 }
 

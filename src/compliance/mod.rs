@@ -22,6 +22,7 @@
 //! ```
 
 mod combinators;
+mod derivative_bounds;
 mod families;
 mod slope_form;
 mod spec;
@@ -115,6 +116,14 @@ pub trait Compliance<R: Real>: Debug + Send + Sync {
     /// `None` for a compliance that cannot give it.
     fn slope_derivative(&self, order: usize, load: &R) -> Option<R> {
         let _ = (order, load);
+        None
+    }
+    /// An upper bound on |v⁽ᵒʳᵈᵉʳ⁾| over [low, high] (order ≥ 2, as for [`Compliance::derivative`]),
+    /// for the proven remainder of the small-amplitude series: on Arb balls the upper end
+    /// of the ball bounds it. `None` where the form gives none (a table's interpolant, a
+    /// range that reaches a singularity, an order below 2).
+    fn derivative_bound(&self, order: usize, low: &R, high: &R) -> Option<R> {
+        let _ = (order, low, high);
         None
     }
 }

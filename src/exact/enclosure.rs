@@ -21,6 +21,7 @@ use super::series::{partial_sums, series_coefficients};
 use crate::ball::{watch, Ball};
 use crate::case::{Case, CaseSpec};
 use crate::certified::{phase_offset, MAX_BITS};
+use crate::ladder::{doubled, Ladder, Rung, Stop};
 use crate::phase::ReducedPhase;
 use crate::real::{Precision, Real};
 use crate::verified::decimal_interval;
@@ -108,47 +109,52 @@ pub fn enclose<E>(
     compute: impl Fn(Precision) -> Result<Vec<Ball>, E>,
 ) -> Result<Enclosed, EnclosureError<E>> {
     let digits = digits.max(1);
-    let mut bits = Precision::decimal_digits(digits).in_bits() + 24;
+    let start = Precision::bits(Precision::decimal_digits(digits).in_bits() + 24);
+    let ladder = Ladder::new(start, Precision::bits(MAX_BITS)).until(Some(deadline));
+    // Whether the last attempt met a doubt: a second in a row is a tie no precision resolves.
     let mut doubted = false;
-    let mut last = EnclosureError::TooWide {
-        asked: digits,
-        reached: 0,
-        bits,
-    };
-    while bits <= MAX_BITS {
-        if Instant::now() >= deadline {
-            let reached = match last {
-                EnclosureError::TooWide { reached, .. } => reached,
-                _ => 0,
-            };
-            return Err(EnclosureError::OutOfTime { asked: digits, reached });
-        }
-        let (values, doubts) = watch(|| compute(Precision::bits(bits)));
-        let values = values.map_err(EnclosureError::Input)?;
+    let rung = |precision: Precision| {
+        let bits = precision.in_bits();
+        let (values, doubts) = watch(|| compute(precision));
+        let values = match values {
+            Ok(values) => values,
+            Err(error) => return Rung::Final(EnclosureError::Input(error)),
+        };
         if must_decide && !doubts.none() {
-            if doubted {
-                return Err(EnclosureError::Undecided { bits });
-            }
-            doubted = true;
-            last = EnclosureError::Undecided { bits };
-        } else {
-            doubted = false;
-            if values.iter().any(Ball::is_beyond_mpfr) {
-                return Err(EnclosureError::BeyondRange);
-            }
-            let reached = values.iter().map(|v| digits_of(v, digits)).min();
-            if reached.unwrap_or(digits) >= digits {
-                return Ok(Enclosed { values, bits });
-            }
-            last = EnclosureError::TooWide {
-                asked: digits,
-                reached: reached.unwrap_or(0),
-                bits,
+            let undecided = EnclosureError::Undecided { bits };
+            return match std::mem::replace(&mut doubted, true) {
+                true => Rung::Final(undecided),
+                false => Rung::Short(undecided),
             };
         }
-        bits *= 2;
+        doubted = false;
+        if values.iter().any(Ball::is_beyond_mpfr) {
+            return Rung::Final(EnclosureError::BeyondRange);
+        }
+        let reached = values.iter().map(|v| digits_of(v, digits)).min().unwrap_or(digits);
+        match reached >= digits {
+            true => Rung::Reached(values),
+            false => Rung::Short(EnclosureError::TooWide {
+                asked: digits,
+                reached,
+                bits,
+            }),
+        }
+    };
+    match ladder.climb(rung, doubled) {
+        Ok((values, precision)) => Ok(Enclosed {
+            values,
+            bits: precision.in_bits(),
+        }),
+        Err(Stop::Final(error) | Stop::Exhausted(error)) => Err(error),
+        Err(Stop::OutOfTime { last, .. }) => Err(EnclosureError::OutOfTime {
+            asked: digits,
+            reached: match last {
+                Some(EnclosureError::TooWide { reached, .. }) => reached,
+                _ => 0,
+            },
+        }),
     }
-    Err(last)
 }
 
 /// A ball that contains the decimal `text` (checked to be a number by the caller).
@@ -181,6 +187,13 @@ pub fn coefficient_balls(
 /// phase as the exact offset ψ from the nearest multiple nπ (with Q0 reversed for odd
 /// n: the mirror image, which has the same W).
 pub fn partial_sum_balls(case: &CaseSpec, order: usize, precision: Precision) -> Result<Vec<Ball>, ExactAnswerError> {
+    let Case { cycle, compliance } = case_balls(case, precision)?;
+    Ok(partial_sums(&cycle, compliance.as_ref(), order)?)
+}
+
+/// A case read as balls, its phase as the exact offset ψ from the nearest multiple nπ
+/// (with Q0 reversed for odd n: the mirror image, which has the same W).
+pub fn case_balls(case: &CaseSpec, precision: Precision) -> Result<Case<Ball>, ExactAnswerError> {
     let Case { mut cycle, compliance } = case.at::<Ball>(precision)?;
     let (psi, reverses) = phase_offset(case.phase(), precision);
     // `at` reverses Q0 for the mirror image it reads near an odd multiple of π; here it
@@ -189,7 +202,7 @@ pub fn partial_sum_balls(case: &CaseSpec, order: usize, precision: Precision) ->
         cycle.mean_tangential_load = -cycle.mean_tangential_load;
     }
     cycle.phase = psi;
-    Ok(partial_sums(&cycle, compliance.as_ref(), order)?)
+    Ok(Case { cycle, compliance })
 }
 
 #[cfg(test)]

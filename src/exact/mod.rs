@@ -6,13 +6,17 @@
 pub mod coefficient;
 #[cfg(feature = "certified")]
 pub mod enclosure;
+pub mod kernel;
 pub mod polynomial_w;
 #[doc(hidden)]
 pub mod printing;
+pub mod remainder;
 pub mod series;
 pub mod trig;
 
 pub use coefficient::closed_form_coefficient;
+pub use kernel::{KernelNorms, PeanoKernels};
 pub use polynomial_w::{coefficients_about, monomial_dissipations, polynomial_dissipation};
+pub use remainder::{remainder_bounds, RemainderError, SeriesShape};
 pub use series::{partial_sums, series_coefficients, SeriesError};
 pub use trig::TrigPolynomial;

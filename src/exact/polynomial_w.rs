@@ -21,13 +21,13 @@ use crate::dissipation::Segments;
 use crate::real::Real;
 
 /// One term weight·loadⁿ of a segment integrand.
-struct Term<R> {
-    weight: TrigPolynomial<R>,
-    load: TrigPolynomial<R>,
+pub(super) struct Term<R> {
+    pub(super) weight: TrigPolynomial<R>,
+    pub(super) load: TrigPolynomial<R>,
 }
 
 /// The integrand terms and the θ interval of each segment, per unit λ.
-fn segment_terms<R: Real>(g: &EllipseGeometry<R>) -> [(Vec<Term<R>>, R, R); 4] {
+pub(super) fn segment_terms<R: Real>(g: &EllipseGeometry<R>) -> [(Vec<Term<R>>, R, R); 4] {
     let zero = g.phase.int(0);
     let two_f = g.friction.clone() * &zero.int(2);
     let (phase_sin, phase_cos) = &g.phase_sin_cos;

@@ -5,7 +5,7 @@
 //! I₀ = 0 is the constant-term theorem and I₁ = I the cubic-law coefficient.
 
 use crate::compliance::Compliance;
-use crate::cycle::{CycleError, LoadCycle};
+use crate::cycle::{CycleError, EllipseGeometry, LoadCycle};
 use crate::real::Real;
 
 use super::polynomial_w::monomials_with_scale;
@@ -57,6 +57,14 @@ pub enum SeriesError {
 /// # Ok::<(), microslip::exact::SeriesError>(())
 /// ```
 pub fn series_coefficients<R: Real>(rho: &R, phase: &R, order: usize) -> Result<Vec<(R, R)>, SeriesError> {
+    let geometry = scaled_geometry(rho, phase)?;
+    let (segments, scales) = monomials_with_scale(&geometry, order);
+    Ok(segments.iter().map(|s| s.total()).zip(scales).collect())
+}
+
+/// The geometry of the scaled cycle P1 = f = λ = 1, Q1 = ρ, on which W[v' = (P − P0)ⁿ]
+/// is Iₙ (P0 only has to keep the cycle inside the theory).
+pub(super) fn scaled_geometry<R: Real>(rho: &R, phase: &R) -> Result<EllipseGeometry<R>, SeriesError> {
     let zero = rho.int(0);
     if !(rho.is_finite() && *rho > zero) {
         return Err(SeriesError::NonPositiveRatio {
@@ -74,9 +82,7 @@ pub fn series_coefficients<R: Real>(rho: &R, phase: &R, order: usize) -> Result<
         friction: one.clone(),
         compliance_ratio: one,
     };
-    let geometry = cycle.geometry()?;
-    let (segments, scales) = monomials_with_scale(&geometry, order);
-    Ok(segments.iter().map(|s| s.total()).zip(scales).collect())
+    Ok(cycle.geometry()?)
 }
 
 /// The partial sums W_N = λ f² Σ_{n=1}^{N} v⁽ⁿ⁺¹⁾(P0)/n! · P1ⁿ⁺² Iₙ, N = 1 … `order`,
@@ -119,11 +125,26 @@ pub fn partial_sums<R: Real>(
     if rho == zero {
         return Ok(vec![zero; order]);
     }
-    let coefficients = series_coefficients(&rho, &cycle.phase, order)?;
-    let prefactor = cycle.compliance_ratio.clone() * &cycle.friction.square() * &p1.square();
-    let mut sums = Vec::with_capacity(order);
-    let (mut total, mut power, mut factorial) = (zero.clone(), p1.clone(), zero.int(1));
-    for (n, (value, _)) in coefficients.iter().enumerate().skip(1) {
+    let coefficients: Vec<R> = series_coefficients(&rho, &cycle.phase, order)?
+        .into_iter()
+        .map(|(value, _)| value)
+        .collect();
+    sums_at_amplitude(&coefficients, cycle, compliance, p1)
+}
+
+/// W_1 … W_N from I₀ … I_N for the cycle's P0, f, λ and compliance at normal amplitude
+/// `amplitude` (the shape ρ, φ the coefficients belong to kept).
+pub(super) fn sums_at_amplitude<R: Real>(
+    coefficients: &[R],
+    cycle: &LoadCycle<R>,
+    compliance: &dyn Compliance<R>,
+    amplitude: &R,
+) -> Result<Vec<R>, SeriesError> {
+    let zero = cycle.mean_normal_load.int(0);
+    let prefactor = cycle.compliance_ratio.clone() * &cycle.friction.square() * &amplitude.square();
+    let mut sums = Vec::with_capacity(coefficients.len());
+    let (mut total, mut power, mut factorial) = (zero.clone(), amplitude.clone(), zero.int(1));
+    for (n, value) in coefficients.iter().enumerate().skip(1) {
         factorial *= &zero.int(n as i64);
         let derivative =
             compliance
@@ -135,7 +156,7 @@ pub fn partial_sums<R: Real>(
             return Err(SeriesError::NotFinite { order: n + 1 });
         }
         total += derivative / &factorial * &power * value * &prefactor;
-        power *= p1;
+        power *= amplitude;
         sums.push(total.clone());
     }
     Ok(sums)

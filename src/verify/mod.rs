@@ -86,7 +86,16 @@ pub fn gate(options: GateOptions) -> Vec<GateStep> {
     vec![
         (
             "cubic law",
-            Box::new(move || vec![claims::cubic_law(stream("cubic law"), n(3, 60))]),
+            Box::new(move || {
+                #[allow(unused_mut)]
+                let mut rows = vec![claims::cubic_law(stream("cubic law"), n(3, 60))];
+                #[cfg(feature = "certified")]
+                rows.extend([
+                    claims::cubic_law_remainder(stream("cubic law remainder"), n(2, 20)),
+                    claims::completely_monotone_bracket(stream("completely monotone bracket"), n(3, 20)),
+                ]);
+                rows
+            }),
         ),
         (
             "small-amplitude coefficient",

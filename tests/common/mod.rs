@@ -421,3 +421,25 @@ pub fn every_point_rounds_to(printed: &str, lower: &rug::Float, upper: &rug::Flo
         )
     })
 }
+
+/// A deterministic stream of numbers in [0, 1) (SplitMix64): random rows that are the same on
+/// every run.
+#[allow(dead_code)] // not every test binary draws rows
+pub struct Draws(pub u64);
+
+#[allow(dead_code)]
+impl Draws {
+    /// The next number in [0, 1).
+    pub fn next(&mut self) -> f64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    /// The next number in [low, high).
+    pub fn between(&mut self, low: f64, high: f64) -> f64 {
+        low + (high - low) * self.next()
+    }
+}

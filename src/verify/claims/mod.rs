@@ -14,6 +14,8 @@ mod coefficient;
 pub mod coefficient_proof;
 mod constant_term;
 mod cubic_law;
+#[cfg(feature = "certified")]
+mod cubic_law_remainder;
 mod evaluator;
 mod exact;
 mod invariants;
@@ -26,6 +28,8 @@ pub use coefficient::small_amplitude_coefficient;
 pub use coefficient_proof::coefficient_is_negative;
 pub use constant_term::ConstantTerm;
 pub use cubic_law::{cubic_law, cubic_law_order, least_squares_slope, CubicLawCase};
+#[cfg(feature = "certified")]
+pub use cubic_law_remainder::{completely_monotone_bracket, cubic_law_remainder};
 pub use evaluator::{
     check_claim, Claim, ConstantSlope, Evaluator, Failure, FourSegment, Measured, Outcome, Source, Value,
 };

@@ -1,0 +1,37 @@
+"""microslip: frictional (microslip) energy dissipation W per load cycle in elastic contacts
+of rough surfaces, in f64 or to proven digits.
+
+A :class:`Case` is one load cycle P = P0 + P1 cos θ, Q = Q0 + Q1 cos(θ − φ) on a contact
+of friction coefficient f, compliance ratio λ (or Poisson's ratio ν) and normal compliance
+SPEC. Numbers are exact decimals: give strings (``"0.4pi"``, ``"1e-300"``) to say exactly
+what you mean; a float is read as the shortest decimal that reads back to it (its
+``repr``). :func:`dissipation` gives W as ``microslip dissipation`` prints it,
+:func:`dissipation_many` a numpy array of W over broadcast parameter arrays on all cores.
+"""
+
+from ._microslip import (
+    Answer,
+    Case,
+    Series,
+    Simulation,
+    __version__,
+    dissipation,
+    series,
+    simulate,
+    small_amplitude,
+)
+from ._sweep import Dissipations, dissipation_many
+
+__all__ = [
+    "Answer",
+    "Case",
+    "Dissipations",
+    "Series",
+    "Simulation",
+    "__version__",
+    "dissipation",
+    "dissipation_many",
+    "series",
+    "simulate",
+    "small_amplitude",
+]

@@ -1,0 +1,84 @@
+//! `series(case, order)` (partial sums W_N beside W) and `small_amplitude(rho, phi)`
+//! (the coefficient I(ρ, φ)), as `microslip series` and `microslip small-amplitude`
+//! print them.
+
+use microslip::exact::printing::{coefficient_answer, partial_sum_answers, PartialSums};
+use pyo3::prelude::*;
+
+use crate::answer::PyAnswer;
+use crate::case::{decimal_text, PyCase};
+use crate::errors;
+
+/// A case's partial sums W_N (N = 1 … order) of the small-amplitude series beside W.
+#[pyclass(name = "Series", module = "microslip", frozen)]
+pub struct PySeries {
+    sums: PartialSums,
+}
+
+#[pymethods]
+impl PySeries {
+    /// W, as `dissipation(case, digits)` gives it.
+    #[getter]
+    fn dissipation(&self) -> PyAnswer {
+        PyAnswer::of(self.sums.dissipation.clone())
+    }
+
+    /// W_N at index N − 1.
+    #[getter]
+    fn partial_sums(&self) -> Vec<PyAnswer> {
+        self.sums.sums.iter().cloned().map(PyAnswer::of).collect()
+    }
+
+    /// W_N − W at index N − 1.
+    #[getter]
+    fn differences(&self) -> Vec<PyAnswer> {
+        self.sums.differences.iter().cloned().map(PyAnswer::of).collect()
+    }
+
+    fn __repr__(&self) -> String {
+        let sums: Vec<String> = self.sums.sums.iter().map(|s| s.value.decimal.to_string()).collect();
+        format!(
+            "Series(W={}, partial_sums=[{}])",
+            self.sums.dissipation.value.decimal,
+            sums.join(", ")
+        )
+    }
+}
+
+/// The partial sums W_1 … W_order of the case's small-amplitude series beside its W,
+/// each to `digits` proven digits (15 without).
+#[pyfunction]
+#[pyo3(signature = (case, order, digits=None, max_seconds=60.0))]
+pub fn series(
+    py: Python<'_>,
+    case: &Bound<'_, PyCase>,
+    order: usize,
+    digits: Option<u32>,
+    max_seconds: f64,
+) -> PyResult<PySeries> {
+    let budget = errors::budget(max_seconds)?;
+    let text = case.get().text.clone();
+    let sums = py
+        .detach(|| partial_sum_answers(&text, order, digits, budget))
+        .map_err(errors::of_exact_answer)?;
+    Ok(PySeries { sums })
+}
+
+/// The small-amplitude coefficient I(ρ, φ), ρ = Q1/(f P1), to `digits` proven digits
+/// (15 without).
+#[pyfunction]
+#[pyo3(signature = (rho, phi, digits=None, max_seconds=60.0))]
+pub fn small_amplitude(
+    py: Python<'_>,
+    rho: &Bound<'_, PyAny>,
+    phi: &Bound<'_, PyAny>,
+    digits: Option<u32>,
+    max_seconds: f64,
+) -> PyResult<PyAnswer> {
+    let budget = errors::budget(max_seconds)?;
+    let (rho, phi) = (decimal_text(rho, "rho")?, decimal_text(phi, "phi")?);
+    let answer = py
+        .detach(|| coefficient_answer(&rho, &phi, digits, budget))
+        .map_err(errors::of_exact_answer)?;
+    Ok(PyAnswer::of(answer))
+}

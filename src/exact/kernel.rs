@@ -1,0 +1,412 @@
+//! The Peano kernels K_{N+1}(τ; ρ, φ) of the small-amplitude series and rigorous upper
+//! bounds on their L¹ norms (proofs/cubic-law-remainder.md).
+//!
+//! W is a linear functional of g = v' that kills constants: on the scaled cycle
+//! (P1 = f = λ = 1, Q1 = ρ) it is ∫ g(P0 + σ) dm(σ) for a signed measure m on [−L, 1],
+//! the image of the segment weights under the loads they evaluate v' at. Taylor's formula
+//! with integral remainder then gives W − W_N = λ f² P1^(N+3) ∫ v⁽ᴺ⁺²⁾(P0 + P1τ) K_{N+1}(τ) dτ
+//! with
+//!
+//! ```text
+//! K_{N+1}(τ) =  ∫_{σ>τ} (σ − τ)ᴺ/N! dm(σ)   (τ > 0)
+//! K_{N+1}(τ) = −∫_{σ<τ} (σ − τ)ᴺ/N! dm(σ)   (τ < 0).
+//! ```
+//!
+//! Every load along a segment is c + r cos(θ − γ), so {σ > τ} is an arc of the cycle angle
+//! with closed-form ends, and each K_j(τ) is a sum of exact trigonometric integrals
+//! ([`super::trig`]): the kernels are computed exactly, not by quadrature, and on Arb
+//! balls they are enclosed. Which copy of the arc meets a segment is not decided on
+//! balls: every nearby copy is integrated with its length clamped at 0 by `max`. The
+//! one decision, whether u lies beyond ±1, reads the ball's whole interval, and where
+//! it may not (τ at a load's extreme) the arc's half-width is enclosed by its hull.
+//!
+//! The norm ‖K_{N+1}‖₁ is bounded by boxes in τ, not by sampling: K_{N+1}' = −K_N on each
+//! side of τ = 0 (where K_{N+1} jumps by I_N/N!), so on a box [a, b] of width h,
+//! |K_{N+1}| ≤ min(|K_{N+1}(a)| + (τ − a)S, |K_{N+1}(b)| + (b − τ)S) with S ≥ sup |K_N|,
+//! whose integral is at most h(|K_{N+1}(a)| + |K_{N+1}(b)|)/2 + h²S/4. S comes down the
+//! same ladder to K_1(τ) = ±m(tail), which moves across a box by at most |m|(box), bounded
+//! by the weights' sup times the arc lengths the box sweeps. The boxes are refined where
+//! this slack is largest; where they are not refined the bound is still an upper bound.
+
+use super::polynomial_w::{segment_terms, Term};
+use super::series::scaled_geometry;
+use super::series::SeriesError;
+use super::trig::{Interval, TrigPolynomial};
+use crate::real::Real;
+
+/// One weight·g(load) term of a segment, with its load as c + r cos(θ − γ).
+struct Piece<R> {
+    weight: TrigPolynomial<R>,
+    weight_bound: R,
+    load: TrigPolynomial<R>,
+    centre: R,
+    radius: R,
+    angle: R,
+    start: R,
+    length: R,
+}
+
+/// The kernels K_1 … K_{N+1} at one τ, from one side of 0, and the weighted arc length
+/// of the tail region (for the total variation of m over a box).
+#[derive(Clone, Debug)]
+struct KernelPoint<R> {
+    tau: R,
+    kernels: Vec<R>,
+    tail_arc: R,
+}
+
+/// The measure m of a (ρ, φ), prepared for evaluating its Peano kernels.
+pub struct PeanoKernels<R> {
+    pieces: Vec<Piece<R>>,
+    reach: R,
+    highest: usize,
+}
+
+/// Upper bounds on ‖K_{n+1}‖₁ for n = 1 … N, and how they were reached.
+#[derive(Clone, Debug)]
+pub struct KernelNorms<R> {
+    /// Index n − 1: an upper bound on ‖K_{n+1}‖₁ (a ball whose upper end bounds it).
+    pub norms: Vec<R>,
+    /// Index n − 1: the trapezoid sum h(|K(a)| + |K(b)|)/2 over the same boxes, an
+    /// estimate of ‖K_{n+1}‖₁ from below the bound, for judging its slack.
+    pub estimates: Vec<R>,
+    /// Index n − 1: the largest K_{n+1}(τ) at the boxes' ends (a sample of its sign, not a
+    /// bound over the boxes).
+    pub largest: Vec<R>,
+    /// L = (P0 − P_T)/P1, how far below P0 the measure reaches in units of P1.
+    pub reach: R,
+    /// The kernel evaluations the boxes used.
+    pub evaluations: usize,
+}
+
+/// The relative slack at which the boxes stop being refined.
+const SLACK: f64 = 0.02;
+/// The most kernel evaluations spent on one (ρ, φ).
+const MAX_EVALUATIONS: usize = 1200;
+/// Boxes per side of τ = 0 to start from.
+const START_BOXES: usize = 24;
+
+impl<R: Real> PeanoKernels<R> {
+    /// The kernels of (ρ, φ) up to K_{`highest` + 1}.
+    pub fn new(rho: &R, phase: &R, highest: usize) -> Result<Self, SeriesError> {
+        let geometry = scaled_geometry(rho, phase)?;
+        let reach = -geometry.permanent_stick_offset.clone();
+        let mut pieces = Vec::new();
+        for (terms, start, length) in segment_terms(&geometry) {
+            for Term { weight, load } in terms {
+                let (a, b) = (load.cos_coefficient(1), load.sin_coefficient(1));
+                pieces.push(Piece {
+                    weight_bound: weight.magnitude(),
+                    weight,
+                    centre: load.cos_coefficient(0),
+                    radius: a.hypot(&b),
+                    angle: b.atan2(&a),
+                    load,
+                    start: start.clone(),
+                    length: length.clone(),
+                });
+            }
+        }
+        Ok(PeanoKernels { pieces, reach, highest })
+    }
+
+    /// L = (P0 − P_T)/P1.
+    pub fn reach(&self) -> &R {
+        &self.reach
+    }
+
+    /// K_1(τ) … K_{N+1}(τ) (index j − 1), τ taken on the side of 0 that `upper` names
+    /// (τ = 0 itself from either side).
+    /// `None` where τ is a load's extreme to within a ball's width.
+    pub fn at(&self, tau: &R, upper: bool) -> Option<Vec<R>> {
+        self.point(tau, upper).map(|point| point.kernels)
+    }
+
+    /// The kernels at τ. Where u may be ±1 (τ at a load's extreme to within a ball's width)
+    /// the arc's half-width is enclosed by the hull of its possible values; `None` only
+    /// where u may be both (a load of near-zero amplitude).
+    fn point(&self, tau: &R, upper: bool) -> Option<KernelPoint<R>> {
+        let zero = tau.int(0);
+        let turn = zero.pi_like() * &zero.int(2);
+        let mut kernels = vec![zero.clone(); self.highest + 1];
+        let mut tail_arc = zero.clone();
+        for piece in &self.pieces {
+            // The tail {load > τ} (upper) or {load < τ}: cos(θ − centre) > u.
+            let (u, centre) = if upper {
+                ((tau.clone() - &piece.centre) / &piece.radius, piece.angle.clone())
+            } else {
+                (
+                    (piece.centre.clone() - tau) / &piece.radius,
+                    piece.angle.clone() + &zero.pi_like(),
+                )
+            };
+            let one = zero.int(1);
+            let (low, high) = span(&u);
+            let half_width = if low >= 1.0 {
+                continue;
+            } else if high <= -1.0 {
+                zero.pi_like()
+            } else if low > -1.0 && high < 1.0 {
+                (one - &u.square()).sqrt().atan2(&u)
+            } else if low > -1.0 {
+                // u may be 1 (τ at the load's largest value, as at φ = π/2 where a slip
+                // load's top is P0): the half-width lies in [0, acos(low)].
+                zero.union(&arc_half_width(low, &zero))
+            } else if high < 1.0 {
+                zero.pi_like().union(&arc_half_width(high, &zero))
+            } else {
+                return None;
+            };
+            let first = centre - &half_width;
+            // Which copy of the arc lies first past the segment's start: chosen in f64, the
+            // copies k − 2 … k + 2 cover every overlap whatever the choice.
+            let k = ((first.clone() - &piece.start) / &turn).to_f64_lossy().floor();
+            let end = piece.start.clone() + &piece.length;
+            let shifted = piece.load.plus(&TrigPolynomial::constant(-tau.clone()));
+            let sign = if upper { tau.int(1) } else { -tau.int(1) };
+            for copy in -2..=2 {
+                let from = first.clone() + &(turn.clone() * &zero.int(copy - k as i64));
+                let to = from.clone() + &half_width + &half_width;
+                let lo = from.max_of(&piece.start);
+                let length = (to.min_of(&end) - &lo).max_of(&zero);
+                if surely_zero(&length) {
+                    continue;
+                }
+                tail_arc += &(piece.weight_bound.clone() * &length);
+                let interval = Interval::new(&lo, &length, self.highest + 2);
+                let mut integrand = piece.weight.clone();
+                let mut factorial = tau.int(1);
+                for (j, kernel) in kernels.iter_mut().enumerate() {
+                    if j > 0 {
+                        integrand = integrand.times(&shifted);
+                        factorial *= &zero.int(j as i64);
+                    }
+                    *kernel += &(integrand.integral_over(&interval) / &factorial * &sign);
+                }
+            }
+        }
+        Some(KernelPoint {
+            tau: tau.clone(),
+            kernels,
+            tail_arc,
+        })
+    }
+
+    /// The kernels at `tau` or, where a load's extreme lies there, at the nearest of a few
+    /// points moved towards `towards` by a millionth of the distance (a box's end may be
+    /// anywhere; it only has to be where the kernels were evaluated).
+    fn point_near(&self, tau: f64, towards: f64, upper: bool) -> Option<KernelPoint<R>> {
+        let precision = self.reach.precision();
+        (0..4).find_map(|attempt| {
+            let moved = tau + (towards - tau) * 1e-6 * f64::from(attempt);
+            self.point(&R::from_f64(moved, precision), upper)
+        })
+    }
+
+    /// Upper bounds on ‖K_{n+1}‖₁, n = 1 … N, by boxes in τ over [−L, 1].
+    /// `None` where the kernels cannot be enclosed at a box's end: a load's extreme
+    /// there stays undecided (τ = 0, where K_{N+1} jumps, is not moved), or the measure
+    /// is degenerate (a load of zero amplitude, a non-finite geometry).
+    pub fn norms(&self) -> Option<KernelNorms<R>> {
+        // Past the support [−L, 1] every tail is surely empty and the kernels vanish.
+        let low = -upper_f64(&self.reach) * (1.0 + 1e-9) - f64::MIN_POSITIVE;
+        let high = 1.0 + 1e-9;
+        let mut evaluations = 0;
+        let mut sides = Vec::with_capacity(2);
+        for (from, to, upper) in [(low, 0.0, false), (0.0, high, true)] {
+            let mut points = Vec::with_capacity(START_BOXES + 1);
+            for i in 0..=START_BOXES {
+                let t = match i {
+                    0 => from,
+                    START_BOXES => to,
+                    _ => from + (to - from) * i as f64 / START_BOXES as f64,
+                };
+                evaluations += 1;
+                let point = if i == 0 || i == START_BOXES {
+                    self.point(&R::from_f64(t, self.reach.precision()), upper)
+                } else {
+                    self.point_near(t, to, upper)
+                };
+                points.push(point?);
+            }
+            sides.push(points);
+        }
+        loop {
+            let boxes: Vec<Vec<BoxBound<R>>> = sides
+                .iter()
+                .map(|points| points.windows(2).map(|w| self.box_bound(&w[0], &w[1])).collect())
+                .collect();
+            let all = || boxes.iter().flatten();
+            let (bounds, estimates) = self.totals(all());
+            let scales: Vec<f64> = bounds.iter().map(|b| b.to_f64_lossy().max(f64::MIN_POSITIVE)).collect();
+            let slack_of = |b: &BoxBound<R>| -> f64 {
+                b.bounds
+                    .iter()
+                    .zip(&b.estimates)
+                    .zip(&scales)
+                    .map(|((bound, estimate), scale)| (bound.to_f64_lossy() - estimate.to_f64_lossy()) / scale)
+                    .fold(0.0, f64::max)
+            };
+            let worst = bounds
+                .iter()
+                .zip(&estimates)
+                .map(|(b, e)| b.to_f64_lossy() / e.to_f64_lossy().max(f64::MIN_POSITIVE) - 1.0)
+                .fold(0.0, f64::max);
+            if !bounds.iter().all(R::is_finite) {
+                return None;
+            }
+            let count = all().count();
+            if worst <= SLACK || evaluations + count / 2 > MAX_EVALUATIONS || !worst.is_finite() {
+                let largest = (1..=self.highest)
+                    .map(|j| {
+                        let mut values = sides.iter().flatten().map(|point| point.kernels[j].clone());
+                        let first = values.next().unwrap_or_else(|| self.reach.int(0));
+                        values.fold(first, |acc, value| acc.max_of(&value))
+                    })
+                    .collect();
+                return Some(KernelNorms {
+                    norms: bounds,
+                    estimates,
+                    largest,
+                    reach: self.reach.clone(),
+                    evaluations,
+                });
+            }
+            let slacks: Vec<Vec<f64>> = boxes.iter().map(|side| side.iter().map(slack_of).collect()).collect();
+            let mean = slacks.iter().flatten().sum::<f64>() / count as f64;
+            for (points, (slack, upper)) in sides.iter_mut().zip(slacks.iter().zip([false, true])) {
+                let mut refined = Vec::with_capacity(points.len() * 2);
+                for (i, pair) in points.windows(2).enumerate() {
+                    refined.push(pair[0].clone());
+                    if slack[i] >= mean {
+                        let (a, b) = (pair[0].tau.to_f64_lossy(), pair[1].tau.to_f64_lossy());
+                        evaluations += 1;
+                        refined.push(self.point_near((a + b) / 2.0, b, upper)?);
+                    }
+                }
+                refined.push(points[points.len() - 1].clone());
+                *points = refined;
+            }
+        }
+    }
+
+    /// The sums of the boxes' bounds and trapezoid estimates, per order.
+    fn totals<'a>(&self, boxes: impl Iterator<Item = &'a BoxBound<R>>) -> (Vec<R>, Vec<R>)
+    where
+        R: 'a,
+    {
+        let zero = self.reach.int(0);
+        let mut bounds = vec![zero.clone(); self.highest];
+        let mut estimates = vec![zero; self.highest];
+        for b in boxes {
+            for n in 0..self.highest {
+                bounds[n] += &b.bounds[n];
+                estimates[n] += &b.estimates[n];
+            }
+        }
+        (bounds, estimates)
+    }
+
+    /// ∫ over [a, b] of |K_{n+1}| bounded for n = 1 … N (the module doc's ladder).
+    fn box_bound(&self, a: &KernelPoint<R>, b: &KernelPoint<R>) -> BoxBound<R> {
+        let width = (b.tau.clone() - &a.tau).abs();
+        let half = width.clone() / &width.int(2);
+        let ends = |j: usize| (a.kernels[j].abs(), b.kernels[j].abs());
+        let (k1a, k1b) = ends(0);
+        // sup |K_1| over the box: an end value moved by at most |m|(box).
+        let mut sup = k1a.min_of(&k1b) + &(a.tail_arc.clone() - &b.tail_arc).abs();
+        let (mut bounds, mut estimates) = (Vec::with_capacity(self.highest), Vec::with_capacity(self.highest));
+        for j in 1..=self.highest {
+            let (ka, kb) = ends(j);
+            let mean = (ka + &kb) / &width.int(2);
+            let trapezoid = mean.clone() * &width;
+            bounds.push(trapezoid.clone() + &(sup.clone() * &width * &half / &width.int(2)));
+            estimates.push(trapezoid);
+            // sup |K_{j+1}| ≤ (|K(a)| + |K(b)|)/2 + h·sup |K_j|/2.
+            sup = mean + &(sup * &half);
+        }
+        BoxBound { bounds, estimates }
+    }
+}
+
+/// One box's bounds and trapezoid estimates, per order.
+struct BoxBound<R> {
+    bounds: Vec<R>,
+    estimates: Vec<R>,
+}
+
+/// acos(u) for an f64 u in [−1, 1], at the precision of `like`.
+fn arc_half_width<R: Real>(u: f64, like: &R) -> R {
+    let u = R::from_f64(u.clamp(-1.0, 1.0), like.precision());
+    (like.int(1) - &u.square()).max_of(like).sqrt().atan2(&u)
+}
+
+/// The real interval of a value, outward in f64 (a number: itself).
+fn span<R: Real>(x: &R) -> (f64, f64) {
+    x.real_span().unwrap_or_else(|| (x.to_f64_lossy(), x.to_f64_lossy()))
+}
+
+/// Whether a value is certainly 0 or below (for a ball: its whole interval), so that a
+/// piece of that length can be left out; asks no comparison of a ball.
+fn surely_zero<R: Real>(length: &R) -> bool {
+    span(length).1 <= 0.0
+}
+
+/// An f64 at or above the value (for a ball: above its whole interval).
+fn upper_f64<R: Real>(x: &R) -> f64 {
+    let high = span(x).1;
+    if x.real_span().is_some() {
+        high
+    } else {
+        high + high.abs() * 4.0 * f64::EPSILON
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::exact::series_coefficients;
+
+    /// ∫ K_{N+1} = I_{N+1}/(N+1)! and the jump at 0 is I_N/N!, from the kernels' values.
+    #[test]
+    fn kernels_integrate_to_the_next_coefficient_and_jump_by_the_last() {
+        for (rho, phase) in [(0.5, 1.0), (2.0, 0.3), (1.3, 2.6)] {
+            let kernels = PeanoKernels::new(&rho, &phase, 3).unwrap();
+            let coefficients = series_coefficients(&rho, &phase, 4).unwrap();
+            let low = -kernels.reach();
+            // Composite Simpson on each side of the jump.
+            let simpson = |from: f64, to: f64, upper: bool| {
+                let n = 4000;
+                let h = (to - from) / n as f64;
+                let mut sums = vec![0.0; 4];
+                for i in 0..=n {
+                    let w = if i == 0 || i == n {
+                        1.0
+                    } else if i % 2 == 1 {
+                        4.0
+                    } else {
+                        2.0
+                    };
+                    for (sum, k) in sums.iter_mut().zip(kernels.at(&(from + i as f64 * h), upper).unwrap()) {
+                        *sum += w * k * h / 3.0;
+                    }
+                }
+                sums
+            };
+            let (below, above) = (simpson(low, 0.0, false), simpson(0.0, 1.0, true));
+            let mut factorial = 1.0;
+            for n in 1..=3 {
+                factorial *= (n + 1) as f64;
+                let integral = below[n] + above[n];
+                let expected = coefficients[n + 1].0 / factorial;
+                assert!(
+                    (integral - expected).abs() < 1e-6 * (1.0 + expected.abs()),
+                    "{rho} {phase} {n}: {integral} {expected}"
+                );
+                let jump = kernels.at(&0.0, true).unwrap()[n] - kernels.at(&0.0, false).unwrap()[n];
+                let last = coefficients[n].0 / (factorial / (n + 1) as f64);
+                assert!((jump - last).abs() < 1e-12 * (1.0 + last.abs()), "{rho} {phase} {n}");
+            }
+        }
+    }
+}

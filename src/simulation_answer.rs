@@ -1,0 +1,111 @@
+//! The simulation's W as one [`Answer`]: the policy around the history simulation — the
+//! f64 cycle it runs on, the tables it reads, a W of 0 it cannot vouch for — decided here,
+//! so that the command line and the bindings only format the result.
+
+use crate::answer::{Answer, Provenance, Value};
+use crate::case::{Case, CaseSpec, InputError};
+use crate::compliance::TableError;
+use crate::cycle::{CycleError, LoadCycle};
+use crate::dissipation_answer::tables_cover;
+use crate::real::Precision;
+use crate::simulate::{simulate, SimulationError, SimulationOptions, SimulationResult};
+
+/// The simulation's W, and what it ran on.
+#[derive(Clone, Debug)]
+pub struct SimulatedAnswer {
+    /// W as the work of the load, printed by the one rule for the bound its estimated
+    /// relative error gives it ([`Provenance::Simulated`]: an estimate, not a proof).
+    pub answer: Answer,
+    /// W as the frictional work, for the same bound.
+    pub friction: Value,
+    /// The runs: the steady loop, the resolution, the estimated error.
+    pub result: SimulationResult,
+    /// The cycle simulated, in f64, in time order (a phase read as its cycle's mirror
+    /// image turned back).
+    pub cycle: LoadCycle<f64>,
+}
+
+/// Why the simulation gave no W.
+#[non_exhaustive]
+#[derive(Debug, Clone, PartialEq, thiserror::Error)]
+pub enum SimulatedError {
+    /// The case cannot be read in f64.
+    #[error(transparent)]
+    Input(#[from] InputError),
+    /// Rounded to f64, the cycle crosses a boundary the exact one keeps off.
+    #[error("rounded to f64 the inputs cross a boundary that the exact cycle keeps off (in f64: {0}); the simulation runs in f64, `microslip dissipation` computes this cycle")]
+    RoundedAcrossBoundary(CycleError),
+    /// The cycle leaves a table of the compliance.
+    #[error(transparent)]
+    Table(#[from] TableError),
+    /// The simulation itself failed.
+    #[error(transparent)]
+    Simulation(#[from] SimulationError),
+    /// Every change of v' over the cycle's loads underflows f64, so the simulated W is 0,
+    /// which nothing in the input makes exact.
+    #[error("the simulation's W rounds to 0 in f64 (the changes of v' over the cycle's loads underflow), though nothing in the input makes W exactly 0; `microslip dissipation` gives W at any size")]
+    ZeroInF64,
+}
+
+impl SimulatedError {
+    /// The exit code of a command that ends on it: 1 where the input was fine and the run
+    /// could not vouch for W, 2 for refused input.
+    pub fn exit_code(&self) -> u8 {
+        match self {
+            SimulatedError::RoundedAcrossBoundary(_)
+            | SimulatedError::ZeroInF64
+            | SimulatedError::Simulation(
+                SimulationError::ToleranceNotReached { .. } | SimulationError::OutOfTime { .. },
+            ) => 1,
+            _ => 2,
+        }
+    }
+
+    /// What the user may change, as a clause to append to the message (empty where
+    /// nothing helps).
+    pub fn hint(&self) -> &'static str {
+        match self {
+            SimulatedError::Simulation(SimulationError::ToleranceNotReached { .. }) => {
+                "; more --elements and --steps may reach it, or a larger --tolerance accepts it"
+            }
+            SimulatedError::Simulation(SimulationError::TooLarge { .. }) => "; use fewer --elements or --steps",
+            SimulatedError::Simulation(SimulationError::OutOfTime { .. }) => {
+                "; raise --max-seconds or use fewer --elements or --steps"
+            }
+            _ => "",
+        }
+    }
+}
+
+/// W of `case` by the history simulation with `options`.
+pub fn simulated_answer(case: &CaseSpec, options: &SimulationOptions) -> Result<SimulatedAnswer, SimulatedError> {
+    let Case { mut cycle, compliance } = case.at::<f64>(Precision::DOUBLE)?;
+    // The exact cycle is inside the theory (the case was read); its f64 copy may round
+    // across a boundary it keeps off, and the simulation runs in f64.
+    cycle.validate().map_err(SimulatedError::RoundedAcrossBoundary)?;
+    // The simulation follows the loads in time: a phase within 2⁻²⁰ of an odd multiple of
+    // π is read as the mirror image of its cycle (the same W), turned back here.
+    if case.phase().is_mirror_image() {
+        cycle.phase += std::f64::consts::PI;
+        cycle.mean_tangential_load = -cycle.mean_tangential_load;
+    }
+    tables_cover(&case.compliance().tables(), &cycle)?;
+    let result = simulate(&cycle, compliance.as_ref(), options)?;
+    // Only a W that is 0 by its reason is printed as 0.
+    if result.w_work == 0.0 && result.w_friction == 0.0 && case.exact_zero().is_none() {
+        return Err(SimulatedError::ZeroInF64);
+    }
+    let bound = result.estimated_rel_error * result.w_work.abs();
+    Ok(SimulatedAnswer {
+        answer: Answer {
+            value: Value::from_f64(result.w_work, bound),
+            segments: None,
+            digits_requested: None,
+            provenance: Provenance::Simulated { error_estimate: bound },
+            method: None,
+        },
+        friction: Value::from_f64(result.w_friction, bound),
+        result,
+        cycle,
+    })
+}

@@ -1,0 +1,209 @@
+//! The proven remainder of the small-amplitude series (proofs/cubic-law-remainder.md):
+//! every bound lies above the true |W − W_N| from the certified W, on several families
+//! at P1/P0 from 0.01 to 0.1 and random phases, and is within a small factor of it.
+
+use microslip::ball::Ball;
+use microslip::certified::certified_dissipation;
+use microslip::compliance::{Compliance, Exponential, Hertz, Persson, PowerLaw, Rational, Sum};
+use microslip::cycle::LoadCycle;
+use microslip::exact::remainder::{largest_amplitude, WithinLimit};
+use microslip::exact::{partial_sums, remainder_bounds, SeriesShape};
+use microslip::real::{Precision, Real};
+use microslip::verify::generators::Draw;
+
+const BITS: u32 = 160;
+
+/// The compliances drawn: each family with a drawn parameter `p`, and a sum of two.
+fn compliance(index: usize, p: f64, precision: Precision) -> Box<dyn Compliance<Ball>> {
+    let ball = |x: f64| Ball::from_f64(x, precision);
+    match index {
+        0 => Box::new(Persson {
+            gamma: ball(0.5 + 1.5 * p),
+            sigma: ball(1.0),
+        }),
+        1 => Box::new(PowerLaw {
+            coefficient: ball(1.0),
+            exponent: ball(-0.9 + 0.7 * p),
+        }),
+        2 => Box::new(Hertz {
+            radius: ball(0.5 + 1.5 * p),
+            contact_modulus: ball(1.0),
+        }),
+        3 => Box::new(Rational {
+            constant: ball(0.1),
+            numerator: ball(1.0),
+            offset: ball(0.1 + 0.9 * p),
+        }),
+        4 => Box::new(Exponential {
+            amplitude: ball(1.0),
+            decay_load: ball(0.5 + 2.5 * p),
+            constant: ball(0.2),
+        }),
+        _ => Box::new(Sum {
+            terms: vec![
+                Box::new(Persson {
+                    gamma: ball(1.0),
+                    sigma: ball(0.5 * p + 0.25),
+                }),
+                Box::new(PowerLaw {
+                    coefficient: ball(2.0),
+                    exponent: ball(-1.0 / 3.0),
+                }),
+            ],
+        }),
+    }
+}
+
+/// The cycle P0 = 1, Q0 = 0 with the rest of `values` (P1, Q1, φ, f, λ): f64 values,
+/// which every precision reads exactly.
+fn cycle_at(values: [f64; 5], precision: Precision) -> LoadCycle<Ball> {
+    let [p1, q1, phase, friction, lambda] = values;
+    let cycle = LoadCycle {
+        mean_normal_load: 1.0,
+        normal_amplitude: p1,
+        mean_tangential_load: 0.0,
+        tangential_amplitude: q1,
+        phase,
+        friction,
+        compliance_ratio: lambda,
+    };
+    cycle.map(|x| Ball::from_f64(x, precision))
+}
+
+/// (the bound's upper end, |W − W_N|'s lower and upper ends) for N = 1 … `order`.
+fn bounds_and_errors(values: [f64; 5], index: usize, p: f64, order: usize) -> Vec<(f64, f64, f64)> {
+    let precision = Precision::bits(BITS);
+    let (cycle, v) = (cycle_at(values, precision), compliance(index, p, precision));
+    let bounds = remainder_bounds(&cycle, v.as_ref(), order).unwrap();
+    let sums = partial_sums(&cycle, v.as_ref(), order).unwrap();
+    let at = |precision: Precision| Ok((cycle_at(values, precision), compliance(index, p, precision)));
+    let w = certified_dissipation(at, 30).unwrap().enclosure.total;
+    sums.iter()
+        .zip(&bounds)
+        .map(|(sum, bound)| {
+            let (low, high) = (w.clone() - sum).abs().real_span().unwrap();
+            (bound.real_span().unwrap().1, low, high)
+        })
+        .collect()
+}
+
+#[test]
+fn bounds_hold_against_the_certified_w_on_families_and_amplitudes() {
+    let mut draws = Draw::new(37);
+    let mut ratios = Vec::new();
+    for index in 0..6 {
+        for relative in [0.01, 0.03, 0.1] {
+            let p = draws.uniform(0.0, 1.0);
+            let (phase, rho, friction) = (
+                draws.uniform(0.05, 0.95) * std::f64::consts::PI,
+                draws.uniform(0.2, 2.5),
+                draws.uniform(0.3, 1.0),
+            );
+            let values = [
+                relative,
+                rho * friction * relative,
+                phase,
+                friction,
+                draws.uniform(1.0, 1.5),
+            ];
+            let name = compliance(index, p, Precision::DOUBLE).describe();
+            for (n, (bound, low, high)) in bounds_and_errors(values, index, p, 3).into_iter().enumerate() {
+                assert!(
+                    low <= bound,
+                    "{name} P1 = {relative}, ρ = {rho}, φ = {phase}, N = {}: |W − W_N| ≥ {low:e} > bound {bound:e}",
+                    n + 1
+                );
+                ratios.push(bound / high);
+                eprintln!(
+                    "{name:<48} P1 = {relative:<5} ρ = {rho:.3} φ/π = {:.3} N = {}: bound/|W − W_N| = {:.3}",
+                    phase / std::f64::consts::PI,
+                    n + 1,
+                    bound / high
+                );
+            }
+        }
+    }
+    ratios.sort_by(f64::total_cmp);
+    let median = ratios[ratios.len() / 2];
+    eprintln!("median bound/|W − W_N| over {} cases: {median:.3}", ratios.len());
+    assert!(median <= 10.0, "median {median}");
+}
+
+/// `--within`'s amplitude: at p1_max the certified W is within R of W₁, and at 10·p1_max
+/// (where the theory still holds) it is not — the search is never 10× too cautious.
+#[test]
+fn the_largest_amplitude_is_right_and_not_ten_times_too_cautious() {
+    let precision = Precision::bits(BITS);
+    let mut draws = Draw::new(2026);
+    for index in [0, 2, 4] {
+        for ratio in [0.003, 0.01] {
+            let p = draws.uniform(0.0, 1.0);
+            let (phase, rho, friction) = (
+                draws.uniform(0.1, 0.9) * std::f64::consts::PI,
+                draws.uniform(0.3, 2.0),
+                draws.uniform(0.3, 1.0),
+            );
+            let lambda = draws.uniform(1.0, 1.5);
+            let values = |p1: f64| [p1, rho * friction * p1, phase, friction, lambda];
+            let (cycle, v) = (cycle_at(values(0.01), precision), compliance(index, p, precision));
+            let shape = SeriesShape::new(&Ball::from_f64(rho, precision), &cycle.phase, 3).unwrap();
+            let found = largest_amplitude(&shape, &cycle, v.as_ref(), ratio);
+            let p1_max = found.p1_max.unwrap();
+            let name = v.describe();
+            // The relative error of the cubic law from the certified W at an amplitude.
+            let relative_error = |p1: f64| {
+                let errors = bounds_and_errors(values(p1), index, p, 1);
+                let w = partial_sums(&cycle_at(values(p1), precision), v.as_ref(), 1).unwrap()[0].to_f64_lossy();
+                // |W| lies within |W₁| ± |W − W₁|.
+                let (low, high) = (errors[0].1, errors[0].2);
+                (low / (w.abs() + high), high / (w.abs() - high))
+            };
+            let (_, at_max) = relative_error(p1_max);
+            assert!(
+                at_max <= ratio * 1.001,
+                "{name}: at p1_max = {p1_max} the error is {at_max}"
+            );
+            let tenfold = 10.0 * p1_max;
+            eprintln!(
+                "{name:<48} R = {ratio}: p1_max = {p1_max:.4e} (error there {at_max:.3e}), limit {:?}, theory ends at {:.3e}",
+                found.limit, found.theory_end
+            );
+            if tenfold < found.theory_end && found.limit == WithinLimit::Remainder {
+                let (beyond, _) = relative_error(tenfold);
+                eprintln!("    at 10·p1_max the error is {beyond:.3e}");
+                assert!(
+                    beyond > ratio,
+                    "{name}: at 10·p1_max = {tenfold} the error is only {beyond}"
+                );
+            }
+        }
+    }
+}
+
+/// At φ = π/2 the slip loads' top is exactly P0 (σ₊ = σ₋), so the arc at τ = 0 is decided
+/// by no ball: its half-width is enclosed instead, and the bound still holds, for ρ from
+/// 1e−11 to 3.
+#[test]
+fn a_slip_load_topping_out_at_p0_still_gives_a_bound() {
+    let precision = Precision::bits(BITS);
+    for rho in [1e-11, 0.3, 1.0, 3.0] {
+        let at = |precision: Precision| {
+            let mut cycle = cycle_at([0.05, rho * 0.05, 0.0, 1.0, 1.2], precision);
+            cycle.phase = Ball::pi(precision) / &Ball::from_i64(2, precision);
+            Ok((cycle, compliance(0, 0.5, precision)))
+        };
+        let (cycle, v) = at(precision).unwrap();
+        let bounds = remainder_bounds(&cycle, v.as_ref(), 3).unwrap();
+        let sums = partial_sums(&cycle, v.as_ref(), 3).unwrap();
+        let w = certified_dissipation(at, 30).unwrap().enclosure.total;
+        for (n, (sum, bound)) in sums.iter().zip(&bounds).enumerate() {
+            let error = (w.clone() - sum).abs().real_span().unwrap().0;
+            let bound = bound.real_span().unwrap().1;
+            assert!(
+                bound.is_finite() && error <= bound,
+                "ρ = {rho}, N = {}: {error:e} > {bound:e}",
+                n + 1
+            );
+        }
+    }
+}
