@@ -10,12 +10,12 @@ use serde::Serialize;
 
 use microslip::compliance::parse_spec;
 use microslip::cycle::compliance_ratio_from_poisson;
+use microslip::dissipation_answer::DEFAULT_DIGITS;
 use microslip::files::{check_writable, csv_text, destination, write_text_atomically, Destination};
 use microslip::path::dissipation::dissipation_of;
 use microslip::path::input::{read_harmonics, read_samples};
 use microslip::path::{path_dissipation, path_outputs, Contact, LoadPath, PathError, PathOutputs, SteadyCycle};
 use microslip::real::{Precision, Real};
-use microslip::dissipation_answer::DEFAULT_DIGITS;
 use microslip::verified::{agreement_radius, decimal_ball, verify, TwoPrecisions, VerifyError};
 
 use super::case::ContactArgs;
@@ -326,8 +326,10 @@ fn report(printed: &PrintedW, outputs: &PathOutputs, segments: usize) -> PathRep
 fn text_report(printed: &PrintedW, outputs: &PathOutputs) -> String {
     let mut lines = vec![
         format!("W = {} ({}: {})", printed.text, printed.provenance, printed.detail),
+        // What follows is computed in f64 from the path and W: estimates, not proven digits.
+        "in f64 (estimates, not proven):".to_string(),
         format!("q_amplitude = {:.10e}", outputs.q_amplitude),
-        format!("u_amplitude = {:.10e} (estimate)", outputs.u_amplitude),
+        format!("u_amplitude = {:.10e}", outputs.u_amplitude),
         format!("secant_stiffness = {:.10e}", outputs.secant_stiffness),
         format!("loss_factor = {:.10e}", outputs.loss_factor),
         format!("damping_ratio = {:.10e}", outputs.damping_ratio),
