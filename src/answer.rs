@@ -33,11 +33,6 @@ pub enum Provenance {
         /// The higher of the two working precisions, in bits.
         bits: u32,
     },
-    /// An f64 run with its quadrature error estimate: not proven.
-    Estimate {
-        /// The absolute error estimate.
-        error_estimate: f64,
-    },
     /// A table compliance: the quadrature's estimate plus the table's estimated error of
     /// interpolating its points (an estimate from the data, not a proof).
     Table {
@@ -66,7 +61,6 @@ impl Provenance {
             Provenance::Exact(_) => "exact",
             Provenance::Certified { .. } => "certified",
             Provenance::Agreement { .. } => "agreement",
-            Provenance::Estimate { .. } => "estimate",
             Provenance::Table { .. } => "table_error",
             Provenance::Simulated { .. } => "simulated",
         }
@@ -76,7 +70,7 @@ impl Provenance {
     pub fn precision_bits(&self) -> Option<u32> {
         match self {
             Provenance::Certified { bits } | Provenance::Agreement { bits } => Some(*bits),
-            Provenance::Estimate { .. } | Provenance::Table { .. } | Provenance::Simulated { .. } => Some(53),
+            Provenance::Table { .. } | Provenance::Simulated { .. } => Some(53),
             Provenance::Exact(_) => None,
         }
     }
@@ -90,9 +84,6 @@ impl std::fmt::Display for Provenance {
             Provenance::Certified { bits } => write!(f, "proven (rigorous enclosure at {bits} bits)"),
             Provenance::Agreement { bits } => {
                 write!(f, "agreement, not proof (two precisions agree, up to {bits} bits)")
-            }
-            Provenance::Estimate { error_estimate } => {
-                write!(f, "estimated (f64, error estimate {error_estimate:.1e}; not proven)")
             }
             Provenance::Table { table_error, .. } => {
                 write!(
@@ -303,7 +294,7 @@ fn outward(x: &Float, digits: usize, round: rug::float::Round) -> String {
 /// ```
 /// use microslip::answer::{Answer, Decimal, Provenance, Value};
 ///
-/// // An f64 W with an error estimate of 1.4e-14: its interval
+/// // A simulated W with an estimated error of 1.4e-14: its interval
 /// // [0.40624757924580…, 0.40624757924583…] rounds alike to 13 digits, not to 14.
 /// let value = Value::from_f64(0.406247579245824, 1.4e-14);
 /// assert_eq!(value.decimal.to_string(), "4.062475792458e-1");
@@ -311,7 +302,7 @@ fn outward(x: &Float, digits: usize, round: rug::float::Round) -> String {
 ///     value,
 ///     segments: None,
 ///     digits_requested: None,
-///     provenance: Provenance::Estimate { error_estimate: 1.4e-14 },
+///     provenance: Provenance::Simulated { error_estimate: 1.4e-14 },
 ///     method: None,
 /// };
 /// assert_eq!(answer.digits(), 13);

@@ -314,9 +314,13 @@ mod certified {
     }
 }
 
-/// An f64 result as an estimated answer: W for the absolute `bound` on its error, each
-/// segment for its own in `segment_errors`.
-fn estimated(result: &Dissipation<f64>, bound: f64, segment_errors: &Segments<f64>) -> Answer {
+/// An f64 result as an answer vouched for by `provenance`: W for the absolute `bound` on its
+/// error, each segment for its own in `segment_errors`.
+fn estimated(
+    result: &Dissipation<f64>,
+    (bound, segment_errors): (f64, &Segments<f64>),
+    provenance: Provenance,
+) -> Answer {
     let segments = &result.segments;
     Answer {
         value: Value::from_f64(result.total, bound),
@@ -324,9 +328,7 @@ fn estimated(result: &Dissipation<f64>, bound: f64, segment_errors: &Segments<f6
             Value::from_f64(*segments.get(segment), *segment_errors.get(segment))
         })),
         digits_requested: None,
-        provenance: Provenance::Estimate {
-            error_estimate: result.error_estimate,
-        },
+        provenance,
         method: Some(result.method),
     }
 }
@@ -442,13 +444,14 @@ fn table_answer(
         result.error_estimate + segment_shifts.get(segment) + ROUNDING_FACTOR * segments_rounding.get(segment)
     });
     let smoothing_residual = tables.iter().map(|t| t.smoothing_residual).fold(0.0, f64::max);
-    let answer = Answer {
-        provenance: Provenance::Table {
+    let answer = estimated(
+        &result,
+        (result.error_estimate + table_error, &segment_errors),
+        Provenance::Table {
             table_error,
             smoothing_residual,
         },
-        ..estimated(&result, result.error_estimate + table_error, &segment_errors)
-    };
+    );
     Ok(DissipationAnswer {
         answer,
         no_enclosure: None,

@@ -23,7 +23,7 @@ impl PyAnswer {
     /// A value without a W's reports (a coefficient, a partial sum, a simulated W).
     pub fn of(answer: Answer) -> Self {
         let error_estimate = match answer.provenance {
-            Provenance::Estimate { error_estimate } | Provenance::Simulated { error_estimate } => Some(error_estimate),
+            Provenance::Simulated { error_estimate } => Some(error_estimate),
             _ => None,
         };
         PyAnswer {

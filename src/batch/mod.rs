@@ -92,7 +92,6 @@ impl RowResult {
             method.push_str(&format!(" (no enclosure: {why})"));
         }
         let error_estimate = match provenance {
-            Provenance::Estimate { error_estimate } => Some(*error_estimate),
             Provenance::Table { .. } => table.as_ref().map(|t| t.quadrature_error),
             _ => None,
         };

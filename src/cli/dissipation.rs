@@ -132,8 +132,5 @@ fn provenance(report: &DissipationAnswer) -> String {
     if let Some(why) = &report.no_enclosure {
         out.push_str(&format!("; no enclosure: {why}"));
     }
-    if matches!(answer.provenance, Provenance::Estimate { .. }) {
-        out.push_str("; --digits N gives proven digits");
-    }
     out
 }

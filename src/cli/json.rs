@@ -61,7 +61,7 @@ impl ValueEnvelope {
     pub fn of(answer: &Answer) -> Self {
         let estimated = matches!(
             answer.provenance,
-            Provenance::Estimate { .. } | Provenance::Table { .. } | Provenance::Simulated { .. }
+            Provenance::Table { .. } | Provenance::Simulated { .. }
         );
         ValueEnvelope {
             digits: Some(answer.digits()),
@@ -133,7 +133,6 @@ impl DissipationFields {
             w_f64: answer.value.binary64,
             envelope: ValueEnvelope::of(answer),
             error_estimate: match &answer.provenance {
-                Provenance::Estimate { error_estimate } => Some(*error_estimate),
                 Provenance::Table { .. } => report.table.as_ref().map(|t| t.quadrature_error),
                 _ => None,
             },

@@ -175,13 +175,11 @@ impl TwoPrecisions for Agreement<'_> {
 struct PrintedW {
     text: String,
     value: f64,
-    /// `estimate` or `agreement`.
+    /// `agreement`.
     provenance: &'static str,
     /// What the provenance rests on, in words.
     detail: String,
-    /// The f64 error estimate (default run).
-    error_estimate: Option<f64>,
-    /// The digits two precisions agreed on (`--digits`).
+    /// The digits two precisions agreed on.
     digits_agreed: Option<u32>,
     /// The higher working precision.
     precision_bits: u32,
@@ -194,7 +192,6 @@ struct PathReport {
     W: String,
     W_f64: f64,
     provenance: &'static str,
-    error_estimate: Option<f64>,
     digits_agreed: Option<u32>,
     precision_bits: u32,
     q_amplitude: f64,
@@ -261,7 +258,6 @@ pub fn run(args: &PathArgs) -> Result<String, Failure> {
                 verified.agreed,
                 verified.precision.in_bits()
             ),
-            error_estimate: None,
             digits_agreed: Some(verified.agreed),
             precision_bits: verified.precision.in_bits(),
         }
@@ -300,7 +296,6 @@ fn report(printed: &PrintedW, outputs: &PathOutputs, segments: usize) -> PathRep
         W: printed.text.clone(),
         W_f64: printed.value,
         provenance: printed.provenance,
-        error_estimate: printed.error_estimate,
         digits_agreed: printed.digits_agreed,
         precision_bits: printed.precision_bits,
         q_amplitude: outputs.q_amplitude,
