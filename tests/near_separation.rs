@@ -9,7 +9,6 @@
 
 use std::time::Duration;
 
-use microslip::answer::Provenance;
 use microslip::case::{Case, CaseText};
 use microslip::dissipation::{dissipation, DissipationError, Options, Segment, SegmentIntegrands};
 use microslip::dissipation_answer::dissipation_report;
@@ -152,18 +151,18 @@ fn assert_digits(label: &str, printed: &str, digits: u32, units: f64, reference:
     );
 }
 
-/// The command-line policy (f64, or 15 verified digits), 20 verified digits and the f64
-/// library call, each against the graded reference.
+/// The command-line policy (15 proven digits), 20 verified digits and the f64 library call,
+/// each against the graded reference.
 fn check_against_reference(label: &str, text: &CaseText) {
     let reference = graded_reference(text);
     let printed = dissipation_report(text, None, Duration::from_secs(60)).unwrap_or_else(|e| panic!("{label}: {e}"));
-    // An f64 value prints the digits its estimate vouches for: right to a unit of the last.
-    let units = if matches!(printed.answer.provenance, Provenance::Estimate { .. }) {
-        1.0
-    } else {
-        0.5
-    };
-    assert_digits(label, &printed.total(), printed.answer.digits(), units, &reference);
+    // Proven digits: the reference rounds to them, within half a unit of the last.
+    assert!(
+        printed.answer.provenance.is_proven(),
+        "{label}: {}",
+        printed.answer.provenance
+    );
+    assert_digits(label, &printed.total(), printed.answer.digits(), 0.5, &reference);
     let verified = verified_dissipation(text, 20, Duration::from_secs(60)).unwrap_or_else(|e| panic!("{label}: {e}"));
     assert_digits(label, &verified.total, 20, 0.5, &reference);
     let Case { cycle, compliance } = text.read::<f64>(Precision::DOUBLE).unwrap();
