@@ -11,7 +11,7 @@ use microslip::case::{CaseText, InputError};
 use microslip::compliance::{spec_help, spec_summary};
 use microslip::cycle::CycleError;
 use microslip::dissipation::ExactZero;
-use microslip::dissipation_answer::dissipation_answer;
+use microslip::dissipation_answer::dissipation_of;
 use microslip::files::csv_text;
 
 use super::report::Failure;
@@ -177,11 +177,13 @@ impl TableArgs {
                     Err(InputError::Cycle(error)) if gross_slip(&error) => None,
                     Err(error) => return Err(cell_failure(error.to_string())),
                 };
+                // The case read above, not its text again.
                 let value = match &spec {
                     None => None,
-                    Some(_) => Some(
-                        dissipation_answer(&self.case(q1, &phi), None, CELL_BUDGET)
+                    Some(spec) => Some(
+                        dissipation_of(spec, None, CELL_BUDGET)
                             .map_err(|e| cell_failure(e.to_string()))?
+                            .answer
                             .value,
                     ),
                 };
