@@ -48,6 +48,7 @@
 #![warn(missing_docs)]
 
 pub mod admissibility;
+pub mod aft;
 pub mod answer;
 pub mod boundaries;
 pub mod case;

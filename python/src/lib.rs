@@ -1,11 +1,13 @@
 //! The Python module `microslip._microslip`: W, its series, the small-amplitude
-//! coefficient and the simulation, as the command line computes and prints them.
+//! coefficient and the simulation, as the command line computes and prints them, and the
+//! harmonic-balance friction element `aft`.
 //!
 //! Each concept is one module of conversion between Python and the library, so that the
 //! binding follows the library's API by changing that module alone.
 
 use pyo3::prelude::*;
 
+mod aft;
 mod answer;
 mod case;
 mod dissipation;
@@ -27,5 +29,6 @@ fn _microslip(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_function(wrap_pyfunction!(series::series, module)?)?;
     module.add_function(wrap_pyfunction!(series::small_amplitude, module)?)?;
     module.add_function(wrap_pyfunction!(simulation::simulate, module)?)?;
+    module.add_function(wrap_pyfunction!(aft::aft, module)?)?;
     Ok(())
 }

@@ -6,7 +6,9 @@ of friction coefficient f, compliance ratio λ (or Poisson's ratio ν) and norma
 SPEC. Numbers are exact decimals: give strings (``"0.4pi"``, ``"1e-300"``) to say exactly
 what you mean; a float is read as the shortest decimal that reads back to it (its
 ``repr``). :func:`dissipation` gives W as ``microslip dissipation`` prints it,
-:func:`dissipation_many` a numpy array of W over broadcast parameter arrays on all cores.
+:func:`dissipation_many` a numpy array of W over broadcast parameter arrays on all cores,
+:func:`aft` the friction force of a displacement-driven contact in harmonic-balance form with
+its exact Jacobian.
 """
 
 from ._microslip import (
@@ -15,6 +17,7 @@ from ._microslip import (
     Series,
     Simulation,
     __version__,
+    aft,
     dissipation,
     series,
     simulate,
@@ -29,6 +32,7 @@ __all__ = [
     "Series",
     "Simulation",
     "__version__",
+    "aft",
     "dissipation",
     "dissipation_many",
     "series",

@@ -1,5 +1,6 @@
 # Type stubs of the native module: the classes and functions ``microslip`` re-exports.
 
+from collections.abc import Sequence
 from decimal import Decimal
 from typing import Any, SupportsFloat, SupportsIndex, TypeAlias, final
 
@@ -129,6 +130,20 @@ def simulate(
     tolerance: float = 1e-6,
     max_seconds: float = 60.0,
 ) -> Simulation: ...
+def aft(
+    U: npt.ArrayLike,
+    h: Sequence[SupportsIndex] | npt.NDArray[np.integer[Any]],
+    p0: float,
+    friction: float,
+    compliance: str,
+    lam: float | None = None,
+    nu: float | None = None,
+    time_points: int = 128,
+) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
+    # The friction force's harmonics F (ordered as U: [U_0 if h holds 0, cos h1, sin h1, …])
+    # and their exact Jacobian dF/dU (n × n), at constant normal load p0.
+    ...
+
 def sweep(
     columns: dict[str, Any], rows: int, digits: int | None, max_seconds: float, jobs: int | None
 ) -> tuple[npt.NDArray[np.float64], list[tuple[int, str]]]: ...
