@@ -123,6 +123,9 @@ pub struct DissipationFields {
     pub no_enclosure: Option<String>,
     /// How W was computed (`Method::key`).
     pub method: Option<&'static str>,
+    /// The arithmetic of a rigorous enclosure (`Arithmetic::key`): `f64 intervals` or
+    /// `arb balls`; null for any other provenance.
+    pub arithmetic: Option<&'static str>,
 }
 
 impl DissipationFields {
@@ -140,6 +143,7 @@ impl DissipationFields {
             smoothing_residual: report.table.as_ref().map(|t| t.smoothing_residual),
             no_enclosure: report.no_enclosure.as_ref().map(ToString::to_string),
             method: answer.method.map(microslip::dissipation::Method::key),
+            arithmetic: answer.provenance.arithmetic().map(microslip::answer::Arithmetic::key),
         }
     }
 }
@@ -298,7 +302,8 @@ mod tests {
             .iter()
             .map(|row| serde_json::to_value(row).unwrap())
             .collect();
-        assert_eq!(lines[0]["W"], "4.06247579245824e-1");
+        assert_eq!(lines[0]["W"], "4.062475792458e-1");
+        assert_eq!(lines[0]["arithmetic"], "f64 intervals");
         assert_eq!(
             lines[0]["W_f64"]
                 .as_f64()
@@ -312,7 +317,7 @@ mod tests {
         assert_eq!(lines[0]["inputs"]["compliance"], "persson:gamma=1,sigma=1");
         assert_eq!(
             (&lines[0]["digits"], &lines[0]["digits_certified"]),
-            (&15.into(), &15.into())
+            (&13.into(), &13.into())
         );
         assert_eq!(
             (&lines[0]["provenance"], &lines[0]["method"]),
