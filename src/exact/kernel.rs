@@ -206,7 +206,8 @@ impl<R: Real> PeanoKernels<R> {
     /// Upper bounds on ‖K_{n+1}‖₁, n = 1 … N, by boxes in τ over [−L, 1].
     /// `None` where the kernels cannot be enclosed at a box's end: a load's extreme
     /// there stays undecided (τ = 0, where K_{N+1} jumps, is not moved), or the measure
-    /// is degenerate (a load of zero amplitude, a non-finite geometry).
+    /// is degenerate (a load of zero amplitude, a non-finite geometry). One loop: the
+    /// boxes on both sides of τ = 0 are refined together, where the slack is largest.
     pub fn norms(&self) -> Option<KernelNorms<R>> {
         // Past the support [−L, 1] every tail is surely empty and the kernels vanish.
         let low = -upper_f64(&self.reach) * (1.0 + 1e-9) - f64::MIN_POSITIVE;

@@ -76,7 +76,8 @@ pub struct GateOptions {
 /// One step of the gate: a name for progress, and the check that produces its reports.
 pub type GateStep = (&'static str, Box<dyn Fn() -> Vec<ClaimReport> + Send + Sync>);
 
-/// The steps in claim order (independent of each other, so they may run in parallel).
+/// The steps in claim order (independent of each other, so they may run in parallel): the
+/// gate's table of contents, one entry per claim, which is why it is long.
 /// Each claim draws from its own stream, named as the claim ([`generators::stream_seed`]).
 ///
 /// ```
