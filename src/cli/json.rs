@@ -282,8 +282,8 @@ pub struct ClaimRow<'a> {
     pub passed: bool,
     /// Proven over the whole domain (true), or checked on random draws (false).
     pub proved: bool,
-    /// The proof's boxes and seconds, for a proved row.
-    pub proof: Option<microslip::verify::ProofSize>,
+    /// How a proved row is proven: its boxes and seconds, or the derivation's document.
+    pub proof: Option<microslip::verify::Proof>,
     pub note: &'a str,
 }
 
