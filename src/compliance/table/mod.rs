@@ -60,7 +60,7 @@ pub enum TableInterpolant {
     /// The same from the odd rows (first and last kept): a second such estimate, which
     /// does not share the first one's accidental cancellations.
     OtherHalfTable,
-    /// The same construction on all rows with each value moved by [`DATA_ROUNDING`]
+    /// The same construction on all rows with each value moved by 4 ulps (`DATA_ROUNDING`)
     /// relative, up and down on alternate rows, and each interior load the other way
     /// (where that keeps them in order; the ends stay, so the table covers what it
     /// covered): how far rounding of the data and of the construction's arithmetic moves
