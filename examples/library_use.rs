@@ -1,5 +1,5 @@
-//! W for one load cycle, proven: the case built from numbers and exact decimals, W to 15
-//! digits from a rigorous enclosure of the exact value, then to 40.
+//! W for one load cycle, proven: the case built from numbers and exact decimals, W to the
+//! 12–15 digits a rigorous enclosure of the exact value proves, then to 40.
 use std::time::Duration;
 
 use microslip::case::CaseText;

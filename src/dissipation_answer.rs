@@ -15,7 +15,7 @@
 //!    balls (from the intervals first where N ≤ 12 and they prove N); or only where none can be had
 //!    ([`NoEnclosure`] says why) two precisions agreeing ([`Provenance::Agreement`],
 //!    evidence, not proof). An f64 error estimate never decides a printed digit: it is
-//!    not a bound (the accuracy report still measures it, [`crate::accuracy`]).
+//!    not a bound (the accuracy report, `crate::accuracy`, still measures it).
 
 use std::sync::Arc;
 use std::time::{Duration, Instant};
