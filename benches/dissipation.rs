@@ -208,10 +208,11 @@ fn bench_near_separation(c: &mut Criterion) {
     group.finish();
 }
 
-/// The answer printed without `--digits` (proven: an Arb enclosure of up to 15 digits)
-/// beside the f64 run with its error estimate that printed before, in one run, for the
-/// three families of the proven default's speed target (Persson, power −1.5, Hertz).
-/// Goal: ≤ 3× f64.
+/// The answer printed without `--digits` (proven: an enclosure in f64 intervals of 12 to
+/// 15 digits, Arb's balls where they prove fewer) beside the f64 run with its error
+/// estimate that printed before and the Arb ladder to 15 digits that printed after it
+/// (`--digits 15`), in one run, for the three families of the proven default's speed
+/// target (Persson, power −1.5, Hertz). Goal: ≤ 3× f64.
 fn bench_default_answer(c: &mut Criterion) {
     let mut group = c.benchmark_group("default_answer");
     group.sample_size(20);
@@ -233,6 +234,10 @@ fn bench_default_answer(c: &mut Criterion) {
         let budget = Duration::from_secs(60);
         group.bench_function(format!("{name}/proven"), |b| {
             b.iter(|| dissipation_answer(&text, None, budget).unwrap().digits())
+        });
+        // The previous default: the Arb ladder to 15 digits, as `--digits 15` still runs.
+        group.bench_function(format!("{name}/arb-15"), |b| {
+            b.iter(|| dissipation_answer(&text, Some(15), budget).unwrap().digits())
         });
     }
     group.finish();

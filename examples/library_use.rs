@@ -1,5 +1,5 @@
-//! W for one load cycle, proven: the case built from numbers and exact decimals, W to 15
-//! digits from a rigorous enclosure of the exact value, then to 40.
+//! W for one load cycle, proven: the case built from numbers and exact decimals, W to the
+//! 12–15 digits a rigorous enclosure of the exact value proves, then to 40.
 use std::time::Duration;
 
 use microslip::case::CaseText;
@@ -22,7 +22,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!("W = {} ({})", w.value.decimal, w.provenance);
     // The exact W lies in the enclosure, every number of which rounds to the digits printed.
     let (lower, upper) = w.value.enclosure_f64().ok_or("no enclosure")?;
-    assert!(lower <= upper && upper - lower < 1e-16);
+    assert!(lower <= upper && upper - lower < 1e-13);
     // More digits, proven the same way.
     let precise = dissipation_of(&case, Some(40), budget)?.answer;
     assert!(precise.value.decimal.to_string().starts_with("4.0624757924582385709"));

@@ -215,10 +215,18 @@ pub fn measure_case(
     };
     // Read once; each run below times the computation at its precision, not the reading.
     let spec = case.text.spec().ok();
-    let text = spec.as_ref();
-    let as_float = |r: Option<(f64, usize)>| r.map(|(v, n)| (Float::with_val(53, v), n));
-    // f64: our rules, the quadrature crate's, and the naive one.
     progress("f64");
+    f64_rules(spec.as_ref(), quick, budget, &mut record);
+    multiple_precision_rules(spec.as_ref(), quick, budget, &mut record, &mut progress);
+    out
+}
+
+/// Records one configuration: its rule, precision, parameter, seconds and result.
+type Record<'a> = dyn FnMut(&'static str, u32, f64, f64, Option<(Float, usize)>) + 'a;
+
+/// f64: our rules, the quadrature crate's, and the naive one.
+fn f64_rules(text: Option<&CaseSpec>, quick: bool, budget: Duration, record: &mut Record<'_>) {
+    let as_float = |r: Option<(f64, usize)>| r.map(|(v, n)| (Float::with_val(53, v), n));
     let gauss_points: Vec<usize> = if quick {
         vec![4, 8, 16, 32, 64]
     } else {
@@ -273,7 +281,16 @@ pub fn measure_case(
         let (seconds, result) = median_seconds(budget, || naive_in_load(text, m));
         record("naive-midpoint-in-P", 53, m as f64, seconds, as_float(result));
     }
-    // Multiple precision: our two rules.
+}
+
+/// Multiple precision: our two rules.
+fn multiple_precision_rules(
+    text: Option<&CaseSpec>,
+    quick: bool,
+    budget: Duration,
+    record: &mut Record<'_>,
+    progress: &mut impl FnMut(&str),
+) {
     let precisions: Vec<u32> = if quick { vec![256] } else { vec![128, 256, 512, 1024] };
     for &bits in &precisions {
         progress(&format!("{bits} bits"));
@@ -304,7 +321,6 @@ pub fn measure_case(
             record("tanh-sinh", bits, f64::from(level), seconds, result);
         }
     }
-    out
 }
 
 /// The measurements no other is both faster and more accurate than, by time.

@@ -22,11 +22,13 @@ pub use crate::verified::Decimal;
 pub enum Provenance {
     /// The value is exactly the one printed, for a reason read from the exact input.
     Exact(ExactReason),
-    /// A rigorous enclosure in ball arithmetic (Arb), at a working precision: every
-    /// printed digit is proven.
+    /// A rigorous enclosure, in f64 interval arithmetic or in Arb's balls at a working
+    /// precision: every printed digit is proven.
     Certified {
-        /// The working precision of the enclosure, in bits.
+        /// The working precision of the enclosure, in bits (53 for f64 intervals).
         bits: u32,
+        /// The arithmetic that computed the enclosure.
+        arithmetic: Arithmetic,
     },
     /// Two computations at different working precisions agree: evidence, not proof.
     Agreement {
@@ -66,10 +68,18 @@ impl Provenance {
         }
     }
 
+    /// The arithmetic of a rigorous enclosure (`None` for every other provenance).
+    pub fn arithmetic(&self) -> Option<Arithmetic> {
+        match self {
+            Provenance::Certified { arithmetic, .. } => Some(*arithmetic),
+            _ => None,
+        }
+    }
+
     /// The working precision in bits of the value printed (53 for f64).
     pub fn precision_bits(&self) -> Option<u32> {
         match self {
-            Provenance::Certified { bits } | Provenance::Agreement { bits } => Some(*bits),
+            Provenance::Certified { bits, .. } | Provenance::Agreement { bits } => Some(*bits),
             Provenance::Table { .. } | Provenance::Simulated { .. } => Some(53),
             Provenance::Exact(_) => None,
         }
@@ -81,7 +91,11 @@ impl std::fmt::Display for Provenance {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         match self {
             Provenance::Exact(reason) => write!(f, "exact: {}", reason.reason()),
-            Provenance::Certified { bits } => write!(f, "proven (rigorous enclosure at {bits} bits)"),
+            Provenance::Certified {
+                arithmetic: Arithmetic::F64Intervals,
+                ..
+            } => f.write_str("proven (rigorous enclosure in f64 interval arithmetic)"),
+            Provenance::Certified { bits, .. } => write!(f, "proven (rigorous enclosure at {bits} bits)"),
             Provenance::Agreement { bits } => {
                 write!(f, "agreement, not proof (two precisions agree, up to {bits} bits)")
             }
@@ -97,6 +111,25 @@ impl std::fmt::Display for Provenance {
                     "estimated (simulation, error estimate {error_estimate:.1e}; not proven)"
                 )
             }
+        }
+    }
+}
+
+/// The arithmetic of a rigorous enclosure.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Arithmetic {
+    /// f64 intervals rounded outward (`crate::interval`), 53 bits.
+    F64Intervals,
+    /// Arb's balls at a working precision of 64 bits or more.
+    ArbBalls,
+}
+
+impl Arithmetic {
+    /// The machine-readable name: `f64 intervals` or `arb balls`.
+    pub fn key(self) -> &'static str {
+        match self {
+            Arithmetic::F64Intervals => "f64 intervals",
+            Arithmetic::ArbBalls => "arb balls",
         }
     }
 }
@@ -202,6 +235,13 @@ impl Value {
                 .map(|(lower, upper)| (shift_text(lower), shift_text(upper))),
             binary64: None,
         }
+    }
+
+    /// The value in the interval's real part, with at most `most` significant digits:
+    /// its two doubles are exact rationals, read as they are.
+    pub fn of_interval(interval: &crate::interval::Interval, most: u32) -> Self {
+        let (lower, upper) = interval.real_bounds();
+        Value::within(&Float::with_val(53, lower), &Float::with_val(53, upper), most)
     }
 
     /// The value in [`value` − `radius`, `value` + `radius`], with at most `most`

@@ -39,7 +39,6 @@ use num_traits::ToPrimitive;
 use rug::float::Round;
 use rug::Float;
 
-pub(crate) use crate::doubts::with_analytic;
 use crate::doubts::{analytic_required, not_analytic, undecided};
 pub use crate::doubts::{locate_doubts, watch, Doubts};
 use crate::real::{ParseRealError, Precision, Real};

@@ -9,11 +9,13 @@
 //!    that produced them);
 //! 2. W exactly 0 for a reason read from the exact input ([`CaseSpec::exact_zero`]): at
 //!    once, at any `--digits` ([`Provenance::Exact`]);
-//! 3. a rigorous enclosure in ball arithmetic ([`Provenance::Certified`]) to the digits
-//!    asked for (`--digits N`; without, [`DEFAULT_DIGITS`]), or only where none can be had
+//! 3. a rigorous enclosure ([`Provenance::Certified`]): without `--digits`, the 12 to 15
+//!    digits ([`DEFAULT_LEAST_DIGITS`] to [`DEFAULT_DIGITS`]) that one enclosure in f64
+//!    intervals proves, else 15 from Arb's balls; with `--digits N`, N digits from Arb's
+//!    balls (from the intervals first where N ≤ 12 and they prove N); or only where none can be had
 //!    ([`NoEnclosure`] says why) two precisions agreeing ([`Provenance::Agreement`],
 //!    evidence, not proof). An f64 error estimate never decides a printed digit: it is
-//!    not a bound (the accuracy report still measures it, [`crate::accuracy`]).
+//!    not a bound (the accuracy report, `crate::accuracy`, still measures it).
 
 use std::sync::Arc;
 use std::time::{Duration, Instant};
@@ -93,9 +95,16 @@ pub fn dissipation_answer(case: &CaseText, digits: Option<u32>, budget: Duration
     dissipation_report(case, digits, budget).map(|report| report.answer)
 }
 
-/// The significant digits printed without `--digits`: as many as binary64 carries through
-/// a decimal round trip, each one proven.
+/// The most significant digits printed without `--digits`: as many as binary64 carries
+/// through a decimal round trip, each one proven.
 pub const DEFAULT_DIGITS: u32 = F64_MOST_DIGITS;
+
+/// The fewest significant digits printed without `--digits`: W is printed to the digits
+/// its f64 interval enclosure proves (its width from rounding in doubles is about 1e−15
+/// to 1e−14 of W, so 12 to 15), and only where that proves fewer than these is the Arb
+/// ladder climbed, for [`DEFAULT_DIGITS`]. `--digits N` with N up to these is served by
+/// the intervals where they prove N.
+pub const DEFAULT_LEAST_DIGITS: u32 = 12;
 
 /// W for printing by the policy of this module, within `budget`: `digits` = Some(N) digits,
 /// or without [`DEFAULT_DIGITS`], proven by an enclosure (by agreement only where no
@@ -124,11 +133,12 @@ pub fn dissipation_report(
 ///     .unwrap();
 /// let report = dissipation_of(&case, None, Duration::from_secs(60)).unwrap();
 /// let w = &report.answer.value;
-/// assert_eq!(w.decimal.to_string(), "4.06247579245824e-1");
+/// // The digits an enclosure in f64 intervals proves (12 to 15).
+/// assert_eq!(w.decimal.to_string(), "4.062475792458e-1");
 /// assert!(report.answer.provenance.is_proven());
 /// // The exact W lies in the enclosure, every number of which rounds to the digits printed.
 /// let (lower, upper) = w.enclosure_f64().unwrap();
-/// assert!(lower <= upper && upper - lower < 1e-16);
+/// assert!(lower <= upper && upper - lower < 1e-13);
 /// ```
 pub fn dissipation_of(
     case: &CaseSpec,
@@ -164,7 +174,8 @@ pub fn dissipation_of(
     if let Some(reason) = checked_exact_zero(case)? {
         return Ok(plain(exact_zero_answer(reason, digits)));
     }
-    let (mut answer, no_enclosure) = to_digits(case, digits.unwrap_or(DEFAULT_DIGITS), (started, deadline))?;
+    let range = digits.map_or((DEFAULT_LEAST_DIGITS, DEFAULT_DIGITS), |digits| (digits, digits));
+    let (mut answer, no_enclosure) = to_digits(case, range, (started, deadline))?;
     answer.digits_requested = digits;
     Ok(DissipationAnswer {
         no_enclosure,
@@ -183,15 +194,17 @@ pub fn exact_zero_answer(reason: ExactZero, digits: Option<u32>) -> Answer {
     }
 }
 
-/// `digits` digits: certified where an enclosure can be had, else by agreement.
+/// At least `least` and at most `digits` digits: certified where an enclosure can be had
+/// (f64 intervals where they prove `least`, Arb balls to `digits` otherwise), else
+/// `digits` by agreement.
 fn to_digits(
     case: &CaseSpec,
-    digits: u32,
+    (least, digits): (u32, u32),
     (started, deadline): (Instant, Instant),
 ) -> Result<(Answer, Option<NoEnclosure>), ReferenceError> {
     // The enclosure needs a case inside the theory, which it does not check itself.
     check_case(case)?;
-    let no_enclosure = match certified::answer(case, digits, deadline) {
+    let no_enclosure = match certified::answer(case, (least, digits), deadline) {
         Ok(answer) => return Ok((answer, None)),
         Err(refusal) => refusal?,
     };
@@ -225,14 +238,18 @@ fn further_in_time(no_enclosure: NoEnclosure, spent: crate::verified::OutOfBudge
 mod certified {
     use std::time::Instant;
 
-    use crate::answer::{Answer, Provenance, Value};
+    use crate::answer::{Answer, Arithmetic, Provenance};
     use crate::ball::Ball;
     use crate::case::{Case, CaseSpec};
-    use crate::certified::{certified_dissipation_by, CertifiedError};
-    use crate::dissipation::{DissipationError, Method, Segments};
+    use crate::certified::{
+        certified_dissipation_by, enclose_dissipation, CertifiedError, Enclosing, Enclosure, INTERVAL_GOAL_BITS,
+    };
+    use crate::dissipation::{DissipationError, Method, Segments, NEAR_SEPARATION};
+    use crate::interval::Interval;
+    use crate::real::{Precision, Real};
     use crate::reference::ReferenceError;
 
-    use super::NoEnclosure;
+    use super::{NoEnclosure, DEFAULT_LEAST_DIGITS};
 
     /// Whether the compliance has a decay load c and every load the cycle reads (all above
     /// P0 − P1 − Q1/f) is more than 2^29·ln 2 decay loads: then each e^(−P/c), and W with
@@ -249,10 +266,45 @@ mod certified {
         lowest / decay_load > (1u64 << 29) as f64 * std::f64::consts::LN_2
     }
 
-    /// W to `digits` certified digits; `Err(Ok(why))` where no enclosure can be had and
-    /// agreement may serve, `Err(Err(error))` where nothing will (a cycle outside the
-    /// theory, the budget spent).
+    /// W proven to at least `least` and at most `most` digits: first by one enclosure in
+    /// f64 intervals where `least` is at most [`DEFAULT_LEAST_DIGITS`], then, where that
+    /// proves fewer than `least` or refuses, by the Arb ladder to `most` digits;
+    /// `Err(Ok(why))` where no enclosure can be had and agreement may serve,
+    /// `Err(Err(error))` where nothing will (a cycle outside the theory, the budget spent).
     pub(super) fn answer(
+        case: &CaseSpec,
+        (least, most): (u32, u32),
+        deadline: Instant,
+    ) -> Result<Answer, Result<NoEnclosure, ReferenceError>> {
+        if least <= DEFAULT_LEAST_DIGITS {
+            if let Some(answer) = in_intervals(case, least, most) {
+                return Ok(answer);
+            }
+        }
+        in_balls(case, most, deadline)
+    }
+
+    /// W from one enclosure in f64 intervals (each decimal read as the two doubles
+    /// around it), where it proves at least `least` digits; `None` where it proves fewer,
+    /// or cannot be had in doubles (an undecided comparison, a piece the rule cannot
+    /// bound, a number beyond the range of f64).
+    fn in_intervals(case: &CaseSpec, least: u32, most: u32) -> Option<Answer> {
+        let Case { cycle, compliance } = case.at::<Interval>(Precision::DOUBLE).ok()?;
+        // Near separation the rounding in doubles is amplified about P1/δ-fold (δ = P0 − P1):
+        // where the bottom map takes over the intervals prove 9 digits or fewer, and the
+        // attempt is not made.
+        let lowest = (cycle.mean_normal_load - cycle.normal_amplitude).to_f64_lossy();
+        let clear_of_separation = lowest * NEAR_SEPARATION as f64 > cycle.normal_amplitude.to_f64_lossy();
+        if !clear_of_separation {
+            return None;
+        }
+        let enclosure = enclose_dissipation(&cycle, compliance.as_ref(), INTERVAL_GOAL_BITS).ok()?;
+        let answer = enclosure_answer(&enclosure, most, Arithmetic::F64Intervals);
+        (answer.value.digits() >= least).then_some(answer)
+    }
+
+    /// W to `digits` certified digits by the Arb ladder.
+    fn in_balls(
         case: &CaseSpec,
         digits: u32,
         deadline: Instant,
@@ -276,25 +328,34 @@ mod certified {
             Err(error) => return Err(Ok(NoEnclosure::Refused(error))),
         };
         let enclosure = &certified.enclosure;
-        let bits = enclosure.precision.in_bits();
-        let value = |ball: &Ball| Value::of_ball(ball, bits, digits);
-        let total = value(&enclosure.total);
-        if total.digits() < digits {
+        let answer = enclosure_answer(enclosure, digits, Arithmetic::ArbBalls);
+        if answer.value.digits() < digits {
             // The driver settles its digits by the same rule at the same precision.
             return Err(Ok(NoEnclosure::Refused(CertifiedError::TooWide {
                 asked: digits,
-                reached: total.digits(),
+                reached: answer.value.digits(),
                 relative_radius: enclosure.total.relative_radius(),
-                bits,
+                bits: enclosure.precision.in_bits(),
             })));
         }
-        Ok(Answer {
-            value: total,
-            segments: Some(Segments::from_fn(|segment| value(enclosure.segments.get(segment)))),
-            digits_requested: Some(digits),
-            provenance: Provenance::Certified { bits },
+        Ok(answer)
+    }
+
+    /// W and each segment printed by the one rule from `enclosure`, to at most `most`
+    /// digits, vouched for by the enclosure in `arithmetic`.
+    fn enclosure_answer<R: Enclosing>(enclosure: &Enclosure<R>, most: u32, arithmetic: Arithmetic) -> Answer {
+        Answer {
+            value: enclosure.total.decimal_value(most),
+            segments: Some(Segments::from_fn(|segment| {
+                enclosure.segments.get(segment).decimal_value(most)
+            })),
+            digits_requested: Some(most),
+            provenance: Provenance::Certified {
+                bits: enclosure.precision.in_bits(),
+                arithmetic,
+            },
             method: Some(Method::from(enclosure.kind)),
-        })
+        }
     }
 }
 
@@ -309,7 +370,11 @@ mod certified {
     use super::NoEnclosure;
 
     /// Without ball arithmetic there is no enclosure.
-    pub(super) fn answer(_: &CaseSpec, _: u32, _: Instant) -> Result<Answer, Result<NoEnclosure, ReferenceError>> {
+    pub(super) fn answer(
+        _: &CaseSpec,
+        _: (u32, u32),
+        _: Instant,
+    ) -> Result<Answer, Result<NoEnclosure, ReferenceError>> {
         Err(Ok(NoEnclosure::NotBuilt))
     }
 }
@@ -477,7 +542,7 @@ fn table_to_digits(
 ) -> Result<DissipationAnswer, ReferenceError> {
     let (answer, no_enclosure) = match checked_exact_zero(case)? {
         Some(reason) => (exact_zero_answer(reason, Some(digits)), None),
-        None => to_digits(case, digits, clock)?,
+        None => to_digits(case, (digits, digits), clock)?,
     };
     Ok(DissipationAnswer {
         answer,

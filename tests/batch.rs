@@ -496,8 +496,11 @@ fn csv_rows_carry_their_provenance_and_an_enclosure_that_rounds_to_w() {
                     assert_eq!((provenance, cell("digits_certified")), ("certified", "30"), "{context}");
                     assert!(!cell("table_error").is_empty(), "{context}");
                 }
-                // The default is proven too, to 15 digits.
-                (_, None) => assert_eq!((provenance, cell("digits_certified")), ("certified", "15"), "{context}"),
+                // The default is proven too, to the 12 to 15 digits of its enclosure.
+                (_, None) => {
+                    let proven: u32 = cell("digits_certified").parse().unwrap_or(0);
+                    assert!(provenance == "certified" && (12..=15).contains(&proven), "{context}");
+                }
                 (_, Some(_)) => {
                     assert_eq!((provenance, cell("digits_certified")), ("certified", "30"), "{context}");
                 }
@@ -558,4 +561,109 @@ fn rows_whose_node_tables_are_computed_on_the_pool_finish_within_their_budget() 
         assert_eq!(result["provenance"], "certified", "{result}");
     }
     compare_with_single_runs(&rows, &results, &[0, 1, 2, 3], None);
+}
+
+#[test]
+fn a_path_column_names_a_path_file_relative_to_the_csv_and_a_bad_file_fails_its_row_alone() {
+    let dir = scratch("path-column");
+    let paths = dir.join("paths");
+    std::fs::create_dir_all(&paths).unwrap();
+    let force = "k,P_cos,P_sin,Q_cos,Q_sin\n0,1,0,0.05,0\n1,0.25,0.05,0.2,-0.3\n2,0.08,-0.04,0.1,0.06\n";
+    let displacement = "k,P_cos,P_sin,u_cos,u_sin\n0,1.2,0,0.01,0\n1,0,0,0.2,-0.1\n2,0,0,0.04,0.05\n";
+    std::fs::write(paths.join("force.csv"), force).unwrap();
+    std::fs::write(paths.join("u.csv"), displacement).unwrap();
+    std::fs::write(paths.join("bad.csv"), "k,P_cos,P_sin,Q_cos,Q_sin\n0,1,0,0,zero\n").unwrap();
+    let input = dir.join("in.csv");
+    std::fs::write(
+        &input,
+        "id,p0,p1,q0,q1,phi,friction,lambda,nu,compliance,path,drive\n\
+         cycle,1,0.4,0,0.5,0.4pi,1,1,,persson:gamma=1,sigma=1,,\n\
+         force,,,,,,0.8,1.2,,persson:gamma=1,sigma=1,paths/force.csv,\n\
+         missing,,,,,,0.8,1.2,,persson:gamma=1,sigma=1,paths/none.csv,\n\
+         bad,,,,,,0.8,1.2,,persson:gamma=1,sigma=1,paths/bad.csv,force\n\
+         both,1,0.4,,,,0.8,1.2,,persson:gamma=1,sigma=1,paths/force.csv,\n\
+         displacement,,,,,,0.8,1.2,,persson:gamma=1,sigma=1,paths/u.csv,displacement\n\
+         no-drive,,,,,,0.8,1.2,,persson:gamma=1,sigma=1,paths/u.csv,sideways\n"
+            .replace("persson:gamma=1,sigma=1", "\"persson:gamma=1,sigma=1\""),
+    )
+    .unwrap();
+    let output = dir.join("out.csv");
+    let done = batch_files(&input, &output).output();
+    assert_eq!(done.status.code(), Some(1), "{}", String::from_utf8_lossy(&done.stderr));
+    let text = std::fs::read_to_string(&output).unwrap();
+    let mut reader = csv::Reader::from_reader(text.as_bytes());
+    let header: Vec<String> = reader.headers().unwrap().iter().map(str::to_string).collect();
+    let column = |name: &str| header.iter().position(|h| h == name).unwrap();
+    let rows: Vec<Vec<String>> = reader
+        .records()
+        .map(|r| r.unwrap().iter().map(str::to_string).collect())
+        .collect();
+    assert_eq!(rows.len(), 7);
+    let (w, error, method, provenance) = (column("W"), column("error"), column("method"), column("provenance"));
+    // The cycle's row is as it always was.
+    assert_eq!(rows[0][method], "four-segment");
+    // A path row's W is `microslip path`'s, to its 15 digits by agreement.
+    let single = |file: &str, drive: &str| -> String {
+        let out = common::run([
+            "path",
+            "--harmonics",
+            &path_text(&paths.join(file)),
+            "--drive",
+            drive,
+            "--friction",
+            "0.8",
+            "--lambda",
+            "1.2",
+            "--compliance",
+            "persson:gamma=1,sigma=1",
+            "--json",
+        ])
+        .output();
+        let document: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        document["W"].as_str().unwrap().to_string()
+    };
+    assert_eq!(rows[1][w], single("force.csv", "force"));
+    assert_eq!(
+        (rows[1][method].as_str(), rows[1][provenance].as_str()),
+        ("path-force", "agreement")
+    );
+    assert_eq!(rows[5][w], single("u.csv", "displacement"));
+    assert_eq!(rows[5][method], "path-displacement");
+    for (row, expected) in [
+        (2, "cannot read the path file"),
+        (3, "line 2"),
+        (4, "give either a path or the cycle's columns"),
+        (6, "neither force nor displacement"),
+    ] {
+        assert!(rows[row][w].is_empty(), "{:?}", rows[row]);
+        assert!(rows[row][error].contains(expected), "{:?}", rows[row]);
+    }
+    // As JSON lines, against the row schema.
+    let schema_path = format!("{}/docs/schema/batch-row.schema.json", env!("CARGO_MANIFEST_DIR"));
+    let schema: serde_json::Value = serde_json::from_str(&std::fs::read_to_string(schema_path).unwrap()).unwrap();
+    let validator = jsonschema::draft202012::new(&schema).unwrap();
+    let jsonl = dir.join("out.jsonl");
+    let done = common::run([
+        "batch",
+        "--input",
+        &path_text(&input),
+        "--output",
+        &path_text(&jsonl),
+        "--format",
+        "jsonl",
+    ])
+    .output();
+    assert_eq!(done.status.code(), Some(1));
+    let lines: Vec<serde_json::Value> = std::fs::read_to_string(&jsonl)
+        .unwrap()
+        .lines()
+        .map(|line| serde_json::from_str(line).unwrap())
+        .collect();
+    for line in &lines {
+        let problems: Vec<String> = validator.iter_errors(line).map(|e| e.to_string()).collect();
+        assert!(problems.is_empty(), "{problems:?}\n{line}");
+    }
+    assert_eq!(lines[1]["W"].as_str(), Some(rows[1][w].as_str()));
+    assert_eq!(lines[5]["method"], "path-displacement");
+    assert_eq!(lines[5]["provenance"], "agreement");
 }

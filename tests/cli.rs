@@ -654,9 +654,9 @@ fn json_reports_share_one_vocabulary() {
     let w_f64 = f64_run["W_f64"].as_f64().unwrap();
     let w: f64 = f64_run["W"].as_str().unwrap().parse().unwrap();
     assert!((w - w_f64).abs() <= 1e-12 * w, "{f64_run}");
-    // The default is proven: an enclosure at 64 bits, its digits certified.
+    // The default is proven: an enclosure in f64 intervals, its 12 to 15 digits certified.
     assert!(
-        f64_run["digits_verified"] == 15 && f64_run["precision_bits"] == 64,
+        f64_run["digits_verified"] == 13 && f64_run["precision_bits"] == 53 && f64_run["arithmetic"] == "f64 intervals",
         "{f64_run}"
     );
     let eb = f64_run["segments_f64"]["EB"].as_f64().unwrap();
@@ -1017,7 +1017,7 @@ fn digits_asked_and_the_default_digits_are_proven_by_an_enclosure() {
             .lines()
             .next()
             .unwrap()
-            .contains("15 significant digits, proven (rigorous enclosure at "),
+            .contains("13 significant digits, proven (rigorous enclosure in f64 interval arithmetic)"),
         "{stdout}"
     );
     assert!(!stdout.contains("not proven"), "{stdout}");

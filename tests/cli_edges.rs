@@ -434,7 +434,7 @@ fn a_file_that_stops_being_csv_is_refused_before_any_row_is_written() {
     assert_eq!(lines.len(), 1 + 256, "the header and the first chunk");
     for (k, line) in lines[1..].iter().enumerate() {
         assert!(
-            line.starts_with(&format!("{k},1,0.4,")) && line.contains("4.06247579245824e-1"),
+            line.starts_with(&format!("{k},1,0.4,")) && line.contains("4.062475792458e-1"),
             "{line}"
         );
     }

@@ -7,7 +7,7 @@ use microslip::certified::certified_dissipation;
 use microslip::compliance::{Compliance, Exponential, Hertz, Persson, PowerLaw, Rational, Sum};
 use microslip::cycle::LoadCycle;
 use microslip::exact::remainder::{largest_amplitude, WithinLimit};
-use microslip::exact::{partial_sums, remainder_bounds, SeriesShape};
+use microslip::exact::{cubic_kernel_majorant, partial_sums, remainder_bounds, SeriesShape};
 use microslip::real::{Precision, Real};
 use microslip::verify::generators::Draw;
 
@@ -206,4 +206,49 @@ fn a_slip_load_topping_out_at_p0_still_gives_a_bound() {
             );
         }
     }
+}
+
+/// The closed-form majorant C̄(ρ, φ) lies above the enclosed ‖K₂‖₁ over the whole domain,
+/// the charts included (ρ from 10⁻⁶ to 10⁶, φ within 10⁻¹⁰ of 0 and π, and ρ = 1), and
+/// within 10× of it where the measure does not cancel (ρ ≥ 2, and ρ ≤ 1 at φ = π/2 up to ρ ≥ 0.3).
+#[test]
+fn the_cubic_kernel_majorant_bounds_the_norm_over_the_whole_domain() {
+    let precision = Precision::bits(BITS);
+    let ball = |x: f64| Ball::from_f64(x, precision);
+    let pi = std::f64::consts::PI;
+    for rho in [1e-6, 1e-3, 0.3, 1.0, 2.0, 30.0, 1e6] {
+        for phase in [1e-10, 1e-3, 1.0, pi / 2.0, 2.5, pi - 1e-10] {
+            let shape = SeriesShape::new(&ball(rho), &ball(phase), 1).unwrap();
+            let norm = shape.kernels.norms[0].real_span().unwrap();
+            let majorant = cubic_kernel_majorant(&ball(rho), &ball(phase))
+                .unwrap()
+                .real_span()
+                .unwrap();
+            assert!(
+                norm.1 <= majorant.0,
+                "ρ = {rho}, φ = {phase}: ‖K₂‖₁ ≤ {} above C̄ = {}",
+                norm.1,
+                majorant.0
+            );
+            if rho >= 2.0 || (rho >= 0.3 && phase == pi / 2.0) {
+                assert!(
+                    majorant.1 < 15.0 * norm.0,
+                    "ρ = {rho}, φ = {phase}: C̄ {} far above {}",
+                    majorant.1,
+                    norm.0
+                );
+            }
+        }
+    }
+}
+
+/// The gate's row for claim 1 over the whole domain passes and says how it is proven.
+#[test]
+fn the_gate_proves_the_cubic_law_by_derivation() {
+    let report = microslip::verify::claims::cubic_law_proved(5, 3);
+    assert!(report.proved(), "{}", report.note);
+    assert!(matches!(
+        report.proof,
+        Some(microslip::verify::Proof::Derivation { document }) if document == "proofs/cubic-law-remainder.md"
+    ));
 }

@@ -7,8 +7,8 @@ use std::path::PathBuf;
 
 use common::{microslip, PERSSON};
 use microslip::compliance::parse_spec;
-use microslip::path::input::read_harmonics;
-use microslip::path::{path_dissipation, Contact};
+use microslip::path::input::{read_driven_harmonics, read_harmonics};
+use microslip::path::{displacement_dissipation, path_dissipation, Contact, Drive};
 use microslip::real::Precision;
 use serde_json::Value;
 
@@ -187,4 +187,65 @@ fn bad_paths_are_refused_in_one_line_naming_the_problem_and_leave_no_file() {
     // The angle where gross slip is reached is named.
     let (_, _, stderr) = path_run(&directory, cases[4].0, &[]);
     assert!(stderr.contains("at θ = "), "{stderr}");
+}
+
+#[test]
+fn displacement_driving_prints_the_library_w_and_names_its_drive() {
+    let directory = scratch("displacement");
+    let validator = schema();
+    let text = "k,P_cos,P_sin,u_cos,u_sin\n0,1.2,0,0.01,0\n1,0,0,0.2,-0.1\n2,0,0,0.04,0.05\n";
+    let (code, stdout, stderr) = path_run(&directory, text, &["--drive", "displacement", "--json"]);
+    assert_eq!(code, 0, "{stderr}");
+    let document: Value = serde_json::from_str(stdout.trim()).unwrap();
+    let problems: Vec<String> = validator.iter_errors(&document).map(|e| e.to_string()).collect();
+    assert!(problems.is_empty(), "{problems:?}\n{document}");
+    assert_eq!(document["drive"], "displacement");
+    let path = read_driven_harmonics::<f64>(text, Precision::DOUBLE, Drive::Displacement).unwrap();
+    let contact = Contact {
+        friction: 0.8,
+        compliance_ratio: 1.2,
+    };
+    let compliance = parse_spec::<f64>(PERSSON, Precision::DOUBLE).unwrap();
+    let library = displacement_dissipation(&path, &contact, compliance.as_ref(), None)
+        .unwrap()
+        .total;
+    let w = document["W_f64"].as_f64().unwrap();
+    assert!((w / library - 1.0).abs() < 1e-14, "{w} against {library}");
+    let (qa, ua, eta) = (
+        document["q_amplitude"].as_f64().unwrap(),
+        document["u_amplitude"].as_f64().unwrap(),
+        document["loss_factor"].as_f64().unwrap(),
+    );
+    assert!((eta * std::f64::consts::PI * qa * ua / w - 1.0).abs() < 1e-14);
+    assert!(qa < 0.8 * 1.2);
+    // The prescribed u comes back as u's harmonics.
+    assert_eq!(document["harmonics"][2]["u_sin"].as_f64(), Some(0.05));
+    // Force driving says so too.
+    let (_, stdout, _) = path_run(&directory, TWO_HARMONICS, &["--json"]);
+    assert_eq!(serde_json::from_str::<Value>(stdout.trim()).unwrap()["drive"], "force");
+}
+
+#[test]
+fn displacement_driving_refuses_a_varying_normal_load_and_force_columns() {
+    let directory = scratch("displacement-refusals");
+    let out = directory.join("loop.csv");
+    let cases = [
+        (
+            "k,P_cos,P_sin,u_cos,u_sin\n0,1,0,0,0\n1,0.1,0,0.2,0\n",
+            "constant normal load",
+        ),
+        (TWO_HARMONICS, "column u_cos"),
+    ];
+    for (contents, expected) in cases {
+        let (code, stdout, stderr) = path_run(
+            &directory,
+            contents,
+            &["--drive", "displacement", "--loop", out.to_str().unwrap()],
+        );
+        assert_eq!(code, 2, "{stderr}");
+        assert!(stdout.is_empty());
+        assert_eq!(stderr.trim().lines().count(), 1, "{stderr}");
+        assert!(stderr.contains(expected), "{stderr}");
+        assert!(!out.exists());
+    }
 }

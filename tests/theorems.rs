@@ -184,6 +184,32 @@ fn roughness_scaling_identities_hold_in_f64_and_at_256_bits() {
     });
 }
 
+/// Claims 3, 4 and 5 proved by their derivations: the rows' checks on balls pass for
+/// random seeds (a proven gap between the two sides would fail them), and each names its
+/// document.
+#[test]
+fn claims_three_to_five_are_proved_by_their_derivations() {
+    for_seeds(6, 21, |seed| {
+        let reports = vec![
+            claims::constant_term_proved(seed, 3),
+            claims::linearity_proved(seed, 1),
+            claims::roughness_proved(seed, 1),
+        ];
+        for (report, document) in reports.iter().zip([
+            "proofs/constant-term.md",
+            "proofs/linearity.md",
+            "proofs/roughness-scaling.md",
+        ]) {
+            assert!(report.proved(), "{report:?}");
+            assert!(
+                matches!(report.proof, Some(microslip::verify::Proof::Derivation { document: d }) if d == document),
+                "{report:?}"
+            );
+        }
+        reports
+    });
+}
+
 #[test]
 fn invariants_hold_for_random_cycles_in_f64_and_at_256_bits() {
     claim_holds_in_f64_and_at_256_bits(&Invariants, 12, 9, strategies::invariants_case);
@@ -326,9 +352,10 @@ fn verify_command_runs_the_gate_and_reports_every_claim() {
     let report: serde_json::Value = serde_json::from_str(stdout.trim()).unwrap();
     assert_eq!(report["passed"], true);
     let claims = report["claims"].as_array().unwrap();
-    // 1 (fitted order, Peano remainder, completely monotone bracket), 2 (proved), 2a–2c, 3 and 4
-    // and 5 in f64, at 256 bits and simulated, 6a in f64 and at 256 bits, 6b, 6c, 7a–7c.
-    assert_eq!(claims.len(), 23);
+    // 1 (fitted order, proved bound, Peano remainder, completely monotone bracket), 2 (proved),
+    // 2a–2c, 3, 4 and 5 proved by derivation, in f64, at 256 bits and simulated, 6a in f64 and
+    // at 256 bits, 6b, 6c, 7a–7c.
+    assert_eq!(claims.len(), 27);
     let simulated = claims
         .iter()
         .filter(|claim| claim["claim"].as_str().unwrap().contains("simulated"))
@@ -639,8 +666,11 @@ mod claim_2_proof {
         let report: serde_json::Value = serde_json::from_str(stdout.trim()).unwrap();
         let claims = report["claims"].as_array().unwrap();
         let proved: Vec<_> = claims.iter().filter(|c| c["proved"] == true).collect();
-        assert_eq!(proved.len(), 1, "{claims:?}");
-        let row = proved[0];
+        // Claim 2 by subdivision; claims 1, 3, 4 and 5 by derivation.
+        assert_eq!(proved.len(), 5, "{claims:?}");
+        let by = |how: &str| proved.iter().filter(|c| c["proof"]["by"] == how).count();
+        assert_eq!((by("subdivision"), by("derivation")), (1, 4), "{proved:?}");
+        let row = proved.iter().find(|c| c["proof"]["by"] == "subdivision").unwrap();
         assert!(row["claim"].as_str().unwrap().starts_with("2 I(ρ,φ) < 0"));
         assert!(row["proof"]["boxes"].as_u64().unwrap() > 1000);
         assert!(row["proof"]["seconds"].as_f64().unwrap() > 0.0);

@@ -28,12 +28,12 @@ def assert_as_cli(answer: microslip.Answer, report: dict) -> None:
 
 def test_the_first_w_of_the_readme():
     answer = microslip.dissipation(case_of(FIRST))
-    # Proven by default: 15 digits from a rigorous enclosure.
-    assert answer.text == "4.06247579245824e-1"
-    assert answer.digits == 15
+    # Proven by default: the 13 digits a rigorous enclosure in f64 intervals gives.
+    assert answer.text == "4.062475792458e-1"
+    assert answer.digits == 13
     assert answer.provenance == "certified" and answer.proven
     assert list(answer.segments) == ["EB", "BC", "CH", "HE"]
-    assert answer.segments["HE"] == "2.96789577125153e-1"
+    assert answer.segments["HE"] == "2.96789577125e-1"
     assert_as_cli(answer, cli_json("dissipation", FIRST))
 
 

@@ -283,6 +283,10 @@ impl Rule<'_> {
         (value, served)
     }
 
+    /// [`Self::one_rule`], noting in `served` which bound served. One function because its
+    /// steps share the piece's centre, half length and tolerance and decide in turn: the
+    /// degree the X = 2 box allows, wider ellipses while they lower it, the fallback bounds
+    /// where it gives none, then the rule's sum with the bound's error added.
     fn one_rule_from(&self, start: &Ball, end: &Ball, from: Served, served: &mut Served) -> Option<Ball> {
         let bits = start.precision().in_bits();
         let delta = (end.clone() - start).times_power_of_two(-1);

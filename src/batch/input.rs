@@ -3,6 +3,7 @@
 //! needed, so that an endless input costs no more memory than its longest record.
 
 use std::io::{BufRead, BufReader, Read};
+use std::path::{Path, PathBuf};
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::Arc;
 
@@ -10,6 +11,7 @@ use super::BatchError;
 use crate::case::CaseText;
 use crate::compliance::column_name;
 use crate::messages::printable;
+use crate::path::Drive;
 
 pub use crate::files::MAX_RECORD_BYTES;
 
@@ -20,8 +22,29 @@ pub struct InputRow {
     pub line: u64,
     /// The cells, one per header column (missing ones empty).
     pub cells: Vec<String>,
-    /// The case, or what is wrong with the row.
+    /// The case, or what is wrong with the row (for a row that names a path, why it has
+    /// no case).
     pub case: Result<CaseText, String>,
+    /// For a row whose `path` cell names a path file: the path request, or what is wrong
+    /// with the row.
+    pub path: Option<Result<PathRow, String>>,
+}
+
+/// A row that names a path file in place of p0, p1, q0, q1, phi.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct PathRow {
+    /// The path file, relative to the batch input's directory when it was read from a file.
+    pub file: PathBuf,
+    /// What the file prescribes besides P (`drive`: force by default, or displacement).
+    pub drive: Drive,
+    /// f.
+    pub friction: String,
+    /// λ, where given.
+    pub lambda: Option<String>,
+    /// ν, where given.
+    pub nu: Option<String>,
+    /// The compliance spec.
+    pub compliance: String,
 }
 
 /// The bytes of the input as they are read, refusing what cannot be a batch CSV before
@@ -85,6 +108,10 @@ pub struct BatchInput<R> {
     bytes_before_header: u64,
     /// Comment lines before the header.
     comment_lines: u64,
+    /// The `path` and `drive` columns, where given.
+    path_columns: (Option<usize>, Option<usize>),
+    /// The directory a relative path file is taken from.
+    directory: Option<PathBuf>,
 }
 
 /// Reads the comment lines and the header of a batch CSV and checks the header: every
@@ -128,6 +155,7 @@ pub fn read_input<R: Read>(source: R) -> Result<BatchInput<R>, BatchError> {
     record_start.store(bytes_before_header + reader.position().byte(), Ordering::Relaxed);
     let find = |name: &str| header.iter().position(|h| column_name(h) == name);
     let columns = CASE_COLUMNS.map(find);
+    let path_columns = (find("path"), find("drive"));
     Ok(BatchInput {
         header,
         columns,
@@ -135,6 +163,8 @@ pub fn read_input<R: Read>(source: R) -> Result<BatchInput<R>, BatchError> {
         record_start,
         bytes_before_header,
         comment_lines,
+        path_columns,
+        directory: None,
     })
 }
 
@@ -163,7 +193,12 @@ fn check_header(header: &[String]) -> Result<(), BatchError> {
         }
     }
     let has = |name: &str| header.iter().any(|h| column_name(h) == name);
-    let required = ["p0", "p1", "q1", "phi", "friction", "compliance"];
+    // With a `path` column a row may name a path file in place of the cycle's columns.
+    let required: &[&str] = if has("path") {
+        &["friction", "compliance"]
+    } else {
+        &["p0", "p1", "q1", "phi", "friction", "compliance"]
+    };
     let mut missing: Vec<&str> = required.iter().copied().filter(|name| !has(name)).collect();
     if !has("lambda") && !has("nu") {
         missing.push("lambda (or nu)");
@@ -218,6 +253,12 @@ impl<R: Read> Iterator for BatchInput<R> {
 }
 
 impl<R> BatchInput<R> {
+    /// Takes relative path files from `directory` (the input file's), as they are read.
+    pub fn relative_to(mut self, directory: &Path) -> Self {
+        self.directory = Some(directory.to_path_buf());
+        self
+    }
+
     fn row(&self, line: u64, record: &csv::ByteRecord) -> InputRow {
         let text: Vec<Option<String>> = record
             .iter()
@@ -226,16 +267,79 @@ impl<R> BatchInput<R> {
         let cells: Vec<String> = (0..self.header.len())
             .map(|i| text.get(i).cloned().flatten().unwrap_or_default())
             .collect();
-        let case = if text.iter().all(|cell| cell.as_deref() == Some("")) {
+        let empty = text.iter().all(|cell| cell.as_deref() == Some(""));
+        let named_path = self
+            .path_columns
+            .0
+            .and_then(|i| text.get(i).cloned().flatten())
+            .filter(|cell| !cell.is_empty());
+        let path = match (&named_path, empty) {
+            (Some(file), false) => Some(self.path_row(file, &text)),
+            _ => None,
+        };
+        let case = if empty {
             Err("every cell of the row is empty".to_string())
+        } else if path.is_some() {
+            Err("the row names a path file".to_string())
         } else {
             row_case(&self.header, &text, &self.columns)
         };
-        InputRow { line, cells, case }
+        InputRow {
+            line,
+            cells,
+            case,
+            path,
+        }
+    }
+
+    /// The path request of a row whose `path` cell names `file`.
+    fn path_row(&self, file: &str, text: &[Option<String>]) -> Result<PathRow, String> {
+        check_fields(&self.header, text)?;
+        let cell = |k: Option<usize>| -> Option<String> { k.and_then(|i| text[i].clone()).filter(|s| !s.is_empty()) };
+        let given: Vec<&str> = [0, 1, 2, 3, 4]
+            .into_iter()
+            .filter(|&k| cell(self.columns[k]).is_some())
+            .map(|k| CASE_COLUMNS[k])
+            .collect();
+        if !given.is_empty() {
+            return Err(format!(
+                "the row names the path file '{}' and gives {} too: give either a path or the cycle's columns",
+                printable(file),
+                given.join(", ")
+            ));
+        }
+        let drive = match cell(self.path_columns.1).as_deref() {
+            None | Some("force") => Drive::Force,
+            Some("displacement") => Drive::Displacement,
+            Some(other) => {
+                return Err(format!(
+                    "drive = '{}' is neither force nor displacement",
+                    printable(other)
+                ))
+            }
+        };
+        let required = |k: usize| cell(self.columns[k]).ok_or_else(|| format!("{} is empty", CASE_COLUMNS[k]));
+        let (lambda, nu) = (cell(self.columns[6]), cell(self.columns[7]));
+        if lambda.is_some() == nu.is_some() {
+            return Err("give exactly one of lambda and nu".to_string());
+        }
+        let file = Path::new(file);
+        Ok(PathRow {
+            file: match &self.directory {
+                Some(directory) if file.is_relative() => directory.join(file),
+                _ => file.to_path_buf(),
+            },
+            drive,
+            friction: required(5)?,
+            lambda,
+            nu,
+            compliance: required(8)?,
+        })
     }
 }
 
-fn row_case(header: &[String], text: &[Option<String>], columns: &[Option<usize>; 9]) -> Result<CaseText, String> {
+/// Refuses a row whose fields do not match the header, or that is not UTF-8.
+fn check_fields(header: &[String], text: &[Option<String>]) -> Result<(), String> {
     if text.len() != header.len() {
         return Err(format!(
             "the row has {} fields, the header {} (a compliance SPEC with commas must be quoted: \"persson:gamma=1,sigma=1\")",
@@ -246,6 +350,11 @@ fn row_case(header: &[String], text: &[Option<String>], columns: &[Option<usize>
     if let Some(i) = text.iter().position(Option::is_none) {
         return Err(format!("{} is not UTF-8 text", printable(&header[i])));
     }
+    Ok(())
+}
+
+fn row_case(header: &[String], text: &[Option<String>], columns: &[Option<usize>; 9]) -> Result<CaseText, String> {
+    check_fields(header, text)?;
     let cell = |k: usize| -> Option<String> { columns[k].and_then(|i| text[i].clone()).filter(|s| !s.is_empty()) };
     let required = |k: usize| cell(k).ok_or_else(|| format!("{} is empty", CASE_COLUMNS[k]));
     let (lambda, nu) = (cell(6), cell(7));

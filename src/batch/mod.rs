@@ -7,11 +7,12 @@ use std::time::Duration;
 use crate::answer::{Answer, Provenance};
 use crate::dissipation_answer::{dissipation_report, DissipationAnswer};
 use crate::messages::printable;
+use crate::path::{path_answer, AgreedW, PathAnswer, PathFormat, PathRequest, RatioText};
 use crate::reference::ReferenceError;
 
 mod input;
 
-pub use input::{check_input, read_input, BatchInput, InputRow, MAX_RECORD_BYTES};
+pub use input::{check_input, read_input, BatchInput, InputRow, PathRow, MAX_RECORD_BYTES};
 
 pub use crate::dissipation_answer::{TableEstimate, TABLE_QUADRATURE_TOLERANCE};
 
@@ -25,7 +26,7 @@ pub enum BatchError {
     #[error("batch input: {0}")]
     Input(String),
     /// Required columns are missing.
-    #[error("batch input has no column {missing} (its header is '{header}'); a batch needs p0, p1, q1, phi, friction, lambda or nu, compliance, and optionally q0 and id")]
+    #[error("batch input has no column {missing} (its header is '{header}'); a batch needs p0, p1, q1, phi, friction, lambda or nu, compliance, and optionally q0 and id (or a column path naming a path file in place of p0, p1, q0, q1, phi, with an optional drive)")]
     MissingColumns { missing: String, header: String },
     /// A column is named twice: which one a row's value came from would be a guess.
     #[error("batch input names the column '{name}' twice (its header is '{header}'); give each column once")]
@@ -71,6 +72,8 @@ pub struct RowResult {
     pub error: String,
     /// W and what vouches for it, as a single run reports it (none for a failed row).
     pub answer: Option<DissipationAnswer>,
+    /// W of a row that names a path file, as `microslip path` prints it.
+    pub path: Option<AgreedW>,
 }
 
 impl RowResult {
@@ -106,8 +109,55 @@ impl RowResult {
             method,
             error: String::new(),
             answer: Some(report),
+            path: None,
         }
     }
+
+    /// The result of a row whose path gave `answer`.
+    fn of_path(answer: PathAnswer) -> Self {
+        let w = answer.w;
+        RowResult {
+            total: w.text.clone(),
+            digits: Some(significant_digits(&w.text)),
+            digits_certified: Some(0),
+            provenance: w.provenance.to_string(),
+            method: format!("path-{}", answer.drive.name()),
+            path: Some(w),
+            ..RowResult::default()
+        }
+    }
+}
+
+/// The significant digits of a decimal as printed (`-1.2300e-4` has 5).
+fn significant_digits(text: &str) -> u32 {
+    let mantissa = text.split(['e', 'E']).next().unwrap_or("");
+    let digits: String = mantissa.chars().filter(char::is_ascii_digit).collect();
+    digits.trim_start_matches('0').len() as u32
+}
+
+/// W of a row that names a path file: read, then answered as `microslip path` answers it.
+fn path_result(row: &PathRow, digits: Option<u32>, budget: Duration) -> Result<PathAnswer, String> {
+    let contents = std::fs::read_to_string(&row.file)
+        .map_err(|error| format!("cannot read the path file {}: {error}", row.file.display()))?;
+    let ratio = match (&row.lambda, &row.nu) {
+        (Some(lambda), _) => RatioText::Lambda(lambda.clone()),
+        (None, Some(nu)) => RatioText::Poisson(nu.clone()),
+        (None, None) => return Err("give exactly one of lambda and nu".to_string()),
+    };
+    let request = PathRequest {
+        file: row.file.display().to_string(),
+        format: PathFormat::of_contents(&contents),
+        contents,
+        drive: row.drive,
+        friction: row.friction.clone(),
+        ratio,
+        compliance: row.compliance.clone(),
+        digits: digits.unwrap_or(crate::dissipation_answer::DEFAULT_DIGITS),
+        deadline: std::time::Instant::now() + budget,
+        harmonics_out: 0,
+        loop_points: 1,
+    };
+    path_answer(&request).map_err(|error| format!("{error}{}", error.hint()))
 }
 
 /// What a row gets beyond its budget to return its own, more specific, answer.
@@ -179,13 +229,26 @@ fn row_result(threads: &RowThreads, row: &InputRow, digits: Option<u32>, budget:
         error: format!("line {}: {}", row.line, printable(&error)),
         ..RowResult::default()
     };
-    let case = match &row.case {
-        Ok(case) => case.clone(),
-        Err(problem) => return failed(problem.clone()),
+    let outcome = match (&row.path, &row.case) {
+        (Some(Err(problem)), _) | (None, Err(problem)) => return failed(problem.clone()),
+        (Some(Ok(path)), _) => {
+            let path = path.clone();
+            threads.within_budget(budget, move || {
+                path_result(&path, digits, budget).map(RowResult::of_path)
+            })
+        }
+        (None, Ok(case)) => {
+            let case = case.clone();
+            threads.within_budget(budget, move || {
+                dissipation_report(&case, digits, budget)
+                    .map(RowResult::of)
+                    .map_err(|error| error.to_string())
+            })
+        }
     };
-    match threads.within_budget(budget, move || dissipation_report(&case, digits, budget)) {
-        Some(Ok(Ok(report))) => RowResult::of(report),
-        Some(Ok(Err(error))) => failed(error.to_string()),
+    match outcome {
+        Some(Ok(Ok(result))) => result,
+        Some(Ok(Err(error))) => failed(error),
         Some(Err(_)) => failed("internal error: the computation panicked (please report this case)".to_string()),
         None => failed(format!(
             "the time budget of {} s per row ran out before the result was reached; raise --max-seconds",

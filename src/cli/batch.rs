@@ -18,7 +18,8 @@ use super::report::{warn, Failure};
 #[derive(Args)]
 #[command(after_help = INPUT_CHECKED)]
 pub struct BatchArgs {
-    /// Input CSV (`-` for stdin): p0,p1,q1,phi,friction,lambda or nu,compliance; optional q0, id.
+    /// Input CSV (`-` for stdin): p0,p1,q1,phi,friction,lambda or nu,compliance; optional q0, id;
+    /// or path (a path file, relative to the CSV) with optional drive in place of p0,p1,q0,q1,phi.
     #[arg(long)]
     pub input: String,
     /// Output (`-` for stdout); a regular file is written whole or not at all, a device or FIFO in place.
@@ -69,6 +70,10 @@ pub fn run(args: &BatchArgs) -> Result<usize, Failure> {
         batch::check_input(std::io::BufReader::new(file)).map_err(refused)?;
     }
     let mut input = batch::read_input(source).map_err(refused)?;
+    // A row's path file is named relative to the batch input's directory.
+    if let Some(directory) = Path::new(&args.input).parent().filter(|_| args.input != "-") {
+        input = input.relative_to(directory);
+    }
     let header = input.header.clone();
     let mut output = StreamedOutput::create(output_path).map_err(|e| Failure::failed(e.to_string()))?;
     let lost = |e: std::io::Error| Failure::failed(format!("{}: {e}", args.output));

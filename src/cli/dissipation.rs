@@ -15,8 +15,8 @@ use super::report::Failure;
 #[derive(Args)]
 #[command(
     mut_arg("digits", |digits| digits.help(
-        "Significant digits to compute and prove by a rigorous enclosure (1–1000); without it, 15, \
-         proven likewise"
+        "Significant digits to compute and prove by a rigorous enclosure (1–1000); without it, the 12 \
+         to 15 that an enclosure in f64 intervals proves, or 15 from Arb's balls where it proves fewer"
     )),
     after_help = UNITS_AND_DIGITS
 )]

@@ -14,6 +14,7 @@ use microslip::answer::{Answer, Provenance, Value};
 use microslip::batch::{InputRow, RowResult};
 use microslip::case::CaseText;
 use microslip::dissipation_answer::DissipationAnswer;
+use microslip::path::AgreedW;
 
 /// Keys and values serialized as a JSON object in the order given.
 pub struct InOrder<K, V>(Vec<(K, V)>);
@@ -123,9 +124,35 @@ pub struct DissipationFields {
     pub no_enclosure: Option<String>,
     /// How W was computed (`Method::key`).
     pub method: Option<&'static str>,
+    /// The arithmetic of a rigorous enclosure (`Arithmetic::key`): `f64 intervals` or
+    /// `arb balls`; null for any other provenance.
+    pub arithmetic: Option<&'static str>,
 }
 
 impl DissipationFields {
+    /// A batch row's path W: two working precisions agree on its digits; `method` is
+    /// `path-force` or `path-displacement`.
+    pub fn of_path(w: &AgreedW, digits: Option<u32>, method: &str) -> Self {
+        DissipationFields {
+            w: Some(w.text.clone()),
+            w_f64: Some(w.value),
+            envelope: ValueEnvelope {
+                digits,
+                digits_verified: digits,
+                digits_certified: Some(0),
+                provenance: Some(w.provenance),
+                precision_bits: Some(w.precision_bits),
+                ..ValueEnvelope::default()
+            },
+            method: Some(if method == "path-displacement" {
+                "path-displacement"
+            } else {
+                "path-force"
+            }),
+            ..DissipationFields::default()
+        }
+    }
+
     pub fn of(report: &DissipationAnswer) -> Self {
         let answer = &report.answer;
         DissipationFields {
@@ -140,6 +167,7 @@ impl DissipationFields {
             smoothing_residual: report.table.as_ref().map(|t| t.smoothing_residual),
             no_enclosure: report.no_enclosure.as_ref().map(ToString::to_string),
             method: answer.method.map(microslip::dissipation::Method::key),
+            arithmetic: answer.provenance.arithmetic().map(microslip::answer::Arithmetic::key),
         }
     }
 }
@@ -199,7 +227,11 @@ pub fn batch_rows<'a>(header: &'a [String], rows: &'a [InputRow], results: &'a [
                     .zip(row.cells.iter().map(String::as_str))
                     .collect(),
             ),
-            w: result.answer.as_ref().map(DissipationFields::of).unwrap_or_default(),
+            w: match (&result.answer, &result.path) {
+                (Some(answer), _) => DissipationFields::of(answer),
+                (None, Some(path)) => DissipationFields::of_path(path, result.digits, &result.method),
+                (None, None) => DissipationFields::default(),
+            },
             error: (!result.succeeded()).then_some(result.error.as_str()),
         })
         .collect()
@@ -254,8 +286,8 @@ pub struct ClaimRow<'a> {
     pub passed: bool,
     /// Proven over the whole domain (true), or checked on random draws (false).
     pub proved: bool,
-    /// The proof's boxes and seconds, for a proved row.
-    pub proof: Option<microslip::verify::ProofSize>,
+    /// How a proved row is proven: its boxes and seconds, or the derivation's document.
+    pub proof: Option<microslip::verify::Proof>,
     pub note: &'a str,
 }
 
@@ -298,7 +330,8 @@ mod tests {
             .iter()
             .map(|row| serde_json::to_value(row).unwrap())
             .collect();
-        assert_eq!(lines[0]["W"], "4.06247579245824e-1");
+        assert_eq!(lines[0]["W"], "4.062475792458e-1");
+        assert_eq!(lines[0]["arithmetic"], "f64 intervals");
         assert_eq!(
             lines[0]["W_f64"]
                 .as_f64()
@@ -312,7 +345,7 @@ mod tests {
         assert_eq!(lines[0]["inputs"]["compliance"], "persson:gamma=1,sigma=1");
         assert_eq!(
             (&lines[0]["digits"], &lines[0]["digits_certified"]),
-            (&15.into(), &15.into())
+            (&13.into(), &13.into())
         );
         assert_eq!(
             (&lines[0]["provenance"], &lines[0]["method"]),

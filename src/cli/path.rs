@@ -4,30 +4,45 @@
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-use clap::{ArgGroup, Args};
-use rug::Float;
+use clap::{ArgGroup, Args, ValueEnum};
 use serde::Serialize;
 
-use microslip::compliance::parse_spec;
-use microslip::cycle::compliance_ratio_from_poisson;
 use microslip::dissipation_answer::DEFAULT_DIGITS;
 use microslip::files::{check_writable, csv_text, destination, write_text_atomically, Destination};
-use microslip::path::dissipation::dissipation_of;
-use microslip::path::input::{read_harmonics, read_samples};
-use microslip::path::{path_dissipation, path_outputs, Contact, LoadPath, PathError, PathOutputs, SteadyCycle};
-use microslip::real::{Precision, Real};
-use microslip::verified::{agreement_radius, decimal_ball, verify, TwoPrecisions, VerifyError};
+use microslip::path::{path_answer, AgreedW, Drive, PathAnswer, PathFormat, PathOutputs, PathRequest, RatioText};
 
 use super::case::ContactArgs;
 use super::parse;
 use super::report::Failure;
 
+/// What the path file prescribes besides P.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, ValueEnum)]
+pub enum DriveArg {
+    /// The tangential load Q (columns Q_cos,Q_sin or Q).
+    #[default]
+    Force,
+    /// The tangential displacement u (columns u_cos,u_sin or u), at constant P.
+    Displacement,
+}
+
+impl From<DriveArg> for Drive {
+    fn from(drive: DriveArg) -> Self {
+        match drive {
+            DriveArg::Force => Drive::Force,
+            DriveArg::Displacement => Drive::Displacement,
+        }
+    }
+}
+
 #[derive(Args)]
 #[command(group(ArgGroup::new("source").required(true).args(["harmonics", "samples"])))]
 #[command(after_help = "W is energy per cycle in the units of load × approach of the inputs. \
 The path must keep P > 0 and |Q| < fP at every θ (force driving); it is refused naming the θ where \
-it does not. W is printed with the digits on which two working precisions agree (agreement, not \
-a proof): 15 without --digits, N with --digits N.")]
+it does not. Under --drive displacement P must be constant and u is in the units of the outputs' u \
+(λf times the approach); Q follows by Masing's rules and saturates at ±fP (gross slip): the contact \
+starts unloaded, is loaded monotonically to the extreme of u of largest magnitude, and the steady \
+loop is the period that starts there. W is printed with the digits on which two working precisions \
+agree (agreement, not a proof): 15 without --digits, N with --digits N.")]
 pub struct PathArgs {
     /// CSV with the header k,P_cos,P_sin,Q_cos,Q_sin: P(θ) = Σ P_cos cos kθ + P_sin sin kθ, Q alike (k ≤ 64).
     #[arg(long)]
@@ -36,6 +51,11 @@ pub struct PathArgs {
     /// first (at most 1,000,000), taken as their trigonometric interpolant.
     #[arg(long)]
     pub samples: Option<PathBuf>,
+    /// What the file prescribes besides P: the tangential load Q (force) or the tangential
+    /// displacement u (displacement, at constant P; from the unloaded state, first loaded
+    /// to the extreme of u of largest magnitude).
+    #[arg(long, value_enum, default_value_t = DriveArg::Force)]
+    pub drive: DriveArg,
     #[command(flatten)]
     pub contact: ContactArgs,
     /// Significant digits of W on which two working precisions must agree (1–1000).
@@ -77,118 +97,11 @@ impl PathArgs {
     }
 }
 
-/// The inputs as text, read again at every precision.
-struct PathText {
-    file: String,
-    contents: String,
-    samples: bool,
-    friction: String,
-    lambda: Option<String>,
-    nu: Option<String>,
-    compliance: String,
-}
-
-/// A path, a contact and a compliance at one precision.
-struct Inputs<R: Real> {
-    path: LoadPath<R>,
-    contact: Contact<R>,
-    compliance: Box<dyn microslip::compliance::Compliance<R>>,
-}
-
-impl PathText {
-    fn read<R: Real>(&self, precision: Precision) -> Result<Inputs<R>, Failure> {
-        let path = if self.samples {
-            read_samples::<R>(&self.contents, precision)
-        } else {
-            read_harmonics::<R>(&self.contents, precision)
-        }
-        .map_err(|error| Failure::refused(format!("{}: {error}", self.file)))?;
-        let number = |name: &str, text: &str| {
-            R::parse_decimal(text, precision)
-                .map_err(|_| Failure::refused(format!("--{name} '{text}' is not a decimal number")))
-        };
-        let friction = number("friction", &self.friction)?;
-        let compliance_ratio = match (&self.lambda, &self.nu) {
-            (Some(lambda), _) => number("lambda", lambda)?,
-            (None, Some(nu)) => compliance_ratio_from_poisson(&number("nu", nu)?)
-                .map_err(|error| Failure::refused(error.to_string()))?,
-            (None, None) => unreachable!("clap requires --lambda or --nu"),
-        };
-        let contact = Contact {
-            friction,
-            compliance_ratio,
-        };
-        contact
-            .validate()
-            .map_err(|error| Failure::refused(error.to_string()))?;
-        let compliance =
-            parse_spec::<R>(&self.compliance, precision).map_err(|error| Failure::refused(error.to_string()))?;
-        Ok(Inputs {
-            path,
-            contact,
-            compliance,
-        })
-    }
-}
-
-/// A path failure: input the theory does not cover is refused (exit 2), a quadrature that
-/// did not converge fails (exit 1).
-fn path_failure(error: PathError) -> Failure {
-    match error {
-        PathError::Quadrature(_) => Failure::failed(error.to_string()),
-        other => Failure::refused(other.to_string()),
-    }
-}
-
-/// W at two precisions until they agree to the digits asked for.
-struct Agreement<'a> {
-    text: &'a PathText,
-    deadline: Instant,
-}
-
-impl TwoPrecisions for Agreement<'_> {
-    type Output = Vec<Float>;
-    type Error = Failure;
-
-    fn first(&mut self, precision: Precision, _attempt: u32) -> Result<Vec<Float>, Failure> {
-        let inputs = self.text.read::<Float>(precision)?;
-        let w = path_dissipation(
-            &inputs.path,
-            &inputs.contact,
-            inputs.compliance.as_ref(),
-            Some(self.deadline),
-        )
-        .map_err(path_failure)?;
-        Ok(vec![w.total])
-    }
-
-    fn check(&mut self, _first: &Vec<Float>, precision: Precision, attempt: u32) -> Result<Vec<Float>, Failure> {
-        self.first(precision, attempt)
-    }
-
-    fn values<'v>(&self, output: &'v Vec<Float>) -> &'v [Float] {
-        output
-    }
-}
-
-/// W as printed, its value in f64 and what vouches for it.
-struct PrintedW {
-    text: String,
-    value: f64,
-    /// `agreement`.
-    provenance: &'static str,
-    /// What the provenance rests on, in words.
-    detail: String,
-    /// The digits two precisions agreed on.
-    digits_agreed: Option<u32>,
-    /// The higher working precision.
-    precision_bits: u32,
-}
-
 /// The JSON report.
 #[derive(Serialize)]
 #[allow(non_snake_case)]
 struct PathReport {
+    drive: &'static str,
     W: String,
     W_f64: f64,
     provenance: &'static str,
@@ -221,58 +134,36 @@ pub fn run(args: &PathArgs) -> Result<String, Failure> {
     let (file, samples) = args.source();
     let contents = std::fs::read_to_string(file)
         .map_err(|error| Failure::refused(format!("cannot read the path file {}: {error}", file.display())))?;
-    let text = PathText {
+    let ratio = match (&args.contact.lambda, &args.contact.nu) {
+        (Some(lambda), _) => RatioText::Lambda(lambda.clone()),
+        (None, Some(nu)) => RatioText::Poisson(nu.clone()),
+        (None, None) => unreachable!("clap requires --lambda or --nu"),
+    };
+    let request = PathRequest {
         file: file.display().to_string(),
         contents,
-        samples,
+        format: if samples {
+            PathFormat::Samples
+        } else {
+            PathFormat::Harmonics
+        },
+        drive: args.drive.into(),
         friction: args.contact.friction.clone(),
-        lambda: args.contact.lambda.clone(),
-        nu: args.contact.nu.clone(),
+        ratio,
         compliance: args.contact.compliance.clone(),
+        digits: args.digits.unwrap_or(DEFAULT_DIGITS),
+        deadline,
+        harmonics_out: usize::from(args.harmonics_out),
+        loop_points: LOOP_POINTS,
     };
-    let inputs = text.read::<f64>(Precision::DOUBLE)?;
-    let cycle = SteadyCycle::new(&inputs.path, &inputs.contact).map_err(path_failure)?;
-    // The f64 run checks the path and counts its pieces.
-    let w =
-        dissipation_of(&cycle, &inputs.contact, inputs.compliance.as_ref(), Some(deadline)).map_err(path_failure)?;
-    // Never the f64 estimate: two working precisions must agree (the default asks for
-    // the default's digits), and the output says it is agreement, not proof.
-    let digits = args.digits.unwrap_or(DEFAULT_DIGITS);
-    let printed = {
-        let mut agreement = Agreement { text: &text, deadline };
-        let verified = verify(digits, deadline, &mut agreement).map_err(|error| match error {
-            VerifyError::Failed(failure) => failure,
-            VerifyError::OutOfBudget(out) => Failure::failed(format!(
-                "the time budget ran out before two precisions agreed on {} digits of W ({} agreed); raise --max-seconds",
-                out.digits_required(),
-                out.digits_agreed
-            )),
-        })?;
-        let (first, second) = (&verified.first[0], &verified.output[0]);
-        PrintedW {
-            text: decimal_ball(second, &agreement_radius(first, second), digits).to_string(),
-            value: second.to_f64(),
-            provenance: "agreement",
-            detail: format!(
-                "two working precisions agree on {} digits, up to {} bits; not proven",
-                verified.agreed,
-                verified.precision.in_bits()
-            ),
-            digits_agreed: Some(verified.agreed),
-            precision_bits: verified.precision.in_bits(),
-        }
-    };
-    let outputs = path_outputs(
-        &inputs.path,
-        &cycle,
-        &inputs.contact,
-        inputs.compliance.as_ref(),
-        printed.value,
-        usize::from(args.harmonics_out),
-        LOOP_POINTS,
-    );
+    let answer = path_answer(&request).map_err(|error| Failure {
+        message: format!("{error}{}", error.hint()),
+        code: error.exit_code(),
+    })?;
+    let printed = &answer.w;
     if let Some(path) = &args.loop_csv {
-        let rows = outputs
+        let rows = answer
+            .outputs
             .steady_loop
             .iter()
             .map(|p| [p.theta, p.normal_load, p.tangential_load, p.displacement].map(|value| value.to_string()));
@@ -286,17 +177,19 @@ pub fn run(args: &PathArgs) -> Result<String, Failure> {
             .map_err(|error| Failure::failed(format!("{error} (W = {} is not lost)", printed.text)))?;
     }
     if args.json {
-        return Ok(serde_json::to_string(&report(&printed, &outputs, w.segments))?);
+        return Ok(serde_json::to_string(&report(&answer))?);
     }
-    Ok(text_report(&printed, &outputs))
+    Ok(text_report(printed, &answer.outputs))
 }
 
-fn report(printed: &PrintedW, outputs: &PathOutputs, segments: usize) -> PathReport {
+fn report(answer: &PathAnswer) -> PathReport {
+    let (printed, outputs) = (&answer.w, &answer.outputs);
     PathReport {
+        drive: answer.drive.name(),
         W: printed.text.clone(),
         W_f64: printed.value,
         provenance: printed.provenance,
-        digits_agreed: printed.digits_agreed,
+        digits_agreed: Some(printed.digits_agreed),
         precision_bits: printed.precision_bits,
         q_amplitude: outputs.q_amplitude,
         u_amplitude: outputs.u_amplitude,
@@ -314,11 +207,11 @@ fn report(printed: &PrintedW, outputs: &PathOutputs, segments: usize) -> PathRep
                 u_sin: h.u_sin,
             })
             .collect(),
-        segments,
+        segments: answer.segments,
     }
 }
 
-fn text_report(printed: &PrintedW, outputs: &PathOutputs) -> String {
+fn text_report(printed: &AgreedW, outputs: &PathOutputs) -> String {
     let mut lines = vec![
         format!("W = {} ({}: {})", printed.text, printed.provenance, printed.detail),
         // What follows is computed in f64 from the path and W: estimates, not proven digits.

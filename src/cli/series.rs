@@ -7,12 +7,12 @@ use serde::Serialize;
 use microslip::answer::{Answer, Provenance};
 use microslip::case::CaseText;
 use microslip::compliance::{spec_help, spec_summary};
-use microslip::exact::printing::{coefficient_answers, partial_sum_answers, ExactAnswerError};
+use microslip::exact::printing::{coefficient_answers, partial_sum_answers, ExactAnswerError, PartialSums};
 
 use super::case::Answer as AnswerArgs;
 use super::json::{printed, ShapeInputs, ValueEnvelope, ValueReport};
 use super::report::Failure;
-use super::series_remainder::{read_ratio, remainders, WithinAnswer};
+use super::series_remainder::{read_ratio, remainders, Remainders, WithinAnswer};
 
 /// `--rho` for the coefficients Iₙ alone, or a case (`--p0 … --compliance`) for its partial sums.
 #[derive(Args)]
@@ -131,48 +131,61 @@ struct PartialSumReport {
 }
 
 pub fn run(args: &SeriesArgs) -> Result<String, Failure> {
-    let budget = args.answer.max_seconds;
-    let Some(p0) = &args.p0 else {
-        let rho = args
-            .rho
-            .as_deref()
-            .ok_or_else(|| Failure::refused("give --rho, or a case with --p0 … --compliance"))?;
-        let order = args
-            .order
-            .ok_or_else(|| Failure::refused("--order is needed with --rho"))?;
-        let answers = coefficient_answers(rho, &args.phi, order, args.answer.digits, budget).map_err(failure)?;
-        if args.answer.json {
-            let in_f64: Option<Vec<f64>> = answers
-                .iter()
-                .map(|answer| match answer.provenance {
-                    Provenance::Exact(_) => Some(0.0),
-                    _ => answer.value.binary64,
-                })
-                .collect();
-            let report = SeriesReport {
-                digits: answers.iter().map(Answer::digits).min().unwrap_or(0),
-                coefficients: answers.iter().map(|a| printed(&a.value)).collect(),
-                coefficients_f64: in_f64.filter(|_| args.answer.digits.is_none()),
-                values: answers.iter().map(ValueReport::of).collect(),
-                inputs: ShapeInputs { rho, phi: &args.phi },
-            };
-            return Ok(serde_json::to_string(&report)?);
+    match &args.p0 {
+        Some(p0) => case_series(args, p0),
+        None => {
+            let rho = args
+                .rho
+                .as_deref()
+                .ok_or_else(|| Failure::refused("give --rho, or a case with --p0 … --compliance"))?;
+            coefficients(args, rho)
         }
-        let rows: Vec<String> = answers
+    }
+}
+
+/// `series --rho ρ --phi φ --order N`: the coefficients I₀ … I_N.
+fn coefficients(args: &SeriesArgs, rho: &str) -> Result<String, Failure> {
+    let order = args
+        .order
+        .ok_or_else(|| Failure::refused("--order is needed with --rho"))?;
+    let answers =
+        coefficient_answers(rho, &args.phi, order, args.answer.digits, args.answer.max_seconds).map_err(failure)?;
+    if args.answer.json {
+        let in_f64: Option<Vec<f64>> = answers
             .iter()
-            .enumerate()
-            .map(|(n, answer)| format!("I_{n:<3} = {}", shown(answer)))
+            .map(|answer| match answer.provenance {
+                Provenance::Exact(_) => Some(0.0),
+                _ => answer.value.binary64,
+            })
             .collect();
-        return Ok(format!(
-            "Iₙ(ρ = {rho}, φ = {}), n = 0 … {}:\n{}",
-            args.phi,
-            order,
-            rows.join("\n")
-        ));
-    };
+        let report = SeriesReport {
+            digits: answers.iter().map(Answer::digits).min().unwrap_or(0),
+            coefficients: answers.iter().map(|a| printed(&a.value)).collect(),
+            coefficients_f64: in_f64.filter(|_| args.answer.digits.is_none()),
+            values: answers.iter().map(ValueReport::of).collect(),
+            inputs: ShapeInputs { rho, phi: &args.phi },
+        };
+        return Ok(serde_json::to_string(&report)?);
+    }
+    let rows: Vec<String> = answers
+        .iter()
+        .enumerate()
+        .map(|(n, answer)| format!("I_{n:<3} = {}", shown(answer)))
+        .collect();
+    Ok(format!(
+        "Iₙ(ρ = {rho}, φ = {}), n = 0 … {}:\n{}",
+        args.phi,
+        order,
+        rows.join("\n")
+    ))
+}
+
+/// `series` of a case: W, the partial sums W_N with their proven remainder bounds, and
+/// with `--within R` the largest P1 at which the cubic law is proven within R.
+fn case_series(args: &SeriesArgs, p0: &str) -> Result<String, Failure> {
     let missing = || Failure::refused("a case needs --p0, --p1, --q1, --friction, --lambda or --nu, and --compliance");
     let case = CaseText {
-        p0: p0.clone(),
+        p0: p0.to_string(),
         p1: args.p1.clone().ok_or_else(missing)?,
         q0: args.q0.clone(),
         q1: args.q1.clone().ok_or_else(missing)?,
@@ -184,7 +197,7 @@ pub fn run(args: &SeriesArgs) -> Result<String, Failure> {
     };
     let order = args.order.unwrap_or(1);
     let ratio = args.within.as_deref().map(read_ratio).transpose()?;
-    let sums = partial_sum_answers(&case, order, args.answer.digits, budget).map_err(failure)?;
+    let sums = partial_sum_answers(&case, order, args.answer.digits, args.answer.max_seconds).map_err(failure)?;
     let all_exact = exact_reason(&sums.dissipation);
     if let (Some(reason), Some(_)) = (all_exact, ratio) {
         return Err(Failure::refused(format!(
@@ -219,6 +232,12 @@ pub fn run(args: &SeriesArgs) -> Result<String, Failure> {
     if let Some(reason) = all_exact {
         return Ok(format!("W = 0 and W_N = 0 for N = 1 … {order} (exact: {reason})"));
     }
+    Ok(partial_sums_text(&sums, remainders.as_ref(), args.within.as_deref()))
+}
+
+/// The partial sums as a table of text, with W from the series alone and the `--within`
+/// line where they were asked.
+fn partial_sums_text(sums: &PartialSums, remainders: Option<&Remainders>, ratio: Option<&str>) -> String {
     let width = sums
         .sums
         .iter()
@@ -226,7 +245,7 @@ pub fn run(args: &SeriesArgs) -> Result<String, Failure> {
         .max()
         .unwrap_or(0)
         .max(24);
-    let bounds = remainders.as_ref().map(|r| r.bounds.clone()).unwrap_or_default();
+    let bounds = remainders.map(|r| r.bounds.clone()).unwrap_or_default();
     let mut out = format!(
         "W (four-segment) = {}\n   N  {:<width$}  {:<12}  W_N − W",
         shown(&sums.dissipation),
@@ -248,16 +267,16 @@ pub fn run(args: &SeriesArgs) -> Result<String, Failure> {
         .map(|sum| sum.provenance.to_string())
         .unwrap_or_default();
     out.push_str(&format!("\nW_N: {provenance}"));
-    if let Some(remainders) = &remainders {
+    if let Some(remainders) = remainders {
         out.push_str(&format!(
             "\nW from the series alone (the narrowest W_N ± its bound) = {}",
             shown(&remainders.series_w)
         ));
         if let Some(within) = &remainders.within {
-            out.push_str(&within_line(within, args.within.as_deref().unwrap_or_default()));
+            out.push_str(&within_line(within, ratio.unwrap_or_default()));
         }
     }
-    Ok(out)
+    out
 }
 
 /// The `--within` answer as a line of text.

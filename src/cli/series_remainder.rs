@@ -4,7 +4,7 @@
 
 use serde::Serialize;
 
-use microslip::answer::{Answer, Provenance, Value};
+use microslip::answer::{Answer, Arithmetic, Provenance, Value};
 use microslip::case::{Case, CaseText};
 use microslip::exact::enclosure::case_balls;
 use microslip::exact::remainder::{largest_amplitude, WithinLimit};
@@ -81,7 +81,10 @@ pub fn remainders(case: &CaseText, order: usize, within: Option<f64>) -> Result<
         value: Value::within(&low, &high, SERIES_DIGITS),
         segments: None,
         digits_requested: None,
-        provenance: Provenance::Certified { bits: BITS },
+        provenance: Provenance::Certified {
+            bits: BITS,
+            arithmetic: Arithmetic::ArbBalls,
+        },
         method: None,
     };
     let within = match within {

@@ -206,7 +206,8 @@ impl<R: Real> PeanoKernels<R> {
     /// Upper bounds on ‖K_{n+1}‖₁, n = 1 … N, by boxes in τ over [−L, 1].
     /// `None` where the kernels cannot be enclosed at a box's end: a load's extreme
     /// there stays undecided (τ = 0, where K_{N+1} jumps, is not moved), or the measure
-    /// is degenerate (a load of zero amplitude, a non-finite geometry).
+    /// is degenerate (a load of zero amplitude, a non-finite geometry). One loop: the
+    /// boxes on both sides of τ = 0 are refined together, where the slack is largest.
     pub fn norms(&self) -> Option<KernelNorms<R>> {
         // Past the support [−L, 1] every tail is surely empty and the kernels vanish.
         let low = -upper_f64(&self.reach) * (1.0 + 1e-9) - f64::MIN_POSITIVE;
@@ -350,6 +351,28 @@ fn span<R: Real>(x: &R) -> (f64, f64) {
 /// piece of that length can be left out; asks no comparison of a ball.
 fn surely_zero<R: Real>(length: &R) -> bool {
     span(length).1 <= 0.0
+}
+
+/// C̄(ρ, φ), a closed-form majorant of ‖K₂‖₁, the cubic law's kernel, over the whole
+/// (ρ, φ) domain: |W − W₁| ≤ λ f² P1⁴ C̄(ρ, φ) max over [P_T, P0 + P1] of |v⁽³⁾|
+/// (proofs/cubic-law-remainder.md, "A majorant over the whole domain").
+///
+/// ‖K₂‖₁ ≤ ½ ∫ σ² d|m|, and |m| is at most the image of |weight| dθ, so each term of a
+/// segment contributes at most its weight's bound times the largest σ² of its load times
+/// the segment's length. With the slip and stick angles α and β (α + β = π), the slip
+/// amplitudes σ± and the reach L = (σ₊ + σ₋)/2 of the slip loads below P0:
+///
+/// ```text
+/// C̄ = (ρ/2)·[α(2 + (σ₊ + σ₋)L²) + β(1 + ρ/2 + σ₋)].
+/// ```
+pub fn cubic_kernel_majorant<R: Real>(rho: &R, phase: &R) -> Result<R, SeriesError> {
+    let geometry = scaled_geometry(rho, phase)?;
+    let (plus, minus) = (&geometry.sum_amplitude, &geometry.difference_amplitude);
+    let reach = -geometry.permanent_stick_offset.clone();
+    let one = rho.int(1);
+    let slipping = geometry.slip_angle.clone() * &(one.int(2) + &((plus.clone() + minus) * &reach.square()));
+    let sticking = geometry.stick_angle.clone() * &(one + &(rho.clone() / &rho.int(2)) + minus);
+    Ok((slipping + &sticking) * rho / &rho.int(2))
 }
 
 /// An f64 at or above the value (for a ball: above its whole interval).

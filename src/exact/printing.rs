@@ -11,7 +11,7 @@ use rug::{Float, Rational};
 
 use super::coefficient::closed_form_coefficient;
 use super::series::{partial_sums, series_coefficients, SeriesError};
-use crate::answer::{Answer, ExactReason, Provenance, Value};
+use crate::answer::{Answer, Arithmetic, ExactReason, Provenance, Value};
 use crate::case::{parse_phase, Case, CaseText, InputError};
 use crate::phase::{decimal, ExactPhase, PhaseError, ReducedPhase};
 use crate::real::{ParseRealError, Precision, Real};
@@ -219,7 +219,10 @@ fn interval_answers(
     asked: u32,
 ) -> Vec<Answer> {
     let provenance = if proven {
-        Provenance::Certified { bits }
+        Provenance::Certified {
+            bits,
+            arithmetic: Arithmetic::ArbBalls,
+        }
     } else {
         Provenance::Agreement { bits }
     };

@@ -225,7 +225,8 @@ pub fn along(points: &[(f64, f64)], offset: f64) -> Vec<(f64, f64)> {
     placed
 }
 
-/// Draws one panel's chart, curves, markers and slope guide; returns its frame.
+/// Draws one panel's chart, curves, markers and slope guide; returns its frame. One
+/// function because each element is placed in the chart's coordinates, built first.
 fn draw_panel(
     area: &Canvas<'_>,
     overlay: &mut Overlay,

@@ -3,7 +3,7 @@
 //! per operation (Arb's balls cost about a hundred nanoseconds each).
 //!
 //! An [`Interval`] is a complex rectangle [a, b] + i[c, d] of doubles. Its semantics are
-//! those of [`crate::ball::Ball`]: values built through `Real` are real (the imaginary
+//! those of Arb balls (`crate::ball::Ball`): values built through `Real` are real (the imaginary
 //! part exactly [0, 0]) and every function takes its real form (the square root of an
 //! interval reaching below zero is indeterminate, as f64 gives NaN). Complex values
 //! appear where an integrand is bounded on a rectangle around a piece of the real axis

@@ -169,12 +169,7 @@ impl Span {
             if a.lo == 0.0 || b.lo == 0.0 {
                 return Span::point(0.0);
             }
-            let p = a.lo * b.lo;
-            return if is_exact_product(a.lo, b.lo, p) {
-                Span::point(p)
-            } else {
-                Span::around(p)
-            };
+            return Span::new(mul_down(a.lo, b.lo), mul_up(a.lo, b.lo));
         }
         if a.is_indeterminate() || b.is_indeterminate() {
             return Span::INDETERMINATE;
@@ -217,12 +212,7 @@ impl Span {
             return Span::INDETERMINATE;
         }
         if a.is_point() && b.is_point() {
-            let q = a.lo / b.lo;
-            return if is_exact_quotient(a.lo, b.lo, q) {
-                Span::point(q)
-            } else {
-                Span::around(q)
-            };
+            return Span::new(div_down(a.lo, b.lo), div_up(a.lo, b.lo));
         }
         let (lo, hi) = if b.lo > 0.0 {
             if a.lo >= 0.0 {
@@ -257,12 +247,16 @@ impl Span {
         if self.is_indeterminate() || self.lo < 0.0 {
             return Span::INDETERMINATE;
         }
+        // √x − r has the sign of x − r² (the remainder FMA gives exactly): each end is
+        // rounded in its own direction.
         let root = |x: f64| {
             let r = x.sqrt();
-            if is_exact_product(r, r, r * r) && r * r == x {
-                Span::point(r)
-            } else {
-                Span::around(r)
+            match rounding_sign(r, (-r).mul_add(r, x)).filter(|_| x >= FMA_ERROR_SAFE) {
+                Some(0.0) => Span::point(r),
+                Some(remainder) if remainder > 0.0 => Span::new(r, r.next_up()),
+                Some(_) => Span::new(r.next_down(), r),
+                None if x == 0.0 => Span::point(0.0),
+                None => Span::around(r),
             }
         };
         Span::new(root(self.lo).lo, root(self.hi).hi)
@@ -337,14 +331,30 @@ fn sum_error(a: f64, b: f64) -> (f64, Option<f64>) {
     (s, Some((a - a_virtual) + (b - b_virtual)))
 }
 
-/// A bound below a·b: the double below the nearest (0 where either is 0, as in interval
-/// arithmetic 0·∞ is).
+/// The least magnitude of a product or quotient whose rounding error FMA returns exactly
+/// (about 2^−955: the error, 2^−106 of it and more, stays far above the subnormals).
+const FMA_ERROR_SAFE: f64 = 1e-287;
+
+/// The sign of x − y for the double y nearest x, where `error` is that difference found
+/// by FMA: `None` where the error may not be exact (near the subnormals, beyond the
+/// largest double).
+#[inline]
+fn rounding_sign(nearest: f64, error: f64) -> Option<f64> {
+    (nearest.is_finite() && nearest.abs() >= FMA_ERROR_SAFE && error.is_finite()).then_some(error)
+}
+
+/// A bound below a·b: the double nearest it where FMA shows it is not above, else the
+/// double below (0 where either is 0, as in interval arithmetic 0·∞ is).
 #[inline]
 fn mul_down(a: f64, b: f64) -> f64 {
     if a == 0.0 || b == 0.0 {
         return 0.0;
     }
-    (a * b).next_down()
+    let p = a * b;
+    match rounding_sign(p, a.mul_add(b, -p)) {
+        Some(error) if error >= 0.0 => p,
+        _ => p.next_down(),
+    }
 }
 
 /// A bound above a·b.
@@ -353,7 +363,21 @@ fn mul_up(a: f64, b: f64) -> f64 {
     if a == 0.0 || b == 0.0 {
         return 0.0;
     }
-    (a * b).next_up()
+    let p = a * b;
+    match rounding_sign(p, a.mul_add(b, -p)) {
+        Some(error) if error <= 0.0 => p,
+        _ => p.next_up(),
+    }
+}
+
+/// The sign of a/b − q for the double q nearest a/b, from the exact remainder a − q·b
+/// (`None` where it may not be exact).
+#[inline]
+fn quotient_error(a: f64, b: f64, q: f64) -> Option<f64> {
+    if a.abs() < FMA_ERROR_SAFE {
+        return None;
+    }
+    rounding_sign(q, (-q).mul_add(b, a)).map(|remainder| if b > 0.0 { remainder } else { -remainder })
 }
 
 /// A bound below a/b (b ≠ 0).
@@ -362,7 +386,11 @@ fn div_down(a: f64, b: f64) -> f64 {
     if a == 0.0 && b.is_finite() {
         return 0.0;
     }
-    (a / b).next_down()
+    let q = a / b;
+    match quotient_error(a, b, q) {
+        Some(error) if error >= 0.0 => q,
+        _ => q.next_down(),
+    }
 }
 
 /// A bound above a/b (b ≠ 0).
@@ -371,14 +399,11 @@ fn div_up(a: f64, b: f64) -> f64 {
     if a == 0.0 && b.is_finite() {
         return 0.0;
     }
-    (a / b).next_up()
-}
-
-/// Whether `q`, the double nearest a/b, is a/b exactly: 0 for a = 0, or q·b is exact and
-/// equals a.
-#[inline]
-fn is_exact_quotient(a: f64, b: f64, q: f64) -> bool {
-    (a == 0.0 && b.is_finite()) || (is_exact_product(q, b, q * b) && q * b == a)
+    let q = a / b;
+    match quotient_error(a, b, q) {
+        Some(error) if error <= 0.0 => q,
+        _ => q.next_up(),
+    }
 }
 
 /// Whether `p`, the double nearest a·b, is a·b exactly: the two significands fit 53 bits
@@ -420,11 +445,17 @@ mod tests {
     }
 
     #[test]
-    fn inexact_operations_are_one_or_two_ulps_wide() {
+    fn inexact_operations_are_one_ulp_wide() {
+        // Each end rounded in its own direction (FMA gives the sign of the rounding error):
+        // the two doubles around the exact value.
+        let exact = |x: f64| rug::Rational::from_f64(x).expect("finite");
         let third = Span::point(1.0).div(Span::point(3.0));
-        assert_eq!(third, Span::around(1.0 / 3.0));
+        assert!(third.hi.next_down() == third.lo, "{third:?}");
+        assert!(exact(third.lo) * 3u32 < 1 && exact(third.hi) * 3u32 > 1, "{third:?}");
         let product = Span::point(0.1).mul(Span::point(-3.0));
-        assert_eq!(product, Span::around(0.1 * -3.0));
+        assert!(product.hi.next_down() == product.lo, "{product:?}");
+        let truth = exact(0.1) * -3i32;
+        assert!(exact(product.lo) < truth && truth < exact(product.hi), "{product:?}");
         let sum = Span::point(0.1).add(Span::point(0.2));
         assert!(sum.hi.next_down() == sum.lo && sum.lo <= 0.3 && sum.hi >= 0.3);
         assert_eq!(significant_bits(1.0), 1);

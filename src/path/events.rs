@@ -116,7 +116,7 @@ fn sign<R: Real>(value: &R) -> i8 {
 /// The point of [a, b] where `f` changes sign (f(a) and f(b) of opposite signs or zero),
 /// `f` giving its value and derivative: Newton kept inside a shrinking bracket, bisecting
 /// where a step would leave it, to the working precision.
-fn solve<R: Real>(f: impl Fn(&R) -> (R, R), a: &R, b: &R) -> R {
+pub(crate) fn solve<R: Real>(f: impl Fn(&R) -> (R, R), a: &R, b: &R) -> R {
     let (mut low, mut high) = (a.clone(), b.clone());
     let low_sign = sign(&f(&low).0);
     if low_sign == 0 {

@@ -59,6 +59,14 @@ pub enum PathError {
         /// The excess ±Q − fP there.
         excess: f64,
     },
+    /// Displacement driving with a normal load that varies.
+    #[error(
+        "displacement driving needs a constant normal load, but P has harmonic k = {harmonic}: give P's harmonics k ≥ 1 as 0, or drive by force (Q) with a varying P"
+    )]
+    VaryingNormalLoad {
+        /// The first harmonic k ≥ 1 of P that is not zero.
+        harmonic: usize,
+    },
     /// f or λ out of range.
     #[error("{0}")]
     Contact(String),
@@ -262,15 +270,58 @@ fn number<R: Real>(cells: &[&str], at: usize, line: usize, name: &str, precision
     }
 }
 
+/// What the file prescribes besides P: the tangential load Q (force driving) or the
+/// tangential displacement u (displacement driving).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Drive {
+    /// Q(θ) is given; u follows.
+    #[default]
+    Force,
+    /// u(θ) is given (in the units of the outputs' u, λ f times the approach); Q follows.
+    Displacement,
+}
+
+impl Drive {
+    /// The name of the prescribed tangential quantity's column: `Q` or `u`.
+    pub fn column(self) -> &'static str {
+        match self {
+            Drive::Force => "Q",
+            Drive::Displacement => "u",
+        }
+    }
+
+    /// `force` or `displacement`, as `--drive` and the JSON name it.
+    pub fn name(self) -> &'static str {
+        match self {
+            Drive::Force => "force",
+            Drive::Displacement => "displacement",
+        }
+    }
+}
+
 /// A path from CSV text with the header `k,P_cos,P_sin,Q_cos,Q_sin` (any order), one line
 /// per harmonic k (0 … 64, each at most once, missing ones zero), read exactly at `precision`.
 pub fn read_harmonics<R: Real>(text: &str, precision: Precision) -> Result<LoadPath<R>, PathError> {
-    const NAMES: [&str; 5] = ["k", "P_cos", "P_sin", "Q_cos", "Q_sin"];
+    read_driven_harmonics(text, precision, Drive::Force)
+}
+
+/// [`read_harmonics`], with the columns `u_cos,u_sin` in place of `Q_cos,Q_sin` under
+/// displacement driving (the path's `tangential` then holds u).
+pub fn read_driven_harmonics<R: Real>(
+    text: &str,
+    precision: Precision,
+    drive: Drive,
+) -> Result<LoadPath<R>, PathError> {
+    let (cos_name, sin_name) = match drive {
+        Drive::Force => ("Q_cos", "Q_sin"),
+        Drive::Displacement => ("u_cos", "u_sin"),
+    };
+    let names = ["k", "P_cos", "P_sin", cos_name, sin_name];
     let mut lines = records(text);
     let (header_line, header) = lines
         .next()
-        .ok_or_else(|| PathError::Malformed(format!("the file is empty; expected the header {}", NAMES.join(","))))?;
-    let at = columns(&header, header_line, &NAMES)?;
+        .ok_or_else(|| PathError::Malformed(format!("the file is empty; expected the header {}", names.join(","))))?;
+    let at = columns(&header, header_line, &names)?;
     let zero = R::from_i64(0, precision);
     let mut rows: Vec<(usize, [R; 4])> = Vec::new();
     for (line, cells) in lines {
@@ -286,7 +337,7 @@ pub fn read_harmonics<R: Real>(text: &str, precision: Precision) -> Result<LoadP
                 "line {line}: harmonic k = {k} is given twice"
             )));
         }
-        let value = |i: usize| number::<R>(&cells, at[i], line, NAMES[i], precision);
+        let value = |i: usize| number::<R>(&cells, at[i], line, names[i], precision);
         rows.push((k, [value(1)?, value(2)?, value(3)?, value(4)?]));
     }
     if rows.is_empty() {
@@ -316,11 +367,18 @@ pub fn read_harmonics<R: Real>(text: &str, precision: Precision) -> Result<LoadP
 /// up to N/2 (the Nyquist term cos(Nθ/2) alone when N is even); beyond [`MAX_HARMONICS`]
 /// they must vanish to 1e-10 of the largest sample.
 pub fn read_samples<R: Real>(text: &str, precision: Precision) -> Result<LoadPath<R>, PathError> {
+    read_driven_samples(text, precision, Drive::Force)
+}
+
+/// [`read_samples`], with a column `u` in place of `Q` under displacement driving (the
+/// path's `tangential` then holds u).
+pub fn read_driven_samples<R: Real>(text: &str, precision: Precision, drive: Drive) -> Result<LoadPath<R>, PathError> {
+    let tangential_name = drive.column();
     let mut lines = records(text);
     let (header_line, header) = lines
         .next()
-        .ok_or_else(|| PathError::Malformed("the file is empty; expected the header P,Q".to_string()))?;
-    let at = columns(&header, header_line, &["P", "Q"])?;
+        .ok_or_else(|| PathError::Malformed(format!("the file is empty; expected the header P,{tangential_name}")))?;
+    let at = columns(&header, header_line, &["P", tangential_name])?;
     let mut normal = Vec::new();
     let mut tangential = Vec::new();
     for (line, cells) in lines {
@@ -328,7 +386,7 @@ pub fn read_samples<R: Real>(text: &str, precision: Precision) -> Result<LoadPat
             return Err(PathError::TooManySamples);
         }
         normal.push(number::<R>(&cells, at[0], line, "P", precision)?);
-        tangential.push(number::<R>(&cells, at[1], line, "Q", precision)?);
+        tangential.push(number::<R>(&cells, at[1], line, tangential_name, precision)?);
     }
     if normal.len() < 3 {
         return Err(PathError::Malformed(format!(
@@ -349,6 +407,11 @@ pub fn interpolant<R: Real>(samples: &[R]) -> Result<TrigPoly<R>, PathError> {
     let like = &samples[0];
     let highest = (n / 2).min(MAX_HARMONICS);
     let mut poly = TrigPoly::zero(highest, like);
+    // Equal samples are a constant exactly (their sums of cosines would leave rounding).
+    if samples.iter().all(|sample| sample == like) {
+        poly.cos[0] = like.clone();
+        return Ok(poly);
+    }
     let step = like.pi_like() * &like.int(2) / &like.int(n as i64);
     let count = like.int(n as i64);
     for (j, sample) in samples.iter().enumerate() {

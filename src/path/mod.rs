@@ -1,5 +1,6 @@
 //! W, the hysteresis loop and the damping of a contact under any periodic load path
-//! P(θ), Q(θ) given by its harmonics, force-driven.
+//! P(θ), Q(θ) given by its harmonics, force-driven, or P and the displacement u(θ) at
+//! constant P, displacement-driven.
 //!
 //! In the spring-bed picture element s (its activation load) is in contact while P > s,
 //! and with q = Q/f its memory is a play: Φ_s stays within [q − (P − s), q + (P − s)].
@@ -17,17 +18,24 @@
 //! - [`events`]: the turning points of P, ξ₋ and ξ₊, the memory, and the slip fronts over
 //!   the steady cycle, split where any of them stops being smooth;
 //! - [`dissipation`](mod@dissipation): W by the quadrature engine, in any [`Real`];
-//! - [`outputs`]: amplitudes, loss factor, the harmonics of Q and u, and the loop.
+//! - [`displacement`]: displacement driving at constant P (Masing's rules, rainflow W);
+//! - [`outputs`]: amplitudes, loss factor, the harmonics of Q and u, and the loop;
+//! - [`request`]: a whole request (file text, contact, drive, digits, budget) answered
+//!   with W on the digits two working precisions agree on, and the outputs.
 
+pub mod displacement;
 pub mod dissipation;
 pub mod events;
 pub mod input;
 pub mod outputs;
+pub mod request;
 
+pub use displacement::{displacement_dissipation, displacement_outputs, DisplacementCycle, MasingLaw};
 pub use dissipation::{path_dissipation, PathDissipation};
 pub use events::SteadyCycle;
-pub use input::{LoadPath, PathError, TrigPoly, MAX_HARMONICS, MAX_SAMPLES};
+pub use input::{Drive, LoadPath, PathError, TrigPoly, MAX_HARMONICS, MAX_SAMPLES};
 pub use outputs::{path_outputs, LoopPoint, PathHarmonic, PathOutputs};
+pub use request::{path_answer, AgreedW, PathAnswer, PathFormat, PathRequest, PathRequestError, RatioText};
 
 use crate::real::Real;
 

@@ -30,7 +30,8 @@ pub struct PathHarmonic {
     pub q_cos: f64,
     /// Q's sin kθ coefficient.
     pub q_sin: f64,
-    /// u's cos kθ coefficient (u's mean is taken as 0: u is defined up to a constant).
+    /// u's cos kθ coefficient (under force driving u's mean is taken as 0, u being defined
+    /// up to a constant; under displacement driving the prescribed mean).
     pub u_cos: f64,
     /// u's sin kθ coefficient.
     pub u_sin: f64,
@@ -45,7 +46,8 @@ pub struct LoopPoint {
     pub normal_load: f64,
     /// Q(θ).
     pub tangential_load: f64,
-    /// u(θ), with mean 0 over the samples.
+    /// u(θ): with mean 0 over the samples under force driving, the prescribed u under
+    /// displacement driving.
     pub displacement: f64,
 }
 
@@ -90,7 +92,6 @@ pub fn path_outputs(
     let q_amplitude = 0.5 * (q_high - q_low);
     let (u_low, u_high) = (walk.refined_extreme(false), walk.refined_extreme(true));
     let u_amplitude = 0.5 * (u_high - u_low) * scale;
-    let loss_factor = w / (std::f64::consts::PI * q_amplitude * u_amplitude);
     let harmonics = (0..=harmonics_out)
         .map(|k| {
             let coefficient = |poly: &[f64]| poly.get(k).copied().unwrap_or(0.0);
@@ -123,14 +124,29 @@ pub fn path_outputs(
             }
         })
         .collect();
-    PathOutputs {
-        q_amplitude,
-        u_amplitude,
-        secant_stiffness: q_amplitude / u_amplitude,
-        loss_factor,
-        damping_ratio: 0.5 * loss_factor,
-        harmonics,
-        steady_loop,
+    PathOutputs::of_loop(w, q_amplitude, u_amplitude, harmonics, steady_loop)
+}
+
+impl PathOutputs {
+    /// The outputs of a loop whose W and amplitudes are given: the secant stiffness
+    /// Q_a/u_a, the loss factor η = W/(π Q_a u_a) and the damping ratio η/2 follow.
+    pub fn of_loop(
+        w: f64,
+        q_amplitude: f64,
+        u_amplitude: f64,
+        harmonics: Vec<PathHarmonic>,
+        steady_loop: Vec<LoopPoint>,
+    ) -> Self {
+        let loss_factor = w / (std::f64::consts::PI * q_amplitude * u_amplitude);
+        PathOutputs {
+            q_amplitude,
+            u_amplitude,
+            secant_stiffness: q_amplitude / u_amplitude,
+            loss_factor,
+            damping_ratio: 0.5 * loss_factor,
+            harmonics,
+            steady_loop,
+        }
     }
 }
 

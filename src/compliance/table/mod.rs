@@ -27,8 +27,8 @@ use crate::real::Real;
 pub use interpolant::Coordinates;
 use interpolant::Piecewise;
 pub(crate) use read::column_name;
-use read::read_raw;
-use shape::{approach_node_slopes, non_increasing_fit};
+use read::{read_raw, RawTable};
+use shape::{approach_node_slopes, concave_data};
 
 /// The fewest rows a table may have: a cubic needs four.
 pub const MIN_ROWS: usize = 4;
@@ -60,7 +60,7 @@ pub enum TableInterpolant {
     /// The same from the odd rows (first and last kept): a second such estimate, which
     /// does not share the first one's accidental cancellations.
     OtherHalfTable,
-    /// The same construction on all rows with each value moved by [`DATA_ROUNDING`]
+    /// The same construction on all rows with each value moved by 4 ulps (`DATA_ROUNDING`)
     /// relative, up and down on alternate rows, and each interior load the other way
     /// (where that keeps them in order; the ends stay, so the table covers what it
     /// covered): how far rounding of the data and of the construction's arithmetic moves
@@ -149,154 +149,57 @@ impl ComplianceTable {
     /// (relative) are removed by a least-squares non-increasing fit of the slopes.
     pub fn read(path: &str, smoothing: f64) -> Result<Self, TableError> {
         let raw = read_raw(path)?;
-        let row = |index: usize, problem: String| TableError::Row {
-            path: path.to_string(),
-            line: raw.lines[index],
-            problem,
-        };
-        let n = raw.loads.len();
-        if n < MIN_ROWS {
-            return Err(TableError::File {
-                path: path.to_string(),
-                problem: format!(
-                    "has {n} data rows; at least {MIN_ROWS} are needed (a cubic interpolant, and a second one for its error)"
-                ),
-            });
-        }
-        for i in 1..n {
-            if raw.loads[i] <= raw.loads[i - 1] {
-                let word = if raw.loads[i] == raw.loads[i - 1] {
-                    "repeats"
-                } else {
-                    "is below"
-                };
-                return Err(row(
-                    i,
-                    format!(
-                        "load {} {word} the previous row's {}; loads must increase strictly",
-                        raw.loads[i],
-                        raw.loads[i - 1]
-                    ),
-                ));
-            }
-        }
-        let h: Vec<f64> = raw.loads.windows(2).map(|w| w[1] - w[0]).collect();
-        // The slopes the shape is checked on: v' itself, or the secants of v; and the
-        // relative size of their rounding errors.
-        let (checked, weights, rounding, name) = match raw.column {
-            TableColumn::Slope => {
-                if let Some(i) = raw.values.iter().position(|&s| s <= 0.0) {
-                    return Err(row(
-                        i,
-                        format!("slope {} is not positive; a contact needs v' > 0", raw.values[i]),
-                    ));
-                }
-                (raw.values.clone(), vec![1.0; n], vec![0.0; n], "slope")
-            }
-            TableColumn::Approach => {
-                for i in 1..n {
-                    if raw.values[i] <= raw.values[i - 1] {
-                        return Err(row(
-                            i,
-                            format!(
-                                "approach {} does not increase over the previous row's {}; a contact needs v' > 0",
-                                raw.values[i],
-                                raw.values[i - 1]
-                            ),
-                        ));
-                    }
-                }
-                let secants: Vec<f64> = (0..n - 1).map(|k| (raw.values[k + 1] - raw.values[k]) / h[k]).collect();
-                // A difference of two values carries their rounding relative to the difference.
-                let relative = |a: f64, b: f64| (a.abs() + b.abs()) / (b - a);
-                let rounding: Vec<f64> = (0..n - 1)
-                    .map(|k| {
-                        8.0 * f64::EPSILON
-                            * (relative(raw.values[k], raw.values[k + 1]) + relative(raw.loads[k], raw.loads[k + 1]))
-                    })
-                    .collect();
-                (secants, h.clone(), rounding, "secant slope of the approach")
-            }
-        };
-        let fitted = non_increasing_fit(&checked, &weights);
-        let tolerance = smoothing.max(ROUNDING_TOLERANCE);
-        let mut residual: f64 = 0.0;
-        for (k, (&data, &fit)) in checked.iter().zip(&fitted).enumerate() {
-            let relative = (data - fit).abs() / data.abs();
-            if relative > tolerance.max(rounding[k]) {
-                // The rise nearest the value the fit moved most: where the fit had to pool.
-                let rise = (1..checked.len())
-                    .filter(|&j| checked[j] > checked[j - 1])
-                    .min_by_key(|&j| j.abs_diff(k))
-                    .unwrap_or(k.max(1));
-                // A rise of the slopes at row j; of the secants, at the row between secants j − 1 and j.
-                return Err(row(
-                    rise,
-                    format!(
-                        "the {name} rises from {:.4e} to {:.4e}: the data are not concave (v'' ≤ 0) here; the nearest concave fit moves them by {relative:.1e} relative, beyond the smoothing tolerance {tolerance:.0e} (raise smoothing= to fit noisy data)",
-                        checked[rise - 1],
-                        checked[rise]
-                    ),
-                ));
-            }
-            if relative > rounding[k] {
-                residual = residual.max(relative);
-            }
-        }
-        let values = match raw.column {
-            TableColumn::Slope => fitted,
-            // The approach whose secants are the fitted ones, from the first row on.
-            TableColumn::Approach => std::iter::once(raw.values[0])
-                .chain((0..n - 1).scan(raw.values[0], |v, k| {
-                    *v += fitted[k] * h[k];
-                    Some(*v)
-                }))
-                .collect(),
-        };
-        let with_halves = |coordinates: Coordinates| {
-            let build = |loads: &[f64], values: &[f64]| Self::build(path, raw.column, coordinates, loads, values);
-            let mut table = build(&raw.loads, &values);
-            for parity in [0, 1] {
-                let rows: Vec<usize> = (0..n).filter(|&i| i % 2 == parity || i == 0 || i == n - 1).collect();
-                let pick = |data: &[f64]| rows.iter().map(|&i| data[i]).collect::<Vec<f64>>();
-                table.halves.push(build(&pick(&raw.loads), &pick(&values)));
-            }
-            let alternate = |i: usize| if i % 2 == 0 { DATA_ROUNDING } else { -DATA_ROUNDING };
-            let moved: Vec<f64> = values
-                .iter()
-                .enumerate()
-                .map(|(i, v)| v * (1.0 + alternate(i)))
-                .collect();
-            let mut moved_loads: Vec<f64> = raw
-                .loads
-                .iter()
-                .enumerate()
-                .map(|(i, p)| {
-                    if i == 0 || i == n - 1 {
-                        *p
-                    } else {
-                        p * (1.0 - alternate(i))
-                    }
-                })
-                .collect();
-            if moved_loads.windows(2).any(|pair| pair[1] <= pair[0]) {
-                moved_loads = raw.loads.clone();
-            }
-            table.rounded.push(build(&moved_loads, &moved));
-            table
-        };
+        raw.check_rows(path)?;
+        let (values, residual) = concave_data(&raw, smoothing, path)?;
         // Log–log where the loads allow it, unless the data are better predicted in the
         // load itself (linear or quadratic v', say): the coordinates whose half tables
         // predict the rows they leave out more closely.
-        let mut table = with_halves(Coordinates::for_loads(&raw.loads));
+        let mut table = Self::with_halves(path, &raw, &values, Coordinates::for_loads(&raw.loads));
         if table.coordinates == Coordinates::LogLog {
-            let linear = with_halves(Coordinates::Linear);
+            let linear = Self::with_halves(path, &raw, &values, Coordinates::Linear);
             if linear.half_table_discrepancy() < table.half_table_discrepancy() {
                 table = linear;
             }
         }
         table.smoothing_residual = if residual > ROUNDING_TOLERANCE { residual } else { 0.0 };
         Ok(table)
+    }
+
+    /// The table of `values` at the raw loads in `coordinates`, with its two half tables
+    /// (even rows, odd rows, the first and last kept in both) and the table of the data
+    /// moved by their rounding, which its error estimate compares.
+    fn with_halves(path: &str, raw: &RawTable, values: &[f64], coordinates: Coordinates) -> Self {
+        let n = raw.loads.len();
+        let build = |loads: &[f64], values: &[f64]| Self::build(path, raw.column, coordinates, loads, values);
+        let mut table = build(&raw.loads, values);
+        for parity in [0, 1] {
+            let rows: Vec<usize> = (0..n).filter(|&i| i % 2 == parity || i == 0 || i == n - 1).collect();
+            let pick = |data: &[f64]| rows.iter().map(|&i| data[i]).collect::<Vec<f64>>();
+            table.halves.push(build(&pick(&raw.loads), &pick(values)));
+        }
+        let alternate = |i: usize| if i % 2 == 0 { DATA_ROUNDING } else { -DATA_ROUNDING };
+        let moved: Vec<f64> = values
+            .iter()
+            .enumerate()
+            .map(|(i, v)| v * (1.0 + alternate(i)))
+            .collect();
+        let mut moved_loads: Vec<f64> = raw
+            .loads
+            .iter()
+            .enumerate()
+            .map(|(i, p)| {
+                if i == 0 || i == n - 1 {
+                    *p
+                } else {
+                    p * (1.0 - alternate(i))
+                }
+            })
+            .collect();
+        if moved_loads.windows(2).any(|pair| pair[1] <= pair[0]) {
+            moved_loads = raw.loads.clone();
+        }
+        table.rounded.push(build(&moved_loads, &moved));
+        table
     }
 
     /// The interpolant of validated, shape-fitted data: `values` are the slopes, or the

@@ -1,7 +1,7 @@
 //! Reading a table file: the CSV, its header (names matched with their units set
 //! aside) and its rows, each number checked, with the line of the file for every refusal.
 
-use super::{TableColumn, TableError};
+use super::{TableColumn, TableError, MIN_ROWS};
 use crate::files::MAX_RECORD_BYTES;
 use crate::messages::printable;
 
@@ -14,6 +14,66 @@ pub(super) struct RawTable {
     pub values: Vec<f64>,
 }
 
+impl RawTable {
+    /// The error of data row `index`, naming its line.
+    pub(super) fn row_error(&self, path: &str, index: usize, problem: String) -> TableError {
+        TableError::Row {
+            path: path.to_string(),
+            line: self.lines[index],
+            problem,
+        }
+    }
+
+    /// Checks what every table needs before its shape: enough rows, strictly increasing
+    /// loads, and v' > 0 (positive slopes, or an approach that increases).
+    pub(super) fn check_rows(&self, path: &str) -> Result<(), TableError> {
+        let n = self.loads.len();
+        if n < MIN_ROWS {
+            return Err(TableError::File {
+                path: path.to_string(),
+                problem: format!(
+                    "has {n} data rows; at least {MIN_ROWS} are needed (a cubic interpolant, and a second one for its error)"
+                ),
+            });
+        }
+        for i in 1..n {
+            if self.loads[i] <= self.loads[i - 1] {
+                let word = if self.loads[i] == self.loads[i - 1] {
+                    "repeats"
+                } else {
+                    "is below"
+                };
+                let problem = format!(
+                    "load {} {word} the previous row's {}; loads must increase strictly",
+                    self.loads[i],
+                    self.loads[i - 1]
+                );
+                return Err(self.row_error(path, i, problem));
+            }
+        }
+        match self.column {
+            TableColumn::Slope => match self.values.iter().position(|&s| s <= 0.0) {
+                Some(i) => {
+                    let problem = format!("slope {} is not positive; a contact needs v' > 0", self.values[i]);
+                    Err(self.row_error(path, i, problem))
+                }
+                None => Ok(()),
+            },
+            TableColumn::Approach => match (1..n).find(|&i| self.values[i] <= self.values[i - 1]) {
+                Some(i) => {
+                    let problem = format!(
+                        "approach {} does not increase over the previous row's {}; a contact needs v' > 0",
+                        self.values[i],
+                        self.values[i - 1]
+                    );
+                    Err(self.row_error(path, i, problem))
+                }
+                None => Ok(()),
+            },
+        }
+    }
+}
+
 /// The name a header cell gives its column: the text before a unit in brackets or
 /// parentheses (`Load [N]`, `approach (um)`), trimmed, in lower case.
 pub(crate) fn column_name(header: &str) -> String {
@@ -21,6 +81,11 @@ pub(crate) fn column_name(header: &str) -> String {
     name.trim().to_lowercase()
 }
 
+/// The loads and values of the table file at `path` as written, or the first problem of the
+/// file or of a row, naming its line. Its length is the list of refusals a table file can
+/// earn (not a regular file, unreadable, no header, a record too long, an ambiguous or
+/// missing column, a field missing, not a number or not finite), each with its own
+/// message, in the one pass over the records that reads the numbers.
 pub(super) fn read_raw(path: &str) -> Result<RawTable, TableError> {
     let file_error = |problem: String| TableError::File {
         path: path.to_string(),

@@ -4,8 +4,71 @@
 
 use std::ops::Range;
 
+use super::read::RawTable;
+use super::{TableColumn, TableError, ROUNDING_TOLERANCE};
+
+/// The data made concave: the slopes (or the approach) whose slopes (or secants) are the
+/// least-squares non-increasing fit of the data's, and the largest relative change that
+/// made beyond the data's rounding. A change beyond `smoothing` is refused, naming the
+/// row where the data rise.
+pub(super) fn concave_data(raw: &RawTable, smoothing: f64, path: &str) -> Result<(Vec<f64>, f64), TableError> {
+    let n = raw.loads.len();
+    let h: Vec<f64> = raw.loads.windows(2).map(|w| w[1] - w[0]).collect();
+    // The slopes the shape is checked on: v' itself, or the secants of v; and the
+    // relative size of their rounding errors.
+    let (checked, weights, rounding, name) = match raw.column {
+        TableColumn::Slope => (raw.values.clone(), vec![1.0; n], vec![0.0; n], "slope"),
+        TableColumn::Approach => {
+            let secants: Vec<f64> = (0..n - 1).map(|k| (raw.values[k + 1] - raw.values[k]) / h[k]).collect();
+            // A difference of two values carries their rounding relative to the difference.
+            let relative = |a: f64, b: f64| (a.abs() + b.abs()) / (b - a);
+            let rounding: Vec<f64> = (0..n - 1)
+                .map(|k| {
+                    8.0 * f64::EPSILON
+                        * (relative(raw.values[k], raw.values[k + 1]) + relative(raw.loads[k], raw.loads[k + 1]))
+                })
+                .collect();
+            (secants, h.clone(), rounding, "secant slope of the approach")
+        }
+    };
+    let fitted = non_increasing_fit(&checked, &weights);
+    let tolerance = smoothing.max(ROUNDING_TOLERANCE);
+    let mut residual: f64 = 0.0;
+    for (k, (&data, &fit)) in checked.iter().zip(&fitted).enumerate() {
+        let relative = (data - fit).abs() / data.abs();
+        if relative > tolerance.max(rounding[k]) {
+            // The rise nearest the value the fit moved most: where the fit had to pool.
+            let rise = (1..checked.len())
+                .filter(|&j| checked[j] > checked[j - 1])
+                .min_by_key(|&j| j.abs_diff(k))
+                .unwrap_or(k.max(1));
+            // A rise of the slopes at row j; of the secants, at the row between secants j − 1 and j.
+            let problem = format!(
+                "the {name} rises from {:.4e} to {:.4e}: the data are not concave (v'' ≤ 0) here; the nearest concave fit moves them by {relative:.1e} relative, beyond the smoothing tolerance {tolerance:.0e} (raise smoothing= to fit noisy data)",
+                checked[rise - 1],
+                checked[rise]
+            );
+            return Err(raw.row_error(path, rise, problem));
+        }
+        if relative > rounding[k] {
+            residual = residual.max(relative);
+        }
+    }
+    let values = match raw.column {
+        TableColumn::Slope => fitted,
+        // The approach whose secants are the fitted ones, from the first row on.
+        TableColumn::Approach => std::iter::once(raw.values[0])
+            .chain((0..n - 1).scan(raw.values[0], |v, k| {
+                *v += fitted[k] * h[k];
+                Some(*v)
+            }))
+            .collect(),
+    };
+    Ok((values, residual))
+}
+
 /// Weighted least-squares fit of a non-increasing sequence (pool adjacent violators).
-pub(super) fn non_increasing_fit(values: &[f64], weights: &[f64]) -> Vec<f64> {
+fn non_increasing_fit(values: &[f64], weights: &[f64]) -> Vec<f64> {
     // Blocks of (mean, weight, count), merged while a later block rises above an earlier one.
     let mut blocks: Vec<(f64, f64, usize)> = Vec::new();
     for (&value, &weight) in values.iter().zip(weights) {

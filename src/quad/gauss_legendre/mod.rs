@@ -164,7 +164,6 @@ fn compute_node_table_before<R: Real>(
     deadline: Option<Instant>,
 ) -> Option<NodeTable<R>> {
     let points = points.max(1);
-    let half = points / 2;
     let double_ratios = recurrence_ratios::<f64>(points, Precision::DOUBLE);
     let log_points = usize::BITS - points.leading_zeros();
     let schedule = newton_schedule(precision.in_bits(), 4 + log_points);
@@ -200,20 +199,9 @@ fn compute_node_table_before<R: Real>(
         let working = Precision::bits(scale.bits.max(x.precision().in_bits()));
         (scale.to_real(&value, working), scale.to_real(&below, working))
     };
-    let n = points as f64;
     // The k-th node from the right, with its weight.
     let node_and_weight = |k: usize| -> (R, R) {
-        // Tricomi's asymptotic guess, then Newton in f64.
-        let angle = std::f64::consts::PI * (k as f64 - 0.25) / (n + 0.5);
-        let mut guess = (1.0 - (n - 1.0) / (8.0 * n * n * n)) * angle.cos();
-        for _ in 0..100 {
-            let (p, below) = legendre_pair(&double_ratios, &guess);
-            let step = p / legendre_derivative(points, &guess, &p, &below);
-            guess -= step;
-            if step.abs() <= 4.0 * f64::EPSILON * guess.abs().max(1e-300) {
-                break;
-            }
-        }
+        let guess = node_in_f64(points, k, &double_ratios);
         let middle = 2 * k - 1 == points;
         if middle {
             let x = R::from_f64(0.0, precision);
@@ -233,20 +221,8 @@ fn compute_node_table_before<R: Real>(
             }
         }
         let (p, below) = evaluate(&x, schedule.len() - 1);
-        let mut x_guarded = R::from_f64(0.0, p.precision()) + &x;
-        let derivative = legendre_derivative(points, &x_guarded, &p, &below);
-        let step = p.clone() / &derivative;
-        // (1 − x²) P″ = 2x P′ − n(n+1) P and (1 − x²) P‴ = 4x P″ − (n(n+1) − 2) P′.
-        let x = &x_guarded;
-        let one_minus_square = x.int(1) - x.square();
-        let eigenvalue = x.int((points * (points + 1)) as i64);
-        let second = (x.int(2) * x * &derivative - eigenvalue.clone() * &p) / &one_minus_square;
-        let third = (x.int(4) * x * &second - (eigenvalue - x.int(2)) * &derivative) / &one_minus_square;
-        let corrected_derivative = derivative - step.clone() * &second + step.square() * &third / x.int(2);
-        x_guarded -= &step;
-        let x = &x_guarded;
-        let weight = x.int(2) / ((x.int(1) - x.square()) * corrected_derivative.square());
-        (R::from_f64(0.0, precision) + x, R::from_f64(0.0, precision) + &weight)
+        let (x, weight) = last_newton_step(points, &(R::from_f64(0.0, p.precision()) + &x), &p, &below);
+        (R::from_f64(0.0, precision) + &x, R::from_f64(0.0, precision) + &weight)
     };
     // Large tables at high precision are shared among the cores of the caller's pool.
     let roots = points.div_ceil(2);
@@ -259,19 +235,56 @@ fn compute_node_table_before<R: Real>(
     } else {
         (1..=roots).map(in_time).collect::<Option<_>>()?
     };
-    let (positive_nodes, positive_weights): (Vec<R>, Vec<R>) = pairs.into_iter().unzip();
-    // positive_nodes run from the largest node down; mirror them into increasing order.
+    Some(mirrored(pairs, points))
+}
+
+/// The k-th node from the right of the `points`-point rule in f64: Tricomi's asymptotic
+/// guess, then Newton's method.
+fn node_in_f64(points: usize, k: usize, ratios: &[f64]) -> f64 {
+    let n = points as f64;
+    let angle = std::f64::consts::PI * (k as f64 - 0.25) / (n + 0.5);
+    let mut guess = (1.0 - (n - 1.0) / (8.0 * n * n * n)) * angle.cos();
+    for _ in 0..100 {
+        let (p, below) = legendre_pair(ratios, &guess);
+        let step = p / legendre_derivative(points, &guess, &p, &below);
+        guess -= step;
+        if step.abs() <= 4.0 * f64::EPSILON * guess.abs().max(1e-300) {
+            break;
+        }
+    }
+    guess
+}
+
+/// The last Newton step from `x`, where P_n = `p` and P_{n−1} = `below`, and the weight at
+/// the corrected node: P_n′ there follows from P_n′, P_n″ and P_n‴ at x by Taylor's
+/// theorem, with (1 − x²) P″ = 2x P′ − n(n+1) P and (1 − x²) P‴ = 4x P″ − (n(n+1) − 2) P′.
+fn last_newton_step<R: Real>(points: usize, x: &R, p: &R, below: &R) -> (R, R) {
+    let derivative = legendre_derivative(points, x, p, below);
+    let step = p.clone() / &derivative;
+    let one_minus_square = x.int(1) - x.square();
+    let eigenvalue = x.int((points * (points + 1)) as i64);
+    let second = (x.int(2) * x * &derivative - eigenvalue.clone() * p) / &one_minus_square;
+    let third = (x.int(4) * x * &second - (eigenvalue - x.int(2)) * &derivative) / &one_minus_square;
+    let corrected_derivative = derivative - step.clone() * &second + step.square() * &third / x.int(2);
+    let x = x.clone() - &step;
+    let weight = x.int(2) / ((x.int(1) - x.square()) * corrected_derivative.square());
+    (x, weight)
+}
+
+/// The rule from its nodes in [0, 1] with their weights, largest node first, mirrored
+/// into increasing order over [−1, 1].
+fn mirrored<R: Real>(positive: Vec<(R, R)>, points: usize) -> NodeTable<R> {
     let mut nodes = Vec::with_capacity(points);
     let mut weights = Vec::with_capacity(points);
-    for (x, w) in positive_nodes.iter().zip(&positive_weights).take(half) {
+    for (x, w) in positive.iter().take(points / 2) {
         nodes.push(-x.clone());
         weights.push(w.clone());
     }
-    for (x, w) in positive_nodes.iter().zip(&positive_weights).rev() {
+    for (x, w) in positive.iter().rev() {
         nodes.push(x.clone());
         weights.push(w.clone());
     }
-    Some(NodeTable { nodes, weights })
+    NodeTable { nodes, weights }
 }
 
 impl<R: Real> NodeTable<R> {

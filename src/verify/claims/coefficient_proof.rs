@@ -20,7 +20,7 @@ use rug::Float;
 
 use crate::ball::{hull, watch, Ball};
 use crate::real::{Precision, Real};
-use crate::verify::{ClaimReport, ProofSize};
+use crate::verify::{ClaimReport, Proof};
 
 /// Claim 2 proven: I(ρ, φ) < 0 for every ρ > 0 and 0 < φ < π, by Arb balls on an adaptive
 /// subdivision of five charts whose closed rectangles take in ρ → 0, ρ → ∞ and φ → 0, π;
@@ -50,7 +50,7 @@ pub fn coefficient_is_negative() -> ClaimReport {
         tolerance: 0.0,
         passed: proven,
         note,
-        proof: proven.then_some(ProofSize {
+        proof: proven.then_some(Proof::Subdivision {
             boxes: outcome.boxes_evaluated,
             seconds: outcome.seconds,
         }),

@@ -7,10 +7,10 @@ use crate::ball::Ball;
 use crate::certified::certified_dissipation;
 use crate::compliance::{Compliance, ComplianceSpec};
 use crate::cycle::LoadCycle;
-use crate::exact::{partial_sums, remainder_bounds, SeriesShape};
+use crate::exact::{cubic_kernel_majorant, partial_sums, remainder_bounds, SeriesShape};
 use crate::real::{Precision, Real};
 use crate::verify::generators::compliance_spec;
-use crate::verify::ClaimReport;
+use crate::verify::{ClaimReport, Proof};
 
 /// A cycle and its compliance on balls, as the certified W reads them.
 type BallCase = (LoadCycle<Ball>, Box<dyn Compliance<Ball>>);
@@ -100,7 +100,7 @@ pub fn cubic_law_remainder(seed: u64, cases: usize) -> ClaimReport {
         }
     }
     tally.note(format!(
-        "the remainder is derived (Peano kernel, proofs/cubic-law-remainder.md) and its bound enclosed in balls; W inside every W_N ± bound (largest |W − W_N|/bound {tightest:.3}); ‖K₂‖₁ is bounded per (ρ, φ), not over the whole domain: sampled"
+        "the remainder is derived (Peano kernel, proofs/cubic-law-remainder.md) and its bound enclosed in balls; W inside every W_N ± bound (largest |W − W_N|/bound {tightest:.3}); the sharp bound of each drawn (ρ, φ); over the whole domain, the closed-form row above"
     ))
 }
 
@@ -142,4 +142,92 @@ pub fn completely_monotone_bracket(seed: u64, cases: usize) -> ClaimReport {
     tally.note(format!(
         "K₃ ≤ 0 decided on balls at all {points} box ends and ‖K₃‖₁ ≤ (1 + worst)·|I₃|/6: checked at {cases} sampled (ρ, φ), not proved"
     ))
+}
+
+/// Claim 1 proved over the whole domain: |W − W₁| ≤ λ f² P1⁴ C̄(ρ, φ) max |v⁽³⁾| with the
+/// closed-form majorant C̄ of ‖K₂‖₁ ([`cubic_kernel_majorant`]), a derivation
+/// (proofs/cubic-law-remainder.md). Its cases check the derivation's computable steps:
+/// at (ρ, φ) drawn over the whole domain (ρ from 10⁻⁴ to 10⁴, φ up to 10⁻⁸ from 0 and π)
+/// the trapezoid estimate of ‖K₂‖₁ from the exact kernels lies below C̄, and on drawn
+/// cases the certified W lies inside W₁ ± the bound (error: estimate/C̄ and |W − W₁|/bound,
+/// which must be ≤ 1).
+pub fn cubic_law_proved(seed: u64, cases: usize) -> ClaimReport {
+    let mut tally = Tally::new(
+        "1 cubic law: |W − W₁| ≤ λf²P1⁴·C̄(ρ,φ)·max|v'''|",
+        Precision::bits(BITS),
+        1.0,
+    );
+    let mut draw = Draw::new(seed);
+    let precision = Precision::bits(BITS);
+    let ball = |x: f64| Ball::from_f64(x, precision);
+    let upper = |x: &Ball| x.real_span().map_or(f64::NAN, |span| span.1);
+    let lower = |x: &Ball| x.real_span().map_or(f64::NAN, |span| span.0);
+    // How far C̄ lies above the kernel's norm, for the note.
+    let (mut loosest, mut tightest) = (0.0f64, f64::INFINITY);
+    for _ in 0..cases {
+        let rho = 10f64.powf(draw.uniform(-4.0, 4.0));
+        let phase = match draw.below(3) {
+            0 => draw.uniform(0.0, 1.0) * std::f64::consts::PI,
+            1 => 10f64.powf(-draw.uniform(1.0, 8.0)) * std::f64::consts::PI,
+            _ => (1.0 - 10f64.powf(-draw.uniform(1.0, 8.0))) * std::f64::consts::PI,
+        };
+        let case = format!("ρ={rho:e} φ={phase:e}");
+        let shape = SeriesShape::new(&ball(rho), &ball(phase), 1);
+        let majorant = cubic_kernel_majorant(&ball(rho), &ball(phase));
+        let (Ok(shape), Ok(majorant)) = (shape, majorant) else {
+            tally.record(f64::NAN, &case);
+            continue;
+        };
+        let estimate = upper(&shape.kernels.estimates[0]);
+        let ratio = lower(&majorant) / upper(&shape.kernels.norms[0]);
+        (loosest, tightest) = (loosest.max(ratio), tightest.min(ratio));
+        tally.record(estimate / lower(&majorant), &case);
+    }
+    for _ in 0..cases {
+        let case = RemainderCase::draw(&mut draw);
+        let described = format!("{:?} v'={}", case.cycle, case.compliance);
+        match case.within_majorant_bound() {
+            Ok(ratio) => tally.record(ratio, &described),
+            Err(error) => tally.record(f64::NAN, &format!("{described}: {error}")),
+        }
+    }
+    let mut report = tally.note(format!(
+        "derived (Peano kernel and ‖K₂‖₁ ≤ ½∫σ²d|m| ≤ C̄, proofs/cubic-law-remainder.md); the exact ‖K₂‖₁ below C̄ at {cases} (ρ, φ) over the whole domain (C̄ is {tightest:.1}–{loosest:.1}× it) and W inside W₁ ± the bound on {cases} cases"
+    ));
+    if report.passed {
+        report.proof = Some(Proof::Derivation {
+            document: "proofs/cubic-law-remainder.md",
+        });
+    }
+    report
+}
+
+impl RemainderCase {
+    /// |W − W₁|'s lower end over the upper end of λ f² P1⁴ C̄ max |v⁽³⁾| on [P_T, P0 + P1].
+    fn within_majorant_bound(&self) -> Result<f64, String> {
+        let (cycle, compliance) = self.at(Precision::bits(BITS))?;
+        let rho = cycle.tangential_amplitude.clone() / &(cycle.friction.clone() * &cycle.normal_amplitude);
+        let majorant = cubic_kernel_majorant(&rho, &cycle.phase).map_err(|e| e.to_string())?;
+        let shape = SeriesShape::new(&rho, &cycle.phase, 1).map_err(|e| e.to_string())?;
+        let p1 = &cycle.normal_amplitude;
+        let low = cycle.mean_normal_load.clone() - &(shape.kernels.reach.clone() * p1);
+        let high = cycle.mean_normal_load.clone() + p1;
+        let largest = compliance.derivative_bound(3, &low, &high).ok_or_else(|| {
+            format!(
+                "no bound on v''' over [{}, {}]",
+                low.to_f64_lossy(),
+                high.to_f64_lossy()
+            )
+        })?;
+        let bound =
+            cycle.compliance_ratio.clone() * &cycle.friction.square() * &p1.square().square() * &majorant * &largest;
+        let sums = partial_sums(&cycle, compliance.as_ref(), 1).map_err(|e| e.to_string())?;
+        let w = certified_dissipation(|precision| self.at(precision), 20)
+            .map_err(|e| e.to_string())?
+            .enclosure
+            .total;
+        let error = (w - &sums[0]).abs();
+        let span = |x: &Ball| x.real_span().unwrap_or((f64::NAN, f64::NAN));
+        Ok(span(&error).0 / span(&bound).1)
+    }
 }

@@ -16,6 +16,8 @@ mod constant_term;
 mod cubic_law;
 #[cfg(feature = "certified")]
 mod cubic_law_remainder;
+#[cfg(feature = "certified")]
+mod derivations;
 mod evaluator;
 mod exact;
 mod invariants;
@@ -29,7 +31,9 @@ pub use coefficient_proof::coefficient_is_negative;
 pub use constant_term::ConstantTerm;
 pub use cubic_law::{cubic_law, cubic_law_order, least_squares_slope, CubicLawCase};
 #[cfg(feature = "certified")]
-pub use cubic_law_remainder::{completely_monotone_bracket, cubic_law_remainder};
+pub use cubic_law_remainder::{completely_monotone_bracket, cubic_law_proved, cubic_law_remainder};
+#[cfg(feature = "certified")]
+pub use derivations::{constant_term_proved, linearity_proved, roughness_proved};
 pub use evaluator::{
     check_claim, Claim, ConstantSlope, Evaluator, Failure, FourSegment, Measured, Outcome, Source, Value,
 };
