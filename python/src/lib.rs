@@ -1,6 +1,6 @@
 //! The Python module `microslip._microslip`: W, its series, the small-amplitude
-//! coefficient and the simulation, as the command line computes and prints them, and the
-//! harmonic-balance friction element `aft`.
+//! coefficient, the simulation and any periodic load path, as the command line computes
+//! and prints them, and the harmonic-balance friction element `aft`.
 //!
 //! Each concept is one module of conversion between Python and the library, so that the
 //! binding follows the library's API by changing that module alone.
@@ -12,6 +12,7 @@ mod answer;
 mod case;
 mod dissipation;
 mod errors;
+mod path;
 mod series;
 mod simulation;
 mod sweep;
@@ -23,6 +24,7 @@ fn _microslip(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_class::<answer::PyAnswer>()?;
     module.add_class::<series::PySeries>()?;
     module.add_class::<simulation::PySimulation>()?;
+    module.add_class::<path::PyPath>()?;
     module.add_function(wrap_pyfunction!(dissipation::dissipation, module)?)?;
     module.add_function(wrap_pyfunction!(sweep::sweep, module)?)?;
     module.add_function(wrap_pyfunction!(case::decimal_text_of, module)?)?;
@@ -30,5 +32,6 @@ fn _microslip(module: &Bound<'_, PyModule>) -> PyResult<()> {
     module.add_function(wrap_pyfunction!(series::small_amplitude, module)?)?;
     module.add_function(wrap_pyfunction!(simulation::simulate, module)?)?;
     module.add_function(wrap_pyfunction!(aft::aft, module)?)?;
+    module.add_function(wrap_pyfunction!(path::path_of_text, module)?)?;
     Ok(())
 }

@@ -72,6 +72,7 @@ impl Columns<'_> {
             line: row as u64 + 1,
             cells: Vec::new(),
             case: Ok(case),
+            path: None,
         }
     }
 }

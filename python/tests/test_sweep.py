@@ -102,7 +102,8 @@ def test_parameters_broadcast_as_numpy_arrays_do():
             )
             assert W[i, j] == microslip.dissipation(case).value
     scalar = microslip.dissipation_many(1, 0.4, 0.5, "0.4pi", 1, lam=1, compliance=PERSSON)
-    assert scalar.shape == () and float(scalar) == 0.406247579245824
+    one = microslip.dissipation(microslip.Case(1, 0.4, 0.5, "0.4pi", 1, PERSSON, lam=1))
+    assert scalar.shape == () and float(scalar) == one.value
     texts = microslip.dissipation_many(
         ["1", "2"], "0.4", "0.5", ["0.4pi", "72deg"], 1, nu="0.5", compliance=PERSSON
     )
@@ -176,4 +177,5 @@ def test_the_mirror_image_phi_plus_pi_gives_the_same_w(tenths, q1, compliance):
         compliance=compliance,
     )  # fmt: skip
     assert W.errors == {}
-    assert W[0] == W[1] == W[2]
+    # Each prints the 12–15 digits its own enclosure proves: equal to those digits.
+    assert W[1] == pytest.approx(W[0], rel=1e-11) and W[2] == pytest.approx(W[0], rel=1e-11)

@@ -14,6 +14,7 @@ its exact Jacobian.
 from ._microslip import (
     Answer,
     Case,
+    PathResult,
     Series,
     Simulation,
     __version__,
@@ -23,18 +24,21 @@ from ._microslip import (
     simulate,
     small_amplitude,
 )
+from ._path import path
 from ._sweep import Dissipations, dissipation_many
 
 __all__ = [
     "Answer",
     "Case",
     "Dissipations",
+    "PathResult",
     "Series",
     "Simulation",
     "__version__",
     "aft",
     "dissipation",
     "dissipation_many",
+    "path",
     "series",
     "simulate",
     "small_amplitude",
