@@ -94,6 +94,34 @@ pub fn gate(options: GateOptions) -> Vec<GateStep> {
     let GateOptions { seed, quick } = options;
     let n = move |quick_cases: usize, full_cases: usize| if quick { quick_cases } else { full_cases };
     let stream = move |name: &str| generators::stream_seed(seed, name);
+    let constant_term = evaluated(
+        ConstantTerm,
+        options,
+        &[(F64, 40, 1000), (Wide, 3, 40), (Simulated, 2, 10)],
+    );
+    let linearity = evaluated(
+        Linearity,
+        options,
+        &[(F64, 40, 1000), (Wide, 3, 40), (Simulated, 2, 10)],
+    );
+    let roughness = evaluated(
+        Roughness,
+        options,
+        &[(F64, 40, 1000), (Wide, 2, 30), (Simulated, 2, 10)],
+    );
+    // Where the certified enclosure is built, each of claims 3–5 first proved by derivation.
+    #[cfg(feature = "certified")]
+    let (constant_term, linearity, roughness) = (
+        with_derivation(constant_term, move || {
+            claims::constant_term_proved(stream("constant term proved"), n(2, 8))
+        }),
+        with_derivation(linearity, move || {
+            claims::linearity_proved(stream("linearity proved"), n(2, 8))
+        }),
+        with_derivation(roughness, move || {
+            claims::roughness_proved(stream("roughness proved"), n(2, 8))
+        }),
+    );
     vec![
         (
             "cubic law",
@@ -130,39 +158,9 @@ pub fn gate(options: GateOptions) -> Vec<GateStep> {
                 )]
             }),
         ),
-        (
-            "constant term",
-            with_derivation(
-                evaluated(
-                    ConstantTerm,
-                    options,
-                    &[(F64, 40, 1000), (Wide, 3, 40), (Simulated, 2, 10)],
-                ),
-                move || claims::constant_term_proved(stream("constant term proved"), n(2, 8)),
-            ),
-        ),
-        (
-            "linearity",
-            with_derivation(
-                evaluated(
-                    Linearity,
-                    options,
-                    &[(F64, 40, 1000), (Wide, 3, 40), (Simulated, 2, 10)],
-                ),
-                move || claims::linearity_proved(stream("linearity proved"), n(2, 8)),
-            ),
-        ),
-        (
-            "roughness",
-            with_derivation(
-                evaluated(
-                    Roughness,
-                    options,
-                    &[(F64, 40, 1000), (Wide, 2, 30), (Simulated, 2, 10)],
-                ),
-                move || claims::roughness_proved(stream("roughness proved"), n(2, 8)),
-            ),
-        ),
+        ("constant term", constant_term),
+        ("linearity", linearity),
+        ("roughness", roughness),
         (
             "invariants",
             evaluated(Invariants, options, &[(F64, 40, 1000), (Wide, 2, 30)]),
@@ -188,20 +186,13 @@ pub fn gate(options: GateOptions) -> Vec<GateStep> {
     ]
 }
 
-/// `rows`, preceded where the certified enclosure is built by the row of the claim proved
-/// by its derivation, which `proved` checks.
+/// The row of a claim proved by its derivation (which `proved` checks), then `rows`.
+#[cfg(feature = "certified")]
 fn with_derivation(
     rows: Box<dyn Fn() -> Vec<ClaimReport> + Send + Sync>,
-    #[allow(unused_variables)] proved: impl Fn() -> ClaimReport + Send + Sync + 'static,
+    proved: impl Fn() -> ClaimReport + Send + Sync + 'static,
 ) -> Box<dyn Fn() -> Vec<ClaimReport> + Send + Sync> {
-    Box::new(move || {
-        #[allow(unused_mut)]
-        let mut all = Vec::new();
-        #[cfg(feature = "certified")]
-        all.push(proved());
-        all.extend(rows());
-        all
-    })
+    Box::new(move || std::iter::once(proved()).chain(rows()).collect())
 }
 
 /// The evaluators the gate runs a claim with.
