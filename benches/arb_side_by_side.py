@@ -7,7 +7,7 @@ acb_calc_integrate: rigorous Gauss-Legendre error bounds with bisection), one ca
 segment, segment end points as balls, at 15, 30, 50 and 100 digits; beside it microslip's
 certified W over its own pieces (split at the lowest loads, narrow peaks sinh-mapped), each
 by Gauss-Legendre rules on Arb's Bernstein-ellipse bound at the fewest points it allows and
-Arb's acb_calc_integrate where those need bisection (src/ball_gauss.rs), timed in process by
+Arb's acb_calc_integrate where those need bisection (src/arb/gauss/), timed in process by
 `examples/certified_timing.rs`.
 Both enclosures must overlap.
 

@@ -75,9 +75,12 @@ pub mod verify;
 pub mod accuracy;
 #[cfg(feature = "certified")]
 #[doc(hidden)]
-pub mod ball;
+pub mod arb;
 #[cfg(feature = "certified")]
-mod ball_gauss;
+#[doc(hidden)]
+pub use arb::ball;
+#[cfg(feature = "certified")]
+use arb::gauss as ball_gauss;
 #[doc(hidden)]
 pub mod batch;
 #[cfg(feature = "cli")]

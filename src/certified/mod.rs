@@ -19,9 +19,10 @@ mod pieces;
 
 use std::time::Instant;
 
-use rug::{Float, Rational};
+use rug::Rational;
 
 use crate::answer::{Decimal, Value};
+use crate::arb::enclose_pi_multiple;
 use crate::ball::{watch, Ball};
 use crate::compliance::Compliance;
 use crate::cycle::{CycleError, CycleKind, LoadCycle};
@@ -301,11 +302,6 @@ fn separation_guard_bits(cycle: &LoadCycle<Ball>) -> u32 {
     }
 }
 
-/// Bits a phase offset is computed with beyond the working precision and its exponent.
-const PHASE_GUARD_BITS: u32 = 64;
-/// The most bits the offset of a phase from its nearest multiple of π may need.
-const MAX_PHASE_BITS: u32 = 1 << 22;
-
 /// ψ = φ − nπ for the integer n nearest φ/π, as a ball that contains the exact ψ with
 /// the working precision's relative accuracy, and whether n is odd. ψ lies in
 /// (−π/2, π/2]; the cancellation of φ − nπ (`3.141592653589793` − π ≈ −1.2e−16) is paid
@@ -321,41 +317,6 @@ pub fn phase_offset(phase: &ReducedPhase, precision: Precision) -> (Ball, bool) 
         reverses = !reverses;
     }
     (enclose_pi_multiple(&rest, offset, precision), reverses)
-}
-
-/// A ball that contains mπ + x with the relative accuracy of `precision` (the working
-/// bits are raised while x cancels mπ; it is not zero unless m = x = 0, π being
-/// irrational), or as close to it as the largest working precision allowed (2²² bits) gives.
-pub fn enclose_pi_multiple(multiple: &Rational, offset: &Rational, precision: Precision) -> Ball {
-    if *multiple == 0 {
-        return Ball::from_rational(offset, precision);
-    }
-    let exponent = (multiple.to_f64().abs() * std::f64::consts::PI + offset.to_f64().abs())
-        .max(1.0)
-        .log2()
-        .ceil() as u32;
-    let mut working = precision.in_bits() + exponent + PHASE_GUARD_BITS;
-    loop {
-        let at = Precision::bits(working);
-        let psi = Ball::from_rational(multiple, at) * &Ball::pi(at) + &Ball::from_rational(offset, at);
-        if relatively_within(&psi, precision.in_bits()) || working.saturating_mul(2) > MAX_PHASE_BITS {
-            // SAFETY: `psi` is an initialised ball; the copy keeps its midpoint and radius.
-            return unsafe { Ball::from_raw(psi.as_raw(), precision.in_bits()) };
-        }
-        working = working.saturating_mul(2);
-    }
-}
-
-/// Whether the ball's width is at most 2^−`bits` of its smallest magnitude (a ball
-/// that contains zero is not).
-pub(crate) fn relatively_within(ball: &Ball, bits: u32) -> bool {
-    let (lower, upper) = ball.bounds(ball.precision().in_bits() + 64);
-    if lower.is_zero() || upper.is_zero() || lower.is_sign_negative() != upper.is_sign_negative() {
-        return false;
-    }
-    let width = Float::with_val(64, &upper - &lower);
-    let smallest = lower.get_exp().min(upper.get_exp()).unwrap_or(i32::MIN);
-    width.is_zero() || i64::from(width.get_exp().unwrap_or(i32::MAX)) + i64::from(bits) < i64::from(smallest)
 }
 
 /// `bits` rounded up to whole 64-bit limbs: Arb works limb by limb, so the bits up to

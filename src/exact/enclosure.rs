@@ -208,7 +208,7 @@ pub fn case_balls(case: &CaseSpec, precision: Precision) -> Result<Case<Ball>, E
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::certified::relatively_within;
+    use crate::arb::relatively_within;
     use crate::phase::ExactPhase;
     use rug::float::Constant;
 

@@ -817,7 +817,7 @@ impl Real for Ball {
         ball
     }
     fn enclose_pi_multiple(multiple: &rug::Rational, offset: &rug::Rational, precision: Precision) -> Option<Self> {
-        Some(crate::certified::enclose_pi_multiple(multiple, offset, precision))
+        Some(super::enclose_pi_multiple(multiple, offset, precision))
     }
     fn pi(precision: Precision) -> Self {
         let mut ball = Ball::zero(precision.in_bits());
