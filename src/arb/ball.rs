@@ -55,9 +55,29 @@ unsafe impl Send for Ball {}
 unsafe impl Sync for Ball {}
 
 /// An Arb magnitude (an upper or lower bound of a non-negative number), cleared on drop.
-pub(crate) struct Mag(pub(crate) mag_struct);
+pub struct Mag(pub(crate) mag_struct);
 
 impl Mag {
+    /// An upper bound of |`scale`| times 2^−`goal_bits`, or zero where there is no scale:
+    /// the absolute error a rule may stop at.
+    pub(crate) fn tolerance(scale: Option<&Ball>, goal_bits: u32) -> Mag {
+        let mut magnitude = Mag::new();
+        if let Some(scale) = scale {
+            // SAFETY: both initialised.
+            unsafe {
+                acb_get_mag(&mut magnitude.0, scale.as_raw());
+                mag_mul_2exp_si(&mut magnitude.0, &magnitude.0, -i64::from(goal_bits));
+            }
+        }
+        magnitude
+    }
+
+    /// Whether the magnitude is exactly zero.
+    pub(crate) fn is_zero(&self) -> bool {
+        // SAFETY: initialised.
+        unsafe { mag_is_zero(&self.0) != 0 }
+    }
+
     pub(crate) fn new() -> Mag {
         let mut m = mag_struct::default();
         // SAFETY: initialised here, cleared on drop.

@@ -1,9 +1,9 @@
 //! Everything that calls FLINT/Arb directly: the ball type, the enclosure of a phase's
-//! multiple of π, and rigorous Gauss–Legendre on balls with its node table. The crate's
-//! other code reaches Arb only through these (and the Arb rung of `certified`, which
-//! hands pieces to `acb_calc_integrate`).
+//! multiple of π, rigorous Gauss–Legendre on balls with its node table, and Arb's own
+//! adaptive integration. The crate's other code reaches Arb only through these.
 
 pub mod ball;
+pub(crate) mod bisection;
 pub(crate) mod gauss;
 mod pi;
 
