@@ -3,6 +3,7 @@
 
 use microslip::answer::{Answer, Decimal, Provenance, Value};
 use microslip::dissipation_answer::DissipationAnswer;
+use numpy::IntoPyArray;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
@@ -193,4 +194,16 @@ impl PyAnswer {
 /// A conversion of `microslip._convert`, which imports the optional package it needs.
 fn convert<'py>(slf: &Bound<'py, PyAnswer>, name: &str) -> PyResult<Bound<'py, PyAny>> {
     slf.py().import("microslip._convert")?.getattr(name)
+}
+
+/// A named column of rows: its name and how a row gives its value.
+pub type Column<T> = (&'static str, fn(&T) -> f64);
+
+/// Rows as a dict of float64 arrays, one per column, after what `dict` already holds.
+pub fn columns<'py, T>(dict: Bound<'py, PyDict>, rows: &[T], named: &[Column<T>]) -> PyResult<Bound<'py, PyDict>> {
+    for (name, of) in named {
+        let values: Vec<f64> = rows.iter().map(of).collect();
+        dict.set_item(*name, values.into_pyarray(dict.py()))?;
+    }
+    Ok(dict)
 }

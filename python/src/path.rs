@@ -11,6 +11,7 @@ use numpy::IntoPyArray;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+use crate::answer::columns;
 use crate::errors;
 
 /// The samples of the steady loop returned.
@@ -100,33 +101,34 @@ impl PyPath {
     #[getter]
     fn harmonics<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
         let rows = &self.answer.outputs.harmonics;
-        let column = |of: fn(&microslip::path::PathHarmonic) -> f64| rows.iter().map(of).collect::<Vec<f64>>();
         let dict = PyDict::new(py);
-        dict.set_item(
-            "k",
-            rows.iter()
-                .map(|row| row.k as u64)
-                .collect::<Vec<u64>>()
-                .into_pyarray(py),
-        )?;
-        dict.set_item("Q_cos", column(|row| row.q_cos).into_pyarray(py))?;
-        dict.set_item("Q_sin", column(|row| row.q_sin).into_pyarray(py))?;
-        dict.set_item("u_cos", column(|row| row.u_cos).into_pyarray(py))?;
-        dict.set_item("u_sin", column(|row| row.u_sin).into_pyarray(py))?;
-        Ok(dict)
+        let orders: Vec<u64> = rows.iter().map(|row| row.k as u64).collect();
+        dict.set_item("k", orders.into_pyarray(py))?;
+        columns(
+            dict,
+            rows,
+            &[
+                ("Q_cos", |row| row.q_cos),
+                ("Q_sin", |row| row.q_sin),
+                ("u_cos", |row| row.u_cos),
+                ("u_sin", |row| row.u_sin),
+            ],
+        )
     }
 
     /// The steady loop as arrays ``theta``, ``P``, ``Q``, ``u`` (the columns of ``--loop``).
     #[getter(r#loop)]
     fn steady_loop<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let points = &self.answer.outputs.steady_loop;
-        let column = |of: fn(&microslip::path::LoopPoint) -> f64| points.iter().map(of).collect::<Vec<f64>>();
-        let dict = PyDict::new(py);
-        dict.set_item("theta", column(|p| p.theta).into_pyarray(py))?;
-        dict.set_item("P", column(|p| p.normal_load).into_pyarray(py))?;
-        dict.set_item("Q", column(|p| p.tangential_load).into_pyarray(py))?;
-        dict.set_item("u", column(|p| p.displacement).into_pyarray(py))?;
-        Ok(dict)
+        columns(
+            PyDict::new(py),
+            &self.answer.outputs.steady_loop,
+            &[
+                ("theta", |p| p.theta),
+                ("P", |p| p.normal_load),
+                ("Q", |p| p.tangential_load),
+                ("u", |p| p.displacement),
+            ],
+        )
     }
 
     fn __repr__(&self) -> String {

@@ -6,11 +6,10 @@ use std::time::Instant;
 use microslip::answer::Answer;
 use microslip::simulate::SimulationOptions;
 use microslip::simulation_answer::{simulated_answer, SimulatedAnswer};
-use numpy::IntoPyArray;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use crate::answer::PyAnswer;
+use crate::answer::{columns, PyAnswer};
 use crate::case::PyCase;
 use crate::errors;
 
@@ -59,14 +58,16 @@ impl PySimulation {
     /// The steady loop as arrays `theta`, `P`, `Q`, `u` (the columns of `--loop`).
     #[getter(r#loop)]
     fn steady_loop<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
-        let samples = &self.simulated.result.steady_loop;
-        let column = |of: fn(&microslip::simulate::LoopSample) -> f64| samples.iter().map(of).collect::<Vec<f64>>();
-        let dict = PyDict::new(py);
-        dict.set_item("theta", column(|s| s.theta).into_pyarray(py))?;
-        dict.set_item("P", column(|s| s.normal_load).into_pyarray(py))?;
-        dict.set_item("Q", column(|s| s.tangential_load).into_pyarray(py))?;
-        dict.set_item("u", column(|s| s.displacement).into_pyarray(py))?;
-        Ok(dict)
+        columns(
+            PyDict::new(py),
+            &self.simulated.result.steady_loop,
+            &[
+                ("theta", |s| s.theta),
+                ("P", |s| s.normal_load),
+                ("Q", |s| s.tangential_load),
+                ("u", |s| s.displacement),
+            ],
+        )
     }
 
     fn __repr__(&self) -> String {
