@@ -79,8 +79,8 @@ impl Command {
     /// The phase of a command that takes one on its command line.
     fn phase(&self) -> Option<&str> {
         match self {
-            Command::Dissipation(args) => Some(&args.case.phi),
-            Command::Simulate(args) => Some(&args.case.phi),
+            Command::Dissipation(args) => Some(&args.case.cycle.phi),
+            Command::Simulate(args) => args.cycle.as_ref().map(|cycle| cycle.phi.as_str()),
             Command::SmallAmplitude(args) => Some(&args.phi),
             Command::Series(args) => Some(&args.phi),
             _ => None,

@@ -1,14 +1,15 @@
 //! The simulation's W as one [`Answer`]: the policy around the history simulation — the
-//! f64 cycle it runs on, the tables it reads, a W of 0 it cannot vouch for — decided here,
-//! so that the command line and the bindings only format the result.
+//! f64 cycle or path it runs on, the tables it reads, a W of 0 it cannot vouch for —
+//! decided here, so that the command line and the bindings only format the result.
 
 use crate::answer::{Answer, Provenance, Value};
 use crate::case::{Case, CaseSpec, InputError};
 use crate::compliance::TableError;
 use crate::cycle::{CycleError, LoadCycle};
 use crate::dissipation_answer::tables_cover;
+use crate::path::{Drive, PathRequest, PathRequestError};
 use crate::real::Precision;
-use crate::simulate::{simulate, SimulationError, SimulationOptions, SimulationResult};
+use crate::simulate::{simulate, simulate_path, SimulationError, SimulationOptions, SimulationResult};
 
 /// The simulation's W, and what it ran on.
 #[derive(Clone, Debug)]
@@ -25,6 +26,17 @@ pub struct SimulatedAnswer {
     pub cycle: LoadCycle<f64>,
 }
 
+/// The simulation's W of a periodic force path read from a file.
+#[derive(Clone, Debug)]
+pub struct SimulatedPathAnswer {
+    /// W as the work of the load ([`Provenance::Simulated`]: an estimate, not a proof).
+    pub answer: Answer,
+    /// W as the frictional work, for the same bound.
+    pub friction: Value,
+    /// The runs: the steady loop, the resolution, the estimated error.
+    pub result: SimulationResult,
+}
+
 /// Why the simulation gave no W.
 #[non_exhaustive]
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]
@@ -38,6 +50,13 @@ pub enum SimulatedError {
     /// The cycle leaves a table of the compliance.
     #[error(transparent)]
     Table(#[from] TableError),
+    /// The path file, the contact or the compliance of a path request was refused, as
+    /// `microslip path` refuses them.
+    #[error(transparent)]
+    Path(#[from] PathRequestError),
+    /// A path prescribing the displacement u: the simulation follows loads.
+    #[error("the simulation follows a prescribed tangential load Q; for a prescribed displacement u use `microslip path --drive displacement`")]
+    DisplacementDriven,
     /// The simulation itself failed.
     #[error(transparent)]
     Simulation(#[from] SimulationError),
@@ -45,6 +64,9 @@ pub enum SimulatedError {
     /// which nothing in the input makes exact.
     #[error("the simulation's W rounds to 0 in f64 (the changes of v' over the cycle's loads underflow), though nothing in the input makes W exactly 0; `microslip dissipation` gives W at any size")]
     ZeroInF64,
+    /// No element slipped on a path whose loads vary.
+    #[error("the simulation's W rounds to 0 in f64 (the changes of v' over the path's loads underflow, or v' is constant); `microslip path` gives W at any size")]
+    PathZeroInF64,
 }
 
 impl SimulatedError {
@@ -52,8 +74,10 @@ impl SimulatedError {
     /// could not vouch for W, 2 for refused input.
     pub fn exit_code(&self) -> u8 {
         match self {
+            SimulatedError::Path(error) => error.exit_code(),
             SimulatedError::RoundedAcrossBoundary(_)
             | SimulatedError::ZeroInF64
+            | SimulatedError::PathZeroInF64
             | SimulatedError::Simulation(
                 SimulationError::ToleranceNotReached { .. } | SimulationError::OutOfTime { .. },
             ) => 1,
@@ -95,17 +119,50 @@ pub fn simulated_answer(case: &CaseSpec, options: &SimulationOptions) -> Result<
     if result.w_work == 0.0 && result.w_friction == 0.0 && case.exact_zero().is_none() {
         return Err(SimulatedError::ZeroInF64);
     }
-    let bound = result.estimated_rel_error * result.w_work.abs();
+    let (answer, friction) = simulated_values(&result);
     Ok(SimulatedAnswer {
-        answer: Answer {
-            value: Value::from_f64(result.w_work, bound),
-            segments: None,
-            digits_requested: None,
-            provenance: Provenance::Simulated { error_estimate: bound },
-            method: None,
-        },
-        friction: Value::from_f64(result.w_friction, bound),
+        answer,
+        friction,
         result,
         cycle,
     })
+}
+
+/// W of the force path of `request` (its file, contact and compliance read as `microslip
+/// path` reads them, in f64) by the history simulation with `options`; the request's
+/// digits, budget and outputs play no part.
+pub fn simulated_path_answer(
+    request: &PathRequest,
+    options: &SimulationOptions,
+) -> Result<SimulatedPathAnswer, SimulatedError> {
+    if request.drive == Drive::Displacement {
+        return Err(SimulatedError::DisplacementDriven);
+    }
+    let inputs = request.read::<f64>(Precision::DOUBLE)?;
+    let result = simulate_path(&inputs.path, &inputs.contact, inputs.compliance.as_ref(), options)?;
+    // Only a W that is 0 by its reason is printed as 0: loads that do not vary.
+    let constant = inputs.path.normal.is_constant() && inputs.path.tangential.is_constant();
+    if result.w_work == 0.0 && result.w_friction == 0.0 && !constant {
+        return Err(SimulatedError::PathZeroInF64);
+    }
+    let (answer, friction) = simulated_values(&result);
+    Ok(SimulatedPathAnswer {
+        answer,
+        friction,
+        result,
+    })
+}
+
+/// W as the work of the load and as the frictional work, each with the bound the
+/// estimated relative error gives it.
+fn simulated_values(result: &SimulationResult) -> (Answer, Value) {
+    let bound = result.estimated_rel_error * result.w_work.abs();
+    let answer = Answer {
+        value: Value::from_f64(result.w_work, bound),
+        segments: None,
+        digits_requested: None,
+        provenance: Provenance::Simulated { error_estimate: bound },
+        method: None,
+    };
+    (answer, Value::from_f64(result.w_friction, bound))
 }

@@ -5,7 +5,7 @@ mod common;
 
 use std::path::PathBuf;
 
-use common::{microslip, PERSSON};
+use common::{microslip, samples_text, PERSSON};
 use microslip::compliance::parse_spec;
 use microslip::path::input::{read_driven_harmonics, read_harmonics};
 use microslip::path::{displacement_dissipation, path_dissipation, Contact, Drive};
@@ -101,12 +101,7 @@ fn the_json_conforms_to_its_schema_and_carries_the_library_w() {
 fn samples_of_the_path_give_the_same_w_as_its_harmonics() {
     let directory = scratch("samples");
     let path = read_harmonics::<f64>(TWO_HARMONICS, Precision::DOUBLE).unwrap();
-    let samples: String = std::iter::once("P,Q\n".to_string())
-        .chain((0..16).map(|j| {
-            let theta = j as f64 * std::f64::consts::TAU / 16.0;
-            format!("{:e},{:e}\n", path.normal.value(&theta), path.tangential.value(&theta))
-        }))
-        .collect();
+    let samples = samples_text(&path, 16);
     let file = directory.join("samples.csv");
     std::fs::write(&file, samples).unwrap();
     let (code, stdout, stderr) = microslip(&[

@@ -15,6 +15,15 @@ use super::report::Failure;
 /// A load cycle P = P0 + P1 cos θ, Q = Q0 + Q1 cos(θ − φ) on a contact.
 #[derive(Args)]
 pub struct CaseArgs {
+    #[command(flatten)]
+    pub cycle: CycleArgs,
+    #[command(flatten)]
+    pub contact: ContactArgs,
+}
+
+/// A load cycle P = P0 + P1 cos θ, Q = Q0 + Q1 cos(θ − φ).
+#[derive(Args)]
+pub struct CycleArgs {
     /// Mean normal load P0 (> 0).
     #[arg(long, allow_hyphen_values = true)]
     pub p0: String,
@@ -31,8 +40,6 @@ pub struct CaseArgs {
     /// plus or minus radians (`pi-1e-6`), or degrees (`72deg`, `72°`); read exactly
     #[arg(long, allow_hyphen_values = true)]
     pub phi: String,
-    #[command(flatten)]
-    pub contact: ContactArgs,
 }
 
 /// The contact a load acts on: friction, compliance ratio and compliance.
@@ -58,16 +65,23 @@ pub struct ContactArgs {
 
 impl CaseArgs {
     pub fn text(&self) -> CaseText {
+        self.cycle.text(&self.contact)
+    }
+}
+
+impl CycleArgs {
+    /// The cycle on `contact`, as written.
+    pub fn text(&self, contact: &ContactArgs) -> CaseText {
         CaseText {
             p0: self.p0.clone(),
             p1: self.p1.clone(),
             q0: self.q0.clone(),
             q1: self.q1.clone(),
             phi: self.phi.clone(),
-            friction: self.contact.friction.clone(),
-            lambda: self.contact.lambda.clone(),
-            nu: self.contact.nu.clone(),
-            compliance: self.contact.compliance.clone(),
+            friction: contact.friction.clone(),
+            lambda: contact.lambda.clone(),
+            nu: contact.nu.clone(),
+            compliance: contact.compliance.clone(),
         }
     }
 }

@@ -237,11 +237,34 @@ pub fn batch_rows<'a>(header: &'a [String], rows: &'a [InputRow], results: &'a [
         .collect()
 }
 
-/// The inputs of `microslip simulate`: the case and the resolution asked for.
+/// The loads `microslip simulate` ran on: a case, or a path file on a contact.
+#[derive(Serialize)]
+#[serde(untagged)]
+pub enum SimulatedLoads<'a> {
+    Case(&'a CaseText),
+    Path(PathFileInputs),
+}
+
+/// A path file (under the key of its flag, `harmonics` or `samples`) on a contact, as written.
+#[derive(Serialize)]
+pub struct PathFileInputs {
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub harmonics: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub samples: Option<String>,
+    pub friction: String,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub lambda: Option<String>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub nu: Option<String>,
+    pub compliance: String,
+}
+
+/// The inputs of `microslip simulate`: the loads and the resolution asked for.
 #[derive(Serialize)]
 pub struct SimulationInputs<'a> {
     #[serde(flatten)]
-    pub case: &'a CaseText,
+    pub loads: SimulatedLoads<'a>,
     /// Elements of the coarsest bed.
     pub elements: usize,
     /// Steps per cycle of the coarsest run.

@@ -34,16 +34,9 @@ impl From<DriveArg> for Drive {
     }
 }
 
+/// A periodic load path in a file and what it prescribes besides P.
 #[derive(Args)]
-#[command(group(ArgGroup::new("source").required(true).args(["harmonics", "samples"])))]
-#[command(after_help = "W is energy per cycle in the units of load × approach of the inputs. \
-The path must keep P > 0 and |Q| < fP at every θ (force driving); it is refused naming the θ where \
-it does not. Under --drive displacement P must be constant and u is in the units of the outputs' u \
-(λf times the approach); Q follows by Masing's rules and saturates at ±fP (gross slip): the contact \
-starts unloaded, is loaded monotonically to the extreme of u of largest magnitude, and the steady \
-loop is the period that starts there. W is printed with the digits on which two working precisions \
-agree (agreement, not a proof): 15 without --digits, N with --digits N.")]
-pub struct PathArgs {
+pub struct PathFileArgs {
     /// CSV with the header k,P_cos,P_sin,Q_cos,Q_sin: P(θ) = Σ P_cos cos kθ + P_sin sin kθ, Q alike (k ≤ 64).
     #[arg(long)]
     pub harmonics: Option<PathBuf>,
@@ -56,6 +49,57 @@ pub struct PathArgs {
     /// to the extreme of u of largest magnitude).
     #[arg(long, value_enum, default_value_t = DriveArg::Force)]
     pub drive: DriveArg,
+}
+
+impl PathFileArgs {
+    /// The request for the path in the file named on `contact`, if one is named: the
+    /// file's text read (refused in one line when it cannot be), with the default digits
+    /// and no outputs.
+    pub fn request(&self, contact: &ContactArgs, deadline: Instant) -> Result<Option<PathRequest>, Failure> {
+        let (file, samples): (&Path, bool) = match (&self.harmonics, &self.samples) {
+            (Some(file), _) => (file, false),
+            (None, Some(file)) => (file, true),
+            (None, None) => return Ok(None),
+        };
+        let contents = std::fs::read_to_string(file)
+            .map_err(|error| Failure::refused(format!("cannot read the path file {}: {error}", file.display())))?;
+        let ratio = match (&contact.lambda, &contact.nu) {
+            (Some(lambda), _) => RatioText::Lambda(lambda.clone()),
+            (None, Some(nu)) => RatioText::Poisson(nu.clone()),
+            (None, None) => unreachable!("clap requires --lambda or --nu"),
+        };
+        Ok(Some(PathRequest {
+            file: file.display().to_string(),
+            contents,
+            format: if samples {
+                PathFormat::Samples
+            } else {
+                PathFormat::Harmonics
+            },
+            drive: self.drive.into(),
+            friction: contact.friction.clone(),
+            ratio,
+            compliance: contact.compliance.clone(),
+            digits: DEFAULT_DIGITS,
+            deadline,
+            harmonics_out: 0,
+            loop_points: 0,
+        }))
+    }
+}
+
+#[derive(Args)]
+#[command(group(ArgGroup::new("source").required(true).args(["harmonics", "samples"])))]
+#[command(after_help = "W is energy per cycle in the units of load × approach of the inputs. \
+The path must keep P > 0 and |Q| < fP at every θ (force driving); it is refused naming the θ where \
+it does not. Under --drive displacement P must be constant and u is in the units of the outputs' u \
+(λf times the approach); Q follows by Masing's rules and saturates at ±fP (gross slip): the contact \
+starts unloaded, is loaded monotonically to the extreme of u of largest magnitude, and the steady \
+loop is the period that starts there. W is printed with the digits on which two working precisions \
+agree (agreement, not a proof): 15 without --digits, N with --digits N.")]
+pub struct PathArgs {
+    #[command(flatten)]
+    pub file: PathFileArgs,
     #[command(flatten)]
     pub contact: ContactArgs,
     /// Significant digits of W on which two working precisions must agree (1–1000).
@@ -85,15 +129,6 @@ impl PathArgs {
         self.loop_csv
             .as_deref()
             .is_some_and(|path| matches!(destination(path), Ok(Destination::StandardOutput)))
-    }
-
-    /// The path file and whether it holds samples.
-    fn source(&self) -> (&Path, bool) {
-        match (&self.harmonics, &self.samples) {
-            (Some(file), _) => (file, false),
-            (None, Some(file)) => (file, true),
-            (None, None) => unreachable!("clap requires one of --harmonics and --samples"),
-        }
     }
 }
 
@@ -131,30 +166,14 @@ pub fn run(args: &PathArgs) -> Result<String, Failure> {
     if let Some(path) = &args.loop_csv {
         check_writable(path, &["csv"])?;
     }
-    let (file, samples) = args.source();
-    let contents = std::fs::read_to_string(file)
-        .map_err(|error| Failure::refused(format!("cannot read the path file {}: {error}", file.display())))?;
-    let ratio = match (&args.contact.lambda, &args.contact.nu) {
-        (Some(lambda), _) => RatioText::Lambda(lambda.clone()),
-        (None, Some(nu)) => RatioText::Poisson(nu.clone()),
-        (None, None) => unreachable!("clap requires --lambda or --nu"),
-    };
     let request = PathRequest {
-        file: file.display().to_string(),
-        contents,
-        format: if samples {
-            PathFormat::Samples
-        } else {
-            PathFormat::Harmonics
-        },
-        drive: args.drive.into(),
-        friction: args.contact.friction.clone(),
-        ratio,
-        compliance: args.contact.compliance.clone(),
         digits: args.digits.unwrap_or(DEFAULT_DIGITS),
-        deadline,
         harmonics_out: usize::from(args.harmonics_out),
         loop_points: LOOP_POINTS,
+        ..args
+            .file
+            .request(&args.contact, deadline)?
+            .unwrap_or_else(|| unreachable!("clap requires one of --harmonics and --samples"))
     };
     let answer = path_answer(&request).map_err(|error| Failure {
         message: format!("{error}{}", error.hint()),

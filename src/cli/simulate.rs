@@ -1,30 +1,49 @@
-//! `microslip simulate`: W by the independent history simulation, with the steady loop
-//! as CSV and its picture on request.
+//! `microslip simulate`: W by the independent history simulation of a harmonic cycle
+//! (the case flags) or of any periodic force path (a file, as `microslip path` reads it),
+//! with the steady loop as CSV and, for a cycle, its picture on request.
 
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
 
-use clap::Args;
+use clap::{ArgGroup, Args};
 
-use microslip::case::CaseText;
+use microslip::answer::{Answer, Value};
 use microslip::files::{check_writable, destination, write_text_atomically, Destination};
+use microslip::path::PathRequest;
 use microslip::plot::{plot_cycle, PLOT_EXTENSIONS};
-use microslip::simulate::{loop_csv, SimulationOptions};
-use microslip::simulation_answer::{simulated_answer, SimulatedAnswer, SimulatedError};
+use microslip::simulate::{loop_csv, SimulationOptions, SimulationResult};
+use microslip::simulation_answer::{simulated_answer, simulated_path_answer, SimulatedAnswer, SimulatedError};
 use microslip::verified::F64_MOST_DIGITS;
 
-use super::case::CaseArgs;
-use super::json::{printed, SimulationInputs, SimulationReport, ValueEnvelope};
+use super::case::{ContactArgs, CycleArgs};
+use super::json::{printed, PathFileInputs, SimulatedLoads, SimulationInputs, SimulationReport, ValueEnvelope};
 use super::parse;
+use super::path::PathFileArgs;
 use super::report::Failure;
 
+/// The flags of a harmonic cycle, which a path file replaces.
+const CYCLE_FLAGS: [&str; 5] = ["p0", "p1", "q0", "q1", "phi"];
+
 #[derive(Args)]
-#[command(after_help = "W is energy per cycle in the units of load × approach of the inputs \
+// The case flags are required unless a path file is named, which conflicts with them.
+#[command(group(ArgGroup::new("path_source").args(["harmonics", "samples"])))]
+#[command(mut_arg("harmonics", |file| file.conflicts_with_all(CYCLE_FLAGS)))]
+#[command(mut_arg("samples", |file| file.conflicts_with_all(CYCLE_FLAGS)))]
+#[command(group(ArgGroup::new("path_drive").args(["drive"]).requires("path_source")))]
+#[command(
+    after_help = "The loads are a harmonic cycle (--p0 … --phi) or a periodic force path in a file \
+(--harmonics or --samples, read as `microslip path` reads them; --drive force only). \
+W is energy per cycle in the units of load × approach of the inputs \
 (N·m for loads in N and a compliance in m/N), printed only with the digits on which its whole \
-estimated error interval rounds alike.")]
+estimated error interval rounds alike."
+)]
 pub struct SimulateArgs {
     #[command(flatten)]
-    pub case: CaseArgs,
+    pub cycle: Option<CycleArgs>,
+    #[command(flatten)]
+    pub path: PathFileArgs,
+    #[command(flatten)]
+    pub contact: ContactArgs,
     /// Elements of the coarsest spring bed, at least 20 (doubled twice for the extrapolation); default 400.
     #[arg(long, allow_hyphen_values = true, value_parser = parse::elements)]
     pub elements: Option<usize>,
@@ -41,7 +60,7 @@ pub struct SimulateArgs {
     /// (the report then goes to standard error).
     #[arg(long = "loop")]
     pub loop_csv: Option<PathBuf>,
-    /// Draw the load ellipse and the hysteresis loop to this .svg, .png or .pdf file.
+    /// Draw the load ellipse and the hysteresis loop to this .svg, .png or .pdf file (a harmonic cycle only).
     #[arg(long)]
     pub plot: Option<PathBuf>,
     /// Print one JSON object.
@@ -78,12 +97,24 @@ fn simulation_failure(error: SimulatedError) -> Failure {
     }
 }
 
+/// W as the work of the load and as the frictional work, and the runs, of either loads.
+struct Simulated<'a> {
+    answer: &'a Answer,
+    friction: &'a Value,
+    result: &'a SimulationResult,
+}
+
 pub fn run(args: &SimulateArgs) -> Result<String, Failure> {
     // Output files are checked before anything is computed.
     if let Some(path) = &args.loop_csv {
         check_writable(path, &["csv"])?;
     }
     if let Some(path) = &args.plot {
+        if args.cycle.is_none() {
+            return Err(Failure::refused(
+                "--plot draws the ellipse of a harmonic cycle (--p0 … --phi); for a path file write the loop with --loop and plot its CSV",
+            ));
+        }
         check_writable(path, &PLOT_EXTENSIONS)?;
     }
     if let (Some(csv), Some(plot)) = (&args.loop_csv, &args.plot) {
@@ -94,30 +125,83 @@ pub fn run(args: &SimulateArgs) -> Result<String, Failure> {
             )));
         }
     }
-    let case = args.case.text();
-    let spec = case.spec()?;
+    let deadline = Instant::now() + args.max_seconds;
     let options = SimulationOptions {
         elements: args.elements,
         steps: args.steps,
-        deadline: Some(Instant::now() + args.max_seconds),
+        deadline: Some(deadline),
         tolerance: Some(args.tolerance),
         ..SimulationOptions::default()
     };
-    let simulated = simulated_answer(&spec, &options).map_err(simulation_failure)?;
-    let (result, cycle) = (&simulated.result, &simulated.cycle);
-    let w = simulated.answer.value.decimal.to_string();
-    // A write that fails after the run still reports W.
-    let lost =
-        |error: &dyn std::fmt::Display| Failure::failed(format!("{error} (the simulation's W = {w} is not lost)"));
-    if let Some(path) = &args.loop_csv {
-        let text = loop_csv(result).map_err(|e| lost(&e))?;
-        write_text_atomically(path, &text).map_err(|e| lost(&e))?;
+    match (&args.cycle, args.path.request(&args.contact, deadline)?) {
+        (Some(cycle), _) => run_cycle(args, cycle, &options),
+        (None, Some(request)) => run_path(args, &request, &options),
+        (None, None) => Err(Failure::refused(
+            "give the loads: the case flags --p0 --p1 --q1 --phi, or a path file with --harmonics or --samples",
+        )),
     }
+}
+
+/// The simulation of the harmonic cycle of the case flags.
+fn run_cycle(args: &SimulateArgs, cycle: &CycleArgs, options: &SimulationOptions) -> Result<String, Failure> {
+    let case = cycle.text(&args.contact);
+    let spec = case.spec()?;
+    let simulated: SimulatedAnswer = simulated_answer(&spec, options).map_err(simulation_failure)?;
+    let view = Simulated {
+        answer: &simulated.answer,
+        friction: &simulated.friction,
+        result: &simulated.result,
+    };
+    write_loop(args, &view)?;
     if let Some(path) = &args.plot {
-        plot_cycle(path, cycle, result).map_err(|e| lost(&e))?;
+        plot_cycle(path, &simulated.cycle, &simulated.result).map_err(|e| kept_w(&view, &e))?;
     }
+    report(args, &view, SimulatedLoads::Case(&case))
+}
+
+/// The simulation of the force path of a file.
+fn run_path(args: &SimulateArgs, request: &PathRequest, options: &SimulationOptions) -> Result<String, Failure> {
+    let simulated = simulated_path_answer(request, options).map_err(simulation_failure)?;
+    let view = Simulated {
+        answer: &simulated.answer,
+        friction: &simulated.friction,
+        result: &simulated.result,
+    };
+    write_loop(args, &view)?;
+    let file = || Some(request.file.clone());
+    let inputs = PathFileInputs {
+        harmonics: args.path.harmonics.as_ref().and_then(|_| file()),
+        samples: args.path.samples.as_ref().and_then(|_| file()),
+        friction: args.contact.friction.clone(),
+        lambda: args.contact.lambda.clone(),
+        nu: args.contact.nu.clone(),
+        compliance: args.contact.compliance.clone(),
+    };
+    report(args, &view, SimulatedLoads::Path(inputs))
+}
+
+/// A write that failed after the run, with the W it does not lose.
+fn kept_w(simulated: &Simulated, error: &dyn std::fmt::Display) -> Failure {
+    Failure::failed(format!(
+        "{error} (the simulation's W = {} is not lost)",
+        simulated.answer.value.decimal
+    ))
+}
+
+/// The steady loop to the file of `--loop`, if named.
+fn write_loop(args: &SimulateArgs, simulated: &Simulated) -> Result<(), Failure> {
+    if let Some(path) = &args.loop_csv {
+        let text = loop_csv(simulated.result).map_err(|e| kept_w(simulated, &e))?;
+        write_text_atomically(path, &text).map_err(|e| kept_w(simulated, &e))?;
+    }
+    Ok(())
+}
+
+/// The report, as text or JSON.
+fn report(args: &SimulateArgs, simulated: &Simulated, loads: SimulatedLoads) -> Result<String, Failure> {
+    let (result, w) = (simulated.result, &simulated.answer.value.decimal);
     if args.json {
-        return Ok(serde_json::to_string(&simulation_report(&simulated, &case, args))?);
+        return Ok(serde_json::to_string(&simulation_report(simulated, loads, args))?);
     }
     let digits = match simulated.answer.value.digits() {
         0 => "no significant digit determined".to_string(),
@@ -135,13 +219,17 @@ pub fn run(args: &SimulateArgs) -> Result<String, Failure> {
 
 /// The JSON report of a simulation: W with the envelope of a value whose provenance is
 /// the simulation itself (an estimate from its refinements, not a proof).
-fn simulation_report<'a>(simulated: &SimulatedAnswer, case: &'a CaseText, args: &SimulateArgs) -> SimulationReport<'a> {
+fn simulation_report<'a>(
+    simulated: &Simulated,
+    loads: SimulatedLoads<'a>,
+    args: &SimulateArgs,
+) -> SimulationReport<'a> {
     let defaults = SimulationOptions::default();
-    let (work, result) = (&simulated.answer, &simulated.result);
+    let (work, result) = (simulated.answer, simulated.result);
     SimulationReport {
         w: printed(&work.value),
         w_f64: result.w_work,
-        w_friction: printed(&simulated.friction),
+        w_friction: printed(simulated.friction),
         w_friction_f64: result.w_friction,
         envelope: ValueEnvelope::of(work),
         estimated_rel_error: result.estimated_rel_error,
@@ -149,7 +237,7 @@ fn simulation_report<'a>(simulated: &SimulatedAnswer, case: &'a CaseText, args: 
         elements: result.elements,
         steps: result.steps,
         inputs: SimulationInputs {
-            case,
+            loads,
             elements: args.elements.or(defaults.elements).unwrap_or(result.elements / 4),
             steps: args.steps.or(defaults.steps).unwrap_or(result.steps / 4),
             tolerance: args.tolerance,

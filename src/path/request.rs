@@ -164,14 +164,14 @@ impl From<PathError> for PathRequestError {
 }
 
 /// A path, a contact and a compliance at one precision.
-struct Inputs<R: Real> {
-    path: LoadPath<R>,
-    contact: Contact<R>,
-    compliance: Box<dyn Compliance<R>>,
+pub(crate) struct Inputs<R: Real> {
+    pub(crate) path: LoadPath<R>,
+    pub(crate) contact: Contact<R>,
+    pub(crate) compliance: Box<dyn Compliance<R>>,
 }
 
 impl PathRequest {
-    fn read<R: Real>(&self, precision: Precision) -> Result<Inputs<R>, PathRequestError> {
+    pub(crate) fn read<R: Real>(&self, precision: Precision) -> Result<Inputs<R>, PathRequestError> {
         let path = match self.format {
             PathFormat::Samples => read_driven_samples::<R>(&self.contents, precision, self.drive),
             PathFormat::Harmonics => read_driven_harmonics::<R>(&self.contents, precision, self.drive),

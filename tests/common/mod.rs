@@ -2,6 +2,7 @@
 
 use microslip::case::CaseText;
 use microslip::cycle::LoadCycle;
+use microslip::path::LoadPath;
 use microslip::real::Real;
 
 /// The first acceptance case of the project: P0 = f = λ = 1, P1 = 0.4, Q1 = 0.5, Q0 = 0
@@ -442,4 +443,16 @@ impl Draws {
     pub fn between(&mut self, low: f64, high: f64) -> f64 {
         low + (high - low) * self.next()
     }
+}
+
+/// One period of `count` samples of `path` at equal steps of θ from 0, as the text of a
+/// `P,Q` file.
+#[allow(dead_code)] // not every test binary writes path files
+pub fn samples_text(path: &LoadPath<f64>, count: usize) -> String {
+    std::iter::once("P,Q\n".to_string())
+        .chain((0..count).map(|j| {
+            let theta = j as f64 * std::f64::consts::TAU / count as f64;
+            format!("{:e},{:e}\n", path.normal.value(&theta), path.tangential.value(&theta))
+        }))
+        .collect()
 }

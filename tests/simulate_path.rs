@@ -1,0 +1,254 @@
+//! `microslip simulate --harmonics FILE | --samples FILE`: the history simulation of any
+//! periodic force path, against the harmonic cycle it generalizes (the same loop), against
+//! `microslip path` (the event decomposition), and its one-line refusals.
+
+mod common;
+
+use std::path::{Path, PathBuf};
+
+use common::{microslip, samples_text, PERSSON};
+use microslip::compliance::parse_spec;
+use microslip::path::input::read_harmonics;
+use microslip::path::{path_dissipation, Contact};
+use microslip::real::Precision;
+use microslip::simulate::{simulate_path, SimulationOptions};
+use serde_json::Value;
+
+/// Two harmonics in P and in Q.
+const TWO_HARMONICS: &str = "k,P_cos,P_sin,Q_cos,Q_sin\n0,1,0,0.05,0\n1,0.25,0.05,0.2,-0.3\n2,0.08,-0.04,0.1,0.06\n";
+
+/// P = 1 + 0.3 cos θ + 0.2 cos 2θ has a local maximum 0.9 at θ = π inside its range
+/// [0.74375, 1.5]; Q = 0.3 sin θ + 0.1 cos 3θ.
+const LOCAL_EXTREME: &str = "k,P_cos,P_sin,Q_cos,Q_sin\n0,1,0,0,0\n1,0.3,0,0,0.3\n2,0.2,0,0,0\n3,0,0,0.1,0\n";
+
+/// The contact of every run here: f = 0.8, λ = 1.2, v' = 1/P.
+const CONTACT: [&str; 6] = ["--friction", "0.8", "--lambda", "1.2", "--compliance", PERSSON];
+
+fn scratch(name: &str) -> PathBuf {
+    let directory = std::env::temp_dir().join(format!("microslip-simulate-path-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&directory);
+    std::fs::create_dir_all(&directory).unwrap();
+    directory
+}
+
+/// `microslip <command> --<format> FILE <CONTACT> extra…` with `contents` in FILE.
+fn on_file(directory: &Path, command: &str, format: &str, contents: &str, extra: &[&str]) -> (i32, String, String) {
+    let file = directory.join(format!("{format}.csv"));
+    std::fs::write(&file, contents).unwrap();
+    let mut args = vec![command, &format!("--{format}"), file.to_str().unwrap()]
+        .into_iter()
+        .map(str::to_string)
+        .collect::<Vec<_>>();
+    args.extend(CONTACT.iter().chain(extra).map(|s| s.to_string()));
+    microslip(&args)
+}
+
+/// The JSON document of a run that succeeded.
+fn json_of((code, stdout, stderr): (i32, String, String)) -> Value {
+    assert_eq!(code, 0, "{stderr}");
+    serde_json::from_str(stdout.trim()).unwrap_or_else(|e| panic!("{e}: {stdout}"))
+}
+
+/// The problems docs/schema/simulate.schema.json finds in a document (none where it conforms).
+fn schema_problems(document: &Value) -> Vec<String> {
+    let path = format!("{}/docs/schema/simulate.schema.json", env!("CARGO_MANIFEST_DIR"));
+    let schema: Value = serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    let validator = jsonschema::draft202012::new(&schema).unwrap_or_else(|e| panic!("{path}: {e}"));
+    validator.iter_errors(document).map(|error| error.to_string()).collect()
+}
+
+/// W (f64) and the estimated relative error of a `simulate --json` run.
+fn simulated(document: &Value) -> (f64, f64) {
+    (
+        document["W_f64"].as_f64().unwrap(),
+        document["estimated_rel_error"].as_f64().unwrap(),
+    )
+}
+
+#[test]
+fn a_harmonic_path_file_gives_the_w_of_its_case_flags() {
+    let directory = scratch("harmonic");
+    for (q0, q1, phi) in [(0.0, 0.4, 0.3), (0.05, 0.35, 1.2), (-0.05, 0.3, 2.5), (0.0, 0.4, 4.0)] {
+        let (p0, p1) = (1.0, 0.4);
+        let text = format!(
+            "k,P_cos,P_sin,Q_cos,Q_sin\n0,{p0:e},0,{q0:e},0\n1,{p1:e},0,{:e},{:e}\n",
+            q1 * f64::cos(phi),
+            q1 * f64::sin(phi)
+        );
+        let resolution = ["--elements", "100", "--steps", "300", "--tolerance", "1e-3", "--json"];
+        let from_file = json_of(on_file(&directory, "simulate", "harmonics", &text, &resolution));
+        let mut flags: Vec<String> = ["simulate", "--p0", "1", "--p1", "0.4"]
+            .iter()
+            .map(|s| s.to_string())
+            .collect();
+        for (flag, value) in [("--q0", q0), ("--q1", q1), ("--phi", phi)] {
+            flags.extend([flag.to_string(), format!("{value:e}")]);
+        }
+        flags.extend(CONTACT.iter().chain(&resolution).map(|s| s.to_string()));
+        let from_flags = json_of(microslip(&flags));
+        let ((file_w, _), (flags_w, _)) = (simulated(&from_file), simulated(&from_flags));
+        assert!(
+            (file_w / flags_w - 1.0).abs() < 1e-12,
+            "φ = {phi}: {file_w} vs {flags_w}"
+        );
+        assert_eq!(from_file["elements"], from_flags["elements"]);
+        for document in [&from_file, &from_flags] {
+            assert_eq!(schema_problems(document), Vec::<String>::new(), "{document}");
+        }
+        assert_eq!(
+            from_file["inputs"]["harmonics"].as_str(),
+            Some(directory.join("harmonics.csv").to_str().unwrap())
+        );
+    }
+}
+
+#[test]
+fn the_simulation_of_two_harmonics_agrees_with_microslip_path_within_its_estimate() {
+    let directory = scratch("two-harmonics");
+    for contents in [TWO_HARMONICS, LOCAL_EXTREME] {
+        let simulation = json_of(on_file(&directory, "simulate", "harmonics", contents, &["--json"]));
+        let (w, estimate) = simulated(&simulation);
+        let path = json_of(on_file(&directory, "path", "harmonics", contents, &["--json"]));
+        let exact = path["W_f64"].as_f64().unwrap();
+        let error = (w / exact - 1.0).abs();
+        assert!(
+            error <= estimate && estimate <= 1e-6,
+            "{contents}: {w} vs {exact}, estimate {estimate}"
+        );
+        assert!(error < 1e-4);
+    }
+}
+
+#[test]
+fn the_library_simulates_a_path_as_the_event_decomposition_integrates_it() {
+    let compliance = parse_spec::<f64>(PERSSON, Precision::DOUBLE).unwrap();
+    let contact = Contact {
+        friction: 0.8,
+        compliance_ratio: 1.2,
+    };
+    for contents in [TWO_HARMONICS, LOCAL_EXTREME] {
+        let path = read_harmonics::<f64>(contents, Precision::DOUBLE).unwrap();
+        let result = simulate_path(&path, &contact, compliance.as_ref(), &SimulationOptions::default()).unwrap();
+        let exact = path_dissipation(&path, &contact, compliance.as_ref(), None)
+            .unwrap()
+            .total;
+        for w in [result.w_work, result.w_friction] {
+            assert!((w / exact - 1.0).abs() <= result.estimated_rel_error, "{w} vs {exact}");
+        }
+        // The steady loop starts and ends at the path's θ = 0 and follows its loads.
+        let (first, last) = (result.steady_loop[0], result.steady_loop[result.steady_loop.len() - 1]);
+        assert_eq!((first.theta, last.theta), (0.0, std::f64::consts::TAU));
+        assert!((first.displacement - last.displacement).abs() < 1e-12);
+        let middle = result.steady_loop[result.steps / 3];
+        assert!((middle.normal_load - path.normal.value(&middle.theta)).abs() < 1e-15);
+        assert!((middle.tangential_load - path.tangential.value(&middle.theta)).abs() < 1e-15);
+    }
+}
+
+#[test]
+fn samples_and_harmonics_of_one_path_give_one_w() {
+    let directory = scratch("samples");
+    let path = read_harmonics::<f64>(TWO_HARMONICS, Precision::DOUBLE).unwrap();
+    let samples = samples_text(&path, 16);
+    let resolution = ["--elements", "100", "--steps", "300", "--tolerance", "1e-3", "--json"];
+    let from_samples = json_of(on_file(&directory, "simulate", "samples", &samples, &resolution));
+    let from_harmonics = json_of(on_file(&directory, "simulate", "harmonics", TWO_HARMONICS, &resolution));
+    let ((sampled, _), (harmonic, _)) = (simulated(&from_samples), simulated(&from_harmonics));
+    assert!((sampled / harmonic - 1.0).abs() < 1e-10, "{sampled} vs {harmonic}");
+    assert!(from_samples["inputs"]["samples"].is_string() && from_samples["inputs"].get("harmonics").is_none());
+    assert_eq!(schema_problems(&from_samples), Vec::<String>::new(), "{from_samples}");
+}
+
+#[test]
+fn the_loop_of_a_path_is_written_whole() {
+    let directory = scratch("loop");
+    let out = directory.join("loop.csv");
+    let extra = [
+        "--elements",
+        "50",
+        "--steps",
+        "100",
+        "--tolerance",
+        "0.5",
+        "--loop",
+        out.to_str().unwrap(),
+    ];
+    let (code, stdout, stderr) = on_file(&directory, "simulate", "harmonics", TWO_HARMONICS, &extra);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stdout.starts_with("W = "), "{stdout}");
+    let text = std::fs::read_to_string(&out).unwrap();
+    let lines: Vec<&str> = text.lines().collect();
+    assert_eq!(lines[0], "theta,P,Q,u");
+    // The finest of three runs: 4 × 100 steps, and θ = 0.
+    assert_eq!(lines.len(), 1 + 401);
+    let row: Vec<f64> = lines[1].split(',').map(|c| c.parse().unwrap()).collect();
+    assert!(
+        row[0] == 0.0 && (row[1] - 1.33).abs() < 1e-15 && (row[2] - 0.35).abs() < 1e-15,
+        "{row:?}"
+    );
+}
+
+#[test]
+fn bad_path_input_is_refused_in_one_line_and_leaves_no_file() {
+    let directory = scratch("refusals");
+    let out = directory.join("loop.csv");
+    let keep_out = ["--loop", out.to_str().unwrap()];
+    let refused = |(code, stdout, stderr): (i32, String, String), expected: &str| {
+        assert_eq!(code, 2, "{stderr}");
+        assert!(stdout.is_empty(), "{stdout}");
+        assert_eq!(stderr.trim().lines().count(), 1, "{stderr}");
+        assert!(stderr.contains(expected), "{expected}: {stderr}");
+        assert!(!out.exists());
+    };
+    // A path file and the case flags together.
+    for flag in ["--p0", "--q0", "--phi"] {
+        let extra = [&keep_out[..], &[flag, "1"]].concat();
+        refused(
+            on_file(&directory, "simulate", "harmonics", TWO_HARMONICS, &extra),
+            "cannot be used with",
+        );
+    }
+    let extra = [&keep_out[..], &["--harmonics", "other.csv"]].concat();
+    refused(
+        on_file(&directory, "simulate", "samples", "P,Q\n1,0\n1,0\n1,0\n", &extra),
+        "cannot be used with",
+    );
+    // A malformed file, a missing one, and paths outside the theory, as `microslip path` says.
+    let cases = [
+        ("k,P_cos,P_sin,Q_cos\n0,1,0,0\n", "column Q_sin"),
+        ("k,P_cos,P_sin,Q_cos,Q_sin\n0,1,0,0,zero\n", "line 2"),
+        (
+            "k,P_cos,P_sin,Q_cos,Q_sin\n0,1,0,0,0\n1,0.5,0,0,0\n2,0.9,0.3,0,0\n",
+            "separates",
+        ),
+        (
+            "k,P_cos,P_sin,Q_cos,Q_sin\n0,1,0,0,0\n1,0.2,0,0,0\n2,0,0,0.7,0.3\n",
+            "gross slip",
+        ),
+    ];
+    for (contents, expected) in cases {
+        let simulated = on_file(&directory, "simulate", "harmonics", contents, &keep_out);
+        let (_, _, path_stderr) = on_file(&directory, "path", "harmonics", contents, &[]);
+        assert_eq!(simulated.2, path_stderr, "{contents:?}");
+        refused(simulated, expected);
+    }
+    let separating = on_file(&directory, "simulate", "harmonics", cases[2].0, &keep_out);
+    assert!(separating.2.contains("at θ = "), "{}", separating.2);
+    let mut missing: Vec<&str> = vec!["simulate", "--harmonics", "/nonexistent/path.csv"];
+    missing.extend(CONTACT.iter().chain(&keep_out));
+    refused(microslip(&missing), "cannot read the path file");
+    // What the simulation does not do, with the way that does.
+    let displacement = "k,P_cos,P_sin,u_cos,u_sin\n0,1.2,0,0.01,0\n1,0,0,0.2,-0.1\n";
+    let extra = [&keep_out[..], &["--drive", "displacement"]].concat();
+    refused(
+        on_file(&directory, "simulate", "harmonics", displacement, &extra),
+        "microslip path --drive displacement",
+    );
+    let plot = directory.join("loop.svg");
+    let extra = [&keep_out[..], &["--plot", plot.to_str().unwrap()]].concat();
+    refused(
+        on_file(&directory, "simulate", "harmonics", TWO_HARMONICS, &extra),
+        "--plot",
+    );
+    assert!(!plot.exists());
+}
