@@ -66,6 +66,7 @@ pub mod ladder;
 pub mod path;
 pub mod real;
 pub mod reference;
+mod rounding;
 pub mod simulate;
 pub mod simulation_answer;
 pub mod verify;
