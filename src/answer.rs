@@ -371,6 +371,17 @@ pub struct Answer {
 }
 
 impl Answer {
+    /// W = 0 exactly, and every segment, for `reason`.
+    pub fn exact_zero(reason: ExactZero, digits: Option<u32>) -> Answer {
+        Answer {
+            value: Value::zero(),
+            segments: Some(Segments::from_fn(|_| Value::zero())),
+            digits_requested: digits,
+            provenance: Provenance::Exact(ExactReason::Zero(reason)),
+            method: Some(Method::Exact(reason)),
+        }
+    }
+
     /// The significant digits printed (at most the request; [`F64_MOST_DIGITS`] or the
     /// request for an exact value).
     pub fn digits(&self) -> u32 {
