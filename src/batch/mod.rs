@@ -27,10 +27,20 @@ pub enum BatchError {
     Input(String),
     /// Required columns are missing.
     #[error("batch input has no column {missing} (its header is '{header}'); a batch needs p0, p1, q1, phi, friction, lambda or nu, compliance, and optionally q0 and id (or a column path naming a path file in place of p0, p1, q0, q1, phi, with an optional drive)")]
-    MissingColumns { missing: String, header: String },
+    MissingColumns {
+        /// The first required column the header lacks.
+        missing: String,
+        /// The header as read.
+        header: String,
+    },
     /// A column is named twice: which one a row's value came from would be a guess.
     #[error("batch input names the column '{name}' twice (its header is '{header}'); give each column once")]
-    DuplicateColumn { name: String, header: String },
+    DuplicateColumn {
+        /// The column named twice.
+        name: String,
+        /// The header as read.
+        header: String,
+    },
 }
 
 /// The columns a batch appends to its input's: the first six as they have always been,
