@@ -382,7 +382,7 @@ pub const CSV_HEADER: [&str; 10] = [
 
 /// `x` rounded up to 4 significant digits, so that a bound stays one.
 fn rounded_up(x: f64) -> String {
-    crate::answer::outward(&rug::Float::with_val(53, x), 4, rug::float::Round::Up)
+    crate::rounding::DecimalEnd::directed(&x, 4, rug::float::Round::Up)
 }
 
 /// `cubic_law_error.csv`: one row per point.
