@@ -32,6 +32,8 @@ try:
 except ImportError:  # pragma: no cover
     sys.exit("this benchmark needs mpmath (pip install mpmath)")
 
+from four_segments import segment_pieces
+
 CASES = [
     # name, flags, v'(P) for mpmath
     ("persson", dict(p0="1", p1="0.4", q0="0", q1="0.5", phi="0.4pi", friction="1", **{"lambda": "1"},
@@ -56,57 +58,9 @@ def number(text):
 def mpmath_w(flags, slope):
     """W = lambda * sum of the four segment integrals, by mpmath.quad at the current precision."""
     P0, P1, Q1 = number(flags["p0"]), number(flags["p1"]), number(flags["q1"])
-    f, lam, phi = number(flags["friction"]), number(flags["lambda"]), number(flags["phi"]) % mp.pi
-    pi = mp.pi
-    plus = mpmath.hypot(Q1 * mpmath.cos(phi) + f * P1, Q1 * mpmath.sin(phi))
-    minus = mpmath.hypot(Q1 * mpmath.cos(phi) - f * P1, Q1 * mpmath.sin(phi))
-    theta_e = mpmath.atan2(Q1 * mpmath.sin(phi), Q1 * mpmath.cos(phi) - f * P1)
-    stick = mpmath.atan2(2 * Q1 * f * P1 * mpmath.sin(phi), Q1 ** 2 - (f * P1) ** 2)
-    theta_c = theta_e + pi
-    theta_b, theta_h = theta_c - stick, theta_c + stick
-    p_t = P0 - (plus + minus) / (2 * f)
-
-    def P(t):
-        return P0 + P1 * mpmath.cos(t)
-
-    def dP(t):
-        return -P1 * mpmath.sin(t)
-
-    def Q(t):  # Q - Q0
-        return Q1 * mpmath.cos(t - phi)
-
-    def dQ(t):
-        return -Q1 * mpmath.sin(t - phi)
-
-    def eb(t):
-        p_s = p_t + plus * mpmath.sin((t - theta_b) / 2) ** 2 / f
-        return Q(t) * (-f * slope(P(t)) * dP(t) + slope(p_s) * plus * mpmath.sin(t - theta_b))
-
-    def bc(t):
-        return Q(t) * slope(P(t)) * dQ(t)
-
-    def ch(t):
-        p_y = P(2 * theta_c - t)
-        return Q(t) * (f * slope(P(t)) * dP(t) - slope(p_y) * minus * mpmath.sin(t - theta_e))
-
-    def he(t):
-        p_k = p_t + minus * mpmath.sin((t - theta_e) / 2) ** 2 / f
-        return Q(t) * (f * slope(P(t)) * dP(t) - slope(p_k) * minus * mpmath.sin(t - theta_e))
-
-    def breaks(start, end, mirror=False):
-        points = [start]
-        for k in range(-2, 4):
-            lowest = (2 * k + 1) * pi
-            for x in [lowest] + ([2 * theta_c - lowest] if mirror else []):
-                if start < x < end:
-                    points.append(x)
-        return sorted(points) + [end]
-
-    total = mpmath.quad(eb, breaks(theta_e, theta_b), method="tanh-sinh")
-    total += mpmath.quad(bc, breaks(theta_b, theta_c), method="tanh-sinh")
-    total += mpmath.quad(ch, breaks(theta_c, theta_h, mirror=True), method="tanh-sinh")
-    total += mpmath.quad(he, breaks(theta_h, theta_e + 2 * pi), method="tanh-sinh")
-    return lam * total
+    f, lam, phi = number(flags["friction"]), number(flags["lambda"]), number(flags["phi"])
+    pieces = segment_pieces(P0, P1, Q1, f, phi, slope, mpmath, mp.pi)
+    return lam * sum(mpmath.quad(integrand, points, method="tanh-sinh") for integrand, points in pieces)
 
 
 def flag_args(flags):

@@ -12,7 +12,8 @@
 use rug::Float;
 
 use crate::dissipation::{ExactZero, Method, Segments};
-use crate::verified::{decimal_f64, decimal_interval, F64_MOST_DIGITS};
+use crate::rounding::{scientific, DecimalEnd, ENCLOSURE_DIGITS};
+use crate::verified::{decimal_f64, decimal_interval, rounded_alike_expanded, F64_MOST_DIGITS};
 
 pub use crate::verified::Decimal;
 
@@ -183,9 +184,6 @@ pub struct Value {
     pub binary64: Option<f64>,
 }
 
-/// The fewest significant digits of the outward-rounded ends of an enclosure.
-const ENCLOSURE_DIGITS: usize = 20;
-
 /// Bits at which [`Value::to_at_most`] reads an enclosure's decimal ends (outwards): far
 /// more than their [`ENCLOSURE_DIGITS`] or more digits need.
 const ENCLOSURE_BITS: u32 = 256;
@@ -202,17 +200,37 @@ impl Value {
 
     /// The value in [`lower`, `upper`], with at most `most` significant digits.
     pub fn within(lower: &Float, upper: &Float, most: u32) -> Self {
-        // Enough digits that the decimal ends are not wider than the digits printed.
-        let digits = ENCLOSURE_DIGITS.max(most as usize + 2);
+        Value::between(lower, upper, most)
+    }
+
+    /// [`Value::within`] for ends of either kind.
+    fn between<T: DecimalEnd>(lower: &T, upper: &T, most: u32) -> Self {
+        let digits = T::enclosure_digits(most);
+        let (decimal, expansions) = rounded_alike_expanded(lower, upper, most, digits);
+        let enclosure = match expansions {
+            Some((low, high)) => (
+                scientific(&low.directed(digits, rug::float::Round::Down)),
+                scientific(&high.directed(digits, rug::float::Round::Up)),
+            ),
+            None => (
+                lower.directed(digits, rug::float::Round::Down),
+                upper.directed(digits, rug::float::Round::Up),
+            ),
+        };
+        let (lower_exact, upper_exact) = (lower.exact(), upper.exact());
         Value {
-            decimal: decimal_interval(lower, upper, most),
-            enclosure: Some((
-                outward(lower, digits, rug::float::Round::Down),
-                outward(upper, digits, rug::float::Round::Up),
-            )),
-            binary64: Some(Float::with_val(lower.prec().max(upper.prec()) + 1, lower + upper).to_f64() / 2.0)
-                // Not where f64's range loses the value: infinite, or zero for a value that is not.
-                .filter(|middle| middle.is_finite() && (*middle != 0.0 || (lower.is_zero() && upper.is_zero()))),
+            decimal,
+            enclosure: Some(enclosure),
+            binary64: Some(
+                Float::with_val(
+                    lower_exact.prec().max(upper_exact.prec()) + 1,
+                    &lower_exact + &upper_exact,
+                )
+                .to_f64()
+                    / 2.0,
+            )
+            // Not where f64's range loses the value: infinite, or zero for a value that is not.
+            .filter(|middle| middle.is_finite() && (*middle != 0.0 || (lower.is_zero() && upper.is_zero()))),
         }
     }
 
@@ -241,7 +259,7 @@ impl Value {
     /// its two doubles are exact rationals, read as they are.
     pub fn of_interval(interval: &crate::interval::Interval, most: u32) -> Self {
         let (lower, upper) = interval.real_bounds();
-        Value::within(&Float::with_val(53, lower), &Float::with_val(53, upper), most)
+        Value::between(&lower, &upper, most)
     }
 
     /// The value in [`value` − `radius`, `value` + `radius`], with at most `most`
@@ -257,8 +275,8 @@ impl Value {
         Value {
             decimal: decimal_f64(value, bound),
             enclosure: Some((
-                outward(&lower, ENCLOSURE_DIGITS, rug::float::Round::Down),
-                outward(&upper, ENCLOSURE_DIGITS, rug::float::Round::Up),
+                lower.directed(ENCLOSURE_DIGITS, rug::float::Round::Down),
+                upper.directed(ENCLOSURE_DIGITS, rug::float::Round::Up),
             )),
             binary64: Some(value),
         }
@@ -317,17 +335,6 @@ impl Value {
     }
 }
 
-/// `x` as a decimal of `digits` significant digits rounded in the direction `round`.
-fn outward(x: &Float, digits: usize, round: rug::float::Round) -> String {
-    if x.is_zero() || !x.is_finite() {
-        return x.to_f64().to_string();
-    }
-    let (negative, mantissa, exponent) = x.to_sign_string_exp_round(10, Some(digits), round);
-    let (first, rest) = mantissa.split_at(1);
-    let sign = if negative { "-" } else { "" };
-    format!("{sign}{first}.{rest}e{}", exponent.unwrap_or(1) - 1)
-}
-
 /// One printed quantity: its value, its segments where it has them (W), and what
 /// vouches for them.
 ///
@@ -364,6 +371,17 @@ pub struct Answer {
 }
 
 impl Answer {
+    /// W = 0 exactly, and every segment, for `reason`.
+    pub fn exact_zero(reason: ExactZero, digits: Option<u32>) -> Answer {
+        Answer {
+            value: Value::zero(),
+            segments: Some(Segments::from_fn(|_| Value::zero())),
+            digits_requested: digits,
+            provenance: Provenance::Exact(ExactReason::Zero(reason)),
+            method: Some(Method::Exact(reason)),
+        }
+    }
+
     /// The significant digits printed (at most the request; [`F64_MOST_DIGITS`] or the
     /// request for an exact value).
     pub fn digits(&self) -> u32 {

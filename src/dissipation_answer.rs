@@ -21,11 +21,11 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use crate::admissibility::prove_admissible;
-use crate::answer::{Answer, ExactReason, Provenance, Value};
+use crate::answer::{Answer, Provenance, Value};
 use crate::case::{Case, CaseSpec, CaseText, InputError};
 use crate::compliance::{ComplianceTable, TableInterpolant, TABLE_ORDER};
 use crate::cycle::LoadCycle;
-use crate::dissipation::{dissipation, Dissipation, DissipationError, ExactZero, Method, Options, Segment, Segments};
+use crate::dissipation::{dissipation, Dissipation, DissipationError, Options, Segment, Segments};
 use crate::real::Precision;
 use crate::reference::{check_case, checked_exact_zero, verified_dissipation_of, ReferenceError, MAX_DIGITS};
 use crate::verified::F64_MOST_DIGITS;
@@ -158,7 +158,7 @@ pub fn dissipation_of(
             // A table of equal slopes dissipates nothing, exactly, as any constant slope.
             None => match checked_exact_zero(case)? {
                 Some(reason) => Ok(DissipationAnswer {
-                    answer: exact_zero_answer(reason, None),
+                    answer: Answer::exact_zero(reason, None),
                     ..estimate
                 }),
                 None => Ok(estimate),
@@ -172,7 +172,7 @@ pub fn dissipation_of(
         table: None,
     };
     if let Some(reason) = checked_exact_zero(case)? {
-        return Ok(plain(exact_zero_answer(reason, digits)));
+        return Ok(plain(Answer::exact_zero(reason, digits)));
     }
     let range = digits.map_or((DEFAULT_LEAST_DIGITS, DEFAULT_DIGITS), |digits| (digits, digits));
     let (mut answer, no_enclosure) = to_digits(case, range, (started, deadline))?;
@@ -181,17 +181,6 @@ pub fn dissipation_of(
         no_enclosure,
         ..plain(answer)
     })
-}
-
-/// W = 0 exactly, and every segment, for `reason`.
-pub fn exact_zero_answer(reason: ExactZero, digits: Option<u32>) -> Answer {
-    Answer {
-        value: Value::zero(),
-        segments: Some(Segments::from_fn(|_| Value::zero())),
-        digits_requested: digits,
-        provenance: Provenance::Exact(ExactReason::Zero(reason)),
-        method: Some(Method::Exact(reason)),
-    }
 }
 
 /// At least `least` and at most `digits` digits: certified where an enclosure can be had
@@ -541,7 +530,7 @@ fn table_to_digits(
     clock: (Instant, Instant),
 ) -> Result<DissipationAnswer, ReferenceError> {
     let (answer, no_enclosure) = match checked_exact_zero(case)? {
-        Some(reason) => (exact_zero_answer(reason, Some(digits)), None),
+        Some(reason) => (Answer::exact_zero(reason, Some(digits)), None),
         None => to_digits(case, (digits, digits), clock)?,
     };
     Ok(DissipationAnswer {

@@ -36,10 +36,15 @@
 //!   [`simulation_answer`] its W as an answer;
 //! - [`verify`]: the theorem gate ([`verify::run`]).
 //!
-//! Modules hidden from this documentation (`quad`, `files`, `batch`, `verified`, `ball`,
-//! `phase`, `doubts`, `interval`, and with feature `cli` `accuracy`, `catalogue`, `figures`, `plot`) are
-//! public only for the command line, the tests and the benches; they are not part of
-//! the API and change without notice.
+//! Beside them: [`batch`] (many cases from a CSV, on all cores), [`path`] (any periodic
+//! load path), [`aft`] (the harmonic-balance friction element), [`interval`] (f64
+//! intervals as a [`real::Real`]), `ball` (feature `certified`: Arb balls), [`doubts`]
+//! (how those number types report a comparison they cannot decide), [`quad`],
+//! [`phase`], [`verified`] (agreement of two precisions and the printing rule),
+//! [`files`] (atomic output), [`messages`], and with feature `cli` `accuracy` and
+//! `catalogue`. Only `figures` and `plot` (feature `cli`: the paper's figures and their
+//! pictures) are hidden from this documentation: they serve the command line and its
+//! tests, and change without notice.
 //!
 //! The default feature `cli` adds the tools around the library: the plots, the
 //! accuracy benchmark and the catalogue of reference values. Built without it (no
@@ -59,49 +64,38 @@ pub mod cycle;
 mod decimal;
 pub mod dissipation;
 pub mod dissipation_answer;
-#[doc(hidden)]
 pub mod doubts;
 pub mod exact;
 pub mod ladder;
 pub mod path;
 pub mod real;
 pub mod reference;
+mod rounding;
 pub mod simulate;
 pub mod simulation_answer;
 pub mod verify;
 
 #[cfg(feature = "cli")]
-#[doc(hidden)]
 pub mod accuracy;
 #[cfg(feature = "certified")]
-#[doc(hidden)]
-pub mod arb;
+mod arb;
 #[cfg(feature = "certified")]
-#[doc(hidden)]
 pub use arb::ball;
 #[cfg(feature = "certified")]
 use arb::gauss as ball_gauss;
-#[doc(hidden)]
 pub mod batch;
 #[cfg(feature = "cli")]
-#[doc(hidden)]
 pub mod catalogue;
 #[cfg(feature = "cli")]
 #[doc(hidden)]
 pub mod figures;
-#[doc(hidden)]
 pub mod files;
-#[doc(hidden)]
 pub mod interval;
-#[doc(hidden)]
 pub mod messages;
-#[doc(hidden)]
 pub mod phase;
 #[cfg(feature = "cli")]
 #[doc(hidden)]
 pub mod plot;
-#[doc(hidden)]
 pub mod quad;
-#[doc(hidden)]
 pub mod verified;
 mod workers;

@@ -18,7 +18,6 @@ use crate::answer::{Answer, Provenance, Value};
 use crate::case::{Case, CaseSpec, CaseText, InputError};
 use crate::compliance::TableError;
 use crate::dissipation::{dissipation, Dissipation, DissipationError, ExactZero, Method, Options, Rules, Segments};
-use crate::dissipation_answer::exact_zero_answer;
 use crate::quad::{FixedRule, RuleError};
 use crate::real::{Precision, Real};
 use crate::verified::{agreeing_digits, agreement_radius, verify, OutOfBudget, TwoPrecisions, Verified, GUARD_DIGITS};
@@ -294,7 +293,7 @@ pub fn verified_dissipation_of(
             he: zero.clone(),
         };
         return Ok(VerifiedDissipation {
-            answer: exact_zero_answer(reason, Some(digits)),
+            answer: Answer::exact_zero(reason, Some(digits)),
             total: "0".to_string(),
             segments: segments.named().map(|(name, _)| (name, "0".to_string())),
             digits_requested: digits,

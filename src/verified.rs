@@ -14,6 +14,7 @@ use rug::Float;
 
 use crate::ladder::{Ladder, Rung, Stop};
 use crate::real::{Precision, Real};
+use crate::rounding::{scientific, DecimalEnd, Expansion};
 
 /// Digits agreed beyond the target before a value counts as verified.
 pub const GUARD_DIGITS: u32 = 4;
@@ -420,7 +421,11 @@ pub fn decimal_f64(value: f64, bound: f64) -> Decimal {
                 Err(Undecided) => {
                     let (value, bound) = exact();
                     let (lower, upper) = ends(&value, &bound);
-                    rounds_alike(&lower, &upper, digits)
+                    alike(
+                        &lower.expansion(digits as usize + 1),
+                        &upper.expansion(digits as usize + 1),
+                        digits,
+                    )
                 }
             };
             text.map(|text| Decimal::Digits { text, digits })
@@ -474,24 +479,43 @@ pub fn decimal_ball(value: &Float, radius: &Float, most: u32) -> Decimal {
 /// one rule: the most digits N for which every point of it rounds to nearest to the same
 /// N-digit decimal, with neither end on a rounding boundary.
 pub fn decimal_interval(lower: &Float, upper: &Float, most: u32) -> Decimal {
+    rounded_alike(lower, upper, most)
+}
+
+/// [`decimal_interval`] over ends of either kind: MPFR floats, or doubles (the same digits
+/// without MPFR's conversions).
+pub(crate) fn rounded_alike<T: DecimalEnd>(lower: &T, upper: &T, most: u32) -> Decimal {
+    rounded_alike_expanded(lower, upper, most, 0).0
+}
+
+/// [`rounded_alike`], and the ends' expansions it read, to at least `at_least` digits
+/// (for the caller's other roundings of them; `None` for a zero or an infinite end).
+pub(crate) fn rounded_alike_expanded<T: DecimalEnd>(
+    lower: &T,
+    upper: &T,
+    most: u32,
+    at_least: usize,
+) -> (Decimal, Option<(Expansion, Expansion)>) {
     if lower.is_zero() && upper.is_zero() {
-        return Decimal::Zero;
+        return (Decimal::Zero, None);
     }
     let undetermined = || Decimal::Undetermined {
-        lower: directed_decimal(lower, 2, Round::Down),
-        upper: directed_decimal(upper, 2, Round::Up),
+        lower: lower.directed(2, Round::Down),
+        upper: upper.directed(2, Round::Up),
     };
-    if !lower.is_finite()
-        || !upper.is_finite()
-        || lower.is_sign_negative() != upper.is_sign_negative()
-        || lower.is_zero()
-        || upper.is_zero()
-    {
-        return undetermined();
+    if !lower.is_finite() || !upper.is_finite() || lower.is_zero() || upper.is_zero() {
+        return (undetermined(), None);
+    }
+    // Each end expanded once, to one digit more than the most that may be printed.
+    let expand = at_least.max(most as usize + 1);
+    let expansions = (lower.expansion(expand), upper.expansion(expand));
+    if lower.is_sign_negative() != upper.is_sign_negative() {
+        return (undetermined(), Some(expansions));
     }
     // A cell of N digits is wider than the interval only for N ≤ log10(|value|/width) + 2.
-    let width = Float::with_val(64, upper - lower);
-    let magnitude = lower.get_exp().max(upper.get_exp());
+    let (lower_exact, upper_exact) = (lower.exact(), upper.exact());
+    let width = Float::with_val(64, &upper_exact - &lower_exact);
+    let magnitude = lower_exact.get_exp().max(upper_exact.get_exp());
     let most = match (magnitude, width.get_exp()) {
         (Some(v), Some(r)) => {
             let ratio_digits = (f64::from(v) - f64::from(r) + 1.0) * std::f64::consts::LOG10_2;
@@ -499,17 +523,18 @@ pub fn decimal_interval(lower: &Float, upper: &Float, most: u32) -> Decimal {
         }
         _ => most,
     };
-    (1..=most.max(1))
+    let decimal = (1..=most.max(1))
         .rev()
-        .find_map(|digits| rounds_alike(lower, upper, digits).map(|text| Decimal::Digits { text, digits }))
-        .unwrap_or_else(undetermined)
+        .find_map(|digits| alike(&expansions.0, &expansions.1, digits).map(|text| Decimal::Digits { text, digits }))
+        .unwrap_or_else(undetermined);
+    (decimal, Some(expansions))
 }
 
-/// The `digits`-digit decimal to which every point of [`lower`, `upper`] rounds, if
-/// there is one and neither end is a tie (in exact arithmetic).
-fn rounds_alike(lower: &Float, upper: &Float, digits: u32) -> Option<String> {
-    let low = nearest_decimal(lower, digits)?;
-    (nearest_decimal(upper, digits)? == low).then(|| scientific(&low))
+/// The `digits`-digit decimal to which every point between two expanded ends rounds, if
+/// there is one and neither end is a tie.
+fn alike(lower: &Expansion, upper: &Expansion, digits: u32) -> Option<String> {
+    let low = lower.nearest(digits as usize)?;
+    (upper.nearest(digits as usize)? == low).then(|| scientific(&low))
 }
 
 /// The ends of [`value` − `radius`, `value` + `radius`], rounded outwards (exact for f64
@@ -519,38 +544,6 @@ pub(crate) fn ends(value: &Float, radius: &Float) -> (Float, Float) {
     let (lower, _) = Float::with_val_round(bits, value - radius, Round::Down);
     let (upper, _) = Float::with_val_round(bits, value + radius, Round::Up);
     (lower, upper)
-}
-
-/// A decimal as MPFR gives it: sign, significant digits, exponent of 0.d₁d₂….
-type DecimalParts = (bool, String, i32);
-
-/// `x` rounded to nearest to `digits` significant digits, or `None` where `x` lies on a
-/// rounding boundary (exactly halfway between two such decimals).
-fn nearest_decimal(x: &Float, digits: u32) -> Option<DecimalParts> {
-    let finer = digits as usize + 1;
-    let (_, down, _) = x.to_sign_string_exp_round(10, Some(finer), Round::Down);
-    if down.ends_with('5') && x.to_sign_string_exp_round(10, Some(finer), Round::Up).1 == down {
-        return None;
-    }
-    let (negative, mantissa, exponent) = x.to_sign_string_exp_round(10, Some(digits as usize), Round::Nearest);
-    Some((negative, mantissa, exponent.unwrap_or(1)))
-}
-
-/// `x` to `digits` significant digits rounded in the direction `round`.
-fn directed_decimal(x: &Float, digits: usize, round: Round) -> String {
-    if x.is_zero() || !x.is_finite() {
-        return x.to_f64().to_string();
-    }
-    let (negative, mantissa, exponent) = x.to_sign_string_exp_round(10, Some(digits), round);
-    scientific(&(negative, mantissa, exponent.unwrap_or(1)))
-}
-
-/// MPFR's digits d₁d₂… and exponent e of 0.d₁d₂… × 10^e as `d₁.d₂…e(e − 1)`.
-fn scientific((negative, mantissa, exponent): &DecimalParts) -> String {
-    let (first, rest) = mantissa.split_at(1);
-    let sign = if *negative { "-" } else { "" };
-    let dot = if rest.is_empty() { "" } else { "." };
-    format!("{sign}{first}{dot}{rest}e{}", exponent - 1)
 }
 
 #[cfg(test)]

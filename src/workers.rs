@@ -1,13 +1,19 @@
-//! Independent items of work on threads of their own, a fixed number at a time.
+//! Independent items of work on threads of their own: a fixed number at a time
+//! ([`each_on_own_threads`]), or handed in chunk after chunk to threads that live as long
+//! as their pool, each item within a time limit ([`TimedWorkers`]).
 //!
 //! The gate's steps and a batch's rows are dealt out by plain threads, not by rayon's
-//! workers: an item may wait (a batch row for its own thread, to be given up at its
-//! budget) and may itself run parallel work on the pool (a large node table is computed
-//! on it). Were the pool's workers the ones waiting, an item would wait for a pool whose
-//! every worker waits for an item, until the budget ran out.
+//! workers: a row given up at its time limit is left running on its thread, and an item
+//! may itself run parallel work on the pool (a large node table is computed on it). Were
+//! the pool's workers the ones running the items, that work could wait for a pool whose
+//! every worker is busy with an item, until the budget ran out.
 
 use std::sync::atomic::{AtomicUsize, Ordering};
 use std::sync::mpsc;
+
+mod timed;
+
+pub use timed::{Ticket, TimedWorkers, Unanswered};
 
 /// `work(i)` for every i in 0..`count`, on `threads` threads (at least one), and
 /// `finished(i, &result)` on the caller's thread as each ends, in the order they end.

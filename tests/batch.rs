@@ -667,3 +667,50 @@ fn a_path_column_names_a_path_file_relative_to_the_csv_and_a_bad_file_fails_its_
     assert_eq!(lines[5]["method"], "path-displacement");
     assert_eq!(lines[5]["provenance"], "agreement");
 }
+
+/// A file's chunks of 256 rows are computed while the next is read, each thread taking the
+/// next row as it finishes one: rows of very unequal cost (every 25th near separation,
+/// about twenty times an ordinary row) over three chunks still come out in input order,
+/// the same bytes on one thread as on two.
+#[test]
+fn rows_of_unequal_cost_over_several_chunks_come_out_in_order_the_same_on_one_or_two_threads() {
+    let dir = scratch("unequal");
+    let mut rows = random_rows(36, 600);
+    for (i, row) in rows.iter_mut().enumerate().step_by(25) {
+        let spec = ["power:c=1,beta=-4", "persson:gamma=1,sigma=1"][i % 2];
+        *row = [&row[0], "1", "0.999999999", "0", "5e-10", "0.5pi", "1", "1", "", spec].map(String::from);
+    }
+    let input = dir.join("rows.csv");
+    std::fs::write(&input, to_csv(&rows)).expect("input");
+    let outputs: Vec<Vec<u8>> = ["1", "2"]
+        .iter()
+        .map(|jobs| {
+            let output = dir.join(format!("jobs-{jobs}.csv"));
+            let run = batch_files(&input, &output).args(["--jobs", jobs]).output();
+            assert!(
+                matches!(run.status.code(), Some(0 | 1)),
+                "{}",
+                String::from_utf8_lossy(&run.stderr)
+            );
+            std::fs::read(&output).expect("output")
+        })
+        .collect();
+    assert!(outputs[0] == outputs[1], "the outputs of --jobs 1 and --jobs 2 differ");
+    let mut reader = csv::Reader::from_reader(outputs[1].as_slice());
+    let ids: Vec<String> = reader
+        .records()
+        .map(|record| record.expect("record")[0].to_string())
+        .collect();
+    let expected: Vec<&String> = rows.iter().map(|row| &row[0]).collect();
+    assert_eq!(ids.iter().collect::<Vec<_>>(), expected);
+    let slow = &outputs[1]
+        .split(|&b| b == b'\n')
+        .nth(1 + 25)
+        .map(String::from_utf8_lossy);
+    assert!(
+        slow.as_ref()
+            .is_some_and(|line| line.contains("0.999999999") && line.contains("certified")),
+        "{slow:?}"
+    );
+    std::fs::remove_dir_all(&dir).expect("clean up");
+}

@@ -39,28 +39,19 @@ fn certain_digits(ball: &Ball, most: u32) -> Option<(String, u32)> {
     }
 }
 
-/// A case as exact decimals; a phase ending in `pi` is that multiple of π.
-#[derive(Clone, Debug)]
-struct Case {
-    p0: String,
-    p1: String,
-    q1: String,
-    phi: String,
-    friction: String,
-    lambda: String,
-    spec: String,
-}
+/// A case as exact decimals (the tests' one builder); a phase ending in `pi` is that
+/// multiple of π.
+type Case = CaseText;
 
 fn case(p0: &str, p1: &str, q1: &str, phi: &str, friction: &str, spec: &str) -> Case {
-    Case {
-        p0: p0.into(),
-        p1: p1.into(),
-        q1: q1.into(),
-        phi: phi.into(),
-        friction: friction.into(),
-        lambda: "1".into(),
-        spec: spec.into(),
-    }
+    common::case()
+        .p0(p0)
+        .p1(p1)
+        .q1(q1)
+        .phi(phi)
+        .friction(friction)
+        .compliance(spec)
+        .text()
 }
 
 const PERSSON: &str = "persson:gamma=1,sigma=1";
@@ -80,11 +71,11 @@ fn cycle_at<R: Real>(case: &Case, precision: Precision) -> LoadCycle<R> {
     LoadCycle {
         mean_normal_load: number(&case.p0, precision),
         normal_amplitude: number(&case.p1, precision),
-        mean_tangential_load: R::from_i64(0, precision),
+        mean_tangential_load: number(&case.q0, precision),
         tangential_amplitude: number(&case.q1, precision),
         phase: number(&case.phi, precision),
         friction: number(&case.friction, precision),
-        compliance_ratio: number(&case.lambda, precision),
+        compliance_ratio: number(case.lambda.as_deref().expect("λ given"), precision),
     }
 }
 
@@ -92,7 +83,7 @@ type BallCase = (LoadCycle<Ball>, Box<dyn Compliance<Ball>>);
 
 fn ball_case(case: &Case) -> impl Fn(Precision) -> Result<BallCase, String> + '_ {
     move |precision| {
-        let compliance = parse_spec::<Ball>(&case.spec, precision).map_err(|e| e.to_string())?;
+        let compliance = parse_spec::<Ball>(&case.compliance, precision).map_err(|e| e.to_string())?;
         Ok((cycle_at(case, precision), compliance))
     }
 }
@@ -102,7 +93,7 @@ const REFERENCE_BITS: u32 = 500;
 /// W at 500 bits by the library's Gauss–Legendre quadrature to a 1e-140 tolerance.
 fn reference(case: &Case) -> Float {
     let precision = Precision::bits(REFERENCE_BITS);
-    let compliance = parse_spec::<Float>(&case.spec, precision).unwrap();
+    let compliance = parse_spec::<Float>(&case.compliance, precision).unwrap();
     let options = Options::default()
         .with_tolerance(Float::with_val(REFERENCE_BITS, Float::parse("1e-140").unwrap()))
         .with_max_points(4096);
@@ -117,7 +108,7 @@ fn reference(case: &Case) -> Float {
 /// by the library's quadrature to a 1e-140 tolerance.
 fn reference_in_the_angle(case: &Case) -> Float {
     let precision = Precision::bits(REFERENCE_BITS);
-    let compliance = parse_spec::<Float>(&case.spec, precision).unwrap();
+    let compliance = parse_spec::<Float>(&case.compliance, precision).unwrap();
     let cycle = cycle_at::<Float>(case, precision);
     let geometry = cycle.geometry().unwrap();
     let integrands = SegmentIntegrands {
@@ -363,7 +354,7 @@ fn segments_sum_to_w_and_each_holds_its_reference() {
     let (cycle, compliance) = ball_case(&case)(precision).unwrap();
     let enclosure = enclose_dissipation(&cycle, compliance.as_ref(), 200).unwrap();
     let float_precision = Precision::bits(REFERENCE_BITS);
-    let float_compliance = parse_spec::<Float>(&case.spec, float_precision).unwrap();
+    let float_compliance = parse_spec::<Float>(&case.compliance, float_precision).unwrap();
     let options = Options {
         relative_tolerance: Some(Float::with_val(REFERENCE_BITS, Float::parse("1e-100").unwrap())),
         ..Options::default()
@@ -394,7 +385,7 @@ const FAMILIES: [&str; 10] = [
 fn every_family_and_sum_is_certified_at_30_digits() {
     for spec in FAMILIES {
         let mut case = acceptance();
-        case.spec = spec.into();
+        case.compliance = spec.into();
         assert_certified(&case, 30);
     }
 }
@@ -445,7 +436,7 @@ fn random_cases_across_the_families_are_certified_at_40_digits() {
         let phi = draws.decimal(0.05, 3.1);
         let q1 = draws.decimal(0.01, 1.2);
         let mut case = case("1", &p1, &q1, &phi, &friction, specs[certified % specs.len()]);
-        case.lambda = draws.decimal(1.0, 2.0);
+        case.lambda = Some(draws.decimal(1.0, 2.0));
         // Only cycles the theory covers (the draw is of loads, not of valid cycles).
         if cycle_at::<f64>(&case, Precision::DOUBLE).validate().is_err() {
             continue;
@@ -552,7 +543,7 @@ fn a_perturbation_of_1e_minus_40_moves_the_enclosure_off_the_old_value() {
     let plain = acceptance();
     let mut perturbed = acceptance();
     // v' + 1e-40·P: a linear term, which dissipates (W is linear in v', and v'' ≠ 0).
-    perturbed.spec = format!("{PERSSON}+poly:p0=0,coeffs=0;1e-40");
+    perturbed.compliance = format!("{PERSSON}+poly:p0=0,coeffs=0;1e-40");
     let old = reference(&plain);
     let moved = certified_dissipation(ball_case(&perturbed), 50).unwrap();
     assert!(!moved.enclosure.total.contains(&old), "{:?}", moved.enclosure.total);
@@ -606,7 +597,7 @@ fn exactly_in_phase_is_enclosed_by_its_closed_form() {
         "poly:p0=1,coeffs=1;-0.3;0.05",
     ] {
         let mut degenerate = case("1", "0.4", "0.5", "0", "1", spec);
-        degenerate.lambda = "1.5".into();
+        degenerate.lambda = Some("1.5".into());
         let mut near = degenerate.clone();
         near.phi = "1e-60".into();
         assert_limit_overlaps(&degenerate, &near, 30);
@@ -706,7 +697,7 @@ fn segment_enclosures_hold_the_exact_polynomial_w() {
             "0.9",
             &spec,
         );
-        case.lambda = draws.decimal(1.0, 2.0);
+        case.lambda = Some(draws.decimal(1.0, 2.0));
         if cycle_at::<f64>(&case, Precision::DOUBLE).validate().is_err() {
             continue;
         }
@@ -824,7 +815,7 @@ fn random_cases_at_the_corners_hold_their_100_digit_references() {
             &friction,
             &scaled_spec(family, k),
         );
-        corner.lambda = draws.decimal(1.0, 2.0);
+        corner.lambda = Some(draws.decimal(1.0, 2.0));
         if cycle_at::<Float>(&corner, Precision::bits(200)).validate().is_err() {
             continue;
         }
@@ -835,24 +826,13 @@ fn random_cases_at_the_corners_hold_their_100_digit_references() {
 
 /// W of `case` printed by the library's one policy, with `digits` digits, or its refusal.
 fn printed_w(case: &Case, digits: u32) -> Result<Answer, ReferenceError> {
-    let text = CaseText {
-        p0: case.p0.clone(),
-        p1: case.p1.clone(),
-        q0: "0".into(),
-        q1: case.q1.clone(),
-        phi: case.phi.clone(),
-        friction: case.friction.clone(),
-        lambda: Some(case.lambda.clone()),
-        nu: None,
-        compliance: case.spec.clone(),
-    };
-    dissipation_answer(&text, Some(digits), Duration::from_secs(60))
+    dissipation_answer(case, Some(digits), Duration::from_secs(60))
 }
 
 /// An exponential v' = a·e^(−P/c) + d at loads of many decay loads c.
 fn decay_case(p0: &str, p1: &str, q1: &str, phi: &str, decay_load: &str) -> Case {
     Case {
-        lambda: "1.14".into(),
+        lambda: Some("1.14".into()),
         ..case(p0, p1, q1, phi, "1.19", &format!("exp:a=2.204,c={decay_load},d=0.3174"))
     }
 }

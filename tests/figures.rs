@@ -10,12 +10,13 @@ use microslip::case::Case;
 use microslip::compliance::Polynomial;
 use microslip::cycle::{CycleError, LoadCycle};
 use microslip::dissipation::{dissipation, Options};
+use microslip::figures::cubic_law::{amplitudes, cubic_law_errors, cubic_law_figure};
 use microslip::figures::draw::{curve_style, figure_picture, plotted, slope_guide, FIGURE_WIDTH};
 use microslip::figures::evaluate::{
     fitted_log_slope, gross_slip_amplitude, gross_slip_amplitude_at_ratio, limit_slope, local_slope, resolved, Formula,
     Point,
 };
-use microslip::figures::{compute, Figures, Progress, Style};
+use microslip::figures::{compute, Figure, Figures, Progress, Style};
 use microslip::plot::layout::{Frame, Rect};
 use microslip::plot::{accuracy_picture, cycle_picture, Format, Picture};
 use microslip::real::{Precision, Real};
@@ -28,6 +29,16 @@ use rug::Float;
 fn figures() -> &'static Figures {
     static FIGURES: OnceLock<Figures> = OnceLock::new();
     FIGURES.get_or_init(|| compute(&Progress::new(0, &|_, _| {})).expect("the figures compute"))
+}
+
+/// Every figure `figures` draws: the paper's, then the cubic law's error.
+fn drawn_figures() -> Vec<&'static Figure> {
+    static CUBIC_LAW: OnceLock<Figure> = OnceLock::new();
+    let cubic_law = CUBIC_LAW.get_or_init(|| {
+        let points = cubic_law_errors(&amplitudes(), &Progress::new(0, &|_, _| {}));
+        cubic_law_figure(&points.expect("the cubic law's error computes"))
+    });
+    figures().figures.iter().chain([cubic_law]).collect()
 }
 
 fn w_hat(normal: f64, tangential: f64, phase_over_pi: f64) -> f64 {
@@ -328,9 +339,9 @@ fn file_names_in(dir: &std::path::Path) -> Vec<String> {
 /// The files `figures` writes with a file per figure in each of `extensions`, sorted.
 fn expected_files(extensions: &[&str]) -> Vec<String> {
     let mut expected = vec!["facts.json".to_string(), "limit_slopes.csv".to_string()];
-    for n in 4..=8 {
+    for stem in ["fig4", "fig5", "fig6", "fig7", "fig8", "cubic_law_error"] {
         for ext in extensions {
-            expected.push(format!("fig{n}.{ext}"));
+            expected.push(format!("{stem}.{ext}"));
         }
     }
     expected.sort();
@@ -375,6 +386,15 @@ fn figures_command_writes_every_file_atomically_with_numeric_facts() {
     assert_eq!(fig7.lines().filter(|l| !l.ends_with(',')).count(), 1 + 8, "{fig7}");
     let png = std::fs::read(dir.join("fig8.png")).unwrap();
     assert_eq!(&png[1..4], b"PNG");
+    // The cubic law's error: a row per panel, phase and amplitude, its band reported.
+    let cubic_law = std::fs::read_to_string(dir.join("cubic_law_error.csv")).unwrap();
+    assert!(cubic_law.starts_with("panel,phi_over_pi,p1_over_p0,true_relative_error,proven_relative_bound,"));
+    assert_eq!(cubic_law.lines().count(), 1 + 2 * 3 * 31);
+    let stdout = String::from_utf8_lossy(&output.stdout);
+    assert!(
+        stdout.contains("cubic law's error, hertz, φ = 0.9π: proven band / true error"),
+        "{stdout}"
+    );
     std::fs::remove_dir_all(&dir).unwrap();
 }
 
@@ -426,7 +446,7 @@ fn assert_legend_drawn(svg: &str, legend: &Rect) {
 
 #[test]
 fn no_figure_legend_covers_a_curve_point_line_or_marker() {
-    for figure in &figures().figures {
+    for figure in drawn_figures() {
         let picture = figure_picture(figure).unwrap();
         assert_eq!(picture.charts.len(), figure.panels.len());
         for (chart, panel) in picture.charts.iter().zip(&figure.panels) {
@@ -480,7 +500,7 @@ fn no_figure_legend_covers_a_curve_point_line_or_marker() {
                 }
             }
             if figure.log_log {
-                let (line, _) = slope_guide(panel, figure.number).unwrap();
+                let (line, _) = slope_guide(panel, figure.guide_slope.unwrap()).unwrap();
                 let guide: Vec<(f64, f64)> = line.iter().map(|p| pixel(&chart.frame, *p)).collect();
                 assert!(
                     line_touches(&guide, &legend).is_none(),
@@ -614,9 +634,8 @@ fn is_power_of_ten(text: &str) -> bool {
 
 #[test]
 fn no_tick_reads_negative_zero_and_log_axes_show_powers_of_ten() {
-    let mut svgs: Vec<(String, bool)> = figures()
-        .figures
-        .iter()
+    let mut svgs: Vec<(String, bool)> = drawn_figures()
+        .into_iter()
         .map(|f| (figure_picture(f).unwrap().svg, f.log_log))
         .collect();
     for (cycle, result) in simulated_cycles() {
@@ -746,9 +765,8 @@ fn font_sizes(svg: &str) -> Vec<f64> {
 
 /// Every picture the program draws: the figures, the simulate plots, an accuracy chart.
 fn every_picture() -> Vec<(String, Picture)> {
-    let mut pictures: Vec<(String, Picture)> = figures()
-        .figures
-        .iter()
+    let mut pictures: Vec<(String, Picture)> = drawn_figures()
+        .into_iter()
         .map(|f| (format!("Fig. {}", f.number), figure_picture(f).unwrap()))
         .collect();
     for (cycle, result) in simulated_cycles().iter().take(1) {
@@ -765,7 +783,7 @@ fn every_picture() -> Vec<(String, Picture)> {
 fn every_text_prints_at_eight_points_or_more_at_column_width() {
     // A figure prints at a column width of 85 mm: 8 pt = 8 × 25.4/72 mm is then
     // 8 × 25.4/72 × (canvas width / 85) canvas units, 19.9 for the 600-unit figures.
-    for figure in &figures().figures {
+    for figure in drawn_figures() {
         let picture = figure_picture(figure).unwrap();
         assert_eq!(picture.size.0, FIGURE_WIDTH);
         assert!((picture.print_width_mm() - 85.0).abs() < 1e-9);
@@ -788,7 +806,7 @@ fn every_text_prints_at_eight_points_or_more_at_column_width() {
 
 #[test]
 fn curves_of_a_panel_differ_in_dash_pattern_and_marker_not_only_colour() {
-    for figure in &figures().figures {
+    for figure in drawn_figures() {
         let svg = figure_picture(figure).unwrap().svg;
         for panel in &figure.panels {
             let lines: Vec<usize> = (0..panel.curves.len())

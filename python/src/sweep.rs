@@ -134,7 +134,7 @@ pub fn sweep<'py>(
 
 /// The printed W of each row as a float, or why the row failed.
 fn run(rows: &[InputRow], digits: Option<u32>, budget: Duration) -> Vec<Result<f64, String>> {
-    batch::run(rows, digits, budget, &|| {})
+    batch::run(rows, digits, budget)
         .into_iter()
         .map(|result| match &result.answer {
             Some(report) if result.succeeded() => Ok(float_of(&report.answer.value)),

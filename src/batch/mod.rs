@@ -11,8 +11,10 @@ use crate::path::{path_answer, AgreedW, PathAnswer, PathFormat, PathRequest, Rat
 use crate::reference::ReferenceError;
 
 mod input;
+mod pool;
 
 pub use input::{check_input, read_input, BatchInput, InputRow, PathRow, MAX_RECORD_BYTES};
+pub use pool::{RowPool, Ticket};
 
 pub use crate::dissipation_answer::{TableEstimate, TABLE_QUADRATURE_TOLERANCE};
 
@@ -27,10 +29,20 @@ pub enum BatchError {
     Input(String),
     /// Required columns are missing.
     #[error("batch input has no column {missing} (its header is '{header}'); a batch needs p0, p1, q1, phi, friction, lambda or nu, compliance, and optionally q0 and id (or a column path naming a path file in place of p0, p1, q0, q1, phi, with an optional drive)")]
-    MissingColumns { missing: String, header: String },
+    MissingColumns {
+        /// The first required column the header lacks.
+        missing: String,
+        /// The header as read.
+        header: String,
+    },
     /// A column is named twice: which one a row's value came from would be a guess.
     #[error("batch input names the column '{name}' twice (its header is '{header}'); give each column once")]
-    DuplicateColumn { name: String, header: String },
+    DuplicateColumn {
+        /// The column named twice.
+        name: String,
+        /// The header as read.
+        header: String,
+    },
 }
 
 /// The columns a batch appends to its input's: the first six as they have always been,
@@ -160,115 +172,32 @@ fn path_result(row: &PathRow, digits: Option<u32>, budget: Duration) -> Result<P
     path_answer(&request).map_err(|error| format!("{error}{}", error.hint()))
 }
 
-/// What a row gets beyond its budget to return its own, more specific, answer.
-const ROW_GRACE: Duration = Duration::from_millis(500);
-
-/// Stack of a row's thread: as large as a command's worker has.
-const ROW_STACK_BYTES: usize = 64 << 20;
-
-/// A unit of work for a row thread.
-type Job = Box<dyn FnOnce() + Send>;
-
-/// The threads rows run on, beside the pool that waits for them: a row that outlasts
-/// its budget is left to finish on its thread, which then ends, while the batch goes on.
-/// Idle threads are reused (a thread per row would cost more than an f64 row), and end
-/// when the batch is over.
-#[derive(Default)]
-struct RowThreads {
-    idle: std::sync::Mutex<Vec<std::sync::mpsc::Sender<Job>>>,
-}
-
-impl RowThreads {
-    /// An idle thread, or a new one.
-    fn take(&self) -> Option<std::sync::mpsc::Sender<Job>> {
-        if let Some(idle) = self.idle.lock().ok().and_then(|mut idle| idle.pop()) {
-            return Some(idle);
-        }
-        let (sender, receiver) = std::sync::mpsc::channel::<Job>();
-        let thread = std::thread::Builder::new().stack_size(ROW_STACK_BYTES);
-        thread
-            .spawn(move || {
-                // Until its sender is dropped: by the pool at the end, or by a row that gave up.
-                while let Ok(job) = receiver.recv() {
-                    job();
-                }
-            })
-            .ok()?;
-        Some(sender)
-    }
-
-    /// `work()` on a row thread, or None when it has not answered within `budget` and
-    /// [`ROW_GRACE`]: the computation keeps its deadline itself, but a step already under
-    /// way (one Arb integration, a rule whose cost was predicted short) cannot be
-    /// stopped, and is left to finish on its own rather than hold the batch.
-    fn within_budget<T: Send + 'static>(
-        &self,
-        budget: Duration,
-        work: impl FnOnce() -> T + Send + 'static,
-    ) -> Option<std::thread::Result<T>> {
-        let Some(thread) = self.take() else {
-            return Some(Err(Box::new("cannot start a thread")));
-        };
-        let (sender, receiver) = std::sync::mpsc::channel();
-        let job: Job = Box::new(move || {
-            let _ = sender.send(std::panic::catch_unwind(std::panic::AssertUnwindSafe(work)));
-        });
-        if thread.send(job).is_err() {
-            return Some(Err(Box::new("a row thread ended")));
-        }
-        let answer = receiver.recv_timeout(budget.saturating_add(ROW_GRACE)).ok()?;
-        if let Ok(mut idle) = self.idle.lock() {
-            idle.push(thread);
-        }
-        Some(answer)
-    }
-}
-
-fn row_result(threads: &RowThreads, row: &InputRow, digits: Option<u32>, budget: Duration) -> RowResult {
-    let failed = |error: String| RowResult {
-        error: format!("line {}: {}", row.line, printable(&error)),
+/// The result of a row that failed with `error`, naming the row's line.
+fn failed_row(row: &InputRow, error: &str) -> RowResult {
+    RowResult {
+        error: format!("line {}: {}", row.line, printable(error)),
         ..RowResult::default()
-    };
-    let outcome = match (&row.path, &row.case) {
-        (Some(Err(problem)), _) | (None, Err(problem)) => return failed(problem.clone()),
-        (Some(Ok(path)), _) => {
-            let path = path.clone();
-            threads.within_budget(budget, move || {
-                path_result(&path, digits, budget).map(RowResult::of_path)
-            })
-        }
-        (None, Ok(case)) => {
-            let case = case.clone();
-            threads.within_budget(budget, move || {
-                dissipation_report(&case, digits, budget)
-                    .map(RowResult::of)
-                    .map_err(|error| error.to_string())
-            })
-        }
-    };
-    match outcome {
-        Some(Ok(Ok(result))) => result,
-        Some(Ok(Err(error))) => failed(error),
-        Some(Err(_)) => failed("internal error: the computation panicked (please report this case)".to_string()),
-        None => failed(format!(
-            "the time budget of {} s per row ran out before the result was reached; raise --max-seconds",
-            budget.as_secs_f64()
-        )),
     }
+}
+
+/// The result of a row, computed on this thread.
+fn row_result(row: &InputRow, digits: Option<u32>, budget: Duration) -> RowResult {
+    let outcome = match (&row.path, &row.case) {
+        (Some(Err(problem)), _) | (None, Err(problem)) => Err(problem.clone()),
+        (Some(Ok(path)), _) => path_result(path, digits, budget).map(RowResult::of_path),
+        (None, Ok(case)) => dissipation_report(case, digits, budget)
+            .map(RowResult::of)
+            .map_err(|error| error.to_string()),
+    };
+    outcome.unwrap_or_else(|error| failed_row(row, &error))
 }
 
 /// Every row on as many threads as rayon's pool has, each within `budget`, in input
-/// order; `row_done` is called as each row finishes. The rows are dealt out by threads of
-/// their own, which wait for the rows' threads, so that the pool stays free for the
-/// node tables a row computes on it.
-pub fn run(rows: &[InputRow], digits: Option<u32>, budget: Duration, row_done: &(dyn Fn() + Sync)) -> Vec<RowResult> {
-    let threads = RowThreads::default();
-    crate::workers::each_on_own_threads(
-        rows.len(),
-        rayon::current_num_threads(),
-        |index| row_result(&threads, &rows[index], digits, budget),
-        |_, _| row_done(),
-    )
+/// order (a [`RowPool`] for these rows alone).
+pub fn run(rows: &[InputRow], digits: Option<u32>, budget: Duration) -> Vec<RowResult> {
+    let pool = RowPool::new(rayon::current_num_threads(), digits, budget);
+    let ticket = pool.hand_in(rows.into());
+    pool.collect(ticket, &mut |_| {})
 }
 
 /// The input columns that are echoed (all but those named like a result column).

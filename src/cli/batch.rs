@@ -1,13 +1,15 @@
 //! `microslip batch`: W for every row of a CSV file, as CSV or JSON lines, row by row
 //! as the input streams in.
 
+use std::collections::VecDeque;
 use std::io::{Read, Write};
 use std::path::Path;
+use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use clap::Args;
 
-use microslip::batch::{self, BatchError, InputRow, RowResult};
+use microslip::batch::{self, BatchError, InputRow, RowPool, RowResult, Ticket};
 use microslip::files::{check_writable, StreamedOutput};
 
 use super::case::Jobs;
@@ -26,7 +28,8 @@ pub struct BatchArgs {
     #[arg(long)]
     pub output: String,
     /// Significant digits for every row (1–1000), proven by a rigorous enclosure where one can be had
-    /// (the provenance column says what vouches for each); without it, f64 as a single run.
+    /// (the provenance column says what vouches for each); without it, the 12–15 digits
+    /// an f64 interval enclosure proves (Arb balls, for 15, where it proves fewer).
     #[arg(long, allow_hyphen_values = true, value_parser = parse::digits)]
     pub digits: Option<u32>,
     /// Output format.
@@ -65,7 +68,8 @@ pub fn run(args: &BatchArgs) -> Result<usize, Failure> {
     } else {
         Box::new(std::fs::File::open(&args.input).map_err(|e| Failure::refused(format!("{}: {e}", args.input)))?)
     };
-    if args.input != "-" && std::fs::metadata(&args.input).is_ok_and(|m| m.is_file()) {
+    let input_is_file = args.input != "-" && std::fs::metadata(&args.input).is_ok_and(|m| m.is_file());
+    if input_is_file {
         let file = std::fs::File::open(&args.input).map_err(|e| Failure::refused(format!("{}: {e}", args.input)))?;
         batch::check_input(std::io::BufReader::new(file)).map_err(refused)?;
     }
@@ -81,38 +85,51 @@ pub fn run(args: &BatchArgs) -> Result<usize, Failure> {
     // The CSV header goes out with the first rows, so that input refused before them
     // leaves a stream output empty.
     let mut pending = if jsonl { Vec::new() } else { batch::csv_header(&header)? };
+    // A file has been read whole already, so the next chunk is read and handed in while
+    // this one is computed (the threads never wait for it); a stream is answered a chunk
+    // at a time, so that a program feeding it rows never waits for rows it has not sent.
+    let chunks_in_hand = if input_is_file { 2 } else { 1 };
+    let pool = RowPool::new(rayon::current_num_threads(), args.digits, args.max_seconds);
+    let mut in_hand: VecDeque<(Ticket, Arc<[InputRow]>)> = VecDeque::new();
+    let (mut input_ended, mut refusal) = (false, None);
     let progress = Progress::new(0);
-    let done = std::sync::atomic::AtomicUsize::new(0);
     let started = Instant::now();
-    let (mut rows_done, mut failed) = (0, 0);
+    let (mut rows_read, mut rows_done, mut failed) = (0, 0, 0);
     let mut phase_warning = None;
     loop {
-        let chunk: Vec<InputRow> = input
-            .by_ref()
-            .take(ROWS_PER_CHUNK)
-            .collect::<Result<_, _>>()
-            .map_err(refused)?;
-        if chunk.is_empty() {
+        while !input_ended && refusal.is_none() && in_hand.len() < chunks_in_hand {
+            let chunk: Vec<InputRow> = match input.by_ref().take(ROWS_PER_CHUNK).collect() {
+                Ok(chunk) => chunk,
+                Err(error) => {
+                    refusal = Some(error);
+                    break;
+                }
+            };
+            if chunk.is_empty() {
+                input_ended = true;
+                break;
+            }
+            if phase_warning.is_none() {
+                phase_warning = chunk.iter().find_map(|row| {
+                    let phi = row.case.as_ref().ok().map(|case| case.phi.as_str())?;
+                    radians_warning(&format!("line {}: phi", row.line), phi)
+                });
+            }
+            rows_read += chunk.len();
+            let chunk: Arc<[InputRow]> = chunk.into();
+            in_hand.push_back((pool.hand_in(Arc::clone(&chunk)), chunk));
+        }
+        let Some((ticket, chunk)) = in_hand.pop_front() else {
             break;
-        }
-        if phase_warning.is_none() {
-            phase_warning = chunk.iter().find_map(|row| {
-                let phi = row.case.as_ref().ok().map(|case| case.phi.as_str())?;
-                radians_warning(&format!("line {}: phi", row.line), phi)
-            });
-        }
-        let read = rows_done + chunk.len();
-        let results = batch::run(&chunk, args.digits, args.max_seconds, &|| {
-            let finished = done.fetch_add(1, std::sync::atomic::Ordering::Relaxed) + 1;
-            progress.at_of(finished, read, "rows");
-        });
+        };
+        let results = pool.collect(ticket, &mut |answered| progress.at_of(answered, rows_read, "rows"));
         let mut bytes = std::mem::take(&mut pending);
         bytes.extend(if jsonl {
             super::json::lines(&super::json::batch_rows(&header, &chunk, &results))?
         } else {
             batch::csv_rows(&header, &chunk, &results)?
         });
-        rows_done = read;
+        rows_done += chunk.len();
         failed += results.iter().filter(|r| !RowResult::succeeded(r)).count();
         match output.write_all(&bytes).and_then(|()| output.flush()) {
             // The reader of standard output has gone: nothing more is wanted.
@@ -122,6 +139,11 @@ pub fn run(args: &BatchArgs) -> Result<usize, Failure> {
             }
             written => written.map_err(lost)?,
         }
+    }
+    // Input that stops being CSV part-way: the chunks before it are written, not the rest.
+    if let Some(error) = refusal {
+        progress.finish();
+        return Err(refused(error));
     }
     progress.finish();
     output.write_all(&pending).map_err(lost)?;

@@ -1,4 +1,4 @@
-//! `microslip figures`: the paper's Figures 4–8 and facts.json.
+//! `microslip figures`: the paper's Figures 4–8, the cubic law's error and facts.json.
 
 use std::path::PathBuf;
 
@@ -13,7 +13,8 @@ use super::report::Failure;
 
 #[derive(Args)]
 pub struct FiguresArgs {
-    /// Directory for fig4…fig8 (.csv and the pictures), limit_slopes.csv and facts.json.
+    /// Directory for fig4…fig8 and cubic_law_error (.csv and the pictures), limit_slopes.csv
+    /// and facts.json.
     #[arg(long)]
     pub out: PathBuf,
     /// The picture formats, comma-separated or repeated: svg, png (at 2×) and pdf
@@ -63,11 +64,16 @@ pub fn run(args: &FiguresArgs) -> Result<String, Failure> {
         _ => Failure::failed(error.to_string()),
     })?;
     let facts = microslip::figures::output::FactsJson::of(&summary.figures.facts);
-    Ok(format!(
+    let mut text = format!(
         "{} files written to {}\n{}\n{}",
         summary.files.len(),
         args.out.display(),
         serde_json::to_string_pretty(&facts)?,
         summary.figures.facts.settling_report()
-    ))
+    );
+    if !summary.cubic_law.is_empty() {
+        text.push('\n');
+        text.push_str(&microslip::figures::cubic_law::band_report(&summary.cubic_law));
+    }
+    Ok(text)
 }

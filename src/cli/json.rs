@@ -348,7 +348,7 @@ mod tests {
         let input = microslip::batch::read_input(text.as_bytes()).unwrap();
         let header = input.header.clone();
         let rows: Vec<InputRow> = input.map(Result::unwrap).collect();
-        let results = microslip::batch::run(&rows, None, Duration::from_secs(10), &|| {});
+        let results = microslip::batch::run(&rows, None, Duration::from_secs(10));
         let lines: Vec<serde_json::Value> = batch_rows(&header, &rows, &results)
             .iter()
             .map(|row| serde_json::to_value(row).unwrap())

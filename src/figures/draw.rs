@@ -1,10 +1,10 @@
-//! The pictures of Figures 4–8: SVG, PNG or PDF by the file name's extension.
-//! A panel is 600 units wide, printing at a column width of 85 mm with 8-pt type; a
-//! figure of two panels stacks them. Log–log figures are drawn in log10 of both
-//! variables with the ticks labelled as powers of ten; each curve has its own colour,
-//! dash pattern and markers; a curve's end at gross slip is marked with a cross; the
-//! legend sits under the charts, off the data, and the notes (what is stated rather
-//! than drawn) under it.
+//! The pictures of Figures 4–8 and of the cubic law's error: SVG, PNG or PDF by the
+//! file name's extension. A panel is 600 units wide, printing at a column width of
+//! 85 mm with 8-pt type; a figure of two panels stacks them. Log–log figures are drawn
+//! in log10 of both variables with the ticks labelled as powers of ten; each curve has
+//! its own colour, dash pattern and markers; a curve's end at gross slip is marked with
+//! a cross; the legend sits under the charts, off the data, and the notes (what is
+//! stated rather than drawn) under it.
 
 use std::path::Path;
 
@@ -116,10 +116,9 @@ pub fn gross_slip_ends(curve: &Curve, log_log: bool) -> Vec<(f64, f64)> {
 }
 
 /// The dashed reference line of the small-amplitude slope on a log–log panel (3 for
-/// fixed ratios, 2 for fixed P̂1): its ends a decade below the lowest curve's first
-/// sample and 1.5 decades to the right, and the slope.
-pub fn slope_guide(panel: &Panel, number: u32) -> Option<([(f64, f64); 2], f64)> {
-    let slope = if number == 8 { 2.0 } else { 3.0 };
+/// fixed ratios, 2 for fixed P̂1, 1 for the cubic law's error): its ends a decade below
+/// the lowest curve's first sample and 1.5 decades to the right, and the slope.
+pub fn slope_guide(panel: &Panel, slope: f64) -> Option<([(f64, f64); 2], f64)> {
     let (x0, y0) = panel
         .curves
         .iter()
@@ -129,6 +128,14 @@ pub fn slope_guide(panel: &Panel, number: u32) -> Option<([(f64, f64); 2], f64)>
         .min_by(|a, b| a.1.total_cmp(&b.1))?;
     let (x1, y0) = (x0 + 1.5, y0 - 1.0);
     Some(([(x0, y0), (x1, y0 + slope * (x1 - x0))], slope))
+}
+
+/// The slope guide of `panel`, where its figure is log–log and has one.
+fn guide_of(figure: &Figure, panel: &Panel) -> Option<([(f64, f64); 2], f64)> {
+    figure
+        .guide_slope
+        .filter(|_| figure.log_log)
+        .and_then(|slope| slope_guide(panel, slope))
 }
 
 /// The radius of Fig. 4's integrated points.
@@ -197,7 +204,7 @@ fn legend_entries(figure: &Figure, panel: &Panel) -> Vec<LegendEntry> {
             swatch: Swatch::Cross(BLACK.to_rgba()),
         });
     }
-    if let Some((_, slope)) = figure.log_log.then(|| slope_guide(panel, figure.number)).flatten() {
+    if let Some((_, slope)) = guide_of(figure, panel) {
         entries.push(LegendEntry {
             label: format!("slope {slope}"),
             swatch: Swatch::Dashed(GUIDE.to_rgba(), 2.0),
@@ -264,7 +271,7 @@ fn draw_panel(
         .x_label_formatter(&|v| tick(v, &x_range))
         .y_label_formatter(&|v| tick(v, &y_range))
         .x_desc(format!("{}  (dimensionless)", figure.x_label))
-        .y_desc("Ŵ = W/(C λ f² P0)  (dimensionless)")
+        .y_desc(format!("{}  (dimensionless)", figure.y_label))
         .label_style((FAMILY, TEXT))
         .axis_desc_style((FAMILY, TEXT))
         .light_line_style(WHITE)
@@ -272,7 +279,7 @@ fn draw_panel(
     let pixels = |points: &[(f64, f64)]| points.iter().map(|p| frame.pixel(*p)).collect::<Vec<_>>();
     let with_markers = marked(panel);
     overlay.clip(&frame.area);
-    if let Some((line, _)) = log.then(|| slope_guide(panel, figure.number)).flatten() {
+    if let Some((line, _)) = guide_of(figure, panel) {
         overlay.polyline(&pixels(&line), Stroke::dashed(GUIDE.to_rgba(), 2.0));
     }
     for (index, curve) in panel.curves.iter().enumerate() {

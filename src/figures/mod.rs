@@ -6,10 +6,13 @@
 //!   cannot vouch for it), the gross-slip limits, local and fitted log–log slopes;
 //! - [`sweeps`]: the curves of each figure and the facts;
 //! - [`output`]: the CSV files, `facts.json`, written atomically;
-//! - [`draw`]: the pictures (SVG, PNG and PDF).
+//! - [`draw`]: the pictures (SVG, PNG and PDF);
+//! - [`cubic_law`]: the cubic law's proven error band beside its true error, for
+//!   Persson's and Hertz's compliances.
 //!
 //! What the numbers show against the paper's words is in proofs/figures.md.
 
+pub mod cubic_law;
 pub mod draw;
 pub mod evaluate;
 pub mod output;
@@ -56,19 +59,23 @@ pub struct Panel {
     pub curves: Vec<Curve>,
 }
 
-/// One of the paper's figures.
+/// One of the paper's figures, or the cubic law's error band.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Figure {
-    /// 4 to 8.
+    /// 4 to 8, the paper's numbers; 9, [`cubic_law::CUBIC_LAW_FIGURE`], the cubic law's error.
     pub number: u32,
     /// The abscissa's axis label, in the paper's variables.
     pub x_label: &'static str,
+    /// The ordinate's axis label.
+    pub y_label: &'static str,
     /// The abscissa's CSV column name.
     pub x_column: &'static str,
     /// The name of the parameter that tells the curves apart (CSV column).
     pub curve_column: &'static str,
     /// Logarithmic axes (Figs. 6–8).
     pub log_log: bool,
+    /// The slope of the dashed reference line on a log–log figure (the small-amplitude limit).
+    pub guide_slope: Option<f64>,
     /// Its charts.
     pub panels: Vec<Panel>,
     /// What the figure states rather than draws (e.g. W = 0 for P̂1/Q̂1 ≥ 1).

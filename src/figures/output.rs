@@ -1,5 +1,6 @@
 //! Writing the figures: per figure a CSV and a picture in each format asked for (SVG,
-//! PNG, PDF), plus `limit_slopes.csv`
+//! PNG, PDF), the cubic law's error (`cubic_law_error.csv` and its pictures, where
+//! certified W is built), plus `limit_slopes.csv`
 //! (every local slope of every limit sequence) and `facts.json`. Everything is rendered
 //! in memory first; each file is then written to a temporary name in the output
 //! directory and renamed into place, so a reader never sees a half-written file, and
@@ -11,6 +12,7 @@ use std::path::{Path, PathBuf};
 
 use serde::Serialize;
 
+use super::cubic_law::{self, CubicLawError, ErrorPoint};
 use super::draw::figure_picture;
 use super::evaluate::{LimitSlope, FIGURE_RELATIVE_ERROR};
 use super::sweeps::{compute, step_count, Facts, Figures, SweepError, FIG5_NORMAL, FIG8_PHASES};
@@ -28,6 +30,9 @@ pub enum FiguresError {
     /// A computation failed.
     #[error(transparent)]
     Sweep(#[from] SweepError),
+    /// The cubic law's error could not be computed, or broke its proven band.
+    #[error(transparent)]
+    CubicLaw(#[from] CubicLawError),
     /// A file could not be written.
     #[error("writing {path}: {message}")]
     Write { path: String, message: String },
@@ -46,6 +51,8 @@ pub struct Summary {
     pub files: Vec<PathBuf>,
     /// The computed figures and facts.
     pub figures: Figures,
+    /// The points of the cubic law's error (none without certified W).
+    pub cubic_law: Vec<ErrorPoint>,
 }
 
 /// The formats the pictures are written in unless others are asked for.
@@ -58,6 +65,12 @@ pub fn file_names(formats: &[Format]) -> Vec<String> {
         names.push(format!("fig{number}.csv"));
         for format in formats {
             names.push(format!("fig{number}.{}", format.extension()));
+        }
+    }
+    if cubic_law::step_count() > 0 {
+        names.push(format!("{}.csv", cubic_law::FILE_STEM));
+        for format in formats {
+            names.push(format!("{}.{}", cubic_law::FILE_STEM, format.extension()));
         }
     }
     names.extend(["limit_slopes.csv".to_string(), "facts.json".to_string()]);
@@ -73,17 +86,27 @@ pub fn regenerate(
     report: &(dyn Fn(usize, usize) + Sync),
 ) -> Result<Summary, FiguresError> {
     check_directory(directory, formats)?;
-    let progress = Progress::new(step_count(), report);
+    let progress = Progress::new(step_count() + cubic_law::step_count(), report);
     let figures = compute(&progress)?;
+    let cubic_law = cubic_law::figure_points(&progress)?;
     let mut contents: Vec<(PathBuf, Vec<u8>)> = Vec::new();
-    for figure in &figures.figures {
-        let stem = format!("fig{}", figure.number);
-        contents.push((directory.join(format!("{stem}.csv")), figure_csv(figure)?));
+    let mut add = |stem: &str, csv: Vec<u8>, figure: &Figure| -> Result<(), FiguresError> {
+        contents.push((directory.join(format!("{stem}.csv")), csv));
         let picture = figure_picture(figure)?;
         for format in formats {
             let name = format!("{stem}.{}", format.extension());
             contents.push((directory.join(name), picture.encode(*format)?));
         }
+        Ok(())
+    };
+    for figure in &figures.figures {
+        add(&format!("fig{}", figure.number), figure_csv(figure)?, figure)?;
+    }
+    if !cubic_law.is_empty() {
+        let stem = cubic_law::FILE_STEM;
+        let csv =
+            cubic_law::cubic_law_csv(&cubic_law).map_err(|e| write_error(Path::new(&format!("{stem}.csv")), e))?;
+        add(stem, csv.into_bytes(), &cubic_law::cubic_law_figure(&cubic_law))?;
     }
     contents.push((directory.join("limit_slopes.csv"), limit_slopes_csv(&figures.facts)?));
     let facts = directory.join("facts.json");
@@ -93,6 +116,7 @@ pub fn regenerate(
     Ok(Summary {
         files: contents.into_iter().map(|(path, _)| path).collect(),
         figures,
+        cubic_law,
     })
 }
 

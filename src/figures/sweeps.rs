@@ -11,6 +11,8 @@ use super::evaluate::{
 use super::{Curve, Figure, Panel, Progress, Style};
 use crate::dissipation::DissipationError;
 
+/// The ordinate of Figs. 4–8.
+const W_HAT_LABEL: &str = "Ŵ = W/(C λ f² P0)";
 /// Fig. 5's normal amplitude and tangential amplitudes.
 pub const FIG5_NORMAL: f64 = 0.4;
 /// Fig. 5's curves, as the issue writes them.
@@ -295,9 +297,11 @@ fn figure4(progress: &Progress) -> Result<(Figure, f64), SweepError> {
     let figure = Figure {
         number: 4,
         x_label: "Q1/(f P0)",
+        y_label: W_HAT_LABEL,
         x_column: "Q1_hat",
         curve_column: "method",
         log_log: false,
+        guide_slope: None,
         panels: vec![Panel {
             name: "P1_hat=0".into(),
             caption: "Fig. 4: constant normal load, P1 = 0".into(),
@@ -405,9 +409,11 @@ fn figure5(progress: &Progress) -> Result<Fig5Facts, SweepError> {
     let figure = Figure {
         number: 5,
         x_label: "φ/π",
+        y_label: W_HAT_LABEL,
         x_column: "phi_over_pi",
         curve_column: "Q1_hat",
         log_log: false,
+        guide_slope: None,
         panels: vec![Panel {
             name: "P1_hat=0.4".into(),
             caption: "Fig. 5: effect of the phase, P1/P0 = 0.4".into(),
@@ -499,9 +505,11 @@ fn ratio_figure(
     let figure = Figure {
         number,
         x_label: "Q1/(f P0)",
+        y_label: W_HAT_LABEL,
         x_column: "Q1_hat",
         curve_column: "P1_hat_over_Q1_hat",
         log_log: true,
+        guide_slope: Some(3.0),
         panels: vec![Panel {
             name: format!("phi={phase_over_pi}pi"),
             caption: caption.into(),
@@ -553,9 +561,11 @@ fn figure8(progress: &Progress) -> Result<Fig8Facts, SweepError> {
     let figure = Figure {
         number: 8,
         x_label: "Q1/(f P0)",
+        y_label: W_HAT_LABEL,
         x_column: "Q1_hat",
         curve_column: "P1_hat",
         log_log: true,
+        guide_slope: Some(2.0),
         panels,
         notes: vec![format!(
             "grey dashes: slope 2, the limit as Q1 → 0 at fixed P1; facts.json fits the slope over Q1/(f P0) ∈ [{},\u{a0}{}]",
