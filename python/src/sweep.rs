@@ -1,10 +1,11 @@
-//! The sweep under `dissipation_many`: one W per row of broadcast columns, by the batch
-//! runner ([`microslip::batch::run`], every row on the path a single run takes), on
-//! rayon's threads with the GIL released.
+//! The sweep under `dissipation_many`: one W per row of broadcast columns, by the batch's
+//! row pool ([`microslip::batch::RowPool`], every row on the path a single run takes):
+//! its threads started once per sweep, the next chunk handed in while the last is
+//! computed, the GIL released while waiting.
 
-use std::time::Duration;
+use std::sync::Arc;
 
-use microslip::batch::{self, InputRow};
+use microslip::batch::{InputRow, RowPool, RowResult, Ticket};
 use microslip::case::CaseText;
 use numpy::{IntoPyArray, PyArray1, PyReadonlyArray1};
 use pyo3::prelude::*;
@@ -35,8 +36,7 @@ impl Column<'_> {
 /// The most worker threads, as on the command line (`--jobs`).
 const MOST_JOBS: usize = 1024;
 
-/// Rows given to the batch runner at once: its threads are started per chunk, and a
-/// chunk's cases are all the text held at a time.
+/// Rows handed to the pool at once: two chunks' cases are all the text held at a time.
 const ROWS_PER_CHUNK: usize = 1024;
 
 /// The columns of a case, by the names of `Case`'s arguments (`lam` and `nu` None where
@@ -92,53 +92,57 @@ pub fn sweep<'py>(
     jobs: Option<usize>,
 ) -> PyResult<Swept<'py>> {
     let budget = errors::budget(max_seconds)?;
-    let pool = match jobs {
-        None => None,
-        Some(jobs @ 1..=MOST_JOBS) => Some(
-            rayon::ThreadPoolBuilder::new()
-                .num_threads(jobs)
-                .build()
-                .map_err(|error| errors::failed(format!("cannot start {jobs} worker threads: {error}")))?,
-        ),
+    let threads = match jobs {
+        None => rayon::current_num_threads(),
+        Some(jobs @ 1..=MOST_JOBS) => jobs,
         Some(jobs) => {
             return Err(errors::refused(format!(
                 "jobs = {jobs}: give a whole number of threads from 1 to {MOST_JOBS}, or None for one per core"
             )))
         }
     };
+    let pool = RowPool::new(threads, digits, budget);
+    let chunk_from = |start: usize| -> Arc<[InputRow]> {
+        (start..rows.min(start + ROWS_PER_CHUNK))
+            .map(|row| columns.row(row))
+            .collect()
+    };
     let mut values = Vec::with_capacity(rows);
     let mut failures = Vec::new();
-    for start in (0..rows).step_by(ROWS_PER_CHUNK) {
-        let chunk: Vec<InputRow> = (start..rows.min(start + ROWS_PER_CHUNK))
-            .map(|row| columns.row(row))
-            .collect();
-        let results = py.detach(|| match &pool {
-            Some(pool) => pool.install(|| run(&chunk, digits, budget)),
-            None => run(&chunk, digits, budget),
+    let mut computing: Option<(Arc<[InputRow]>, Ticket)> = None;
+    for start in (0..rows).step_by(ROWS_PER_CHUNK).map(Some).chain([None]) {
+        // The next chunk is read (with the GIL) and handed in before the last is awaited.
+        let next = start.map(|start| {
+            let chunk = chunk_from(start);
+            let ticket = pool.hand_in(Arc::clone(&chunk));
+            (chunk, ticket)
         });
-        for (row, result) in chunk.iter().zip(results) {
-            match result {
-                Ok(value) => values.push(value),
-                Err(reason) => {
-                    values.push(f64::NAN);
-                    let prefix = format!("line {}: ", row.line);
-                    let reason = reason.strip_prefix(&prefix).map(str::to_string).unwrap_or(reason);
-                    failures.push((row.line as usize - 1, reason));
-                }
-            }
+        if let Some((chunk, ticket)) = computing.take() {
+            let results = py.detach(|| pool.collect(ticket, &mut |_| {}));
+            record(&chunk, results, &mut values, &mut failures);
+            py.check_signals()?;
         }
-        py.check_signals()?;
+        computing = next;
     }
     Ok((values.into_pyarray(py), failures))
 }
 
-/// The printed W of each row as a float, or why the row failed.
-fn run(rows: &[InputRow], digits: Option<u32>, budget: Duration) -> Vec<Result<f64, String>> {
-    batch::run(rows, digits, budget)
-        .into_iter()
-        .map(|result| match &result.answer {
-            Some(report) if result.succeeded() => Ok(float_of(&report.answer.value)),
-            _ => Err(result.error),
-        })
-        .collect()
+/// Each row's printed W as a float into `values` (NaN where it failed, with its row and
+/// reason into `failures`).
+fn record(rows: &[InputRow], results: Vec<RowResult>, values: &mut Vec<f64>, failures: &mut Vec<(usize, String)>) {
+    for (row, result) in rows.iter().zip(results) {
+        match &result.answer {
+            Some(report) if result.succeeded() => values.push(float_of(&report.answer.value)),
+            _ => {
+                values.push(f64::NAN);
+                let prefix = format!("line {}: ", row.line);
+                let reason = result
+                    .error
+                    .strip_prefix(&prefix)
+                    .map(str::to_string)
+                    .unwrap_or(result.error);
+                failures.push((row.line as usize - 1, reason));
+            }
+        }
+    }
 }
