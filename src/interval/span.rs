@@ -339,6 +339,10 @@ const PRODUCT_ERROR_SAFE: f64 = 1e-270;
 /// split multiplies it by 2^27 + 1).
 const SPLIT_SAFE: f64 = 1e300;
 
+/// The least magnitude of a factor taken by Veltkamp's split: normal, with its halves
+/// (down to 2^−53 of it) normal too.
+const SPLIT_LEAST: f64 = 1e-290;
+
 /// a·b − p exactly, for p the double nearest a·b (Dekker's two-product: each factor split
 /// into halves of 26 bits by Veltkamp's method, whose four products are exact), where the
 /// factors and the product lie in the range that keeps every step exact; `None` outside
@@ -346,7 +350,7 @@ const SPLIT_SAFE: f64 = 1e300;
 /// x86-64 machine makes without the FMA instruction.
 #[inline]
 fn product_error(a: f64, b: f64, p: f64) -> Option<f64> {
-    let safe = |x: f64| x.abs() < SPLIT_SAFE;
+    let safe = |x: f64| (SPLIT_LEAST..SPLIT_SAFE).contains(&x.abs());
     if !(safe(a) && safe(b) && p.is_finite() && p.abs() >= PRODUCT_ERROR_SAFE) {
         return None;
     }
