@@ -479,17 +479,12 @@ pub fn decimal_ball(value: &Float, radius: &Float, most: u32) -> Decimal {
 /// one rule: the most digits N for which every point of it rounds to nearest to the same
 /// N-digit decimal, with neither end on a rounding boundary.
 pub fn decimal_interval(lower: &Float, upper: &Float, most: u32) -> Decimal {
-    rounded_alike(lower, upper, most)
-}
-
-/// [`decimal_interval`] over ends of either kind: MPFR floats, or doubles (the same digits
-/// without MPFR's conversions).
-pub(crate) fn rounded_alike<T: DecimalEnd>(lower: &T, upper: &T, most: u32) -> Decimal {
     rounded_alike_expanded(lower, upper, most, 0).0
 }
 
-/// [`rounded_alike`], and the ends' expansions it read, to at least `at_least` digits
-/// (for the caller's other roundings of them; `None` for a zero or an infinite end).
+/// [`decimal_interval`] over ends of either kind (MPFR floats, or doubles: the same digits
+/// without MPFR's conversions), and the ends' expansions it read, to at least `at_least`
+/// digits (for the caller's other roundings of them; `None` for a zero or an infinite end).
 pub(crate) fn rounded_alike_expanded<T: DecimalEnd>(
     lower: &T,
     upper: &T,
