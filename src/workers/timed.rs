@@ -113,7 +113,7 @@ impl<T, R> Shared<T, R> {
     }
 }
 
-/// Items handed in, to be collected with [`TimedWorkers::collect`].
+/// Items handed in, to be collected with the pool's `collect`.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub struct Ticket(u64);
 
