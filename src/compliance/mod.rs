@@ -43,6 +43,9 @@ use crate::real::Real;
 /// x ↦ v'(P0 + x) − v'(P0) about a fixed P0 (see [`Compliance::slope_change_about`]).
 pub type SlopeChange<'a, R> = Box<dyn Fn(&R) -> R + Send + Sync + 'a>;
 
+/// x ↦ v(P0 + x) − v(P0) about a fixed P0 (see [`Compliance::approach_change_about`]).
+pub type ApproachChange<'a, R> = Box<dyn Fn(&R) -> R + Send + Sync + 'a>;
+
 /// A normal compliance function v(P) with its first two derivatives.
 pub trait Compliance<R: Real>: Debug + Send + Sync {
     /// v(P), the normal approach under load P (defined up to an additive constant).
@@ -66,6 +69,15 @@ pub trait Compliance<R: Real>: Debug + Send + Sync {
     fn slope_change_about<'a>(&'a self, reference: &R) -> SlopeChange<'a, R> {
         let reference = reference.clone();
         Box::new(move |offset: &R| self.slope_change(&reference, offset))
+    }
+    /// x ↦ v(reference + x) − v(reference) in a form free of cancellation at small x,
+    /// prepared once for many offsets x (the harmonic-balance element evaluates its virgin
+    /// curve, such a difference, hundreds of times per call about one P). `None` for a
+    /// compliance without one: a caller then differences v where x is large and integrates
+    /// v' where it is small.
+    fn approach_change_about<'a>(&'a self, reference: &R) -> Option<ApproachChange<'a, R>> {
+        let _ = reference;
+        None
     }
     /// v'(scale·root²): v' at a load given as a positive scale times a square, as the
     /// bottom of a cycle near separation gives it (the lowest load δ times cosh²u).
