@@ -22,7 +22,7 @@
 //!
 //! The norms are exact: W ≥ 0 for every admissible compliance makes K_1 ≤ 0, so every
 //! K_{N+1} is one-signed on each side of τ = 0 (≤ 0 above; (−1)^(N+1) below), and
-//! ‖K_{N+1}‖₁ = |K_{N+2}(0+)| + |K_{N+2}(0−)|, two evaluations ([`PeanoKernels::side_integrals`];
+//! ‖K_{N+1}‖₁ = |K_{N+2}(0+)| + |K_{N+2}(0−)|, two evaluations ([`PeanoKernels::at_origin`];
 //! the derivation is proofs/cubic-law-remainder.md, "The sign of the kernels").
 //!
 //! Independently of that derivation, ‖K_{N+1}‖₁ is bounded by boxes in τ
@@ -66,6 +66,16 @@ pub struct PeanoKernels<R> {
     pieces: Vec<Piece<R>>,
     reach: R,
     highest: usize,
+}
+
+/// The kernels' integrals over each side of τ = 0 and the series' coefficients, from the
+/// kernels at 0± ([`PeanoKernels::at_origin`]).
+#[derive(Clone, Debug)]
+pub struct AtOrigin<R> {
+    /// Index n − 1: (∫_{τ<0} K_{n+1}, ∫_{τ>0} K_{n+1}).
+    pub sides: Vec<(R, R)>,
+    /// I₀ … I_N.
+    pub coefficients: Vec<R>,
 }
 
 /// Upper bounds on ‖K_{n+1}‖₁ for n = 1 … N, and how they were reached.
@@ -209,22 +219,34 @@ impl<R: Real> PeanoKernels<R> {
         })
     }
 
-    /// The integrals of K_{n+1} over τ < 0 and over τ > 0, for n = 1 … N − 1 (index n − 1;
-    /// N = `highest`): −K_{n+2}(0−) and K_{n+2}(0+), since K_{n+2}' = −K_{n+1} on each side
-    /// and K_{n+2} vanishes past the support. K_{n+1} is one-signed on each side
-    /// (proofs/cubic-law-remainder.md, "The sign of the kernels"), so ‖K_{n+1}‖₁ is the sum
-    /// of their magnitudes. `None` where the kernels at τ = 0 cannot be enclosed (a load's
-    /// extreme there to within the working precision, or a load of zero amplitude).
-    pub fn side_integrals(&self) -> Option<Vec<(R, R)>> {
+    /// What the kernels just above and below τ = 0 give, with N = `highest`: the integrals of
+    /// K_{n+1} over τ < 0 and over τ > 0 for n = 1 … N − 1 (index n − 1), −K_{n+2}(0−) and
+    /// K_{n+2}(0+), since K_{n+2}' = −K_{n+1} on each side and K_{n+2} vanishes past the
+    /// support; and the coefficients I₀ … I_N from the jumps K_{n+1}(0+) − K_{n+1}(0−) = Iₙ/n!.
+    /// K_{n+1} is one-signed on each side (proofs/cubic-law-remainder.md, "The sign of the
+    /// kernels"), so ‖K_{n+1}‖₁ is the sum of its sides' magnitudes. `None` where the kernels
+    /// at τ = 0 cannot be enclosed (a load's extreme there to within the working precision,
+    /// or a load of zero amplitude).
+    pub fn at_origin(&self) -> Option<AtOrigin<R>> {
         let zero = self.reach.int(0);
         let (above, below) = (self.at(&zero, true)?, self.at(&zero, false)?);
         let sides: Vec<(R, R)> = (2..=self.highest)
             .map(|j| (-below[j].clone(), above[j].clone()))
             .collect();
-        sides
+        let mut factorial = zero.int(1);
+        let coefficients: Vec<R> = (0..=self.highest)
+            .map(|n| {
+                if n > 0 {
+                    factorial *= &zero.int(n as i64);
+                }
+                (above[n].clone() - &below[n]) * &factorial
+            })
+            .collect();
+        let finite = sides
             .iter()
             .all(|(below, above)| below.is_finite() && above.is_finite())
-            .then_some(sides)
+            && coefficients.iter().all(R::is_finite);
+        finite.then_some(AtOrigin { sides, coefficients })
     }
 
     /// Upper bounds on ‖K_{n+1}‖₁, n = 1 … N, by boxes in τ over [−L, 1].
@@ -448,8 +470,9 @@ mod tests {
                     );
                 }
                 let exact: Vec<f64> = kernels
-                    .side_integrals()
+                    .at_origin()
                     .unwrap()
+                    .sides
                     .iter()
                     .map(|(below, above)| below.abs() + above.abs())
                     .collect();

@@ -10,7 +10,7 @@
 //! bounds the remainder; in f64 it is the same bound, unproven.
 
 use super::kernel::PeanoKernels;
-use super::series::{series_coefficients, sums_at_amplitude, SeriesError};
+use super::series::{sums_at_amplitude, SeriesError};
 use crate::compliance::{scaled_range, Compliance};
 use crate::cycle::LoadCycle;
 use crate::real::Real;
@@ -49,10 +49,10 @@ pub enum RemainderError {
 pub struct SeriesShape<R> {
     /// ρ = Q1/(fP1).
     pub rho: R,
-    /// I₀ … I_{N+1} (I_{N+1}/(N+1)! = ∫ K_{N+1}).
+    /// I₀ … I_{N+1} (I_{N+1}/(N+1)! = ∫ K_{N+1}), from the kernels' jumps at τ = 0.
     pub coefficients: Vec<R>,
     /// Index n − 1: the integrals of K_{n+1} below and above τ = 0, on each of which it is
-    /// one-signed ([`PeanoKernels::side_integrals`]).
+    /// one-signed ([`PeanoKernels::at_origin`]).
     pub sides: Vec<(R, R)>,
     /// L = (P0 − P_T)/P1, how far below P0 the measure reaches in units of P1.
     pub reach: R,
@@ -79,18 +79,14 @@ impl<R: Real> SeriesShape<R> {
     /// The shape of (ρ, φ) for orders up to `order`.
     pub fn new(rho: &R, phase: &R, order: usize) -> Result<Self, RemainderError> {
         let kernels = PeanoKernels::new(rho, phase, order + 1)?;
-        let sides = kernels.side_integrals().ok_or_else(|| RemainderError::Kernel {
+        let origin = kernels.at_origin().ok_or_else(|| RemainderError::Kernel {
             rho: rho.to_f64_lossy(),
             phase: phase.to_f64_lossy(),
         })?;
-        let coefficients = series_coefficients(rho, phase, order + 1)?
-            .into_iter()
-            .map(|(value, _)| value)
-            .collect();
         Ok(SeriesShape {
             rho: rho.clone(),
-            coefficients,
-            sides,
+            coefficients: origin.coefficients,
+            sides: origin.sides,
             reach: kernels.reach().clone(),
         })
     }

@@ -238,8 +238,9 @@ fn kernel_signs(rho: f64, phase: f64) -> Result<KernelSigns, String> {
         }
     }
     let (below, above) = kernels
-        .side_integrals()
+        .at_origin()
         .ok_or("the kernels at τ = 0 could not be enclosed")?
+        .sides
         .swap_remove(1);
     let boxes = kernels.norms().ok_or("the kernels' boxes could not be enclosed")?;
     let upper = |x: &Ball| x.real_span().map_or(f64::NAN, |span| span.1);
