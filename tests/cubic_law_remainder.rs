@@ -2,6 +2,8 @@
 //! every bound lies above the true |W − W_N| from the certified W, on several families
 //! at P1/P0 from 0.01 to 0.1 and random phases, and is within a small factor of it.
 
+mod common;
+
 use microslip::ball::Ball;
 use microslip::certified::certified_dissipation;
 use microslip::compliance::{Compliance, Exponential, Hertz, Persson, PowerLaw, Rational, Sum};
@@ -341,4 +343,73 @@ fn the_gate_proves_the_completely_monotone_bracket_by_derivation() {
         report.proof,
         Some(microslip::verify::Proof::Derivation { document }) if document == "proofs/cubic-law-remainder.md"
     ));
+}
+
+/// A table's interpolant has a continuous v'' and a bounded v''' (proofs/cubic-law-remainder.md,
+/// "Tables"): `series --order 1` gives the cubic law with its proven bound, which holds
+/// against the table's certified W and is sharp, on tables of random spacing; `--order 2`
+/// is refused naming v'''.
+#[test]
+fn a_table_gets_the_cubic_laws_bound_and_stops_at_order_one() {
+    let dir = std::env::temp_dir().join(format!("microslip-remainder-table-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let mut draws = Draw::new(43);
+    type Slope = fn(f64) -> f64;
+    let slopes: [(&str, Slope); 3] = [
+        ("rational", |p| 0.1 + 1.0 / (p + 0.05)),
+        ("hertz", |p| p.powf(-1.0 / 3.0)),
+        ("exponential", |p| (-p / 0.7).exp() + 0.2),
+    ];
+    for (name, slope) in slopes {
+        // 80 loads from 0.3 to 2, randomly spaced.
+        let mut loads: Vec<f64> = (0..78).map(|_| draws.uniform(0.3, 2.0)).collect();
+        loads.extend([0.3, 2.0]);
+        loads.sort_by(f64::total_cmp);
+        let rows: String = loads.iter().map(|p| format!("{p},{}\n", slope(*p))).collect();
+        let path = dir.join(format!("{name}.csv"));
+        std::fs::write(&path, format!("load,slope\n{rows}")).unwrap();
+        let case = [
+            "--p0",
+            "1",
+            "--p1",
+            "0.05",
+            "--q1",
+            "0.03",
+            "--phi",
+            "0.3pi",
+            "--friction",
+            "0.8",
+            "--lambda",
+            "1.3",
+        ];
+        let compliance = format!("table:{}", path.display());
+        let with = |extra: &[&str]| {
+            let mut args = vec![extra[0].to_string()];
+            args.extend(case.iter().map(|a| a.to_string()));
+            args.extend(["--compliance".to_string(), compliance.clone()]);
+            args.extend(extra[1..].iter().map(|a| a.to_string()));
+            common::microslip(&args)
+        };
+        let (code, stdout, stderr) = with(&["series", "--order", "1", "--json"]);
+        assert_eq!(code, 0, "{name}: {stderr}");
+        let report: serde_json::Value = serde_json::from_str(stdout.trim()).unwrap();
+        let first = &report["partial_sums"][0];
+        let cubic_law: f64 = first["value"].as_str().unwrap().parse().unwrap();
+        let bound: f64 = first["remainder_bound"].as_str().unwrap().parse().unwrap();
+        let (code, stdout, stderr) = with(&["dissipation", "--digits", "25", "--json"]);
+        assert_eq!(code, 0, "{name}: {stderr}");
+        let w: serde_json::Value = serde_json::from_str(stdout.trim()).unwrap();
+        let w: f64 = w["W"].as_str().unwrap().parse().unwrap();
+        let error = (w - cubic_law).abs();
+        eprintln!(
+            "{name}: |W − W₁| = {error:e}, bound {bound:e}, ratio {:.3}",
+            bound / error
+        );
+        assert!(error <= bound, "{name}: |W − W₁| = {error:e} > {bound:e}");
+        assert!(bound < 3.0 * error, "{name}: bound {bound:e} far above {error:e}");
+        let (code, _, stderr) = with(&["series", "--order", "2"]);
+        assert_eq!(code, 2, "{name}");
+        assert!(stderr.contains("v^(3)") && stderr.contains("--order 1"), "{stderr}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
 }
