@@ -179,7 +179,7 @@ impl<R: Real> Compliance<R> for PowerLaw<R> {
                 * &load.powr(&(self.exponent.clone() - &load.int(order as i64))),
         )
     }
-    fn derivative_bound(&self, order: usize, low: &R, high: &R) -> Option<R> {
+    fn derivative_range(&self, order: usize, low: &R, high: &R) -> Option<(R, R)> {
         // C·β(β − 1)…·P^(β − k + 1): one power of P, monotone on P > 0.
         (order >= 2 && positive_range(low, high))
             .then(|| at_the_ends(self, order, low, high))
@@ -259,8 +259,8 @@ impl<R: Real> Compliance<R> for Persson<R> {
             order + 1,
         ))
     }
-    fn derivative_bound(&self, order: usize, low: &R, high: &R) -> Option<R> {
-        self.as_power_law().derivative_bound(order, low, high)
+    fn derivative_range(&self, order: usize, low: &R, high: &R) -> Option<(R, R)> {
+        self.as_power_law().derivative_range(order, low, high)
     }
 }
 
@@ -351,8 +351,8 @@ impl<R: Real> Compliance<R> for Hertz<R> {
     fn slope_derivative(&self, order: usize, load: &R) -> Option<R> {
         self.as_power_law().slope_derivative(order, load)
     }
-    fn derivative_bound(&self, order: usize, low: &R, high: &R) -> Option<R> {
-        self.as_power_law().derivative_bound(order, low, high)
+    fn derivative_range(&self, order: usize, low: &R, high: &R) -> Option<(R, R)> {
+        self.as_power_law().derivative_range(order, low, high)
     }
 }
 
@@ -441,8 +441,11 @@ impl<R: Real> Compliance<R> for Polynomial<R> {
             .collect();
         Some(Self::horner(&derived, &x))
     }
-    fn derivative_bound(&self, order: usize, low: &R, high: &R) -> Option<R> {
-        (order >= 1).then(|| polynomial_bound(&self.reference, &self.coefficients, order - 1, low, high))
+    fn derivative_range(&self, order: usize, low: &R, high: &R) -> Option<(R, R)> {
+        (order >= 1).then(|| {
+            let bound = polynomial_bound(&self.reference, &self.coefficients, order - 1, low, high);
+            (-bound.clone(), bound)
+        })
     }
 }
 
@@ -506,7 +509,7 @@ impl<R: Real> Compliance<R> for Rational<R> {
             k => logarithmic_derivative(&self.numerator, &(load.clone() + &self.offset), k + 1),
         })
     }
-    fn derivative_bound(&self, order: usize, low: &R, high: &R) -> Option<R> {
+    fn derivative_range(&self, order: usize, low: &R, high: &R) -> Option<(R, R)> {
         // b·(k − 2)!·(P + c)^(1 − k) up to sign, monotone while P + c > 0.
         let (low_shifted, high_shifted) = (low.clone() + &self.offset, high.clone() + &self.offset);
         (order >= 2 && positive_range(&low_shifted, &high_shifted))
@@ -598,7 +601,7 @@ impl<R: Real> Compliance<R> for Exponential<R> {
             }
         })
     }
-    fn derivative_bound(&self, order: usize, low: &R, high: &R) -> Option<R> {
+    fn derivative_range(&self, order: usize, low: &R, high: &R) -> Option<(R, R)> {
         // a·(−1/c)^(k − 1)·e^(−P/c): monotone in P.
         (order >= 2 && *low <= *high)
             .then(|| at_the_ends(self, order, low, high))

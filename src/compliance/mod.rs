@@ -23,6 +23,7 @@
 
 mod combinators;
 mod derivative_bounds;
+pub(crate) use derivative_bounds::scaled_range;
 mod families;
 mod slope_form;
 mod spec;
@@ -130,13 +131,20 @@ pub trait Compliance<R: Real>: Debug + Send + Sync {
         let _ = (order, load);
         None
     }
-    /// An upper bound on |v⁽ᵒʳᵈᵉʳ⁾| over [low, high] (order ≥ 2, as for [`Compliance::derivative`]),
-    /// for the proven remainder of the small-amplitude series: on Arb balls the upper end
-    /// of the ball bounds it. `None` where the form gives none (a table's interpolant, a
-    /// range that reaches a singularity, an order below 2).
-    fn derivative_bound(&self, order: usize, low: &R, high: &R) -> Option<R> {
+    /// The least and the greatest value of v⁽ᵒʳᵈᵉʳ⁾ over [low, high] (order ≥ 2, as for
+    /// [`Compliance::derivative`]), for the proven remainder of the small-amplitude series:
+    /// on Arb balls every value lies between the lower end of the first and the upper end of
+    /// the second. `None` where the form gives none (a table's interpolant, a range that
+    /// reaches a singularity, an order below 2).
+    fn derivative_range(&self, order: usize, low: &R, high: &R) -> Option<(R, R)> {
         let _ = (order, low, high);
         None
+    }
+    /// An upper bound on |v⁽ᵒʳᵈᵉʳ⁾| over [low, high], from [`Compliance::derivative_range`]:
+    /// on Arb balls the upper end of the ball bounds it.
+    fn derivative_bound(&self, order: usize, low: &R, high: &R) -> Option<R> {
+        let (least, greatest) = self.derivative_range(order, low, high)?;
+        Some(least.abs().max_of(&greatest.abs()))
     }
 }
 
