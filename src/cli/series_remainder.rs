@@ -8,7 +8,7 @@ use microslip::answer::{Answer, Arithmetic, Provenance, Value};
 use microslip::case::{Case, CaseText};
 use microslip::exact::enclosure::case_balls;
 use microslip::exact::remainder::{largest_amplitude, WithinLimit};
-use microslip::exact::{partial_sums, remainder_bounds, RemainderError, SeriesShape};
+use microslip::exact::{partial_sums, remainders as enclosed_remainders, Remainder, RemainderError, SeriesShape};
 use microslip::real::{Precision, Real};
 
 use super::report::Failure;
@@ -23,7 +23,10 @@ const SERIES_DIGITS: u32 = 15;
 pub struct Remainders {
     /// An upper bound on |W − W_N|, index N − 1, rounded up to 3 digits.
     pub bounds: Vec<String>,
-    /// W enclosed by the tightest W_N ± bound_N: the series alone proves it.
+    /// Index N − 1: whether W ≥ W_N is proven (as for a completely monotone v' at even N).
+    pub from_below: Vec<bool>,
+    /// W enclosed by the narrowest W_N + [least, greatest] of its remainder: the series
+    /// alone proves it.
     pub series_w: Answer,
     /// With `--within`.
     pub within: Option<WithinAnswer>,
@@ -61,13 +64,19 @@ fn refused(error: RemainderError) -> Failure {
 pub fn remainders(case: &CaseText, order: usize, within: Option<f64>) -> Result<Remainders, Failure> {
     let spec = case.spec().map_err(|error| failure(error.into()))?;
     let Case { cycle, compliance } = case_balls(&spec, Precision::bits(BITS)).map_err(failure)?;
-    let bounds = remainder_bounds(&cycle, compliance.as_ref(), order).map_err(refused)?;
+    let remainders = enclosed_remainders(&cycle, compliance.as_ref(), order).map_err(refused)?;
+    let bounds: Vec<_> = remainders.iter().map(Remainder::bound).collect();
     let sums = partial_sums(&cycle, compliance.as_ref(), order).map_err(|error| failure(error.into()))?;
-    // W lies in every W_N ± bound_N: their intersection.
+    // W lies in every W_N + [least, greatest]: the narrowest.
+    let from_below: Vec<bool> = remainders
+        .iter()
+        .map(|remainder| remainder.least.real_span().is_some_and(|span| span.0 >= 0.0))
+        .collect();
     let mut narrowest = f64::INFINITY;
     let (mut lower, mut upper) = (sums[0].clone(), sums[0].clone());
-    for (sum, bound) in sums.iter().zip(&bounds) {
-        let (low, high) = (sum.clone() - bound, sum.clone() + bound);
+    for (sum, remainder) in sums.iter().zip(&remainders) {
+        let low = sum.clone() + &remainder.least;
+        let high = sum.clone() + &remainder.greatest;
         let width = high.to_f64_lossy() - low.to_f64_lossy();
         if width < narrowest {
             narrowest = width;
@@ -109,6 +118,7 @@ pub fn remainders(case: &CaseText, order: usize, within: Option<f64>) -> Result<
             .iter()
             .map(|bound| three_digits(bound.real_span().map_or(f64::INFINITY, |span| span.1), true))
             .collect(),
+        from_below,
         series_w,
         within,
     })

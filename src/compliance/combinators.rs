@@ -1,6 +1,7 @@
 //! Compliances built from others: sums, multiples, a constant added to v', and
 //! the load scaling that models scaled roughness.
 
+use super::derivative_bounds::scaled_range;
 use super::{merged_breakpoints, regular_at_ends, Compliance, SlopeChange};
 use crate::real::Real;
 
@@ -75,10 +76,13 @@ impl<R: Real> Compliance<R> for Sum<R> {
             .iter()
             .try_fold(load.int(0), |acc, c| Some(acc + c.derivative(order, load)?))
     }
-    fn derivative_bound(&self, order: usize, low: &R, high: &R) -> Option<R> {
+    fn derivative_range(&self, order: usize, low: &R, high: &R) -> Option<(R, R)> {
         self.terms
             .iter()
-            .try_fold(low.int(0), |acc, c| Some(acc + c.derivative_bound(order, low, high)?))
+            .try_fold((low.int(0), low.int(0)), |(least, greatest), c| {
+                let (term_least, term_greatest) = c.derivative_range(order, low, high)?;
+                Some((least + &term_least, greatest + &term_greatest))
+            })
     }
 }
 
@@ -133,8 +137,11 @@ impl<R: Real> Compliance<R> for Scaled<R> {
     fn derivative(&self, order: usize, load: &R) -> Option<R> {
         Some(self.factor.clone() * &self.inner.derivative(order, load)?)
     }
-    fn derivative_bound(&self, order: usize, low: &R, high: &R) -> Option<R> {
-        Some(self.factor.abs() * &self.inner.derivative_bound(order, low, high)?)
+    fn derivative_range(&self, order: usize, low: &R, high: &R) -> Option<(R, R)> {
+        Some(scaled_range(
+            &self.factor,
+            &self.inner.derivative_range(order, low, high)?,
+        ))
     }
 }
 
@@ -193,10 +200,10 @@ impl<R: Real> Compliance<R> for Shifted<R> {
             _ => inner,
         })
     }
-    fn derivative_bound(&self, order: usize, low: &R, high: &R) -> Option<R> {
+    fn derivative_range(&self, order: usize, low: &R, high: &R) -> Option<(R, R)> {
         // Beyond v' the added c·P leaves no trace.
         (order >= 2)
-            .then(|| self.inner.derivative_bound(order, low, high))
+            .then(|| self.inner.derivative_range(order, low, high))
             .flatten()
     }
 }
@@ -263,9 +270,9 @@ impl<R: Real> Compliance<R> for LoadScaled<R> {
         let inner = self.inner.derivative(order, &(load.clone() / &self.factor))?;
         Some(inner * &self.factor.powi(1 - order as i32))
     }
-    fn derivative_bound(&self, order: usize, low: &R, high: &R) -> Option<R> {
+    fn derivative_range(&self, order: usize, low: &R, high: &R) -> Option<(R, R)> {
         let (a, b) = (low.clone() / &self.factor, high.clone() / &self.factor);
-        let inner = self.inner.derivative_bound(order, &a.min_of(&b), &a.max_of(&b))?;
-        Some(inner * &self.factor.abs().powi(1 - order as i32))
+        let inner = self.inner.derivative_range(order, &a.min_of(&b), &a.max_of(&b))?;
+        Some(scaled_range(&self.factor.powi(1 - order as i32), &inner))
     }
 }

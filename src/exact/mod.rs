@@ -15,8 +15,8 @@ pub mod series;
 pub mod trig;
 
 pub use coefficient::closed_form_coefficient;
-pub use kernel::{cubic_kernel_majorant, KernelNorms, PeanoKernels};
+pub use kernel::{cubic_kernel_majorant, AtOrigin, KernelNorms, PeanoKernels};
 pub use polynomial_w::{coefficients_about, monomial_dissipations, polynomial_dissipation};
-pub use remainder::{remainder_bounds, RemainderError, SeriesShape};
+pub use remainder::{remainder_bounds, remainders, Remainder, RemainderError, SeriesShape};
 pub use series::{partial_sums, series_coefficients, SeriesError};
 pub use trig::TrigPolynomial;
