@@ -3,6 +3,8 @@
 //! small-amplitude series W = λ f² Σₙ v⁽ⁿ⁺¹⁾(P0)/n! · P1ⁿ⁺² Iₙ (proofs/series.md,
 //! proofs/small-amplitude-coefficient.md).
 
+#[cfg(feature = "certified")]
+pub mod case_remainders;
 pub mod coefficient;
 #[cfg(feature = "certified")]
 pub mod enclosure;
