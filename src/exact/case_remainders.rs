@@ -5,8 +5,7 @@
 
 use super::enclosure::case_balls;
 use super::printing::ExactAnswerError;
-use super::remainder::{largest_amplitude, remainders, Remainder, Within};
-use super::series::partial_sums;
+use super::remainder::{largest_amplitude, sums_and_remainders_with, Remainder, Within};
 use super::SeriesShape;
 use crate::answer::{Answer, Arithmetic, Provenance, Value};
 use crate::case::{Case, CaseText};
@@ -38,8 +37,14 @@ pub struct CaseRemainders {
 /// P1 (ρ, φ, P0, Q0, f, λ and the compliance kept) at which |W − W₁| ≤ R·|W| is proven.
 pub fn case_remainders(case: &CaseText, order: usize, within: Option<f64>) -> Result<CaseRemainders, ExactAnswerError> {
     let Case { cycle, compliance } = case_balls(&case.spec()?, Precision::bits(REMAINDER_BITS))?;
-    let enclosures = remainders(&cycle, compliance.as_ref(), order)?;
-    let sums = partial_sums(&cycle, compliance.as_ref(), order)?;
+    // One shape serves the sums, their remainders and `within`'s search.
+    let needed = if within.is_some() {
+        order.max(WITHIN_ORDER)
+    } else {
+        order
+    };
+    let shape = SeriesShape::of_cycle(&cycle, needed)?;
+    let (sums, enclosures) = sums_and_remainders_with(shape.as_ref(), &cycle, compliance.as_ref(), order)?;
     // W lies in every W_N + [least, greatest]: the narrowest.
     let mut narrowest = f64::INFINITY;
     let (mut lower, mut upper) = (sums[0].clone(), sums[0].clone());
@@ -64,14 +69,10 @@ pub fn case_remainders(case: &CaseText, order: usize, within: Option<f64>) -> Re
         },
         method: None,
     };
-    let within = match within {
-        None => None,
-        Some(ratio) => {
-            let rho = cycle.tangential_amplitude.clone() / &(cycle.friction.clone() * &cycle.normal_amplitude);
-            let shape = SeriesShape::new(&rho, &cycle.phase, WITHIN_ORDER)?;
-            Some(largest_amplitude(&shape, &cycle, compliance.as_ref(), ratio))
-        }
-    };
+    // With Q1 = 0, W is 0 exactly and `within` has nothing to bound.
+    let within = within
+        .zip(shape.as_ref())
+        .map(|(ratio, shape)| largest_amplitude(shape, &cycle, compliance.as_ref(), ratio));
     Ok(CaseRemainders {
         bounds: enclosures
             .iter()

@@ -91,6 +91,22 @@ impl<R: Real> SeriesShape<R> {
         })
     }
 
+    /// The shape of a cycle's (ρ, φ), ρ = Q1/(fP1), for orders up to `order`, once the cycle
+    /// is checked inside the theory with P1 > 0; `None` where Q1 = 0 (W = 0, and every W_N).
+    pub fn of_cycle(cycle: &LoadCycle<R>, order: usize) -> Result<Option<Self>, RemainderError> {
+        cycle.validate().map_err(SeriesError::from)?;
+        let zero = cycle.mean_normal_load.int(0);
+        let p1 = &cycle.normal_amplitude;
+        if *p1 == zero {
+            return Err(SeriesError::NoNormalAmplitude.into());
+        }
+        let rho = cycle.tangential_amplitude.clone() / &(cycle.friction.clone() * p1);
+        if rho == zero {
+            return Ok(None);
+        }
+        Ok(Some(SeriesShape::new(&rho, &cycle.phase, order)?))
+    }
+
     /// ‖K_{n+1}‖₁ (index n − 1): the sum of its sides' magnitudes.
     pub fn norms(&self) -> Vec<R> {
         self.sides
@@ -189,22 +205,40 @@ pub fn remainders<R: Real>(
     compliance: &dyn Compliance<R>,
     order: usize,
 ) -> Result<Vec<Remainder<R>>, RemainderError> {
-    cycle.validate().map_err(SeriesError::from)?;
-    let zero = cycle.mean_normal_load.int(0);
-    let p1 = &cycle.normal_amplitude;
-    if *p1 == zero {
-        return Err(SeriesError::NoNormalAmplitude.into());
-    }
-    let rho = cycle.tangential_amplitude.clone() / &(cycle.friction.clone() * p1);
-    if rho == zero {
+    Ok(sums_and_remainders(cycle, compliance, order)?.1)
+}
+
+/// The partial sums W_1 … W_N and the enclosures of W − W_N (index N − 1) of a cycle on a
+/// compliance: all 0 where Q1 = 0, where W and every W_N are.
+pub fn sums_and_remainders<R: Real>(
+    cycle: &LoadCycle<R>,
+    compliance: &dyn Compliance<R>,
+    order: usize,
+) -> Result<(Vec<R>, Vec<Remainder<R>>), RemainderError> {
+    let shape = SeriesShape::of_cycle(cycle, order)?;
+    sums_and_remainders_with(shape.as_ref(), cycle, compliance, order)
+}
+
+/// [`sums_and_remainders`] from the cycle's shape already formed ([`SeriesShape::of_cycle`],
+/// to `order` or beyond).
+pub fn sums_and_remainders_with<R: Real>(
+    shape: Option<&SeriesShape<R>>,
+    cycle: &LoadCycle<R>,
+    compliance: &dyn Compliance<R>,
+    order: usize,
+) -> Result<(Vec<R>, Vec<Remainder<R>>), RemainderError> {
+    let Some(shape) = shape else {
+        let zero = cycle.mean_normal_load.int(0);
         let none = Remainder {
             least: zero.clone(),
-            greatest: zero,
+            greatest: zero.clone(),
         };
-        return Ok(vec![none; order]);
-    }
-    let shape = SeriesShape::new(&rho, &cycle.phase, order)?;
-    Ok(shape.at_amplitude(cycle, compliance, p1)?.1)
+        return Ok((vec![zero; order], vec![none; order]));
+    };
+    let (mut sums, mut remainders) = shape.at_amplitude(cycle, compliance, &cycle.normal_amplitude)?;
+    sums.truncate(order);
+    remainders.truncate(order);
+    Ok((sums, remainders))
 }
 
 /// Why the amplitude stops where `--within` stops it.
