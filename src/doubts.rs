@@ -39,6 +39,25 @@ pub fn watch<T>(computation: impl FnOnce() -> T) -> (T, Doubts) {
     (value, doubts)
 }
 
+/// Runs `computation` and gives its value where it decided everything it branched on,
+/// `None` otherwise; what it could not decide is not counted against an enclosing
+/// [`watch`]: for a question whose undecided answer the caller handles itself (a finer
+/// subdivision, a bracket that stops shrinking).
+pub fn if_decided<T>(computation: impl FnOnce() -> T) -> Option<T> {
+    let before = (UNDECIDED.get(), NOT_ANALYTIC.get());
+    let located = SITES.with_borrow(|sites| sites.as_ref().map(Vec::len));
+    let value = computation();
+    let decided = (UNDECIDED.get(), NOT_ANALYTIC.get()) == before;
+    UNDECIDED.set(before.0);
+    NOT_ANALYTIC.set(before.1);
+    SITES.with_borrow_mut(|sites| {
+        if let (Some(sites), Some(length)) = (sites.as_mut(), located) {
+            sites.truncate(length);
+        }
+    });
+    decided.then_some(value)
+}
+
 /// Runs `computation` with every function required (`true`) to be analytic on its
 /// complex argument, as Arb's integration asks when it bounds an integrand on a ball.
 pub fn with_analytic<T>(required: bool, computation: impl FnOnce() -> T) -> T {

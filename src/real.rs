@@ -184,6 +184,12 @@ pub trait Real:
         let _ = other;
         self.clone()
     }
+    /// A number of the value, with no width: for an enclosure the midpoint of its real
+    /// part (Newton's steps on enclosures start from such points, or their widths grow
+    /// with every step); a number is itself.
+    fn midpoint_value(&self) -> Self {
+        self.clone()
+    }
     /// (sinh x, cosh x), free of cancellation near x = 0 and accurate for large |x|.
     fn sinh_cosh(&self) -> (Self, Self) {
         // With m = e^|x| − 1: sinh|x| = (m + m/(1 + m))/2 and cosh x = 1 + m²/(2(1 + m)).

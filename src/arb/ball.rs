@@ -1084,6 +1084,12 @@ impl Real for Ball {
             Some(span)
         }
     }
+    fn midpoint_value(&self) -> Ball {
+        let mut result = Ball::zero(self.precision);
+        // SAFETY: initialised; the midpoint is copied exactly, the radius left zero.
+        unsafe { arb_get_mid_arb(result.real_mut(), self.real_part()) };
+        result
+    }
     fn union(&self, other: &Ball) -> Ball {
         let mut result = Ball::zero(self.precision.max(other.precision));
         // SAFETY: initialised.

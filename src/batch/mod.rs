@@ -131,7 +131,8 @@ impl RowResult {
         RowResult {
             total: w.text.clone(),
             digits: Some(significant_digits(&w.text)),
-            digits_certified: Some(0),
+            digits_certified: Some(w.digits_certified),
+            enclosure: w.enclosure.clone(),
             provenance: w.provenance.to_string(),
             method: format!("path-{}", answer.drive.name()),
             path: Some(w),

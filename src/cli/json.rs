@@ -139,11 +139,14 @@ impl DissipationFields {
             envelope: ValueEnvelope {
                 digits,
                 digits_verified: digits,
-                digits_certified: Some(0),
+                digits_certified: Some(w.digits_certified),
                 provenance: Some(w.provenance),
                 precision_bits: Some(w.precision_bits),
+                enclosure: w.enclosure.clone(),
                 ..ValueEnvelope::default()
             },
+            no_enclosure: w.no_enclosure.clone(),
+            arithmetic: w.arithmetic,
             method: Some(if method == "path-displacement" {
                 "path-displacement"
             } else {

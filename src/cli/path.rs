@@ -97,14 +97,16 @@ The path must keep P > 0 and |Q| < fP at every θ (force driving); it is refused
 it does not. Under --drive displacement P must be constant and u is in the units of the outputs' u \
 (λf times the approach); Q follows by Masing's rules and saturates at ±fP (gross slip): the contact \
 starts unloaded, is loaded monotonically to the extreme of u of largest magnitude, and the steady \
-loop is the period that starts there. W is printed with the digits on which two working precisions \
-agree (agreement, not a proof): 15 without --digits, N with --digits N.")]
+loop is the period that starts there. Force-driven at constant P, W is proven (a rigorous enclosure, \
+provenance certified): the 12 to 15 digits f64 intervals prove without --digits, N with --digits N. \
+Otherwise W is printed with the digits on which two working precisions agree (agreement, not a \
+proof; no_enclosure says why): 15 without --digits, N with --digits N.")]
 pub struct PathArgs {
     #[command(flatten)]
     pub file: PathFileArgs,
     #[command(flatten)]
     pub contact: ContactArgs,
-    /// Significant digits of W on which two working precisions must agree (1–1000).
+    /// Significant digits of W to prove, or on which two working precisions must agree (1–1000).
     #[arg(long, allow_hyphen_values = true, value_parser = parse::digits)]
     pub digits: Option<u32>,
     /// Time budget, in seconds (up to 1e6).
@@ -143,7 +145,11 @@ struct PathReport {
     W_f64: f64,
     provenance: &'static str,
     digits_agreed: Option<u32>,
+    digits_certified: u32,
     precision_bits: u32,
+    arithmetic: Option<&'static str>,
+    no_enclosure: Option<String>,
+    enclosure: Option<(String, String)>,
     q_amplitude: f64,
     u_amplitude: f64,
     secant_stiffness: f64,
@@ -211,7 +217,11 @@ fn report(answer: &PathAnswer) -> PathReport {
         W_f64: printed.value,
         provenance: printed.provenance,
         digits_agreed: Some(printed.digits_agreed),
+        digits_certified: printed.digits_certified,
         precision_bits: printed.precision_bits,
+        arithmetic: printed.arithmetic,
+        no_enclosure: printed.no_enclosure.clone(),
+        enclosure: printed.enclosure.clone(),
         q_amplitude: outputs.q_amplitude,
         u_amplitude: outputs.u_amplitude,
         secant_stiffness: outputs.secant_stiffness,

@@ -248,6 +248,9 @@ impl Real for Interval {
         }
         Some((self.re.lo, self.re.hi))
     }
+    fn midpoint_value(&self) -> Self {
+        Interval::real(Span::point(self.midpoint()))
+    }
     fn union(&self, other: &Self) -> Self {
         Interval::from_parts(self.re.hull(other.re), self.im.hull(other.im))
     }

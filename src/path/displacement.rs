@@ -344,16 +344,22 @@ fn sign_of<R: Real>(value: &R) -> i8 {
 
 /// The ranges of the full cycles a rainflow count finds in turning values that start and
 /// end at the extreme of largest magnitude (three-point method: every cycle closes).
+///
+/// The last value is the first one again: the ranges from the first and back to it are
+/// equal exactly, and the cycle they close is counted without comparing them (enclosures
+/// of equal values cannot be ordered).
 pub fn rainflow_ranges<R: Real>(turning: &[R]) -> Vec<R> {
-    let mut stack: Vec<R> = Vec::new();
+    let last_index = turning.len().saturating_sub(1);
+    let mut stack: Vec<(usize, R)> = Vec::new();
     let mut ranges = Vec::new();
-    for value in turning {
-        stack.push(value.clone());
+    for (index, value) in turning.iter().enumerate() {
+        stack.push((index, value.clone()));
         while stack.len() >= 3 {
             let n = stack.len();
-            let newest = (stack[n - 1].clone() - &stack[n - 2]).abs();
-            let older = (stack[n - 2].clone() - &stack[n - 3]).abs();
-            if newest < older {
+            let newest = (stack[n - 1].1.clone() - &stack[n - 2].1).abs();
+            let older = (stack[n - 2].1.clone() - &stack[n - 3].1).abs();
+            let closes_on_first = stack[n - 3].0 == 0 && stack[n - 1].0 == last_index;
+            if !closes_on_first && newest < older {
                 break;
             }
             ranges.push(older);

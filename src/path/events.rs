@@ -17,6 +17,7 @@
 //! y) had its current value.
 
 use crate::compliance::Compliance;
+use crate::doubts::{if_decided, undecided};
 use crate::real::Real;
 
 use super::input::{padded, LoadPath, Multiples, PathError, TrigPoly};
@@ -101,7 +102,8 @@ impl<R: Real> Loads<R> {
     }
 }
 
-/// The sign of a value: −1, 0 or 1.
+/// The sign of a value: −1, 0 or 1 (an enclosure that holds zero and other numbers is
+/// counted as undecided, and taken as 0).
 fn sign<R: Real>(value: &R) -> i8 {
     let zero = value.int(0);
     if *value > zero {
@@ -113,24 +115,55 @@ fn sign<R: Real>(value: &R) -> i8 {
     }
 }
 
-/// The point of [a, b] where `f` changes sign (f(a) and f(b) of opposite signs or zero),
-/// `f` giving its value and derivative: Newton kept inside a shrinking bracket, bisecting
-/// where a step would leave it, to the working precision.
+/// The sign of a value where it is decided, `None` for an enclosure that holds zero and
+/// other numbers (not counted as a doubt: the caller stops or subdivides there).
+fn decided_sign<R: Real>(value: &R) -> Option<i8> {
+    if_decided(|| sign(value))
+}
+
+/// Whether `a > b` for every number the enclosures hold (for numbers, whether a > b); an
+/// undecided comparison answers `false` and is not counted as a doubt.
+fn surely_greater<R: Real>(a: &R, b: &R) -> bool {
+    if_decided(|| *a > *b).unwrap_or(false)
+}
+
+/// Whether `x` lies strictly between `a` and `b` (either order), decided.
+fn surely_between<R: Real>(x: &R, a: &R, b: &R) -> bool {
+    (surely_greater(x, a) && surely_greater(b, x)) || (surely_greater(x, b) && surely_greater(a, x))
+}
+
+/// The point of [a, b] (a < b) where `f` changes sign (f(a) and f(b) of opposite signs
+/// or zero; f monotone there), `f` giving its value and derivative: Newton kept inside a
+/// shrinking bracket, bisecting where a step would leave it, to the working precision.
+///
+/// On enclosures the root is proven: the ends' signs must be decided (an undecided one
+/// is counted as a doubt), the bracket shrinks only to points whose sign is decided, and
+/// the answer is the hull of the last bracket, which holds the root.
 pub(crate) fn solve<R: Real>(f: impl Fn(&R) -> (R, R), a: &R, b: &R) -> R {
     let (mut low, mut high) = (a.clone(), b.clone());
     let low_sign = sign(&f(&low).0);
     if low_sign == 0 {
         return low;
     }
-    if sign(&f(&high).0) == 0 {
+    let high_sign = sign(&f(&high).0);
+    if high_sign == 0 {
         return high;
+    }
+    if high_sign == low_sign {
+        // No bracket: whatever is returned is not a proven root.
+        undecided();
     }
     let two = a.int(2);
     let tolerance = a.abs().max_of(&b.abs()).max_of(&a.int(1)) * &a.epsilon_like() * &a.int(4);
-    let mut x = (low.clone() + &high) / &two;
+    let mut x = ((low.clone() + &high) / &two).midpoint_value();
+    let mut candidate = None;
     for _ in 0..a.precision().in_bits() + 8 {
         let (value, slope) = f(&x);
-        let s = sign(&value);
+        // A value whose sign the precision cannot decide: the bracket is as narrow as it gets.
+        let Some(s) = decided_sign(&value) else {
+            candidate = Some(x.clone());
+            break;
+        };
         if s == 0 {
             return x;
         }
@@ -139,42 +172,101 @@ pub(crate) fn solve<R: Real>(f: impl Fn(&R) -> (R, R), a: &R, b: &R) -> R {
         } else {
             high = x.clone();
         }
-        if (high.clone() - &low).abs() <= tolerance {
+        if !surely_greater(&(high.clone() - &low).abs(), &tolerance) {
             break;
         }
         let newton = x.clone() - &(value / &slope);
-        let inside = newton.is_finite() && (newton > low.min_of(&high)) && (newton < low.max_of(&high));
-        let next = if inside { newton } else { (low.clone() + &high) / &two };
-        if (next.clone() - &x).abs() <= tolerance {
-            return next;
+        let next = if newton.is_finite() && surely_between(&newton, &low, &high) {
+            newton
+        } else {
+            (low.clone() + &high) / &two
+        };
+        if !surely_greater(&(next.clone() - &x).abs(), &tolerance) {
+            candidate = Some(next);
+            break;
         }
-        x = next;
+        // Iterates are points (an enclosure's midpoint): a step from an enclosure would
+        // add its width to the next one's, doubling it every step.
+        x = next.midpoint_value();
     }
-    (low + &high) / &two
+    let candidate = candidate.unwrap_or_else(|| (low.clone() + &high) / &two);
+    if candidate.real_span().is_none() {
+        // A number stands for itself.
+        return candidate;
+    }
+    let (low, high) = tightened(&f, &candidate, (low, high), low_sign, &tolerance);
+    low.union(&high)
 }
 
-/// The point of [a, b] where the predicate turns (false at a, true at b), by bisection.
+/// A bracket (low < high, f of sign `low_sign` at low and of the other at high) shrunk to
+/// points just either side of `x` where f's sign is decided and right: Newton approaches
+/// a root from one side, and the other end would otherwise stay where it was.
+fn tightened<R: Real>(
+    f: &impl Fn(&R) -> (R, R),
+    x: &R,
+    (mut low, mut high): (R, R),
+    low_sign: i8,
+    tolerance: &R,
+) -> (R, R) {
+    let mut step = tolerance.clone();
+    let (mut low_done, mut high_done) = (false, false);
+    for _ in 0..TIGHTENING_STEPS {
+        if !low_done {
+            let left = x.clone() - &step;
+            if surely_greater(&left, &low) && decided_sign(&f(&left).0) == Some(low_sign) {
+                low = left;
+                low_done = true;
+            }
+        }
+        if !high_done {
+            let right = x.clone() + &step;
+            if surely_greater(&high, &right) && decided_sign(&f(&right).0) == Some(-low_sign) {
+                high = right;
+                high_done = true;
+            }
+        }
+        if low_done && high_done {
+            break;
+        }
+        step *= &x.int(16);
+    }
+    (low, high)
+}
+
+/// Sixteen-fold widenings of the step either side of a root before the bracket is kept.
+const TIGHTENING_STEPS: usize = 16;
+
+/// The point of [a, b] where the predicate turns (false at a, true at b), by bisection;
+/// on enclosures the hull of the last bracket, whose ends' predicates were decided.
 fn bisect_predicate<R: Real>(turned: impl Fn(&R) -> bool, a: &R, b: &R) -> R {
     let (mut low, mut high) = (a.clone(), b.clone());
     let two = a.int(2);
     for _ in 0..a.precision().in_bits() + 8 {
         let middle = (low.clone() + &high) / &two;
-        if middle <= low || middle >= high {
+        if !surely_between(&middle, &low, &high) {
             break;
         }
-        if turned(&middle) {
-            high = middle;
-        } else {
-            low = middle;
+        match if_decided(|| turned(&middle)) {
+            Some(true) => high = middle,
+            Some(false) => low = middle,
+            None => break,
         }
     }
-    (low + &high) / &two
+    ((low.clone() + &high) / &two).union(&low).union(&high)
 }
 
-/// The angles in [0, 2π) where a trigonometric polynomial changes sign, increasing:
-/// sampled, then every sample interval searched by [`Isolation`], which proves the
-/// intervals it drops root-free and refines each sign change where the polynomial is
-/// proven monotone.
+/// Where the samples of a trigonometric polynomial lie: step·j plus this offset (in
+/// radians, not a rational multiple of π), so that the roots of ordinary paths, at 0, π/2
+/// or π, fall between samples, where enclosures decide the samples' signs.
+fn sample_offset<R: Real>(like: &R) -> R {
+    like.ratio(1, 8)
+}
+
+/// The angles in [0, 2π) where a trigonometric polynomial changes sign, increasing (on
+/// enclosures, one that holds 2π may stay there): sampled, then every sample interval searched by [`Isolation`], which
+/// proves the intervals it drops root-free and refines each sign change where the
+/// polynomial is proven monotone. On enclosures each root is an enclosure, and every
+/// question left undecided is counted as a doubt.
 pub(crate) fn sign_changes<R: Real>(poly: &TrigPoly<R>) -> Vec<R> {
     if poly.is_constant() {
         return Vec::new();
@@ -182,7 +274,8 @@ pub(crate) fn sign_changes<R: Real>(poly: &TrigPoly<R>) -> Vec<R> {
     let like = &poly.cos[0];
     let count = SAMPLES_PER_HARMONIC * poly.highest().max(1);
     let step = like.pi_like() * &like.int(2) / &like.int(count as i64);
-    let angle = |j: usize| step.clone() * &like.int(j as i64);
+    let offset = sample_offset(like);
+    let angle = |j: usize| step.clone() * &like.int(j as i64) + &offset;
     let values: Vec<R> = (0..count).map(|j| poly.value(&angle(j))).collect();
     let isolation = Isolation::new(poly);
     let mut roots = Vec::new();
@@ -202,7 +295,17 @@ pub(crate) fn sign_changes<R: Real>(poly: &TrigPoly<R>) -> Vec<R> {
             &mut roots,
         );
     }
-    roots
+    // Into [0, 2π) where that is decided (a root at 2π itself, as a sine's, is kept there
+    // on enclosures): in increasing order from 0.
+    let period = like.pi_like() * &like.int(2);
+    let (past_period, within): (Vec<R>, Vec<R>) = roots
+        .into_iter()
+        .partition(|root| if_decided(|| *root >= period).unwrap_or(false));
+    past_period
+        .into_iter()
+        .map(|root| root - &period)
+        .chain(within)
+        .collect()
 }
 
 /// Bounds that make root isolation safe: |f'| ≤ Σ k|aₖ| and |f''| ≤ Σ k²|aₖ|, |aₖ| the
@@ -237,25 +340,38 @@ impl<'a, R: Real> Isolation<'a, R> {
         }
     }
 
+    /// The root in (a, b) where f changes sign between them and is monotone.
+    fn root(&self, (a, fa): (&R, &R), (b, fb): (&R, &R), roots: &mut Vec<R>) {
+        if sign(fa) * sign(fb) < 0 {
+            roots.push(solve(|t: &R| (self.poly.value(t), self.rate.value(t)), a, b));
+        }
+    }
+
     /// Pushes the sign changes strictly inside (a, b), in increasing order.
     fn search(&self, (a, fa): (&R, &R), (b, fb): (&R, &R), depth: u32, roots: &mut Vec<R>) {
         let width = b.clone() - a;
         // f cannot reach 0 from both ends within the interval.
-        if fa.abs() + &fb.abs() > self.rate_bound.clone() * &width {
+        if surely_greater(&(fa.abs() + &fb.abs()), &(self.rate_bound.clone() * &width)) {
             return;
         }
         let two = a.int(2);
         let middle = (a.clone() + b) / &two;
-        let monotone = self.rate.value(&middle).abs() > self.curvature_bound.clone() * &width / &two;
-        if monotone || depth >= MAX_HALVINGS {
-            if sign(fa) * sign(fb) < 0 {
-                roots.push(solve(|t: &R| (self.poly.value(t), self.rate.value(t)), a, b));
-            }
+        let curvature_reach = self.curvature_bound.clone() * &width / &two;
+        if surely_greater(&self.rate.value(&middle).abs(), &curvature_reach) {
+            // f' keeps its sign over [a, b]: at most one root, where the signs differ.
+            self.root((a, fa), (b, fb), roots);
+            return;
+        }
+        if depth >= MAX_HALVINGS {
+            // Neither root-free nor monotone at the finest halving (a multiple root, or
+            // one the rounding hides): a sign change is taken as one root, unproven.
+            undecided();
+            self.root((a, fa), (b, fb), roots);
             return;
         }
         let fm = self.poly.value(&middle);
         self.search((a, fa), (&middle, &fm), depth + 1, roots);
-        if sign(&fm) == 0 && sign(fa) * sign(fb) < 0 {
+        if decided_sign(&fm) == Some(0) && sign(fa) * sign(fb) < 0 {
             roots.push(middle.clone());
         }
         self.search((&middle, &fm), (b, fb), depth + 1, roots);
@@ -263,7 +379,9 @@ impl<'a, R: Real> Isolation<'a, R> {
 }
 
 /// The extreme of a trigonometric polynomial over the period, and where: the largest
-/// (`largest`) or smallest value at its turning points (at 0 for a constant).
+/// (`largest`) or smallest value at its turning points (at 0 for a constant). Where two
+/// turning values are too close for the enclosures to order, the extreme is enclosed by
+/// both (their hull), and so is the angle.
 pub(crate) fn extreme<R: Real>(poly: &TrigPoly<R>, largest: bool) -> (R, R) {
     let zero = poly.cos[0].int(0);
     let mut candidates = sign_changes(&poly.derivative());
@@ -271,13 +389,14 @@ pub(crate) fn extreme<R: Real>(poly: &TrigPoly<R>, largest: bool) -> (R, R) {
     let mut best: Option<(R, R)> = None;
     for theta in candidates {
         let value = poly.value(&theta);
-        let better = match &best {
-            None => true,
-            Some((_, b)) => (largest && value > *b) || (!largest && value < *b),
-        };
-        if better {
-            best = Some((theta, value));
-        }
+        best = Some(match best {
+            None => (theta, value),
+            Some((at, b)) => match if_decided(|| if largest { value > b } else { value < b }) {
+                Some(true) => (theta, value),
+                Some(false) => (at, b),
+                None => (at.union(&theta), b.union(&value)),
+            },
+        });
     }
     best.unwrap_or_else(|| (poly.cos[0].int(0), poly.cos[0].clone()))
 }
@@ -313,6 +432,14 @@ fn validate<R: Real>(loads: &Loads<R>) -> Result<(R, R), PathError> {
         (smallest_y.clone() - &largest_x) / &two,
         (largest_x + &smallest_y) / &two,
     ))
+}
+
+/// Checks that the path stays in contact and free of gross slip, as [`SteadyCycle::new`]
+/// does before it builds the cycle.
+#[cfg(feature = "certified")]
+pub(crate) fn check_path<R: Real>(path: &LoadPath<R>, contact: &Contact<R>) -> Result<(), PathError> {
+    contact.validate()?;
+    validate(&Loads::new(path, &contact.friction)).map(|_| ())
 }
 
 /// How a piece of the memory depends on the load s.
@@ -550,14 +677,17 @@ impl<R: Real> SteadyCycle<R> {
         let highest_load = extreme(&loads.normal, true).1;
         let like = lowest_slip.clone();
         let tau = like.pi_like() * &like.int(2);
-        let mut breaks: Vec<R> = [
-            loads.normal_rate.clone(),
-            loads.tangential_rate.combined(&loads.normal_rate, -1),
-            loads.tangential_rate.combined(&loads.normal_rate, 1),
-        ]
-        .iter()
-        .flat_map(sign_changes)
-        .collect();
+        // At constant P, x' = y' = q': their turning points are found once.
+        let rates = if loads.normal_rate.is_constant() {
+            vec![loads.tangential_rate.clone()]
+        } else {
+            vec![
+                loads.normal_rate.clone(),
+                loads.tangential_rate.combined(&loads.normal_rate, -1),
+                loads.tangential_rate.combined(&loads.normal_rate, 1),
+            ]
+        };
+        let mut breaks: Vec<R> = rates.iter().flat_map(sign_changes).collect();
         breaks.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
         breaks.dedup();
         if breaks.is_empty() {
@@ -775,4 +905,104 @@ fn split<R: Real>(
     }
     pieces.retain(|(u, v)| v > u);
     pieces
+}
+
+#[cfg(all(test, feature = "certified"))]
+mod tests {
+    use rug::Float;
+
+    use super::*;
+    use crate::ball::Ball;
+    use crate::doubts::watch;
+    use crate::interval::Interval;
+    use crate::real::Precision;
+
+    /// A trigonometric polynomial with coefficients read from decimals at `precision`.
+    fn poly<R: Real>(cos: &[&str], sin: &[&str], precision: Precision) -> TrigPoly<R> {
+        let read = |texts: &[&str]| {
+            texts
+                .iter()
+                .map(|text| R::parse_decimal(text, precision).expect("a decimal"))
+                .collect()
+        };
+        TrigPoly {
+            cos: read(cos),
+            sin: read(sin),
+        }
+    }
+
+    const COS: [&str; 3] = ["0.05", "0.3", "0.15"];
+    const SIN: [&str; 3] = ["0", "0.2", "-0.1"];
+
+    /// The roots at 256 bits of MPFR, the reference the enclosures must hold.
+    fn reference_roots(cos: &[&str], sin: &[&str]) -> Vec<Float> {
+        sign_changes(&poly::<Float>(cos, sin, Precision::bits(256)))
+    }
+
+    #[test]
+    fn roots_in_balls_are_proven_enclosures_of_the_mpfr_roots() {
+        for (cos, sin) in [(&COS[..], &SIN[..]), (&["1", "0.4"][..], &["0", "0"][..])] {
+            let reference = reference_roots(cos, sin);
+            for bits in [64, 128, 256] {
+                let precision = Precision::bits(bits);
+                let (roots, doubts) = watch(|| sign_changes(&poly::<Ball>(cos, sin, precision)));
+                assert!(doubts.none(), "{bits} bits: {doubts:?}");
+                assert_eq!(roots.len(), reference.len(), "{bits} bits");
+                for (root, exact) in roots.iter().zip(&reference) {
+                    assert!(root.contains(exact), "{bits} bits: {root:?} misses {exact}");
+                    // As narrow as the precision resolves a simple root.
+                    assert!(root.relative_radius() < Float::with_val(64, 2f64.powi(8 - bits as i32)));
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn roots_in_f64_intervals_are_proven_and_narrow() {
+        let reference = reference_roots(&COS, &SIN);
+        let (roots, doubts) = watch(|| sign_changes(&poly::<Interval>(&COS, &SIN, Precision::DOUBLE)));
+        assert!(doubts.none(), "{doubts:?}");
+        assert_eq!(roots.len(), reference.len());
+        for (root, exact) in roots.iter().zip(&reference) {
+            let (lo, hi) = root.real_span().expect("an interval");
+            assert!(
+                Float::with_val(256, lo) <= *exact && *exact <= Float::with_val(256, hi),
+                "{root:?} misses {exact}"
+            );
+            assert!(hi - lo < 1e-13, "{root:?}");
+        }
+    }
+
+    /// q' = −sin θ (0.4 + 0.4 cos θ) has a triple root at π: no sample interval around it is
+    /// proven monotone or root-free, and the doubt refuses the enclosure.
+    #[test]
+    fn a_multiple_root_is_a_doubt_not_a_proven_root() {
+        let (_, doubts) = watch(|| {
+            sign_changes(&poly::<Interval>(
+                &["0", "0", "0"],
+                &["0", "-0.4", "-0.2"],
+                Precision::DOUBLE,
+            ))
+        });
+        assert!(!doubts.none());
+    }
+
+    /// Roots exactly at 0 and π (an unshifted cosine's turning points) lie between the
+    /// samples and are proven; the largest value is enclosed where two maxima tie.
+    #[test]
+    fn roots_at_multiples_of_pi_and_tied_maxima_are_decided() {
+        let precision = Precision::bits(128);
+        let (roots, doubts) = watch(|| sign_changes(&poly::<Ball>(&["0", "0"], &["0", "-0.3"], precision)));
+        assert!(doubts.none(), "{doubts:?}");
+        assert_eq!(roots.len(), 2);
+        let pi = Float::with_val(256, rug::float::Constant::Pi);
+        assert!(roots[0].contains(&pi), "{:?}", roots[0]);
+        // At 2π itself, which no enclosure places below 2π.
+        assert!(roots[1].contains(&(pi * 2u32)), "{:?}", roots[1]);
+        // cos 2θ: maxima 1 at 0 and at π.
+        let ((_, largest), doubts) =
+            watch(|| extreme(&poly::<Ball>(&["0", "0", "1"], &["0", "0", "0"], precision), true));
+        assert!(doubts.none(), "{doubts:?}");
+        assert!(largest.contains(&Float::with_val(64, 1)), "{largest:?}");
+    }
 }

@@ -20,14 +20,19 @@
 //! - [`dissipation`](mod@dissipation): W by the quadrature engine, in any [`Real`];
 //! - [`displacement`]: displacement driving at constant P (Masing's rules, rainflow W);
 //! - [`outputs`]: amplitudes, loss factor, the harmonics of Q and u, and the loop;
+//! - [`proven`]: W of a force-driven path at constant P as a rigorous enclosure (Masing
+//!   over the rainflow cycles of Q, each cycle's W certified), up the one ladder;
 //! - [`request`]: a whole request (file text, contact, drive, digits, budget) answered
-//!   with W on the digits two working precisions agree on, and the outputs.
+//!   with W proven where [`proven`] covers the path, else on the digits two working
+//!   precisions agree on (saying why), and the outputs.
 
 pub mod displacement;
 pub mod dissipation;
 pub mod events;
 pub mod input;
 pub mod outputs;
+#[cfg(feature = "certified")]
+pub mod proven;
 pub mod request;
 
 pub use displacement::{displacement_dissipation, displacement_outputs, DisplacementCycle, MasingLaw};

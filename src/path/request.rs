@@ -1,7 +1,8 @@
 //! A whole path request, as `microslip path`, a batch row or a binding asks it: the file's
 //! text, the contact and compliance as text (read again at every working precision), the
-//! drive, the digits and the time budget; answered with W on the digits two working
-//! precisions agree on, and the f64 outputs.
+//! drive, the digits and the time budget; answered with W proven by an enclosure where
+//! the path allows it, else on the digits two working precisions agree on, and the f64
+//! outputs.
 
 use std::time::Instant;
 
@@ -80,21 +81,31 @@ pub struct PathRequest {
     pub loop_points: usize,
 }
 
-/// W as printed: its digits, its value in f64 and what vouches for it.
+/// W as printed: its digits, its value in f64 and what vouches for it (an enclosure or
+/// the agreement of two precisions).
 #[derive(Clone, Debug, PartialEq)]
 pub struct AgreedW {
     /// The digits two precisions agree on, as a decimal.
     pub text: String,
     /// The value in f64.
     pub value: f64,
-    /// `agreement`: two working precisions agree; not a proof.
+    /// `certified`: a rigorous enclosure proves every printed digit; `agreement`: two
+    /// working precisions agree, not a proof (the keys `microslip dissipation` uses).
     pub provenance: &'static str,
     /// What the provenance rests on, in words.
     pub detail: String,
-    /// The digits two precisions agreed on.
+    /// The digits two precisions agreed on (for a proven W, the digits printed).
     pub digits_agreed: u32,
-    /// The higher working precision.
+    /// The digits proven: all printed ones for a proven W, else 0.
+    pub digits_certified: u32,
+    /// The working precision: of the enclosure, or the higher of the two that agree.
     pub precision_bits: u32,
+    /// The arithmetic of the enclosure (`f64 intervals`, `arb balls`); `None` by agreement.
+    pub arithmetic: Option<&'static str>,
+    /// Why W rests on agreement rather than an enclosure; `None` for a proven W.
+    pub no_enclosure: Option<String>,
+    /// Decimal ends, rounded outwards, of the enclosure W was read from; `None` by agreement.
+    pub enclosure: Option<(String, String)>,
 }
 
 /// The answer to a [`PathRequest`].
@@ -242,7 +253,9 @@ impl TwoPrecisions for Agreement<'_> {
     }
 }
 
-/// W by agreement of two working precisions (never the f64 estimate), and the outputs.
+/// W proven by an enclosure ([`super::proven`]: force driving at constant P), else by
+/// agreement of two working precisions with the reason it is not proven (never the f64
+/// estimate), and the outputs.
 pub fn path_answer(request: &PathRequest) -> Result<PathAnswer, PathRequestError> {
     let inputs = request.read::<f64>(Precision::DOUBLE)?;
     let (path, contact, compliance) = (&inputs.path, &inputs.contact, inputs.compliance.as_ref());
@@ -258,7 +271,10 @@ pub fn path_answer(request: &PathRequest) -> Result<PathAnswer, PathRequestError
             (cycle.dissipation(Some(request.deadline))?, None, Some(cycle))
         }
     };
-    let w = agreed_w(request)?;
+    let w = match proven_or_why(request, f64_w.total) {
+        Ok(w) => w,
+        Err(why) => agreed_w(request, why)?,
+    };
     let outputs = match (&force_cycle, &displacement_cycle) {
         (Some(cycle), _) => path_outputs(
             path,
@@ -280,8 +296,37 @@ pub fn path_answer(request: &PathRequest) -> Result<PathAnswer, PathRequestError
     })
 }
 
-/// W on the digits two working precisions agree on.
-fn agreed_w(request: &PathRequest) -> Result<AgreedW, PathRequestError> {
+/// W proven by an enclosure, or why it is not.
+#[cfg(feature = "certified")]
+fn proven_or_why(request: &PathRequest, estimate: f64) -> Result<AgreedW, String> {
+    let proven = super::proven::proven_w(request).map_err(|why| why.to_string())?;
+    let digits = proven.value.digits().min(request.digits);
+    Ok(AgreedW {
+        text: proven.value.decimal.to_string(),
+        value: proven.value.binary64.unwrap_or(if proven.value.digits() == u32::MAX {
+            0.0
+        } else {
+            estimate
+        }),
+        provenance: proven.provenance.key(),
+        detail: format!("{} over {} rainflow cycles of Q", proven.provenance, proven.cycles),
+        digits_agreed: digits,
+        digits_certified: digits,
+        precision_bits: proven.provenance.precision_bits().unwrap_or(53),
+        arithmetic: proven.provenance.arithmetic().map(crate::answer::Arithmetic::key),
+        no_enclosure: None,
+        enclosure: proven.value.enclosure.clone(),
+    })
+}
+
+/// Without ball arithmetic there is no enclosure.
+#[cfg(not(feature = "certified"))]
+fn proven_or_why(_: &PathRequest, _: f64) -> Result<AgreedW, String> {
+    Err("this build has no ball arithmetic".to_string())
+}
+
+/// W on the digits two working precisions agree on; `why` says why it is not proven.
+fn agreed_w(request: &PathRequest, why: String) -> Result<AgreedW, PathRequestError> {
     let mut agreement = Agreement { request };
     let verified = verify(request.digits, request.deadline, &mut agreement).map_err(|error| match error {
         VerifyError::Failed(failure) => failure,
@@ -297,11 +342,15 @@ fn agreed_w(request: &PathRequest) -> Result<AgreedW, PathRequestError> {
         value: second.to_f64(),
         provenance: "agreement",
         detail: format!(
-            "two working precisions agree on {} digits, up to {} bits; not proven",
+            "two working precisions agree on {} digits, up to {} bits; not proven: {why}",
             verified.agreed,
             verified.precision.in_bits()
         ),
         digits_agreed: verified.agreed,
+        digits_certified: 0,
         precision_bits: verified.precision.in_bits(),
+        arithmetic: None,
+        no_enclosure: Some(why),
+        enclosure: None,
     })
 }

@@ -1,0 +1,244 @@
+//! W of a force-driven path at constant normal load, proven: the rigorous enclosure that
+//! every printed digit rests on.
+//!
+//! At constant P the contact is a Masing element, and W is the sum over the rainflow
+//! cycles of Q of the W of a constant-normal-load cycle of half the range
+//! (proofs/periodic-loading.md, "Proven W"). On enclosures (f64 intervals, then Arb balls
+//! at rising precision) the turning points of Q are the proven roots of Q'
+//! (`events::sign_changes`), the path's checks and the rainflow count compare enclosures that
+//! must be decided, and each cycle's W is the certified constant-normal-load enclosure
+//! ([`enclose_dissipation`]). A path whose P varies, or whose comparisons no precision
+//! decides (two turning values equal), is not proven here: its W rests on agreement.
+
+use std::time::Instant;
+
+use crate::answer::{Arithmetic, Decimal, Provenance, Value};
+use crate::ball::Ball;
+use crate::certified::{enclose_dissipation, CertifiedError, Enclosing, INTERVAL_GOAL_BITS, MAX_BITS};
+use crate::compliance::Compliance;
+use crate::cycle::LoadCycle;
+use crate::dissipation_answer::{DEFAULT_DIGITS, DEFAULT_LEAST_DIGITS};
+use crate::doubts::watch;
+use crate::interval::Interval;
+use crate::ladder::{doubled, Ladder, Rung, Stop};
+use crate::real::{Precision, Real};
+
+use super::displacement::rainflow_ranges;
+use super::events::{check_path, sign_changes};
+use super::input::{Drive, LoadPath, TrigPoly};
+use super::request::PathRequest;
+use super::Contact;
+
+/// W proven to the digits asked for.
+#[derive(Clone, Debug)]
+pub struct ProvenW {
+    /// W by the one printing rule, with the enclosure it was read from.
+    pub value: Value,
+    /// What vouches for it: an enclosure in f64 intervals or in Arb balls.
+    pub provenance: Provenance,
+    /// The rainflow cycles of Q whose W were summed.
+    pub cycles: usize,
+}
+
+/// Why W could not be proven: the reason the answer rests on agreement instead.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum NotProven {
+    /// Only force driving at constant P is proven.
+    #[error("proven W covers force driving at constant normal load; this path's {0}")]
+    NotCovered(&'static str),
+    /// Two enclosures overlapped at every precision tried (two turning values of Q equal,
+    /// a load on a boundary).
+    #[error("the path's turning points or rainflow cycles compare values that overlap up to {bits} bits")]
+    Undecided {
+        /// The highest working precision tried.
+        bits: u32,
+    },
+    /// A cycle's enclosure was refused.
+    #[error("{0}")]
+    Refused(CertifiedError),
+    /// The enclosure at the highest precision tried was too wide for the digits.
+    #[error("the enclosure at {bits} bits settles {reached} of the {asked} digits asked")]
+    TooWide {
+        /// The digits asked for.
+        asked: u32,
+        /// The digits it settled.
+        reached: u32,
+        /// Its working precision.
+        bits: u32,
+    },
+    /// The deadline came first.
+    #[error("the time budget ran out before the enclosure settled {asked} digits")]
+    OutOfTime {
+        /// The digits asked for.
+        asked: u32,
+    },
+}
+
+/// The path, contact and compliance at one precision, as the rung reads them.
+type Inputs<R> = (LoadPath<R>, Contact<R>, Box<dyn Compliance<R>>);
+
+/// W of the request proven to `request.digits` significant digits: one enclosure in f64
+/// intervals where that settles them, else the Arb ladder from the digits' bits up to
+/// [`MAX_BITS`]. The default digits ([`DEFAULT_DIGITS`]) are served as `microslip
+/// dissipation` serves them: the digits the f64 intervals prove, where they prove at
+/// least [`DEFAULT_LEAST_DIGITS`].
+pub fn proven_w(request: &PathRequest) -> Result<ProvenW, NotProven> {
+    if request.drive != Drive::Force {
+        return Err(NotProven::NotCovered("loads are displacement-driven"));
+    }
+    let digits = request.digits.max(1);
+    let read = |precision: Precision| -> Result<Inputs<_>, NotProven> {
+        let inputs = request
+            .read::<Interval>(precision)
+            .map_err(|_| NotProven::NotCovered("inputs are not read as f64 intervals"))?;
+        Ok((inputs.path, inputs.contact, inputs.compliance))
+    };
+    let (path, contact, compliance) = read(Precision::DOUBLE)?;
+    if !path.normal.is_constant() {
+        return Err(NotProven::NotCovered("normal load varies"));
+    }
+    let in_intervals = enclose_constant_load(&path, &contact, compliance.as_ref(), INTERVAL_GOAL_BITS);
+    if let Ok((total, cycles)) = &in_intervals {
+        let value = total.decimal_value(digits);
+        let least = if digits == DEFAULT_DIGITS {
+            DEFAULT_LEAST_DIGITS
+        } else {
+            digits
+        };
+        if settles(&value, least) {
+            return Ok(ProvenW {
+                value,
+                provenance: Provenance::Certified {
+                    bits: 53,
+                    arithmetic: Arithmetic::F64Intervals,
+                },
+                cycles: *cycles,
+            });
+        }
+    }
+    in_balls(request, digits)
+}
+
+/// Whether a value printed by the one rule shows the digits asked for (an exact zero
+/// shows them all).
+fn settles(value: &Value, digits: u32) -> bool {
+    matches!(value.decimal, Decimal::Zero) || value.digits() >= digits
+}
+
+/// The bits that the enclosure's rounding and the sum of the cycles need beyond the
+/// digits' own.
+const GUARD_BITS: u32 = 12;
+
+/// W by the Arb ladder: balls at the digits' bits and guard bits, doubled until the
+/// enclosure settles the digits or the deadline comes.
+fn in_balls(request: &PathRequest, digits: u32) -> Result<ProvenW, NotProven> {
+    let digit_bits = Precision::decimal_digits(digits).in_bits();
+    let first = (digit_bits + GUARD_BITS).next_multiple_of(64);
+    let ladder = Ladder::new(Precision::bits(first), Precision::bits(MAX_BITS)).until(Some(request.deadline));
+    let rung = |precision: Precision| {
+        let bits = precision.in_bits();
+        let inputs = match request.read::<Ball>(precision) {
+            Ok(inputs) => inputs,
+            Err(_) => return Rung::Final(NotProven::NotCovered("inputs are not read as balls")),
+        };
+        let goal = digit_bits + GUARD_BITS + (bits - first);
+        match enclose_constant_load(&inputs.path, &inputs.contact, inputs.compliance.as_ref(), goal) {
+            Ok((total, cycles)) => {
+                let value = total.decimal_value(digits);
+                if settles(&value, digits) && Instant::now() < request.deadline {
+                    Rung::Reached(ProvenW {
+                        value,
+                        provenance: Provenance::Certified {
+                            bits,
+                            arithmetic: Arithmetic::ArbBalls,
+                        },
+                        cycles,
+                    })
+                } else {
+                    Rung::Short(NotProven::TooWide {
+                        asked: digits,
+                        reached: value.digits(),
+                        bits,
+                    })
+                }
+            }
+            Err(error @ NotProven::Refused(CertifiedError::Cycle(_) | CertifiedError::TooSteep { .. })) => {
+                Rung::Final(error)
+            }
+            Err(error) => Rung::Short(error),
+        }
+    };
+    match ladder.climb(rung, doubled) {
+        Ok((proven, _)) => Ok(proven),
+        Err(Stop::Final(error) | Stop::Exhausted(error)) => Err(error),
+        Err(Stop::OutOfTime { .. }) => Err(NotProven::OutOfTime { asked: digits }),
+    }
+}
+
+/// W at constant P as an enclosure, and the number of rainflow cycles: the turning
+/// values of Q (rotated to start and end at the largest) counted by the three-point rule,
+/// each cycle's W enclosed with the rung's own rule aiming at `goal_bits`.
+fn enclose_constant_load<R: Enclosing>(
+    path: &LoadPath<R>,
+    contact: &Contact<R>,
+    compliance: &dyn Compliance<R>,
+    goal_bits: u32,
+) -> Result<(R, usize), NotProven> {
+    let load = path.normal.cos[0].clone();
+    let bits = load.precision().in_bits();
+    let (ranges, doubts) = watch(|| {
+        check_path(path, contact)?;
+        Ok(rainflow_ranges(&turning_values(&path.tangential)))
+    });
+    if !doubts.none() {
+        return Err(NotProven::Undecided { bits });
+    }
+    let ranges: Vec<R> = ranges.map_err(|_: super::PathError| NotProven::NotCovered("checks are not decided"))?;
+    let zero = load.int(0);
+    let mut total = zero.clone();
+    for range in &ranges {
+        let cycle = LoadCycle {
+            mean_normal_load: load.clone(),
+            normal_amplitude: zero.clone(),
+            mean_tangential_load: zero.clone(),
+            tangential_amplitude: range.clone() / &load.int(2),
+            phase: zero.clone(),
+            friction: contact.friction.clone(),
+            compliance_ratio: contact.compliance_ratio.clone(),
+        };
+        let enclosure = enclose_dissipation(&cycle, compliance, goal_bits).map_err(NotProven::Refused)?;
+        total += &enclosure.total;
+    }
+    Ok((total, ranges.len()))
+}
+
+/// The values of Q at its turning points, from the largest round to it again: where
+/// the three-point rainflow count closes every cycle.
+fn turning_values<R: Real>(tangential: &TrigPoly<R>) -> Vec<R> {
+    let rate = tangential.derivative();
+    let values: Vec<R> = sign_changes(&rate)
+        .iter()
+        .map(|theta| value_at_turning_point(tangential, &rate, theta))
+        .collect();
+    if values.is_empty() {
+        return values;
+    }
+    let mut largest = 0;
+    for (index, value) in values.iter().enumerate().skip(1) {
+        if *value > values[largest] {
+            largest = index;
+        }
+    }
+    let mut rotated: Vec<R> = values[largest..].iter().chain(&values[..largest]).cloned().collect();
+    rotated.push(values[largest].clone());
+    rotated
+}
+
+/// The polynomial at an enclosure θ of a root of its `rate`, by the mean-value form
+/// p(m) + p'(θ)(θ − m) about θ's midpoint m: p' nearly vanishes on θ, so the value is
+/// about as narrow as p(m) alone, where p on θ itself would be |p'|-wide only where p'
+/// is not small (a number θ gives p(θ)).
+fn value_at_turning_point<R: Real>(poly: &TrigPoly<R>, rate: &TrigPoly<R>, theta: &R) -> R {
+    let middle = theta.midpoint_value();
+    poly.value(&middle) + &(rate.value(theta) * &(theta.clone() - &middle))
+}
