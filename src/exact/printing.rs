@@ -12,14 +12,13 @@ use rug::{Float, Rational};
 use super::coefficient::closed_form_coefficient;
 use super::remainder::RemainderError;
 use super::series::{partial_sums, series_coefficients, SeriesError};
+use crate::answer::agreed::ReferenceError;
 use crate::answer::{Answer, Arithmetic, ExactReason, Provenance, Value};
 use crate::case::{parse_phase, Case, CaseText, InputError};
+use crate::decimal::printing::{Decimal, F64_MOST_DIGITS};
+use crate::digits::agreement::{agreement_radius, verified_values, OutOfBudget, VerifyError, GUARD_DIGITS, MAX_DIGITS};
 use crate::phase::{decimal, ExactPhase, PhaseError, ReducedPhase};
 use crate::real::{ParseRealError, Precision, Real};
-use crate::reference::ReferenceError;
-use crate::verified::{
-    agreement_radius, verified_values, Decimal, OutOfBudget, VerifyError, F64_MOST_DIGITS, GUARD_DIGITS, MAX_DIGITS,
-};
 
 /// The highest order the series is computed to.
 pub const MAX_ORDER: usize = 200;
@@ -376,9 +375,9 @@ pub struct PartialSums {
     pub differences: Vec<Answer>,
 }
 
-/// W as an [`Answer`], by the one policy for W ([`crate::dissipation_answer`]).
+/// W as an [`Answer`], by the one policy for W ([`crate::answer::dissipation`]).
 fn dissipation_answer(case: &CaseText, digits: Option<u32>, budget: Duration) -> Result<Answer, ExactAnswerError> {
-    Ok(crate::dissipation_answer::dissipation_answer(case, digits, budget)?)
+    Ok(crate::answer::dissipation::dissipation_answer(case, digits, budget)?)
 }
 
 /// W_N − W from their intervals, with the weaker provenance of the two.
