@@ -15,8 +15,8 @@ use std::time::Instant;
 
 use rug::Float;
 
+use super::answer_error::ExactAnswerError;
 use super::coefficient::closed_form_coefficient;
-use super::printing::ExactAnswerError;
 use super::series::{partial_sums, series_coefficients};
 use crate::ball::{watch, Ball};
 use crate::case::{Case, CaseSpec};
