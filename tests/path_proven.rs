@@ -9,9 +9,9 @@ mod common;
 use std::time::{Duration, Instant};
 
 use common::{microslip, PERSSON};
+use microslip::answer::dissipation::dissipation_of;
 use microslip::case::CaseText;
 use microslip::compliance::parse_spec;
-use microslip::dissipation_answer::dissipation_of;
 use microslip::path::displacement::rainflow_ranges;
 use microslip::path::input::read_harmonics;
 use microslip::path::proven::{proven_w, NotProven, ProvenW};
@@ -31,7 +31,7 @@ fn constant_p_file(p0: &str, q0: &str, harmonics: &[(&str, &str)]) -> String {
     text
 }
 
-fn request(contents: &str, (friction, lambda, spec): (&str, &str, &str), digits: u32) -> PathRequest {
+fn request(contents: &str, (friction, lambda, spec): (&str, &str, &str), digits: Option<u32>) -> PathRequest {
     PathRequest {
         file: "path.csv".to_string(),
         contents: contents.to_string(),
@@ -47,7 +47,7 @@ fn request(contents: &str, (friction, lambda, spec): (&str, &str, &str), digits:
     }
 }
 
-fn proven(contents: &str, contact: (&str, &str, &str), digits: u32) -> ProvenW {
+fn proven(contents: &str, contact: (&str, &str, &str), digits: Option<u32>) -> ProvenW {
     proven_w(&request(contents, contact, digits)).unwrap_or_else(|why| panic!("{contents}: {why}"))
 }
 
@@ -93,7 +93,7 @@ fn a_harmonic_path_at_constant_p_prints_the_certified_four_segment_digits() {
             .build()
             .unwrap();
         for digits in [None, Some(25)] {
-            let path = proven(&file, (friction, lambda, spec), digits.unwrap_or(15));
+            let path = proven(&file, (friction, lambda, spec), digits);
             let certified = dissipation_of(&case, digits, Duration::from_secs(60)).unwrap();
             assert!(certified.answer.provenance.is_proven() && path.provenance.is_proven());
             assert_eq!(path.provenance, certified.answer.provenance, "{file}");
@@ -247,7 +247,7 @@ fn constant_p_with_two_harmonics_in_q_is_proven_and_masing_over_rainflow_cycles(
     let contact = ("0.8", "1.2", PERSSON);
     for harmonics in [[("0.3", "0"), ("0.1", "-0.15")], [("0.25", "0.05"), ("0.2", "0.1")]] {
         let file = constant_p_file("1", "0.05", &harmonics);
-        let w = proven(&file, contact, 20);
+        let w = proven(&file, contact, Some(20));
         assert!(w.cycles >= 1, "{file}");
         // Masing over the rainflow cycles of dense samples of Q, each the f64 four-segment W.
         let path = read_harmonics::<f64>(&file, Precision::DOUBLE).unwrap();
@@ -319,13 +319,13 @@ fn a_time_shift_a_shift_of_q0_and_zero_harmonics_give_overlapping_enclosures() {
         ],
     );
     for digits in [15, 30] {
-        let reference = ends(&proven(&base, contact, digits));
+        let reference = ends(&proven(&base, contact, Some(digits)));
         for (name, other) in [
             ("quarter turn", &quarter),
             ("Q0 shift", &mean_shift),
             ("zero harmonics", &padded),
         ] {
-            let enclosure = ends(&proven(other, contact, digits));
+            let enclosure = ends(&proven(other, contact, Some(digits)));
             assert!(
                 overlap(reference.clone(), enclosure.clone()),
                 "{name} at {digits}: {reference:?} vs {enclosure:?}"
@@ -334,8 +334,8 @@ fn a_time_shift_a_shift_of_q0_and_zero_harmonics_give_overlapping_enclosures() {
     }
     // In f64 intervals the rounding of the shifted coefficients lies far inside the width.
     let (reference, shifted) = (
-        ends(&proven(&base, contact, 15)),
-        ends(&proven(&one_radian, contact, 15)),
+        ends(&proven(&base, contact, None)),
+        ends(&proven(&one_radian, contact, None)),
     );
     assert!(
         overlap(reference.clone(), shifted.clone()),
@@ -384,7 +384,7 @@ fn every_enclosure_holds_the_40_digit_agreement_value_on_random_two_harmonic_pat
         let agreed = Float::with_val(256, &high - &low).abs() / high.clone().abs();
         assert!(agreed < 1e-41, "{file}: the precisions agree only to {agreed:e}");
         for digits in [15, 20, 40] {
-            let (lower, upper) = ends(&proven(&file, contact, digits));
+            let (lower, upper) = ends(&proven(&file, contact, Some(digits)));
             assert!(
                 lower <= high && high <= upper,
                 "{file} at {digits} digits: {high} outside [{lower}, {upper}]"
@@ -398,10 +398,10 @@ fn paths_it_does_not_cover_rest_on_agreement_and_say_why() {
     let contact = ("1", "1", PERSSON);
     let varying = "k,P_cos,P_sin,Q_cos,Q_sin\n0,1,0,0,0\n1,0.3,0,0.2,0.3\n";
     assert!(matches!(
-        proven_w(&request(varying, contact, 12)),
+        proven_w(&request(varying, contact, Some(12))),
         Err(NotProven::NotCovered(_))
     ));
-    let answer = path_answer(&request(varying, contact, 12)).unwrap();
+    let answer = path_answer(&request(varying, contact, Some(12))).unwrap();
     assert_eq!(answer.w.provenance, "agreement");
     assert_eq!(answer.w.digits_certified, 0);
     assert!(answer
@@ -412,7 +412,7 @@ fn paths_it_does_not_cover_rest_on_agreement_and_say_why() {
         .contains("constant normal load"));
     // Q = 0.4 cos θ + 0.1 cos 2θ: Q' has a triple root at π, which no precision isolates.
     let triple = constant_p_file("1", "0", &[("0.4", "0"), ("0.1", "0")]);
-    let answer = path_answer(&request(&triple, contact, 12)).unwrap();
+    let answer = path_answer(&request(&triple, contact, Some(12))).unwrap();
     assert_eq!(answer.w.provenance, "agreement");
     assert!(answer.w.detail.contains("not proven"), "{}", answer.w.detail);
 }

@@ -45,13 +45,21 @@ impl PyPath {
         mantissa.chars().filter(char::is_ascii_digit).count()
     }
 
-    /// How many significant digits the two working precisions agreed on (at least `digits`).
+    /// How many significant digits the two working precisions agreed on (at least `digits`;
+    /// for a proven W, the digits printed).
     #[getter]
     fn digits_agreed(&self) -> u32 {
         self.answer.w.digits_agreed
     }
 
-    /// What vouches for W: ``"agreement"`` (two working precisions agree; not a proof).
+    /// How many significant digits of W are proven: all printed ones for a proven W, else 0.
+    #[getter]
+    fn digits_certified(&self) -> u32 {
+        self.answer.w.digits_certified
+    }
+
+    /// What vouches for W: ``"certified"`` (a rigorous enclosure: force-driven at constant P)
+    /// or ``"agreement"`` (two working precisions agree; not a proof).
     #[getter]
     fn provenance(&self) -> &str {
         self.answer.w.provenance
@@ -187,7 +195,7 @@ pub fn path_of_text(
         friction,
         ratio,
         compliance,
-        digits: digits.unwrap_or(microslip::dissipation_answer::DEFAULT_DIGITS),
+        digits,
         deadline: Instant::now() + budget,
         harmonics_out,
         loop_points: LOOP_POINTS,

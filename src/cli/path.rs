@@ -7,7 +7,6 @@ use std::time::{Duration, Instant};
 use clap::{ArgGroup, Args, ValueEnum};
 use serde::Serialize;
 
-use microslip::dissipation_answer::DEFAULT_DIGITS;
 use microslip::files::{check_writable, csv_text, destination, write_text_atomically, Destination};
 use microslip::path::{path_answer, AgreedW, Drive, PathAnswer, PathFormat, PathOutputs, PathRequest, RatioText};
 
@@ -82,7 +81,7 @@ impl PathFileArgs {
             friction: contact.friction.clone(),
             ratio,
             compliance: contact.compliance.clone(),
-            digits: DEFAULT_DIGITS,
+            digits: None,
             deadline,
             harmonics_out: 0,
             loop_points: 0,
@@ -175,7 +174,7 @@ pub fn run(args: &PathArgs) -> Result<String, Failure> {
         check_writable(path, &["csv"])?;
     }
     let request = PathRequest {
-        digits: args.digits.unwrap_or(DEFAULT_DIGITS),
+        digits: args.digits,
         harmonics_out: usize::from(args.harmonics_out),
         loop_points: LOOP_POINTS,
         ..args

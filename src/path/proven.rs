@@ -12,15 +12,15 @@
 
 use std::time::Instant;
 
+use crate::answer::dissipation::DEFAULT_LEAST_DIGITS;
 use crate::answer::{Arithmetic, Decimal, Provenance, Value};
 use crate::ball::Ball;
-use crate::certified::{enclose_dissipation, CertifiedError, Enclosing, INTERVAL_GOAL_BITS, MAX_BITS};
 use crate::compliance::Compliance;
 use crate::cycle::LoadCycle;
-use crate::dissipation_answer::{DEFAULT_DIGITS, DEFAULT_LEAST_DIGITS};
+use crate::digits::enclosure::{enclose_dissipation, CertifiedError, Enclosing, INTERVAL_GOAL_BITS, MAX_BITS};
+use crate::digits::{doubled, Ladder, Rung, Stop};
 use crate::doubts::watch;
 use crate::interval::Interval;
-use crate::ladder::{doubled, Ladder, Rung, Stop};
 use crate::real::{Precision, Real};
 
 use super::displacement::rainflow_ranges;
@@ -77,16 +77,17 @@ pub enum NotProven {
 /// The path, contact and compliance at one precision, as the rung reads them.
 type Inputs<R> = (LoadPath<R>, Contact<R>, Box<dyn Compliance<R>>);
 
-/// W of the request proven to `request.digits` significant digits: one enclosure in f64
-/// intervals where that settles them, else the Arb ladder from the digits' bits up to
-/// [`MAX_BITS`]. The default digits ([`DEFAULT_DIGITS`]) are served as `microslip
-/// dissipation` serves them: the digits the f64 intervals prove, where they prove at
-/// least [`DEFAULT_LEAST_DIGITS`].
+/// W of the request proven to the significant digits asked
+/// ([`PathRequest::digits_asked`]): one enclosure in f64 intervals where that settles
+/// them, else the Arb ladder from the digits' bits up to [`MAX_BITS`]. Without digits
+/// asked, W is served as `microslip dissipation` serves it: the digits (up to
+/// [`crate::answer::dissipation::DEFAULT_DIGITS`]) the f64 intervals prove, where they prove at least
+/// [`DEFAULT_LEAST_DIGITS`].
 pub fn proven_w(request: &PathRequest) -> Result<ProvenW, NotProven> {
     if request.drive != Drive::Force {
         return Err(NotProven::NotCovered("loads are displacement-driven"));
     }
-    let digits = request.digits.max(1);
+    let digits = request.digits_asked().max(1);
     let read = |precision: Precision| -> Result<Inputs<_>, NotProven> {
         let inputs = request
             .read::<Interval>(precision)
@@ -100,10 +101,9 @@ pub fn proven_w(request: &PathRequest) -> Result<ProvenW, NotProven> {
     let in_intervals = enclose_constant_load(&path, &contact, compliance.as_ref(), INTERVAL_GOAL_BITS);
     if let Ok((total, cycles)) = &in_intervals {
         let value = total.decimal_value(digits);
-        let least = if digits == DEFAULT_DIGITS {
-            DEFAULT_LEAST_DIGITS
-        } else {
-            digits
+        let least = match request.digits {
+            None => DEFAULT_LEAST_DIGITS,
+            Some(_) => digits,
         };
         if settles(&value, least) {
             return Ok(ProvenW {

@@ -8,10 +8,12 @@ use std::time::Instant;
 
 use rug::Float;
 
+use crate::answer::dissipation::DEFAULT_DIGITS;
 use crate::compliance::{parse_spec, Compliance};
 use crate::cycle::compliance_ratio_from_poisson;
+use crate::decimal::printing::decimal_ball;
+use crate::digits::agreement::{agreement_radius, verify, TwoPrecisions, VerifyError};
 use crate::real::{Precision, Real};
-use crate::verified::{agreement_radius, decimal_ball, verify, TwoPrecisions, VerifyError};
 
 use super::displacement::{displacement_dissipation, displacement_outputs, DisplacementCycle};
 use super::dissipation::{dissipation_of, path_dissipation};
@@ -71,8 +73,9 @@ pub struct PathRequest {
     pub ratio: RatioText,
     /// The compliance spec.
     pub compliance: String,
-    /// Significant digits of W two precisions must agree on.
-    pub digits: u32,
+    /// Significant digits of W asked for (`--digits N`); `None` for the default: the 12
+    /// to 15 digits an enclosure in f64 intervals proves, or 15 agreed on.
+    pub digits: Option<u32>,
     /// When to give up.
     pub deadline: Instant,
     /// Harmonics k = 0 … K of Q and u to report.
@@ -182,6 +185,12 @@ pub(crate) struct Inputs<R: Real> {
 }
 
 impl PathRequest {
+    /// The significant digits W is printed to at most: those asked for, else
+    /// [`DEFAULT_DIGITS`].
+    pub fn digits_asked(&self) -> u32 {
+        self.digits.unwrap_or(DEFAULT_DIGITS)
+    }
+
     pub(crate) fn read<R: Real>(&self, precision: Precision) -> Result<Inputs<R>, PathRequestError> {
         let path = match self.format {
             PathFormat::Samples => read_driven_samples::<R>(&self.contents, precision, self.drive),
@@ -300,7 +309,7 @@ pub fn path_answer(request: &PathRequest) -> Result<PathAnswer, PathRequestError
 #[cfg(feature = "certified")]
 fn proven_or_why(request: &PathRequest, estimate: f64) -> Result<AgreedW, String> {
     let proven = super::proven::proven_w(request).map_err(|why| why.to_string())?;
-    let digits = proven.value.digits().min(request.digits);
+    let digits = proven.value.digits().min(request.digits_asked());
     Ok(AgreedW {
         text: proven.value.decimal.to_string(),
         value: proven.value.binary64.unwrap_or(if proven.value.digits() == u32::MAX {
@@ -328,7 +337,7 @@ fn proven_or_why(_: &PathRequest, _: f64) -> Result<AgreedW, String> {
 /// W on the digits two working precisions agree on; `why` says why it is not proven.
 fn agreed_w(request: &PathRequest, why: String) -> Result<AgreedW, PathRequestError> {
     let mut agreement = Agreement { request };
-    let verified = verify(request.digits, request.deadline, &mut agreement).map_err(|error| match error {
+    let verified = verify(request.digits_asked(), request.deadline, &mut agreement).map_err(|error| match error {
         VerifyError::Failed(failure) => failure,
         VerifyError::OutOfBudget(out) => PathRequestError::failed(format!(
             "the time budget ran out before two precisions agreed on {} digits of W ({} agreed); raise --max-seconds",
@@ -338,7 +347,7 @@ fn agreed_w(request: &PathRequest, why: String) -> Result<AgreedW, PathRequestEr
     })?;
     let (first, second) = (&verified.first[0], &verified.output[0]);
     Ok(AgreedW {
-        text: decimal_ball(second, &agreement_radius(first, second), request.digits).to_string(),
+        text: decimal_ball(second, &agreement_radius(first, second), request.digits_asked()).to_string(),
         value: second.to_f64(),
         provenance: "agreement",
         detail: format!(
