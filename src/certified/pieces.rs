@@ -16,7 +16,7 @@ use crate::dissipation::closed_forms::{
     constant_normal_load_segments, constant_normal_load_term, in_phase_segments, in_phase_terms, weighted_pieces,
 };
 use crate::dissipation::slope::knot_offsets;
-use crate::dissipation::{Segment, SegmentIntegrands, Segments};
+use crate::dissipation::{Segment, SegmentIntegrands, Segments, SlopeBetween, SlopesAtLoads};
 use crate::doubts::{watch, with_analytic, Doubts};
 use crate::quad::Piece;
 use crate::real::Precision;
@@ -25,6 +25,19 @@ use crate::real::Precision;
 /// Arb aiming at `goal_bits` relative accuracy per piece.
 pub fn enclose_dissipation<R: Enclosing>(
     cycle: &LoadCycle<R>,
+    compliance: &dyn Compliance<R>,
+    goal_bits: u32,
+) -> Result<Enclosure<R>, CertifiedError> {
+    enclose_dissipation_with_lowest_load(cycle, None, compliance, goal_bits)
+}
+
+/// [`enclose_dissipation`], with the lowest normal load P0 − P1 enclosed by the caller
+/// (read exactly from the decimals) where given: near separation the loads at the bottom
+/// of the cycle are formed from it ([`EllipseGeometry::with_lowest_normal_load`]), which
+/// the difference of the rounded P0 and P1 would widen P0/(P0 − P1)-fold.
+pub fn enclose_dissipation_with_lowest_load<R: Enclosing>(
+    cycle: &LoadCycle<R>,
+    lowest_normal_load: Option<&R>,
     compliance: &dyn Compliance<R>,
     goal_bits: u32,
 ) -> Result<Enclosure<R>, CertifiedError> {
@@ -66,7 +79,7 @@ pub fn enclose_dissipation<R: Enclosing>(
             let (integrals, pieces) = enclose_terms(cycle, compliance, terms, goal_bits)?;
             (in_phase_segments(cycle, integrals), pieces)
         }
-        CycleKind::Elliptic => enclose_segments(&valid, compliance, goal_bits)?,
+        CycleKind::Elliptic => enclose_segments(&valid, lowest_normal_load, compliance, goal_bits)?,
     };
     let lambda = &cycle.compliance_ratio;
     let segments = Segments::from_fn(|segment| sums.get(segment).clone() * lambda);
@@ -172,11 +185,15 @@ fn integrand_ceiling<R: Enclosing>(geometry: &EllipseGeometry<R>, slope: &(dyn F
 /// The four segments of an elliptic cycle per unit λ, and how many pieces they took.
 fn enclose_segments<R: Enclosing>(
     valid: &ValidCycle<R>,
+    lowest_normal_load: Option<&R>,
     compliance: &dyn Compliance<R>,
     goal_bits: u32,
 ) -> Result<(Segments<R>, usize), CertifiedError> {
     let bits = valid.mean_normal_load.precision().in_bits();
-    let (geometry, doubts) = watch(|| valid.geometry());
+    let (geometry, doubts) = watch(|| match lowest_normal_load {
+        Some(lowest) => valid.geometry().with_lowest_normal_load(lowest.clone()),
+        None => valid.geometry(),
+    });
     if !doubts.none() {
         return Err(undecided(bits, doubts));
     }
@@ -209,8 +226,10 @@ fn enclose_segments<R: Enclosing>(
     if !doubts.none() {
         return Err(undecided(bits, doubts));
     }
+    let at_loads = slopes_at_loads(compliance, &geometry.mean_normal_load, slopes.len() > 1, bits)?;
     for slope in &slopes {
-        let (pieces, doubts) = watch(|| certified_pieces(&integrands, slope.as_ref(), &bound_slope, &at_bottom));
+        let (pieces, doubts) =
+            watch(|| certified_pieces(&integrands, slope.as_ref(), &bound_slope, &at_bottom, &at_loads));
         if !doubts.none() {
             return Err(undecided(bits, doubts));
         }
@@ -338,7 +357,7 @@ pub(super) fn bottom_slope_change<'a, R: Enclosing>(
     compliance: &'a dyn Compliance<R>,
     geometry: &EllipseGeometry<R>,
 ) -> Box<dyn Fn(&R) -> R + Send + Sync + 'a> {
-    let lowest = geometry.mean_normal_load.clone() - &geometry.normal_amplitude;
+    let lowest = geometry.lowest_normal_load.clone();
     let at_mean = compliance.slope(&geometry.mean_normal_load);
     Box::new(move |root: &R| compliance.slope_at_scaled_square(&lowest, root) - &at_mean)
 }
@@ -348,8 +367,37 @@ pub(super) fn difference_of_slopes<'a, R: Enclosing>(
     compliance: &'a dyn Compliance<R>,
     mean_load: &R,
 ) -> SlopeChange<'a, R> {
-    let (mean_load, at_mean) = (mean_load.clone(), compliance.slope(mean_load));
-    Box::new(move |offset: &R| compliance.slope(&(mean_load.clone() + offset)) - &at_mean)
+    let (mean_load, at_load) = (mean_load.clone(), change_at_load(compliance, mean_load));
+    Box::new(move |offset: &R| at_load(&(mean_load.clone() + offset)))
+}
+
+/// The slope change at loads given themselves ([`SlopesAtLoads`]): v'(L + x) − v'(L) by
+/// the compliance's own form where `own_form` (its form about P0 decided all it asks, see
+/// [`slopes`]), else as a plain difference.
+fn slopes_at_loads<'a, R: Enclosing>(
+    compliance: &'a dyn Compliance<R>,
+    mean_load: &R,
+    own_form: bool,
+    bits: u32,
+) -> Result<SlopesAtLoads<'a, R>, CertifiedError> {
+    let (at_load, doubts) = watch(|| change_at_load(compliance, mean_load));
+    if !doubts.none() {
+        return Err(undecided(bits, doubts));
+    }
+    let between: SlopeBetween<'a, R> = if own_form {
+        Box::new(move |load: &R, gap: &R| compliance.slope_change(load, gap))
+    } else {
+        Box::new(move |load: &R, gap: &R| compliance.slope(&(load.clone() + gap)) - &compliance.slope(load))
+    };
+    Ok(SlopesAtLoads { at_load, between })
+}
+
+/// P ↦ v'(P) − v'(P0), the slope change at a load given itself: at loads far below P0,
+/// formed from the cycle's lowest loads, where P0 + x would lose them to the rounding of
+/// P0 ([`crate::dissipation::segments`]).
+fn change_at_load<'a, R: Enclosing>(compliance: &'a dyn Compliance<R>, mean_load: &R) -> SlopeChange<'a, R> {
+    let at_mean = compliance.slope(mean_load);
+    Box::new(move |load: &R| compliance.slope(load) - &at_mean)
 }
 
 /// The pieces' enclosures summed per group (a segment, or a closed form's term), and
@@ -408,6 +456,7 @@ fn certified_pieces<'a, R: Enclosing>(
     slope: &'a (dyn Fn(&R) -> R + Send + Sync + 'a),
     bound_slope: &'a (dyn Fn(&R) -> R + Send + Sync + 'a),
     at_bottom: &'a (dyn Fn(&R) -> R + Send + Sync + 'a),
+    at_loads: &'a SlopesAtLoads<'a, R>,
 ) -> Vec<CertifiedPiece<'a, R>> {
     integrands
         .plans()
@@ -415,8 +464,20 @@ fn certified_pieces<'a, R: Enclosing>(
         .map(|plan| CertifiedPiece {
             group: segment_index(plan.segment),
             label: plan.segment.name(),
-            integrand: integrands.plan_integrand(plan.segment, plan.map.clone(), slope),
-            bound: Some(integrands.plan_integrand_at_bottom(plan.segment, plan.map, bound_slope, Some(at_bottom))),
+            integrand: integrands.plan_integrand_at_bottom(
+                plan.segment,
+                plan.map.clone(),
+                slope,
+                None::<fn(&R) -> R>,
+                Some(at_loads),
+            ),
+            bound: Some(integrands.plan_integrand_at_bottom(
+                plan.segment,
+                plan.map,
+                bound_slope,
+                Some(at_bottom),
+                None,
+            )),
             evaluations: Cell::new(0),
             start: plan.start,
             end: plan.end,

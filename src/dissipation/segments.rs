@@ -15,11 +15,11 @@ use std::rc::Rc;
 use super::segment::{Segment, Segments};
 use super::slope::{knot_offsets, slope_at};
 use crate::compliance::{Compliance, SlopeChange};
-use crate::cycle::EllipseGeometry;
+use crate::cycle::{EllipseGeometry, LoadsAt};
 use crate::quad::bottom_map::{BottomMap, BottomPoint};
 use crate::quad::sinh_map::{acosh_one_plus, asinh, resolve_peaks, Peak, SinhMap};
 use crate::quad::Piece;
-use crate::real::Real;
+use crate::real::{Precision, Real};
 
 /// The pieces of the four segment integrals, with the segment each belongs to.
 pub struct SegmentPieces<'a, R> {
@@ -47,19 +47,25 @@ impl<'a, R: Real> SegmentPieces<'a, R> {
 }
 
 /// The angles one evaluation of a segment's integrand takes, with θ through its sine
-/// and cosine.
+/// and cosine, and 1 + cos θ, the rise P1(1 + cos θ) of P above P0 − P1 per unit P1.
 enum SegmentAngle<R> {
     /// BC.
     Stick {
         /// (sin θ, cos θ).
         theta: (R, R),
+        /// 1 + cos θ.
+        rise: R,
     },
     /// CH.
     Mirrored {
         /// (sin θ, cos θ).
         theta: (R, R),
+        /// 1 + cos θ.
+        rise: R,
         /// cos θ_Y at the mirror angle θ_Y = 2θ_C − θ.
         mirror_cos: R,
+        /// 1 + cos θ_Y.
+        mirror_rise: R,
         /// sin(θ − θ_C).
         from_c_sin: R,
     },
@@ -67,12 +73,87 @@ enum SegmentAngle<R> {
     Slip {
         /// (sin θ, cos θ).
         theta: (R, R),
+        /// 1 + cos θ.
+        rise: R,
         /// sin h.
         half_sin: R,
+        /// cos h (with sin h, up to a sign common to both).
+        half_cos: R,
         /// sin 2h.
         double_sin: R,
     },
 }
+
+/// The slope change an integrand takes v' through (v'(P) − v'(P0), or v'(P) itself): as a
+/// function of the offset x = P − P0, and, where given, of the load P itself, which loads
+/// far below P0 are formed as (their lowest load, P0 − P1 or P_T) + (a rise above it) to
+/// keep the relative accuracy of that lowest load, where P0 + x would carry the rounding
+/// of P0 amplified P0/P-fold.
+pub(crate) struct Slopes<'s, R> {
+    /// x ↦ the slope change at P0 + x.
+    pub offset: &'s dyn Fn(&R) -> R,
+    /// The same at loads given themselves, where the caller has them.
+    pub at_loads: Option<&'s SlopesAtLoads<'s, R>>,
+}
+
+/// The slope change at loads given themselves rather than by their offsets from P0.
+pub(crate) struct SlopesAtLoads<'a, R> {
+    /// P ↦ the slope change at P, for loads below P0·[`SMALL_LOAD`].
+    pub at_load: Box<dyn Fn(&R) -> R + 'a>,
+    /// (L, x) ↦ v'(L + x) − v'(L) for x ≥ 0, free of cancellation where the compliance
+    /// has a form for it ([`Compliance::slope_change`]).
+    pub between: SlopeBetween<'a, R>,
+}
+
+/// (L, x) ↦ v'(L + x) − v'(L) ([`SlopesAtLoads::between`]).
+pub(crate) type SlopeBetween<'a, R> = Box<dyn Fn(&R, &R) -> R + 'a>;
+
+// Two references: copyable whatever R is.
+impl<R> Clone for Slopes<'_, R> {
+    fn clone(&self) -> Self {
+        *self
+    }
+}
+
+impl<R> Copy for Slopes<'_, R> {}
+
+impl<'s, R> Slopes<'s, R> {
+    fn of<S: Fn(&R) -> R>(offset: &'s S, at_loads: Option<&'s SlopesAtLoads<'s, R>>) -> Self {
+        Slopes { offset, at_loads }
+    }
+}
+
+/// 1 + cos θ from (sin θ, cos θ): as sin²θ/(1 − cos θ) where cos θ < 0 (a double
+/// decides), which near θ ≡ π keeps the relative accuracy of sin θ where 1 + cos θ cancels.
+fn rise_of<R: Real>((sin, cos): &(R, R)) -> R {
+    if cos.to_f64_lossy() < 0.0 {
+        sin.square() / &(cos.int(1) - cos)
+    } else {
+        cos.int(1) + cos
+    }
+}
+
+/// A point of `s` to split an integral at: any point splits it exactly, and at double
+/// precision the middle of an enclosure of s (a double) gives the pieces on either side
+/// an exact common limit where s itself, an angle of the cycle near π formed from other
+/// angles, would widen both by its width; other precisions keep s.
+fn split_point<R: Real>(s: R) -> R {
+    match s.real_span() {
+        Some((lo, hi)) if s.precision() == Precision::DOUBLE && lo < hi => {
+            R::from_f64(lo * 0.5 + hi * 0.5, Precision::DOUBLE)
+        }
+        _ => s,
+    }
+}
+
+/// How far (in rad, by doubles) a segment's end must lie from a bottom map's centre for
+/// the sign of the angle between them to be taken from doubles: far beyond the rounding of
+/// angles of a few turns.
+const END_SIGN_MARGIN: f64 = 1e-12;
+
+/// The loads, as a fraction of P0, below which [`SlopesAtLoads::at_load`] is taken: there the
+/// offset's sum P0 + x would lose more than two bits of the load to the rounding of P0.
+const SMALL_LOAD: f64 = 0.25;
 
 /// The slope change at the load a bottom map is centred on, formed by the caller from
 /// that load as a product (δ cosh²u, [`Compliance::slope_at_scaled_square`]) rather than
@@ -177,25 +258,67 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
     fn loads_and_normal_term(
         &self,
         sin_cos: &(R, R),
-        slope: &dyn Fn(&R) -> R,
+        rise: &R,
+        slopes: Slopes<'_, R>,
         centred: &mut Option<CentredChange<R>>,
     ) -> (R, R) {
         let g = self.geometry;
         let loads = g.loads_at(sin_cos);
-        let change = change_at(LowLoad::Normal, centred, || slope(&loads.normal_offset()));
+        let change = change_at(LowLoad::Normal, centred, || {
+            self.normal_change(slopes, rise, || loads.normal_offset())
+        });
         let term = change * &g.friction * &loads.normal_rate();
         (loads.tangential_offset(), term)
     }
 
-    /// (sin θ, cos θ) at θ = θ_C + s, and cos θ_Y at the mirror point θ_Y = θ_C − s, from
+    /// The slope change at the normal load P = (P0 − P1) + P1·`rise` (the load at an angle
+    /// with 1 + cos θ = `rise`), whose offset P1 cos θ is `offset()`.
+    fn normal_change(&self, slopes: Slopes<'_, R>, rise: &R, offset: impl FnOnce() -> R) -> R {
+        match slopes.at_loads {
+            Some(_) => self.change_at_load(slopes, &self.normal_load(rise), offset),
+            None => (slopes.offset)(&offset()),
+        }
+    }
+
+    /// P = (P0 − P1) + P1·`rise` at an angle with 1 + cos θ = `rise`: a sum of two terms
+    /// of one sign, as accurate as the lowest load near the bottom of the cycle.
+    fn normal_load(&self, rise: &R) -> R {
+        let g = self.geometry;
+        g.lowest_normal_load.clone() + &(g.normal_amplitude.clone() * rise)
+    }
+
+    /// P_T + σ sin²h/f, the slip load of EB (σ = σ₊, P_S) or HE (σ = σ₋, P_K), given sin h,
+    /// with its offset from P0.
+    fn slip_load(&self, amplitude: &R, half_sin: &R) -> (R, R) {
+        let g = self.geometry;
+        let lift = amplitude.clone() * &half_sin.square() / &g.friction;
+        (
+            g.permanent_stick_load() + &lift,
+            g.permanent_stick_offset.clone() + &lift,
+        )
+    }
+
+    /// The slope change at `load`: from the load itself where it lies below
+    /// P0·[`SMALL_LOAD`] and [`Slopes::at_loads`] is given, else from its offset from P0,
+    /// `offset()`. A double decides which: both are the same function.
+    fn change_at_load(&self, slopes: Slopes<'_, R>, load: &R, offset: impl FnOnce() -> R) -> R {
+        if let Some(at_loads) = slopes.at_loads {
+            if load.to_f64_lossy() < self.geometry.mean_normal_load.to_f64_lossy() * SMALL_LOAD {
+                return (at_loads.at_load)(load);
+            }
+        }
+        (slopes.offset)(&offset())
+    }
+
+    /// (sin θ, cos θ) at θ = θ_C + s, and at the mirror point θ_Y = θ_C − s, from
     /// (sin s, cos s) by the addition formulas: one set of four products serves both.
-    fn around_c(&self, s_sin_cos: &(R, R)) -> ((R, R), R) {
+    fn around_c(&self, s_sin_cos: &(R, R)) -> ((R, R), (R, R)) {
         let (c_sin, c_cos) = &self.geometry.theta_c_sin_cos;
         let (s_sin, s_cos) = s_sin_cos;
         let (sin_part, cos_part) = (c_sin.clone() * s_cos, c_cos.clone() * s_sin);
         let (cos_a, sin_b) = (c_cos.clone() * s_cos, c_sin.clone() * s_sin);
-        let mirror_cos = cos_a.clone() + &sin_b;
-        ((sin_part + &cos_part, cos_a - &sin_b), mirror_cos)
+        let mirror = (sin_part.clone() - &cos_part, cos_a.clone() + &sin_b);
+        ((sin_part + &cos_part, cos_a - &sin_b), mirror)
     }
 
     /// The integrand of `segment` at angle `s` from its start.
@@ -205,7 +328,11 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
     }
 
     pub(crate) fn integrand_with(&self, segment: Segment, s: &R, slope: &dyn Fn(&R) -> R) -> R {
-        self.integrand_at(segment, self.angle_at(segment, s), slope, None)
+        let slopes = Slopes {
+            offset: slope,
+            at_loads: None,
+        };
+        self.integrand_at(segment, self.angle_at(segment, s), slopes, None)
     }
 
     /// The angles of `segment` at angle `s` from its start.
@@ -228,21 +355,29 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
                     end_cos.clone() * &double_cos - &(end_sin.clone() * &double_sin),
                 );
                 SegmentAngle::Slip {
+                    rise: rise_of(&theta),
                     theta,
                     half_sin,
+                    half_cos,
                     double_sin,
                 }
             }
-            Segment::BC => SegmentAngle::Stick {
-                theta: (g.theta_b.clone() + s).sin_cos(),
-            },
+            Segment::BC => {
+                let theta = (g.theta_b.clone() + s).sin_cos();
+                SegmentAngle::Stick {
+                    rise: rise_of(&theta),
+                    theta,
+                }
+            }
             Segment::CH => {
                 // θ = θ_C + s, the mirror point θ_C − s; sin(θ − θ_E) = sin(π + s) = −sin s.
                 let s_sin_cos = s.sin_cos();
-                let (theta, mirror_cos) = self.around_c(&s_sin_cos);
+                let (theta, mirror) = self.around_c(&s_sin_cos);
                 SegmentAngle::Mirrored {
+                    rise: rise_of(&theta),
+                    mirror_rise: rise_of(&mirror),
                     theta,
-                    mirror_cos,
+                    mirror_cos: mirror.1,
                     from_c_sin: s_sin_cos.0,
                 }
             }
@@ -274,21 +409,25 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
             (centred, mirror)
         };
         let (half_sin, half_cos) = &half;
-        // sin θ = −sin 2α, cos θ = −cos 2α = −1 + 2 sin²α.
+        // sin θ = −sin 2α, cos θ = −cos 2α = −1 + 2 sin²α: 1 + cos θ = 2 sin²α.
+        let rise = half_sin.square().times_power_of_two(1);
         let theta = (
             -(half_sin.clone() * half_cos).times_power_of_two(1),
-            half_sin.square().times_power_of_two(1) - &half_sin.int(1),
+            rise.clone() - &half_sin.int(1),
         );
         match segment {
-            Segment::BC => SegmentAngle::Stick { theta },
+            Segment::BC => SegmentAngle::Stick { theta, rise },
             Segment::CH => {
                 let mirror_sin = mirror_half.map_or_else(|| half_sin.int(0), |(sin, _)| sin);
-                let mirror_cos = mirror_sin.square().times_power_of_two(1) - &half_sin.int(1);
+                let mirror_rise = mirror_sin.square().times_power_of_two(1);
+                let mirror_cos = mirror_rise.clone() - &half_sin.int(1);
                 let (c_sin, c_cos) = &g.theta_c_sin_cos;
                 let from_c_sin = theta.0.clone() * c_cos - &(theta.1.clone() * c_sin);
                 SegmentAngle::Mirrored {
                     theta,
+                    rise,
                     mirror_cos,
+                    mirror_rise,
                     from_c_sin,
                 }
             }
@@ -301,7 +440,9 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
                 let double_sin = (half_slip_sin.clone() * &half_slip_cos).times_power_of_two(1);
                 SegmentAngle::Slip {
                     theta,
+                    rise,
                     half_sin: half_slip_sin,
+                    half_cos: half_slip_cos,
                     double_sin,
                 }
             }
@@ -326,43 +467,171 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
         &self,
         segment: Segment,
         angle: SegmentAngle<R>,
-        slope: &dyn Fn(&R) -> R,
+        slopes: Slopes<'_, R>,
         mut centred: Option<CentredChange<R>>,
     ) -> R {
         let g = self.geometry;
+        if let (Some(at_loads), None) = (slopes.at_loads, &centred) {
+            if let Some(value) = self.integrand_with_loads_apart(segment, &angle, slopes, at_loads) {
+                return value;
+            }
+        }
         match angle {
             SegmentAngle::Slip {
                 theta,
+                rise,
                 half_sin,
                 double_sin,
+                ..
             } => {
-                let (tangential_offset, normal) = self.loads_and_normal_term(&theta, slope, &mut centred);
+                let (tangential_offset, normal) = self.loads_and_normal_term(&theta, &rise, slopes, &mut centred);
                 if segment == Segment::EB {
-                    let reverse = slope(&g.reverse_slip_offset(&half_sin)) * &g.sum_amplitude * &double_sin;
+                    let reverse =
+                        self.slip_change(slopes, &g.sum_amplitude, &half_sin) * &g.sum_amplitude * &double_sin;
                     tangential_offset * &(reverse - &normal)
                 } else {
-                    let forward = slope(&g.forward_slip_offset(&half_sin)) * &g.difference_amplitude * &double_sin;
+                    let forward = self.slip_change(slopes, &g.difference_amplitude, &half_sin)
+                        * &g.difference_amplitude
+                        * &double_sin;
                     tangential_offset * &(normal - &forward)
                 }
             }
-            SegmentAngle::Stick { theta } => {
+            SegmentAngle::Stick { theta, rise } => {
                 let loads = g.loads_at(&theta);
-                let change = change_at(LowLoad::Normal, &mut centred, || slope(&loads.normal_offset()));
+                let change = change_at(LowLoad::Normal, &mut centred, || {
+                    self.normal_change(slopes, &rise, || loads.normal_offset())
+                });
                 loads.tangential_offset() * &change * &loads.tangential_rate()
             }
             SegmentAngle::Mirrored {
                 theta,
+                rise,
                 mirror_cos,
+                mirror_rise,
                 from_c_sin,
             } => {
-                let (tangential_offset, normal) = self.loads_and_normal_term(&theta, slope, &mut centred);
+                let (tangential_offset, normal) = self.loads_and_normal_term(&theta, &rise, slopes, &mut centred);
                 let change = change_at(LowLoad::Mirror, &mut centred, || {
-                    slope(&(g.normal_amplitude.clone() * &mirror_cos))
+                    self.normal_change(slopes, &mirror_rise, || g.normal_amplitude.clone() * &mirror_cos)
                 });
                 let forward = change * &g.difference_amplitude * &from_c_sin;
                 tangential_offset * &(normal + &forward)
             }
         }
+    }
+
+    /// The slope change at the slip load P_T + σ sin²h/f of EB (σ = σ₊, P_S) or HE (σ = σ₋,
+    /// P_K), given sin h.
+    fn slip_change(&self, slopes: Slopes<'_, R>, amplitude: &R, half_sin: &R) -> R {
+        let (load, offset) = self.slip_load(amplitude, half_sin);
+        match slopes.at_loads {
+            Some(_) => self.change_at_load(slopes, &load, || offset),
+            None => (slopes.offset)(&offset),
+        }
+    }
+
+    /// The integrand of a slip segment with its two loads' slopes apart (where
+    /// [`Slopes::at_loads`] is given). With L the slip load (P_S, P_Y or P_K) and g the slope
+    /// change, the derivatives of Q ± fP, σ₊ sin(θ − θ_B) = Q' + fP' and
+    /// σ₋ sin(θ − θ_E) = fP' − Q', make CH's and HE's ψ g(L)·Q' + f P'·(g(P) − g(L)) and
+    /// EB's g(L)·Q' − f P'·(g(P) − g(L)); P − L is a product of the geometry's sines
+    /// ([`Self::slip_gap`]), and v'(P) − v'(L) is [`SlopesAtLoads::between`] the lower load
+    /// and the gap: free of the cancellation of two terms of size fP1·v' to one of size
+    /// Q1·v' that the segment formulas leave to the arithmetic (proofs/four-segment.md).
+    fn slip_loads_apart(
+        &self,
+        (segment, between): (Segment, &SlopeBetween<'_, R>),
+        loads: &LoadsAt<'_, R>,
+        (slip_load, slip_change): (&R, R),
+        gap: R,
+        normal_load: &R,
+    ) -> R {
+        let g = self.geometry;
+        // v'(P) − v'(L) about the lower load, with a gap of one sign.
+        let difference = if gap.to_f64_lossy() >= 0.0 {
+            between(slip_load, &gap)
+        } else {
+            -between(normal_load, &(-gap))
+        };
+        let normal_term = difference * &g.friction * &loads.normal_rate();
+        let slip_term = slip_change * &loads.tangential_rate();
+        let psi = if segment == Segment::EB {
+            slip_term - &normal_term
+        } else {
+            slip_term + &normal_term
+        };
+        loads.tangential_offset() * &psi
+    }
+
+    /// P − L for the slip load L of `segment`, from the decomposition
+    /// P = P_T + σ₊ sin²((θ − θ_B)/2)/f + σ₋ sin²((θ − θ_E)/2)/f (P_T's definition), with
+    /// EB's P_S = P_T + σ₊ sin²((θ − θ_B)/2)/f and HE's P_K = P_T + σ₋ sin²((θ − θ_E)/2)/f;
+    /// for CH, P − P_Y = −2P1 sin θ_C sin(θ − θ_C); from `angle`'s sin h and cos h for a slip
+    /// segment (h = (s − L)/2, L its length), or CH's sin(θ − θ_C).
+    fn slip_gap(&self, segment: Segment, angle: &SegmentAngle<R>) -> R {
+        let g = self.geometry;
+        let (half_sin, half_cos) = match angle {
+            SegmentAngle::Slip { half_sin, half_cos, .. } => (half_sin, half_cos),
+            SegmentAngle::Mirrored { from_c_sin, .. } => {
+                return -(g.normal_amplitude.clone() * &g.theta_c_sin_cos.0 * from_c_sin).times_power_of_two(1);
+            }
+            SegmentAngle::Stick { .. } => return g.normal_amplitude.int(0),
+        };
+        let (length_sin, length_cos) = &g.half_slip_sin_cos;
+        // s/2 = h + L/2.
+        let from_start_sin = half_sin.clone() * length_cos + &(half_cos.clone() * length_sin);
+        if segment == Segment::EB {
+            // θ − θ_E = s.
+            g.difference_amplitude.clone() * &from_start_sin.square() / &g.friction
+        } else {
+            // θ − θ_B = s + 2δ.
+            let from_start_cos = half_cos.clone() * length_cos - &(half_sin.clone() * length_sin);
+            let (stick_sin, stick_cos) = &g.stick_sin_cos;
+            let from_b_sin = from_start_sin * stick_cos + &(from_start_cos * stick_sin);
+            g.sum_amplitude.clone() * &from_b_sin.square() / &g.friction
+        }
+    }
+
+    /// [`Self::slip_loads_apart`] for the slip segments' angles; `None` for BC's.
+    fn integrand_with_loads_apart(
+        &self,
+        segment: Segment,
+        angle: &SegmentAngle<R>,
+        slopes: Slopes<'_, R>,
+        at_loads: &SlopesAtLoads<'_, R>,
+    ) -> Option<R> {
+        let g = self.geometry;
+        let (theta, rise, slip_load, offset) = match angle {
+            SegmentAngle::Stick { .. } => return None,
+            SegmentAngle::Slip {
+                theta, rise, half_sin, ..
+            } => {
+                let amplitude = if segment == Segment::EB {
+                    &g.sum_amplitude
+                } else {
+                    &g.difference_amplitude
+                };
+                let (load, offset) = self.slip_load(amplitude, half_sin);
+                (theta, rise, load, offset)
+            }
+            SegmentAngle::Mirrored {
+                theta,
+                rise,
+                mirror_cos,
+                mirror_rise,
+                ..
+            } => (
+                theta,
+                rise,
+                self.normal_load(mirror_rise),
+                g.normal_amplitude.clone() * mirror_cos,
+            ),
+        };
+        let gap = self.slip_gap(segment, angle);
+        let change = self.change_at_load(slopes, &slip_load, || offset);
+        let loads = g.loads_at(theta);
+        let between = (segment, &at_loads.between);
+        Some(self.slip_loads_apart(between, &loads, (&slip_load, change), gap, &self.normal_load(rise)))
     }
 
     /// Where `segment` starts (in θ) and how long it is.
@@ -426,13 +695,22 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
         for segment in Segment::ALL {
             let lows = self.low_loads(segment);
             let peaks: Vec<Peak<R>> = lows.iter().map(|(peak, _)| peak.clone()).collect();
-            for (start, end) in self.windows(segment) {
-                for part in resolve_peaks(&start, &end, &peaks) {
+            let windows = self.windows(segment);
+            let last_window = windows.len().saturating_sub(1);
+            for (index, (start, end)) in windows.into_iter().enumerate() {
+                let parts = resolve_peaks(&start, &end, &peaks);
+                let last_part = parts.len().saturating_sub(1);
+                for (part_index, part) in parts.into_iter().enumerate() {
                     let chosen = part.peak.map(|index| &lows[index]);
+                    // Which of the part's ends are the segment's own.
+                    let ends = (
+                        index == 0 && part_index == 0,
+                        index == last_window && part_index == last_part,
+                    );
                     match (part.map, chosen, &margin) {
                         (Some(_), Some((peak, low @ (LowLoad::Normal | LowLoad::Mirror))), Some(margin)) => {
                             let bottom = self.bottom(segment, peak.center.clone(), *low, margin);
-                            self.push_bottom(&mut plans, segment, part.window, bottom);
+                            self.push_bottom(&mut plans, segment, (part.window, ends), bottom);
                         }
                         (map, ..) => plans.push(PiecePlan {
                             segment,
@@ -451,7 +729,7 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
     fn normal_margin(&self) -> Option<R> {
         let g = self.geometry;
         let zero = g.normal_amplitude.int(0);
-        (g.normal_amplitude > zero).then(|| (g.mean_normal_load.clone() - &g.normal_amplitude) / &g.normal_amplitude)
+        (g.normal_amplitude > zero).then(|| g.lowest_normal_load.clone() / &g.normal_amplitude)
     }
 
     /// [`Self::normal_margin`] where it is below 1/[`NEAR_SEPARATION`].
@@ -464,29 +742,37 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
     /// map `bottom` within [`BOTTOM_REACH`] of it, and beyond in s itself (there the
     /// load's zeros, about w = acosh(P0/P1) off the real axis at the lowest load, lie
     /// at least 1/[`BOTTOM_REACH`] rad from the piece).
-    fn push_bottom(&self, plans: &mut Vec<PiecePlan<R>>, segment: Segment, (a, b): (R, R), bottom: Bottom<R>) {
+    fn push_bottom(
+        &self,
+        plans: &mut Vec<PiecePlan<R>>,
+        segment: Segment,
+        ((a, b), (at_start, at_end)): ((R, R), (bool, bool)),
+        bottom: Bottom<R>,
+    ) {
         let center = bottom.map.center().clone();
         let reach = center.ratio(1, BOTTOM_REACH);
         let toward_start = center.clone() * &center.int(2) < a.clone() + &b;
+        // The limits in u, and whether each is the segment's own end.
         let (mapped, beyond) = if toward_start {
             let cut = center + &reach;
             if cut < b {
-                ((a, cut.clone()), Some((cut, b)))
+                (((a, at_start), (cut.clone(), false)), Some((cut, b)))
             } else {
-                ((a, b), None)
+                (((a, at_start), (b, at_end)), None)
             }
         } else {
             let cut = center - &reach;
             if cut > a {
-                ((cut.clone(), b), Some((a, cut)))
+                (((cut.clone(), false), (b, at_end)), Some((a, cut)))
             } else {
-                ((a, b), None)
+                (((a, at_start), (b, at_end)), None)
             }
         };
+        let ((start, start_is_end), (end, end_is_end)) = mapped;
         plans.push(PiecePlan {
             segment,
-            start: bottom.map.to_u(&mapped.0),
-            end: bottom.map.to_u(&mapped.1),
+            start: self.limit_in_u(segment, &bottom, &start, start_is_end.then_some(false)),
+            end: self.limit_in_u(segment, &bottom, &end, end_is_end.then_some(true)),
             map: PieceMap::Bottom(bottom),
         });
         if let Some((start, end)) = beyond {
@@ -497,6 +783,32 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
                 map: PieceMap::Plain,
             });
         }
+    }
+
+    /// The point `s` of `segment` in the variable u of `bottom`; on enclosures, at the
+    /// segment's start (`segment_end` false) or end (true), from the sine and cosine of the angle there,
+    /// α = ±√((1 + cos θ)/2), free of the rounding of s − c, which for an end near the
+    /// lowest load is large against α. The sign of α comes from doubles where they decide
+    /// it by a wide margin; elsewhere s − c itself is taken.
+    fn limit_in_u(&self, segment: Segment, bottom: &Bottom<R>, s: &R, segment_end: Option<bool>) -> R {
+        let g = self.geometry;
+        let from_center = s.to_f64_lossy() - bottom.map.center().to_f64_lossy();
+        // A number (f64, MPFR) stands for itself: s − c is the end's own value, as the
+        // neighbouring piece's limit is; only an enclosure's width is at stake.
+        let enclosed = s.real_span().is_some();
+        let Some(at_end) = segment_end.filter(|_| enclosed && from_center.abs() > END_SIGN_MARGIN) else {
+            return bottom.map.to_u(s);
+        };
+        // θ at the end, or for a map about CH's mirror load θ_Y = θ_C − s there.
+        let angle = match (bottom.mirror, segment, at_end) {
+            (true, _, false) | (false, Segment::BC, true) | (false, Segment::CH, false) => &g.theta_c_sin_cos,
+            (true, _, true) | (false, Segment::EB, true) | (false, Segment::BC, false) => &g.theta_b_sin_cos,
+            (false, Segment::EB, false) | (false, Segment::HE, true) => &g.theta_e_sin_cos,
+            (false, Segment::CH, true) | (false, Segment::HE, false) => &g.theta_h_sin_cos,
+        };
+        let magnitude = rise_of(angle).times_power_of_two(-1).sqrt();
+        let half_sin = if from_center < 0.0 { -magnitude } else { magnitude };
+        bottom.map.to_u_from_half_sin(&half_sin)
     }
 
     /// The bottom map of `segment` about the lowest load `low` (P, or CH's mirror load) at
@@ -519,18 +831,20 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
     where
         S: Fn(&R) -> R + 'a,
     {
-        self.plan_integrand_at_bottom(segment, map, slope, None::<fn(&R) -> R>)
+        self.plan_integrand_at_bottom(segment, map, slope, None::<fn(&R) -> R>, None)
     }
 
     /// [`Self::plan_integrand`], with the slope change at the load a bottom map is centred
     /// on, δ cosh²u, taken from `at_bottom(cosh u)` where given (the same function; on
-    /// complex balls a far narrower enclosure).
+    /// complex balls a far narrower enclosure), and at loads far below P0 from
+    /// `at_loads` where given ([`Slopes::at_loads`]).
     pub(crate) fn plan_integrand_at_bottom<S, B>(
         &self,
         segment: Segment,
         map: PieceMap<R>,
         slope: S,
         at_bottom: Option<B>,
+        at_loads: Option<&'a SlopesAtLoads<'a, R>>,
     ) -> Box<dyn Fn(&R) -> R + 'a>
     where
         S: Fn(&R) -> R + 'a,
@@ -538,10 +852,14 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
     {
         let integrands = *self;
         match map {
-            PieceMap::Plain => Box::new(move |s: &R| integrands.integrand_with(segment, s, &slope)),
+            PieceMap::Plain => Box::new(move |s: &R| {
+                let angle = integrands.angle_at(segment, s);
+                integrands.integrand_at(segment, angle, Slopes::of(&slope, at_loads), None)
+            }),
             PieceMap::Sinh(map) => Box::new(move |u: &R| {
                 let (s, rate) = map.point_and_rate(u);
-                integrands.integrand_with(segment, &s, &slope) * &rate
+                let angle = integrands.angle_at(segment, &s);
+                integrands.integrand_at(segment, angle, Slopes::of(&slope, at_loads), None) * &rate
             }),
             PieceMap::Bottom(bottom) => Box::new(move |u: &R| {
                 let point = bottom.map.point(u);
@@ -554,7 +872,7 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
                     },
                     change: change(&point.load_root),
                 });
-                integrands.integrand_at(segment, angle, &slope, centred) * &point.rate
+                integrands.integrand_at(segment, angle, Slopes::of(&slope, at_loads), centred) * &point.rate
             }),
         }
     }
@@ -724,7 +1042,7 @@ impl<'a, R: Real> SegmentIntegrands<'a, R> {
             let lowest = pi.clone() * &pi.int(2 * k + 1);
             let mirror = mirror.then(|| self.geometry.theta_c.clone() - &lowest);
             let candidates = normal.then(|| lowest.clone() - start).into_iter().chain(mirror);
-            breaks.extend(candidates.filter(|s| *s > zero && s < length));
+            breaks.extend(candidates.filter(|s| *s > zero && s < length).map(split_point));
         }
         breaks.push(length.clone());
         breaks.sort_by(|a, b| a.partial_cmp(b).unwrap_or(std::cmp::Ordering::Equal));
@@ -921,6 +1239,74 @@ mod tests {
                     assert!(
                         (found - expected).abs() < 1e-12,
                         "{segment}, φ = {phase}: {found} {expected}"
+                    );
+                }
+            }
+        }
+    }
+
+    /// The slip segments with their two loads' slopes apart (P and P_S, P_Y or P_K formed
+    /// from the lowest loads, v'(P) − v'(L) about the lower) are the segment formulas: every
+    /// piece's integrand, plain, sinh- or bottom-mapped, at 200 bits, on ordinary cycles and
+    /// within 1e-6 of separation.
+    #[test]
+    fn the_slip_loads_apart_are_the_segment_formulas() {
+        use crate::real::Precision;
+        use rug::Float;
+        let p = Precision::bits(200);
+        let number = |text: &str| Float::parse_decimal(text, p).expect("a decimal");
+        let compliance = Persson {
+            gamma: number("1"),
+            sigma: number("1"),
+        };
+        for (p1, q1, phase) in [
+            ("0.6", "0.3", "1.0"),
+            ("0.6", "0.3", "2.9"),
+            ("0.999999", "1e-4", "1.5707963"),
+            ("0.999999", "5e-7", "1.2"),
+        ] {
+            let cycle = LoadCycle {
+                mean_normal_load: number("1"),
+                normal_amplitude: number(p1),
+                mean_tangential_load: number("0"),
+                tangential_amplitude: number(q1),
+                phase: number(phase),
+                friction: number("1"),
+                compliance_ratio: number("1"),
+            };
+            let g = cycle.geometry().expect("valid cycle");
+            let integrands = SegmentIntegrands {
+                geometry: &g,
+                compliance: &compliance,
+                remove_constant_slope: true,
+            };
+            let at_mean = compliance.slope(&g.mean_normal_load);
+            let at_loads = SlopesAtLoads {
+                at_load: Box::new(|load: &Float| compliance.slope(load) - &at_mean),
+                between: Box::new(|load: &Float, gap: &Float| compliance.slope_change(load, gap)),
+            };
+            let plans = integrands.plans();
+            assert!(
+                plans.iter().any(|plan| matches!(plan.map, PieceMap::Bottom(_))) == p1.starts_with("0.9999"),
+                "P1 = {p1}: bottom maps near separation only"
+            );
+            for plan in plans {
+                let formulas = integrands.plan_integrand(plan.segment, plan.map.clone(), integrands.prepared_slope());
+                let apart = integrands.plan_integrand_at_bottom(
+                    plan.segment,
+                    plan.map,
+                    integrands.prepared_slope(),
+                    None::<fn(&Float) -> Float>,
+                    Some(&at_loads),
+                );
+                for t in ["0.1", "0.5", "0.9"] {
+                    let x = plan.start.clone() + (plan.end.clone() - &plan.start) * number(t);
+                    let (expected, found) = (formulas(&x), apart(&x));
+                    let error = Float::with_val(200, &found - &expected).abs();
+                    assert!(
+                        error <= expected.clone().abs() * number("1e-40"),
+                        "{} at {x:.6e}, P1 = {p1}, Q1 = {q1}, φ = {phase}: {found:.20e} against {expected:.20e}",
+                        plan.segment
                     );
                 }
             }
