@@ -111,7 +111,7 @@ pub struct FrictionElement {
     friction: f64,
     compliance_ratio: f64,
     compliance: Box<dyn Compliance<f64>>,
-    /// v(P), the reference of every relief v(P) − v(P*).
+    /// v(P), the reference of every relief v(P) − v(P*) differenced from v.
     approach_at_load: f64,
     /// g(fP): the displacement of the virgin curve at gross slip (∞ where v(0) = −∞).
     gross_slip_displacement: f64,
@@ -160,7 +160,12 @@ impl FrictionElement {
             });
         }
         let analytic = compliance.breakpoints(&normal_load).is_empty();
-        let gross_slip_displacement = compliance_ratio * friction * (approach_at_load - approach_at_zero);
+        // v(P) − v(0) as the backbone forms its reliefs, so that g reaches it at fP.
+        let relief_to_zero = match compliance.approach_change_about(&normal_load) {
+            Some(change) => -change(&-normal_load),
+            None => approach_at_load - approach_at_zero,
+        };
+        let gross_slip_displacement = compliance_ratio * friction * relief_to_zero;
         Ok(FrictionElement {
             normal_load,
             friction,
@@ -242,7 +247,7 @@ pub fn aft(
     displacement: &[f64],
     time_points: usize,
 ) -> Result<AftForce, AftError> {
-    let layout = fourier::Layout::new(harmonics, time_points)?;
+    let layout = fourier::Layout::cached(harmonics, time_points)?;
     if displacement.len() != layout.coefficients() {
         return Err(AftError::DisplacementLength {
             given: displacement.len(),

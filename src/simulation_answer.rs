@@ -9,7 +9,9 @@ use crate::cycle::{CycleError, LoadCycle};
 use crate::dissipation_answer::tables_cover;
 use crate::path::{Drive, PathRequest, PathRequestError};
 use crate::real::Precision;
-use crate::simulate::{simulate, simulate_path, SimulationError, SimulationOptions, SimulationResult};
+use crate::simulate::{
+    simulate, simulate_displacement_path, simulate_path, SimulationError, SimulationOptions, SimulationResult,
+};
 
 /// The simulation's W, and what it ran on.
 #[derive(Clone, Debug)]
@@ -26,7 +28,7 @@ pub struct SimulatedAnswer {
     pub cycle: LoadCycle<f64>,
 }
 
-/// The simulation's W of a periodic force path read from a file.
+/// The simulation's W of a periodic path read from a file, driven by force or by displacement.
 #[derive(Clone, Debug)]
 pub struct SimulatedPathAnswer {
     /// W as the work of the load ([`Provenance::Simulated`]: an estimate, not a proof).
@@ -54,9 +56,6 @@ pub enum SimulatedError {
     /// `microslip path` refuses them.
     #[error(transparent)]
     Path(#[from] PathRequestError),
-    /// A path prescribing the displacement u: the simulation follows loads.
-    #[error("the simulation follows a prescribed tangential load Q; for a prescribed displacement u use `microslip path --drive displacement`")]
-    DisplacementDriven,
     /// The simulation itself failed.
     #[error(transparent)]
     Simulation(#[from] SimulationError),
@@ -128,18 +127,20 @@ pub fn simulated_answer(case: &CaseSpec, options: &SimulationOptions) -> Result<
     })
 }
 
-/// W of the force path of `request` (its file, contact and compliance read as `microslip
-/// path` reads them, in f64) by the history simulation with `options`; the request's
-/// digits, budget and outputs play no part.
+/// W of the path of `request` (its file, contact and compliance read as `microslip path`
+/// reads them, in f64, driven as the request says) by the history simulation with
+/// `options`; the request's digits, budget and outputs play no part. Driven by
+/// displacement, P may vary (which `microslip path` refuses).
 pub fn simulated_path_answer(
     request: &PathRequest,
     options: &SimulationOptions,
 ) -> Result<SimulatedPathAnswer, SimulatedError> {
-    if request.drive == Drive::Displacement {
-        return Err(SimulatedError::DisplacementDriven);
-    }
     let inputs = request.read::<f64>(Precision::DOUBLE)?;
-    let result = simulate_path(&inputs.path, &inputs.contact, inputs.compliance.as_ref(), options)?;
+    let (path, contact, compliance) = (&inputs.path, &inputs.contact, inputs.compliance.as_ref());
+    let result = match request.drive {
+        Drive::Force => simulate_path(path, contact, compliance, options),
+        Drive::Displacement => simulate_displacement_path(path, contact, compliance, options),
+    }?;
     // Only a W that is 0 by its reason is printed as 0: loads that do not vary.
     let constant = inputs.path.normal.is_constant() && inputs.path.tangential.is_constant();
     if result.w_work == 0.0 && result.w_friction == 0.0 && !constant {

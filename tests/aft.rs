@@ -223,3 +223,62 @@ fn bad_input_is_refused_with_the_reason() {
     assert!(error(&[1], &[f64::NAN, 0.0], 16).contains("coefficient 0 is NaN"));
     assert!(error(&[1, 2], &[1e308, 1e308, 1e308, 0.0], 16).contains("overflows at time point"));
 }
+
+/// Every sample of a one-harmonic loop is Masing's branch through the anchor, solved afresh
+/// from the virgin curve's inverse: the load carried from sample to sample (each solve
+/// started from the one before) is the load solved on its own, to a few ulps.
+#[test]
+fn each_sample_is_the_branch_solved_afresh() {
+    for spec in [
+        HERTZ,
+        "persson:gamma=0.01,sigma=1",
+        "power:c=0.02,beta=-0.5",
+        "exp:a=0.02,c=1,d=0.01",
+    ] {
+        let element = element(spec);
+        for amplitude in [1e-4, 3e-3, 1.5e-2] {
+            let force = aft(&element, &[1], &[amplitude, 0.0], 128).unwrap();
+            let (u, q) = (&force.displacement_samples, &force.load_samples);
+            let top = element.virgin_load(u[0]);
+            assert_eq!(q[0], top, "{spec}, u1 = {amplitude}: the anchor is on the virgin curve");
+            for n in 1..u.len() {
+                // Down from the anchor to t = π, then up from the lowest sample.
+                let (u_r, q_r, sign) = if n <= 64 {
+                    (u[0], top, -1.0)
+                } else {
+                    (u[64], q[64], 1.0)
+                };
+                let expected = q_r + sign * 2.0 * element.virgin_load(sign * (u[n] - u_r) / 2.0);
+                assert!(
+                    (q[n] - expected).abs() <= 1e-14 * top.abs(),
+                    "{spec}, u1 = {amplitude}, sample {n}: Q = {:e}, the branch gives {expected:e}",
+                    q[n]
+                );
+            }
+        }
+    }
+}
+
+/// The Fourier basis kept for repeated calls is the one of the harmonics and time points
+/// asked for: alternating between two layouts gives each its own values, the same on
+/// every call.
+#[test]
+fn alternating_layouts_give_each_its_own_force() {
+    let element = element(HERTZ);
+    let first = || aft(&element, &[0, 1, 3], &[1e-3, 1e-2, 0.0, 2e-3, 1e-3], 128).unwrap();
+    let second = || aft(&element, &[1, 2], &[1e-2, 0.0, 3e-3, 0.0], 64).unwrap();
+    let (a, b) = (first(), second());
+    assert_eq!(a.coefficients(), 5);
+    assert_eq!(b.coefficients(), 4);
+    assert_eq!(b.displacement_samples.len(), 64);
+    // u(0) = U_0 + U_cos,1 + U_cos,3 and u(0) = U_cos,1 + U_cos,2.
+    assert_eq!(a.displacement_samples[0], 1e-3 + 1e-2 + 2e-3);
+    assert_eq!(b.displacement_samples[0], 1e-2 + 3e-3);
+    for _ in 0..3 {
+        assert_eq!(first(), a);
+        assert_eq!(second(), b);
+    }
+    // On another thread, with a cache of its own.
+    let (c, d) = std::thread::scope(|scope| scope.spawn(|| (second(), first())).join().unwrap());
+    assert_eq!((c, d), (b, a));
+}

@@ -23,6 +23,7 @@ COMPLIANCES = [
     "hertz:r=1,estar=100",
     "persson:gamma=0.01,sigma=1",
     "power:c=0.02,beta=-0.5",
+    "power:c=0.02,beta=-1.5",
     "exp:a=0.02,c=1,d=0.01",
 ]
 H = np.array([0, 1, 3])

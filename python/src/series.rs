@@ -2,6 +2,8 @@
 //! (the coefficient I(ρ, φ)), as `microslip series` and `microslip small-amplitude`
 //! print them.
 
+use microslip::answer::Provenance;
+use microslip::exact::case_remainders::{case_remainders, CaseRemainders};
 use microslip::exact::printing::{coefficient_answer, partial_sum_answers, PartialSums};
 use pyo3::prelude::*;
 
@@ -9,10 +11,13 @@ use crate::answer::PyAnswer;
 use crate::case::{decimal_text, PyCase};
 use crate::errors;
 
-/// A case's partial sums W_N (N = 1 … order) of the small-amplitude series beside W.
+/// A case's partial sums W_N (N = 1 … order) of the small-amplitude series beside W, with
+/// their proven remainders.
 #[pyclass(name = "Series", module = "microslip", frozen)]
 pub struct PySeries {
     sums: PartialSums,
+    /// `None` where W is exactly 0, and every W_N with it.
+    remainders: Option<CaseRemainders>,
 }
 
 #[pymethods]
@@ -33,6 +38,34 @@ impl PySeries {
     #[getter]
     fn differences(&self) -> Vec<PyAnswer> {
         self.sums.differences.iter().cloned().map(PyAnswer::of).collect()
+    }
+
+    /// At index N − 1, a proven upper bound on |W − W_N| (0 where W is exactly 0).
+    #[getter]
+    fn remainder_bounds(&self) -> Vec<f64> {
+        match &self.remainders {
+            Some(remainders) => remainders.bounds.clone(),
+            None => vec![0.0; self.sums.sums.len()],
+        }
+    }
+
+    /// At index N − 1, whether W ≥ W_N is proven, so that W lies in [W_N, W_N + bound]
+    /// (as for a completely monotone v' at even N).
+    #[getter]
+    fn lower_bound_of_w(&self) -> Vec<bool> {
+        match &self.remainders {
+            Some(remainders) => remainders.from_below.clone(),
+            None => vec![true; self.sums.sums.len()],
+        }
+    }
+
+    /// W enclosed by the series alone: the narrowest W_N with its remainder's enclosure.
+    #[getter]
+    fn series_w(&self) -> PyAnswer {
+        PyAnswer::of(self.remainders.as_ref().map_or_else(
+            || self.sums.dissipation.clone(),
+            |remainders| remainders.series_w.clone(),
+        ))
     }
 
     fn __repr__(&self) -> String {
@@ -58,10 +91,17 @@ pub fn series(
 ) -> PyResult<PySeries> {
     let budget = errors::budget(max_seconds)?;
     let text = case.get().text.clone();
-    let sums = py
-        .detach(|| partial_sum_answers(&text, order, digits, budget))
+    let (sums, remainders) = py
+        .detach(|| {
+            let sums = partial_sum_answers(&text, order, digits, budget)?;
+            let remainders = match sums.dissipation.provenance {
+                Provenance::Exact(_) => None,
+                _ => Some(case_remainders(&text, order, None)?),
+            };
+            Ok::<_, microslip::exact::printing::ExactAnswerError>((sums, remainders))
+        })
         .map_err(errors::of_exact_answer)?;
-    Ok(PySeries { sums })
+    Ok(PySeries { sums, remainders })
 }
 
 /// The small-amplitude coefficient I(ρ, φ), ρ = Q1/(f P1), to `digits` proven digits

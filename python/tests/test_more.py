@@ -17,6 +17,20 @@ def test_series_equals_the_cli():
         tuple(s["enclosure"]) for s in report["partial_sums"]
     ]
     assert all(s.provenance == "certified" for s in result.partial_sums)
+    # The proven remainders, as the command line prints them (3 digits rounded up there).
+    bounds = [float(s["remainder_bound"]) for s in report["partial_sums"]]
+    assert all(
+        b <= printed <= b * 1.011
+        for b, printed in zip(result.remainder_bounds, bounds, strict=True)
+    )
+    assert result.lower_bound_of_w == [s["lower_bound_of_w"] for s in report["partial_sums"]]
+    assert result.series_w.text == report["series_w"]["value"]
+    w = result.dissipation.value
+    for partial, bound, below in zip(
+        result.partial_sums, result.remainder_bounds, result.lower_bound_of_w, strict=True
+    ):
+        assert abs(w - partial.value) <= bound
+        assert not below or w >= partial.value
     with pytest.raises(ValueError, match="order"):
         microslip.series(case_of(FIRST), 0)
 

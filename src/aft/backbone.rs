@@ -1,7 +1,7 @@
 //! The virgin curve u = g(Q) = λ f (v(P) − v(P − Q/f)) and its inverse, the backbone every
 //! Masing branch is a copy of (doubled in both directions).
 
-use crate::compliance::SlopeChange;
+use crate::compliance::{ApproachChange, SlopeChange};
 
 use super::FrictionElement;
 
@@ -63,6 +63,8 @@ pub(super) struct Backbone<'a> {
     slope_change: SlopeChange<'a, f64>,
     /// v'(P).
     slope_at_load: f64,
+    /// x ↦ v(P + x) − v(P) free of cancellation, where the compliance has that form.
+    approach_change: Option<ApproachChange<'a, f64>>,
 }
 
 impl<'a> Backbone<'a> {
@@ -72,6 +74,7 @@ impl<'a> Backbone<'a> {
             element,
             slope_change: element.compliance.slope_change_about(&load),
             slope_at_load: element.compliance.slope(&load),
+            approach_change: element.compliance.approach_change_about(&load),
         }
     }
 
@@ -85,12 +88,22 @@ impl<'a> Backbone<'a> {
     /// (x ≥ g(fP)): the root of g(y) = x by Newton's method, safeguarded by bisection on
     /// [0, fP], to f64's accuracy.
     pub(super) fn slip_state(&self, displacement: f64) -> Option<SlipState> {
+        self.slip_state_from(displacement, None)
+    }
+
+    /// [`Backbone::slip_state`] with Newton's method started from `guess` (a load near the
+    /// root, such as the previous sample's on the same branch), or from the inverse's
+    /// series without one.
+    pub(super) fn slip_state_from(&self, displacement: f64, guess: Option<f64>) -> Option<SlipState> {
         if displacement >= self.element.gross_slip_displacement {
             return None;
         }
         let limit = self.element.friction_limit();
         let (mut low, mut high) = (0.0, limit);
-        let mut load = self.first_guess(displacement);
+        let mut load = match guess {
+            Some(guess) if guess.is_finite() => guess.clamp(0.0, limit),
+            _ => self.first_guess(displacement),
+        };
         // The previous iterate and g' there, for the curvature that bounds the next error.
         let mut previous: Option<(f64, f64)> = None;
         for _ in 0..MOST_STEPS {
@@ -153,12 +166,15 @@ impl<'a> Backbone<'a> {
         self.slope_at_load + (self.slope_change)(&-depth)
     }
 
-    /// v(P) − v(P − d) for 0 ≤ d ≤ P: integrated from v' for a short relief, where the
-    /// difference of v would cancel, and differenced otherwise.
+    /// v(P) − v(P − d) for 0 ≤ d ≤ P: from the compliance's form free of cancellation where
+    /// it has one; otherwise integrated from v' for a short relief, where the difference of
+    /// v would cancel, and differenced for a long one.
     fn relief(&self, depth: f64) -> f64 {
         let element = self.element;
         let load = element.normal_load;
-        if element.analytic && depth <= INTEGRATED_UP_TO * load {
+        if let Some(change) = &self.approach_change {
+            -change(&-depth.min(load))
+        } else if element.analytic && depth <= INTEGRATED_UP_TO * load {
             let sum: f64 = NODES
                 .iter()
                 .zip(WEIGHTS)

@@ -1,7 +1,9 @@
 //! The harmonic layout of a solver's unknowns and the passage between harmonics and the
 //! samples of one period: u(t_n) from U, and the discrete Fourier coefficients of Q.
 
+use std::cell::RefCell;
 use std::f64::consts::TAU;
+use std::rc::Rc;
 
 use super::AftError;
 
@@ -11,13 +13,35 @@ pub const MAX_TIME_POINTS: usize = 1 << 20;
 /// The coefficients [U_0 (k = 0), cos k₁, sin k₁, …] and their basis functions at the time
 /// points t_n = 2πn/N: `basis[n · coefficients + j]`.
 pub(super) struct Layout {
+    /// The harmonic numbers, as given.
+    harmonics: Vec<usize>,
     /// The harmonic number of each coefficient.
     orders: Vec<usize>,
     basis: Vec<f64>,
     time_points: usize,
 }
 
+thread_local! {
+    /// The layout last built on this thread: a solver calls `aft` with the same harmonics
+    /// and time points at every iteration, and the basis costs two trigonometric functions
+    /// per time point.
+    static LAST_LAYOUT: RefCell<Option<Rc<Layout>>> = const { RefCell::new(None) };
+}
+
 impl Layout {
+    /// The layout of `harmonics` on `time_points` (as [`Layout::new`]), reused while the
+    /// calls on this thread keep both.
+    pub(super) fn cached(harmonics: &[usize], time_points: usize) -> Result<Rc<Self>, AftError> {
+        LAST_LAYOUT.with_borrow_mut(|last| match last {
+            Some(layout) if layout.time_points == time_points && layout.harmonics == harmonics => Ok(Rc::clone(layout)),
+            _ => {
+                let layout = Rc::new(Layout::new(harmonics, time_points)?);
+                *last = Some(Rc::clone(&layout));
+                Ok(layout)
+            }
+        })
+    }
+
     /// The layout of strictly increasing `harmonics` on `time_points` equal steps, which must
     /// exceed twice the highest harmonic (a cosine and a sine of every k apart from aliasing).
     pub(super) fn new(harmonics: &[usize], time_points: usize) -> Result<Self, AftError> {
@@ -60,6 +84,7 @@ impl Layout {
             }
         }
         Ok(Layout {
+            harmonics: harmonics.to_vec(),
             orders,
             basis,
             time_points,

@@ -2,7 +2,7 @@
 //! with respect to the displacement's harmonics, by the chain rule through the samples
 //! that are reversal points and the anchor.
 
-use super::backbone::Backbone;
+use super::backbone::{Backbone, SlipState};
 use super::fourier::Layout;
 use super::FrictionElement;
 
@@ -23,6 +23,18 @@ enum Memory {
     Reversals(Vec<usize>),
 }
 
+/// A sample's point on its branch: the branch (its origin reversal, none for the virgin
+/// curve, and direction), the backbone's displacement there, the slip state solved, and
+/// the stiffness's rate of change since the sample before on the branch (0 without one).
+#[derive(Clone, Copy)]
+struct Solved {
+    origin: Option<usize>,
+    direction: f64,
+    relative: f64,
+    state: SlipState,
+    bend: f64,
+}
+
 /// The steady loop of the sampled displacement `u`: first loading along the virgin curve
 /// to the sample of largest |u| (the first such sample), then one period from there.
 pub(super) fn steady_loop(element: &FrictionElement, u: &[f64], layout: &Layout) -> SteadyLoop {
@@ -35,6 +47,7 @@ pub(super) fn steady_loop(element: &FrictionElement, u: &[f64], layout: &Layout)
     let mut gradient = vec![0.0; count * width];
     let mut direction = if u[anchor] < 0.0 { -1.0 } else { 1.0 };
     let mut memory = Memory::Virgin;
+    let mut last_solved: Option<Solved> = None;
     for step in 0..count {
         let n = (anchor + step) % count;
         if step > 0 {
@@ -69,7 +82,30 @@ pub(super) fn steady_loop(element: &FrictionElement, u: &[f64], layout: &Layout)
             }
         };
         let (u_origin, q_origin) = origin.map_or((0.0, 0.0), |r| (u[r], load[r]));
-        let state = backbone.slip_state(direction * (u[n] - u_origin) / scale);
+        let relative = direction * (u[n] - u_origin) / scale;
+        // On the branch of the previous sample, its slip state extrapolated to second order
+        // (the stiffness's rate of change from the sample before, where that was on the
+        // branch too) starts Newton's method a few digits from the root.
+        let same_branch = last_solved.filter(|on| on.origin == origin && on.direction == direction);
+        let guess = same_branch.map(|on| {
+            let step = relative - on.relative;
+            on.state.load + (on.state.stiffness + 0.5 * on.bend * step) * step
+        });
+        let state = backbone.slip_state_from(relative, guess);
+        last_solved = state.map(|state| Solved {
+            origin,
+            direction,
+            relative,
+            state,
+            bend: same_branch.map_or(0.0, |on| {
+                let bend = (state.stiffness - on.state.stiffness) / (relative - on.relative);
+                if bend.is_finite() {
+                    bend
+                } else {
+                    0.0
+                }
+            }),
+        });
         let value = state.map(|state| q_origin + direction * scale * state.load);
         match (state, value) {
             (Some(state), Some(value)) if direction * value < limit => {

@@ -252,6 +252,8 @@ pub struct PathFileInputs {
     pub harmonics: Option<String>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub samples: Option<String>,
+    /// What the file prescribes besides P: `force` (Q) or `displacement` (u).
+    pub drive: &'static str,
     pub friction: String,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub lambda: Option<String>,
@@ -295,7 +297,18 @@ pub struct SimulationReport<'a> {
     pub elements: usize,
     /// Steps per cycle of the finest run.
     pub steps: usize,
+    /// Of a path file: the amplitudes of Q and u and the loss factor, of the finest run's loop.
+    #[serde(flatten, skip_serializing_if = "Option::is_none")]
+    pub amplitudes: Option<SimulatedAmplitudes>,
     pub inputs: SimulationInputs<'a>,
+}
+
+/// Half the spreads of Q and u over the simulated steady loop, and η = W/(π Q_a u_a).
+#[derive(Serialize)]
+pub struct SimulatedAmplitudes {
+    pub q_amplitude: f64,
+    pub u_amplitude: f64,
+    pub loss_factor: f64,
 }
 
 /// One row of `microslip verify --json`.

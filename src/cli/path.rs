@@ -21,7 +21,8 @@ pub enum DriveArg {
     /// The tangential load Q (columns Q_cos,Q_sin or Q).
     #[default]
     Force,
-    /// The tangential displacement u (columns u_cos,u_sin or u), at constant P.
+    /// The tangential displacement u (columns u_cos,u_sin or u): at constant P for `path`;
+    /// `simulate` follows a varying P too.
     Displacement,
 }
 
@@ -45,8 +46,9 @@ pub struct PathFileArgs {
     #[arg(long)]
     pub samples: Option<PathBuf>,
     /// What the file prescribes besides P: the tangential load Q (force) or the tangential
-    /// displacement u (displacement, at constant P; from the unloaded state, first loaded
-    /// to the extreme of u of largest magnitude).
+    /// displacement u (displacement: at constant P for `path`, a varying P too for
+    /// `simulate`; from the unloaded state, first loaded to the extreme of u of largest
+    /// magnitude).
     #[arg(long, value_enum, default_value_t = DriveArg::Force)]
     pub drive: DriveArg,
 }

@@ -128,6 +128,8 @@ struct PartialSumReport {
     value: ValueReport,
     /// An upper bound on |W − W_N|, 3 digits rounded up.
     remainder_bound: String,
+    /// Whether W ≥ W_N is proven (as for a completely monotone v' at even N).
+    lower_bound_of_w: bool,
 }
 
 pub fn run(args: &SeriesArgs) -> Result<String, Failure> {
@@ -220,6 +222,7 @@ fn case_series(args: &SeriesArgs, p0: &str) -> Result<String, Failure> {
                 .map(|(n, sum)| PartialSumReport {
                     value: ValueReport::of(sum),
                     remainder_bound: remainders.as_ref().map_or("0".to_string(), |r| r.bounds[n].clone()),
+                    lower_bound_of_w: remainders.as_ref().is_some_and(|r| r.from_below[n]),
                 })
                 .collect(),
             differences: sums.differences.iter().map(ValueReport::of).collect(),
@@ -268,8 +271,19 @@ fn partial_sums_text(sums: &PartialSums, remainders: Option<&Remainders>, ratio:
         .unwrap_or_default();
     out.push_str(&format!("\nW_N: {provenance}"));
     if let Some(remainders) = remainders {
+        let from_below: Vec<String> = (1..)
+            .zip(&remainders.from_below)
+            .filter(|(_, &above)| above)
+            .map(|(n, _)| n.to_string())
+            .collect();
+        if !from_below.is_empty() {
+            out.push_str(&format!(
+                "\nW ≥ W_N proven for N = {}: W_N ≤ W ≤ W_N + its bound",
+                from_below.join(", ")
+            ));
+        }
         out.push_str(&format!(
-            "\nW from the series alone (the narrowest W_N ± its bound) = {}",
+            "\nW from the series alone (the narrowest enclosure the W_N and their bounds give) = {}",
             shown(&remainders.series_w)
         ));
         if let Some(within) = &remainders.within {

@@ -4,26 +4,22 @@
 
 use serde::Serialize;
 
-use microslip::answer::{Answer, Arithmetic, Provenance, Value};
-use microslip::case::{Case, CaseText};
-use microslip::exact::enclosure::case_balls;
-use microslip::exact::remainder::{largest_amplitude, WithinLimit};
-use microslip::exact::{partial_sums, remainder_bounds, RemainderError, SeriesShape};
-use microslip::real::{Precision, Real};
+use microslip::answer::Answer;
+use microslip::case::CaseText;
+use microslip::exact::case_remainders::case_remainders;
+use microslip::exact::remainder::WithinLimit;
 
 use super::report::Failure;
 use super::series::failure;
-
-/// The working precision of the remainders: they are bounds, read to 3 digits.
-const BITS: u32 = 128;
-/// Significant digits of W from the series.
-const SERIES_DIGITS: u32 = 15;
 
 /// The remainders of a case's partial sums and what they prove.
 pub struct Remainders {
     /// An upper bound on |W − W_N|, index N − 1, rounded up to 3 digits.
     pub bounds: Vec<String>,
-    /// W enclosed by the tightest W_N ± bound_N: the series alone proves it.
+    /// Index N − 1: whether W ≥ W_N is proven (as for a completely monotone v' at even N).
+    pub from_below: Vec<bool>,
+    /// W enclosed by the narrowest W_N + [least, greatest] of its remainder: the series
+    /// alone proves it.
     pub series_w: Answer,
     /// With `--within`.
     pub within: Option<WithinAnswer>,
@@ -50,67 +46,23 @@ pub fn read_ratio(text: &str) -> Result<f64, Failure> {
     }
 }
 
-fn refused(error: RemainderError) -> Failure {
-    match error {
-        RemainderError::Kernel { .. } => Failure::failed(error.to_string()),
-        other => Failure::refused(other.to_string()),
-    }
-}
-
-/// The remainders of the case's partial sums to `order`, and `--within` where asked.
+/// The remainders of the case's partial sums to `order`, and `--within` where asked,
+/// formatted as the command prints them.
 pub fn remainders(case: &CaseText, order: usize, within: Option<f64>) -> Result<Remainders, Failure> {
-    let spec = case.spec().map_err(|error| failure(error.into()))?;
-    let Case { cycle, compliance } = case_balls(&spec, Precision::bits(BITS)).map_err(failure)?;
-    let bounds = remainder_bounds(&cycle, compliance.as_ref(), order).map_err(refused)?;
-    let sums = partial_sums(&cycle, compliance.as_ref(), order).map_err(|error| failure(error.into()))?;
-    // W lies in every W_N ± bound_N: their intersection.
-    let mut narrowest = f64::INFINITY;
-    let (mut lower, mut upper) = (sums[0].clone(), sums[0].clone());
-    for (sum, bound) in sums.iter().zip(&bounds) {
-        let (low, high) = (sum.clone() - bound, sum.clone() + bound);
-        let width = high.to_f64_lossy() - low.to_f64_lossy();
-        if width < narrowest {
-            narrowest = width;
-            (lower, upper) = (low, high);
-        }
-    }
-    let bits = BITS + 64;
-    let (low, _) = lower.bounds(bits);
-    let (_, high) = upper.bounds(bits);
-    let series_w = Answer {
-        value: Value::within(&low, &high, SERIES_DIGITS),
-        segments: None,
-        digits_requested: None,
-        provenance: Provenance::Certified {
-            bits: BITS,
-            arithmetic: Arithmetic::ArbBalls,
-        },
-        method: None,
-    };
-    let within = match within {
-        None => None,
-        Some(ratio) => {
-            let rho = cycle.tangential_amplitude.clone() / &(cycle.friction.clone() * &cycle.normal_amplitude);
-            let shape = SeriesShape::new(&rho, &cycle.phase, 3).map_err(refused)?;
-            let found = largest_amplitude(&shape, &cycle, compliance.as_ref(), ratio);
-            Some(WithinAnswer {
-                p1_max: found.p1_max.map(|p1| three_digits(p1, false)),
-                limited_by: match found.limit {
-                    WithinLimit::Remainder => "remainder",
-                    WithinLimit::Separation => "separation",
-                    WithinLimit::GrossSlip => "gross slip",
-                },
-                theory_end: three_digits(found.theory_end, true),
-            })
-        }
-    };
+    let found = case_remainders(case, order, within).map_err(failure)?;
     Ok(Remainders {
-        bounds: bounds
-            .iter()
-            .map(|bound| three_digits(bound.real_span().map_or(f64::INFINITY, |span| span.1), true))
-            .collect(),
-        series_w,
-        within,
+        bounds: found.bounds.iter().map(|&bound| three_digits(bound, true)).collect(),
+        from_below: found.from_below,
+        series_w: found.series_w,
+        within: found.within.map(|within| WithinAnswer {
+            p1_max: within.p1_max.map(|p1| three_digits(p1, false)),
+            limited_by: match within.limit {
+                WithinLimit::Remainder => "remainder",
+                WithinLimit::Separation => "separation",
+                WithinLimit::GrossSlip => "gross slip",
+            },
+            theory_end: three_digits(within.theory_end, true),
+        }),
     })
 }
 

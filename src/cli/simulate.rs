@@ -1,6 +1,7 @@
 //! `microslip simulate`: W by the independent history simulation of a harmonic cycle
-//! (the case flags) or of any periodic force path (a file, as `microslip path` reads it),
-//! with the steady loop as CSV and, for a cycle, its picture on request.
+//! (the case flags) or of any periodic path driven by force or by displacement (a file,
+//! as `microslip path` reads it), with the steady loop as CSV and, for a cycle, its
+//! picture on request.
 
 use std::path::{Path, PathBuf};
 use std::time::{Duration, Instant};
@@ -16,7 +17,9 @@ use microslip::simulation_answer::{simulated_answer, simulated_path_answer, Simu
 use microslip::verified::F64_MOST_DIGITS;
 
 use super::case::{ContactArgs, CycleArgs};
-use super::json::{printed, PathFileInputs, SimulatedLoads, SimulationInputs, SimulationReport, ValueEnvelope};
+use super::json::{
+    printed, PathFileInputs, SimulatedAmplitudes, SimulatedLoads, SimulationInputs, SimulationReport, ValueEnvelope,
+};
 use super::parse;
 use super::path::PathFileArgs;
 use super::report::Failure;
@@ -31,8 +34,11 @@ const CYCLE_FLAGS: [&str; 5] = ["p0", "p1", "q0", "q1", "phi"];
 #[command(mut_arg("samples", |file| file.conflicts_with_all(CYCLE_FLAGS)))]
 #[command(group(ArgGroup::new("path_drive").args(["drive"]).requires("path_source")))]
 #[command(
-    after_help = "The loads are a harmonic cycle (--p0 … --phi) or a periodic force path in a file \
-(--harmonics or --samples, read as `microslip path` reads them; --drive force only). \
+    after_help = "The loads are a harmonic cycle (--p0 … --phi) or a periodic path in a file \
+(--harmonics or --samples, read as `microslip path` reads them), driven by the tangential load Q \
+(--drive force) or by the displacement u (--drive displacement: each step sets u and Q = Σ t_s \
+follows, saturating at ±fP; P may vary, unlike in `microslip path`, but must stay positive; the \
+contact is first loaded to the extreme of u of largest magnitude). \
 W is energy per cycle in the units of load × approach of the inputs \
 (N·m for loads in N and a compliance in m/N), printed only with the digits on which its whole \
 estimated error interval rounds alike."
@@ -102,6 +108,8 @@ struct Simulated<'a> {
     answer: &'a Answer,
     friction: &'a Value,
     result: &'a SimulationResult,
+    /// Whether the loads are a path file, whose report gives the amplitudes of Q and u.
+    path: bool,
 }
 
 pub fn run(args: &SimulateArgs) -> Result<String, Failure> {
@@ -151,6 +159,7 @@ fn run_cycle(args: &SimulateArgs, cycle: &CycleArgs, options: &SimulationOptions
         answer: &simulated.answer,
         friction: &simulated.friction,
         result: &simulated.result,
+        path: false,
     };
     write_loop(args, &view)?;
     if let Some(path) = &args.plot {
@@ -166,12 +175,14 @@ fn run_path(args: &SimulateArgs, request: &PathRequest, options: &SimulationOpti
         answer: &simulated.answer,
         friction: &simulated.friction,
         result: &simulated.result,
+        path: true,
     };
     write_loop(args, &view)?;
     let file = || Some(request.file.clone());
     let inputs = PathFileInputs {
         harmonics: args.path.harmonics.as_ref().and_then(|_| file()),
         samples: args.path.samples.as_ref().and_then(|_| file()),
+        drive: request.drive.name(),
         friction: args.contact.friction.clone(),
         lambda: args.contact.lambda.clone(),
         nu: args.contact.nu.clone(),
@@ -208,8 +219,18 @@ fn report(args: &SimulateArgs, simulated: &Simulated, loads: SimulatedLoads) -> 
         1 => "1 significant digit".to_string(),
         n => format!("{} significant digits", n.min(F64_MOST_DIGITS)),
     };
+    let amplitudes = if simulated.path {
+        format!(
+            "; Q amplitude {:.6e}, u amplitude {:.6e}, loss factor {:.6e}",
+            result.tangential_amplitude(),
+            result.displacement_amplitude(),
+            result.loss_factor()
+        )
+    } else {
+        String::new()
+    };
     Ok(format!(
-        "W = {w} (work of the load; the frictional work agrees: {}); estimated relative error {:.1e} (an estimate, not proven), {digits}; {} elements, {} steps per cycle (finest run)",
+        "W = {w} (work of the load; the frictional work agrees: {}); estimated relative error {:.1e} (an estimate, not proven), {digits}; {} elements, {} steps per cycle (finest run){amplitudes}",
         simulated.friction.decimal,
         result.estimated_rel_error,
         result.elements,
@@ -236,6 +257,11 @@ fn simulation_report<'a>(
         method: "history-simulation",
         elements: result.elements,
         steps: result.steps,
+        amplitudes: simulated.path.then(|| SimulatedAmplitudes {
+            q_amplitude: result.tangential_amplitude(),
+            u_amplitude: result.displacement_amplitude(),
+            loss_factor: result.loss_factor(),
+        }),
         inputs: SimulationInputs {
             loads,
             elements: args.elements.or(defaults.elements).unwrap_or(result.elements / 4),

@@ -1,7 +1,8 @@
 //! Compliances built from others: sums, multiples, a constant added to v', and
 //! the load scaling that models scaled roughness.
 
-use super::{merged_breakpoints, regular_at_ends, Compliance, SlopeChange};
+use super::derivative_bounds::scaled_range;
+use super::{merged_breakpoints, regular_at_ends, ApproachChange, Compliance, SlopeChange};
 use crate::real::Real;
 
 /// v = Σ vᵢ: compliances in series add.
@@ -48,6 +49,18 @@ impl<R: Real> Compliance<R> for Sum<R> {
         let zero = reference.int(0);
         Box::new(move |offset: &R| terms.iter().fold(zero.clone(), |acc, term| acc + term(offset)))
     }
+    fn approach_change_about<'a>(&'a self, reference: &R) -> Option<ApproachChange<'a, R>> {
+        // Where every term has its own form; else none, and the caller's general way serves.
+        let terms = self
+            .terms
+            .iter()
+            .map(|c| c.approach_change_about(reference))
+            .collect::<Option<Vec<ApproachChange<'a, R>>>>()?;
+        let zero = reference.int(0);
+        Some(Box::new(move |offset: &R| {
+            terms.iter().fold(zero.clone(), |acc, term| acc + term(offset))
+        }))
+    }
     fn slope_at_scaled_square(&self, scale: &R, root: &R) -> R {
         self.total(scale, |c| c.slope_at_scaled_square(scale, root))
     }
@@ -75,10 +88,13 @@ impl<R: Real> Compliance<R> for Sum<R> {
             .iter()
             .try_fold(load.int(0), |acc, c| Some(acc + c.derivative(order, load)?))
     }
-    fn derivative_bound(&self, order: usize, low: &R, high: &R) -> Option<R> {
+    fn derivative_range(&self, order: usize, low: &R, high: &R) -> Option<(R, R)> {
         self.terms
             .iter()
-            .try_fold(low.int(0), |acc, c| Some(acc + c.derivative_bound(order, low, high)?))
+            .try_fold((low.int(0), low.int(0)), |(least, greatest), c| {
+                let (term_least, term_greatest) = c.derivative_range(order, low, high)?;
+                Some((least + &term_least, greatest + &term_greatest))
+            })
     }
 }
 
@@ -115,6 +131,10 @@ impl<R: Real> Compliance<R> for Scaled<R> {
         let inner = self.inner.slope_change_about(reference);
         Box::new(move |offset: &R| self.factor.clone() * &inner(offset))
     }
+    fn approach_change_about<'a>(&'a self, reference: &R) -> Option<ApproachChange<'a, R>> {
+        let inner = self.inner.approach_change_about(reference)?;
+        Some(Box::new(move |offset: &R| self.factor.clone() * &inner(offset)))
+    }
     fn slope_at_scaled_square(&self, scale: &R, root: &R) -> R {
         self.factor.clone() * &self.inner.slope_at_scaled_square(scale, root)
     }
@@ -133,8 +153,11 @@ impl<R: Real> Compliance<R> for Scaled<R> {
     fn derivative(&self, order: usize, load: &R) -> Option<R> {
         Some(self.factor.clone() * &self.inner.derivative(order, load)?)
     }
-    fn derivative_bound(&self, order: usize, low: &R, high: &R) -> Option<R> {
-        Some(self.factor.abs() * &self.inner.derivative_bound(order, low, high)?)
+    fn derivative_range(&self, order: usize, low: &R, high: &R) -> Option<(R, R)> {
+        Some(scaled_range(
+            &self.factor,
+            &self.inner.derivative_range(order, low, high)?,
+        ))
     }
 }
 
@@ -173,6 +196,13 @@ impl<R: Real> Compliance<R> for Shifted<R> {
     fn slope_change_about<'a>(&'a self, reference: &R) -> SlopeChange<'a, R> {
         self.inner.slope_change_about(reference)
     }
+    fn approach_change_about<'a>(&'a self, reference: &R) -> Option<ApproachChange<'a, R>> {
+        // v + c·P changes by the inner change plus c·x.
+        let inner = self.inner.approach_change_about(reference)?;
+        Some(Box::new(move |offset: &R| {
+            inner(offset) + &(self.extra_slope.clone() * offset)
+        }))
+    }
     fn slope_at_scaled_square(&self, scale: &R, root: &R) -> R {
         self.inner.slope_at_scaled_square(scale, root) + &self.extra_slope
     }
@@ -193,10 +223,10 @@ impl<R: Real> Compliance<R> for Shifted<R> {
             _ => inner,
         })
     }
-    fn derivative_bound(&self, order: usize, low: &R, high: &R) -> Option<R> {
+    fn derivative_range(&self, order: usize, low: &R, high: &R) -> Option<(R, R)> {
         // Beyond v' the added c·P leaves no trace.
         (order >= 2)
-            .then(|| self.inner.derivative_bound(order, low, high))
+            .then(|| self.inner.derivative_range(order, low, high))
             .flatten()
     }
 }
@@ -233,6 +263,13 @@ impl<R: Real> Compliance<R> for LoadScaled<R> {
         self.inner
             .slope_change(&(reference.clone() / &self.factor), &(offset.clone() / &self.factor))
     }
+    fn approach_change_about<'a>(&'a self, reference: &R) -> Option<ApproachChange<'a, R>> {
+        // k·[v((P0 + x)/k) − v(P0/k)].
+        let inner = self.inner.approach_change_about(&(reference.clone() / &self.factor))?;
+        Some(Box::new(move |offset: &R| {
+            self.factor.clone() * &inner(&(offset.clone() / &self.factor))
+        }))
+    }
     fn slope_at_scaled_square(&self, scale: &R, root: &R) -> R {
         self.inner.slope_at_scaled_square(&(scale.clone() / &self.factor), root)
     }
@@ -263,9 +300,69 @@ impl<R: Real> Compliance<R> for LoadScaled<R> {
         let inner = self.inner.derivative(order, &(load.clone() / &self.factor))?;
         Some(inner * &self.factor.powi(1 - order as i32))
     }
-    fn derivative_bound(&self, order: usize, low: &R, high: &R) -> Option<R> {
+    fn derivative_range(&self, order: usize, low: &R, high: &R) -> Option<(R, R)> {
         let (a, b) = (low.clone() / &self.factor, high.clone() / &self.factor);
-        let inner = self.inner.derivative_bound(order, &a.min_of(&b), &a.max_of(&b))?;
-        Some(inner * &self.factor.abs().powi(1 - order as i32))
+        let inner = self.inner.derivative_range(order, &a.min_of(&b), &a.max_of(&b))?;
+        Some(scaled_range(&self.factor.powi(1 - order as i32), &inner))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::compliance::{Hertz, PowerLaw};
+    use rug::Float;
+
+    /// Sums, multiples, added slopes and load scalings of laws with a closed-form change of
+    /// approach have one too, equal to the difference of approaches formed at 300 bits.
+    #[test]
+    fn combined_approach_changes_match_the_difference_of_approaches() {
+        fn combined<R: Real>(at: impl Fn(f64) -> R) -> Vec<Box<dyn Compliance<R>>> {
+            let hertz = || -> Box<dyn Compliance<R>> {
+                Box::new(Hertz {
+                    radius: at(1.5),
+                    contact_modulus: at(2.0),
+                })
+            };
+            let power = || -> Box<dyn Compliance<R>> {
+                Box::new(PowerLaw {
+                    coefficient: at(0.7),
+                    exponent: at(-1.5),
+                })
+            };
+            vec![
+                Box::new(Sum {
+                    terms: vec![hertz(), power()],
+                }),
+                Box::new(Scaled {
+                    factor: at(2.5),
+                    inner: hertz(),
+                }),
+                Box::new(Shifted {
+                    extra_slope: at(0.3),
+                    inner: power(),
+                }),
+                Box::new(LoadScaled {
+                    factor: at(4.0),
+                    inner: hertz(),
+                }),
+            ]
+        }
+        let wide = combined(|x| Float::with_val(300, x));
+        let reference = 2.0;
+        for (index, compliance) in combined(|x| x).iter().enumerate() {
+            let change = compliance.approach_change_about(&reference).expect("a closed form");
+            for offset in [0.8, -1.9, 14.0, 2e-9, -2e-9] {
+                let exact = wide[index].approach(&(Float::with_val(300, reference) + offset))
+                    - wide[index].approach(&Float::with_val(300, reference));
+                let error = (Float::with_val(300, change(&offset)) - &exact).abs();
+                assert!(
+                    error <= exact.clone().abs() * 1e-14,
+                    "{}, x = {offset}: {:e} vs {exact:.17e}",
+                    compliance.describe(),
+                    change(&offset)
+                );
+            }
+        }
     }
 }

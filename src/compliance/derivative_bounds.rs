@@ -1,27 +1,32 @@
-//! Upper bounds on |v⁽ᵏ⁾| over a load interval, for the proven remainder of the
+//! The range of v⁽ᵏ⁾ over a load interval, for the proven remainder of the
 //! small-amplitude series (proofs/cubic-law-remainder.md).
 //!
 //! Every analytic family has, for k ≥ 2, a derivative of one sign whose magnitude is
 //! monotone in the load on its domain: C·β(β − 1)…·P^(β − k + 1) for the power laws (Persson's
 //! and Hertz's among them), b·(k − 2)!·(P + c)^(1 − k) up to sign for the rational family,
-//! a·c^(1 − k)·e^(−P/c) for the exponential. Its largest magnitude over [low, high] is then
-//! at an end, and on Arb balls the ends' values enclose it. A polynomial is bounded by its
-//! Taylor coefficients about the middle; sums, multiples and load scalings combine their
-//! terms' bounds. A table's cubic interpolant has derivatives that jump at its knots and
+//! a·c^(1 − k)·e^(−P/c) for the exponential. Its range over [low, high] then lies between its
+//! values at the ends, and on Arb balls the ends' values enclose it. A polynomial is bounded
+//! by its Taylor coefficients about the middle; sums, multiples and load scalings combine
+//! their terms' ranges. A table's cubic interpolant has derivatives that jump at its knots and
 //! gives no bound.
 
 use super::{falling_factorial, Compliance};
 use crate::real::Real;
 
-/// max(|v⁽ᵏ⁾(low)|, |v⁽ᵏ⁾(high)|): the bound over [low, high] of a derivative whose
-/// magnitude is monotone there (the caller's family guarantees it on the domain it checks).
-pub(super) fn at_the_ends<R: Real>(compliance: &dyn Compliance<R>, order: usize, low: &R, high: &R) -> Option<R> {
-    let ends = [low, high].map(|load| compliance.derivative(order, load).map(|d| d.abs()));
+/// v⁽ᵏ⁾ at the ends of [low, high], least first: the range there of a derivative that is
+/// monotone (the caller's family guarantees it on the domain it checks).
+pub(super) fn at_the_ends<R: Real>(compliance: &dyn Compliance<R>, order: usize, low: &R, high: &R) -> Option<(R, R)> {
+    let ends = [low, high].map(|load| compliance.derivative(order, load));
     let [Some(at_low), Some(at_high)] = ends else {
         return None;
     };
-    let bound = at_low.max_of(&at_high);
-    bound.is_finite().then_some(bound)
+    (at_low.is_finite() && at_high.is_finite()).then(|| scaled_range(&at_low.int(1), &(at_low, at_high)))
+}
+
+/// {c·x : x in the range}, least first, for a factor c of either sign.
+pub(crate) fn scaled_range<R: Real>(factor: &R, (least, greatest): &(R, R)) -> (R, R) {
+    let (a, b) = (factor.clone() * least, factor.clone() * greatest);
+    (a.min_of(&b), a.max_of(&b))
 }
 
 /// Whether `low` is surely positive and `low ≤ high`: the loads of a family singular at 0.
@@ -64,7 +69,8 @@ mod tests {
     use super::super::{Exponential, Hertz, Persson, Polynomial, PowerLaw, Rational, Sum};
     use super::*;
 
-    /// Every bound is at least the largest |v⁽ᵏ⁾| on a fine grid, and close to it.
+    /// Every range holds v⁽ᵏ⁾ on a fine grid, and every bound is at least the largest
+    /// |v⁽ᵏ⁾| there, and close to it.
     #[test]
     fn bounds_hold_on_a_grid_and_are_attained_at_an_end() {
         let families: Vec<Box<dyn Compliance<f64>>> = vec![
@@ -105,13 +111,17 @@ mod tests {
         for v in &families {
             for order in 2..=6 {
                 let bound = v.derivative_bound(order, &low, &high).unwrap();
-                let largest = (0..=1000)
-                    .map(|i| {
-                        v.derivative(order, &(low + (high - low) * i as f64 / 1000.0))
-                            .unwrap()
-                            .abs()
-                    })
-                    .fold(0.0, f64::max);
+                let (least, greatest) = v.derivative_range(order, &low, &high).unwrap();
+                let values: Vec<f64> = (0..=1000)
+                    .map(|i| v.derivative(order, &(low + (high - low) * i as f64 / 1000.0)).unwrap())
+                    .collect();
+                let slack = 1e-12 * bound;
+                assert!(
+                    values.iter().all(|x| least - slack <= *x && *x <= greatest + slack),
+                    "{} {order}: [{least}, {greatest}]",
+                    v.describe()
+                );
+                let largest = values.iter().fold(0.0f64, |m, x| m.max(x.abs()));
                 assert!(
                     bound >= largest * (1.0 - 1e-12),
                     "{} {order}: {bound} < {largest}",

@@ -1,7 +1,7 @@
 //! The built-in compliance families.
 
 use super::derivative_bounds::{at_the_ends, polynomial_bound, positive_range};
-use super::{falling_factorial, regular_at_ends, Compliance, SlopeChange};
+use super::{falling_factorial, regular_at_ends, ApproachChange, Compliance, SlopeChange};
 use crate::real::Real;
 
 /// v'(P) = C·P^β (β < 0 for a stiffening contact). Eq. (20) of the paper with the
@@ -38,17 +38,23 @@ impl<R: Real> PowerLaw<R> {
     /// r^(−m) − 1 = −(r^m − 1)/r^m, free of cancellation as well (every term is positive
     /// but the factor u) and with one square or cube root in place of ln1p and expm1.
     fn into_slope_change<'a>(self, reference: &R) -> SlopeChange<'a, R> {
-        let (slope, inverse) = (self.slope(reference), reference.int(1) / reference);
-        match self.small_rational_exponent() {
-            Some((0, _)) => Box::new(|offset: &R| offset.int(0)),
-            Some((numerator, 1)) => rational_slope_change::<R, 1>(numerator, slope, reference.clone(), inverse),
-            Some((numerator, 2)) => rational_slope_change::<R, 2>(numerator, slope, reference.clone(), inverse),
-            Some((numerator, _)) => rational_slope_change::<R, 3>(numerator, slope, reference.clone(), inverse),
-            None => Box::new(move |offset: &R| {
-                let relative = (offset.clone() * &inverse).ln_1p() * &self.exponent;
-                slope.clone() * &relative.exp_m1()
-            }),
+        let (slope, rational) = (self.slope(reference), self.small_rational_exponent());
+        power_change(slope, self.exponent, rational, reference)
+    }
+
+    /// x ↦ v(P0 + x) − v(P0) = v(P0)·[(1 + x/P0)^(β+1) − 1], the slope change's form with
+    /// the exponent β + 1 (a small rational k/q giving (k + q)/q, so Hertz's v = K·P^(2/3)
+    /// costs one cube root), free of cancellation; `None` for β = −1, whose C·ln1p(x/P0)
+    /// costs more than the logarithms a caller differences and the v' it integrates.
+    fn into_approach_change<'a>(self, reference: &R) -> Option<ApproachChange<'a, R>> {
+        let exponent = self.exponent.clone() + &reference.int(1);
+        if exponent == reference.int(0) {
+            return None;
         }
+        let rational = self
+            .small_rational_exponent()
+            .map(|(numerator, denominator)| (numerator + denominator as i32, denominator));
+        Some(power_change(self.approach(reference), exponent, rational, reference))
     }
 
     /// β as k/q with q ≤ 3 and |k| ≤ [`RATIONAL_EXPONENTS`], when it is one (at the
@@ -60,6 +66,28 @@ impl<R: Real> PowerLaw<R> {
             let rational = scaled.floor() == scaled && scaled.abs() <= limit;
             rational.then(|| (scaled.to_f64_lossy() as i32, denominator))
         })
+    }
+}
+
+/// x ↦ A·[(1 + x/P0)^β − 1] with A the value at P0 of a power law of exponent β (its
+/// v' for the slope change, its v for the approach change), algebraic where β = k/q is a
+/// small rational (see [`PowerLaw::into_slope_change`]).
+fn power_change<'a, R: Real>(
+    at_reference: R,
+    exponent: R,
+    rational: Option<(i32, u32)>,
+    reference: &R,
+) -> SlopeChange<'a, R> {
+    let inverse = reference.int(1) / reference;
+    match rational {
+        Some((0, _)) => Box::new(|offset: &R| offset.int(0)),
+        Some((numerator, 1)) => rational_slope_change::<R, 1>(numerator, at_reference, reference.clone(), inverse),
+        Some((numerator, 2)) => rational_slope_change::<R, 2>(numerator, at_reference, reference.clone(), inverse),
+        Some((numerator, _)) => rational_slope_change::<R, 3>(numerator, at_reference, reference.clone(), inverse),
+        None => Box::new(move |offset: &R| {
+            let relative = (offset.clone() * &inverse).ln_1p() * &exponent;
+            at_reference.clone() * &relative.exp_m1()
+        }),
     }
 }
 
@@ -123,6 +151,9 @@ impl<R: Real> Compliance<R> for PowerLaw<R> {
     fn slope_change_about<'a>(&'a self, reference: &R) -> SlopeChange<'a, R> {
         self.clone().into_slope_change(reference)
     }
+    fn approach_change_about<'a>(&'a self, reference: &R) -> Option<ApproachChange<'a, R>> {
+        self.clone().into_approach_change(reference)
+    }
     fn slope_at_scaled_square(&self, scale: &R, root: &R) -> R {
         // C·s^β·r^(2β): r's enclosure, not r²'s, keeps away from 0.
         let doubled = self.exponent.clone().times_power_of_two(1);
@@ -148,7 +179,7 @@ impl<R: Real> Compliance<R> for PowerLaw<R> {
                 * &load.powr(&(self.exponent.clone() - &load.int(order as i64))),
         )
     }
-    fn derivative_bound(&self, order: usize, low: &R, high: &R) -> Option<R> {
+    fn derivative_range(&self, order: usize, low: &R, high: &R) -> Option<(R, R)> {
         // C·β(β − 1)…·P^(β − k + 1): one power of P, monotone on P > 0.
         (order >= 2 && positive_range(low, high))
             .then(|| at_the_ends(self, order, low, high))
@@ -228,8 +259,8 @@ impl<R: Real> Compliance<R> for Persson<R> {
             order + 1,
         ))
     }
-    fn derivative_bound(&self, order: usize, low: &R, high: &R) -> Option<R> {
-        self.as_power_law().derivative_bound(order, low, high)
+    fn derivative_range(&self, order: usize, low: &R, high: &R) -> Option<(R, R)> {
+        self.as_power_law().derivative_range(order, low, high)
     }
 }
 
@@ -301,6 +332,9 @@ impl<R: Real> Compliance<R> for Hertz<R> {
     fn slope_change_about<'a>(&'a self, reference: &R) -> SlopeChange<'a, R> {
         self.as_power_law().into_slope_change(reference)
     }
+    fn approach_change_about<'a>(&'a self, reference: &R) -> Option<ApproachChange<'a, R>> {
+        self.as_power_law().into_approach_change(reference)
+    }
     fn slope_at_scaled_square(&self, scale: &R, root: &R) -> R {
         self.as_power_law().slope_at_scaled_square(scale, root)
     }
@@ -317,8 +351,8 @@ impl<R: Real> Compliance<R> for Hertz<R> {
     fn slope_derivative(&self, order: usize, load: &R) -> Option<R> {
         self.as_power_law().slope_derivative(order, load)
     }
-    fn derivative_bound(&self, order: usize, low: &R, high: &R) -> Option<R> {
-        self.as_power_law().derivative_bound(order, low, high)
+    fn derivative_range(&self, order: usize, low: &R, high: &R) -> Option<(R, R)> {
+        self.as_power_law().derivative_range(order, low, high)
     }
 }
 
@@ -407,8 +441,11 @@ impl<R: Real> Compliance<R> for Polynomial<R> {
             .collect();
         Some(Self::horner(&derived, &x))
     }
-    fn derivative_bound(&self, order: usize, low: &R, high: &R) -> Option<R> {
-        (order >= 1).then(|| polynomial_bound(&self.reference, &self.coefficients, order - 1, low, high))
+    fn derivative_range(&self, order: usize, low: &R, high: &R) -> Option<(R, R)> {
+        (order >= 1).then(|| {
+            let bound = polynomial_bound(&self.reference, &self.coefficients, order - 1, low, high);
+            (-bound.clone(), bound)
+        })
     }
 }
 
@@ -472,7 +509,7 @@ impl<R: Real> Compliance<R> for Rational<R> {
             k => logarithmic_derivative(&self.numerator, &(load.clone() + &self.offset), k + 1),
         })
     }
-    fn derivative_bound(&self, order: usize, low: &R, high: &R) -> Option<R> {
+    fn derivative_range(&self, order: usize, low: &R, high: &R) -> Option<(R, R)> {
         // b·(k − 2)!·(P + c)^(1 − k) up to sign, monotone while P + c > 0.
         let (low_shifted, high_shifted) = (low.clone() + &self.offset, high.clone() + &self.offset);
         (order >= 2 && positive_range(&low_shifted, &high_shifted))
@@ -564,7 +601,7 @@ impl<R: Real> Compliance<R> for Exponential<R> {
             }
         })
     }
-    fn derivative_bound(&self, order: usize, low: &R, high: &R) -> Option<R> {
+    fn derivative_range(&self, order: usize, low: &R, high: &R) -> Option<(R, R)> {
         // a·(−1/c)^(k − 1)·e^(−P/c): monotone in P.
         (order >= 2 && *low <= *high)
             .then(|| at_the_ends(self, order, low, high))
@@ -613,6 +650,54 @@ mod tests {
                     "β={k}/{q} x={offset} at 330 bits: {error:.3e}"
                 );
             }
+        }
+    }
+
+    /// The prepared approach change of a power law equals v(P0 + x) − v(P0) evaluated at
+    /// 300 bits, C·P0^(β+1)/(β+1)·expm1((β+1)·ln1p(x/P0)), to a few ulps of f64, from near
+    /// P = 0 to large loads and at |x| = 1e−9·P0, where a difference of v would keep 7
+    /// digits; β = −1 (Persson's) has none, Hertz's is its power law's.
+    #[test]
+    fn approach_changes_match_the_difference_of_approaches() {
+        let exact_change = |beta: f64, reference: f64, offset: f64| {
+            let raised = Float::with_val(300, beta) + 1u32;
+            let reference = Float::with_val(300, reference);
+            let relative = (Float::with_val(300, offset) / &reference).ln_1p() * &raised;
+            Float::with_val(300, 1.5) * reference.powr(&raised) / &raised * relative.exp_m1()
+        };
+        let exponents = [-3.0, -2.0, -1.5, -0.5, -1.0 / 3.0, -0.3, 0.0, 0.5, 2.0];
+        for beta in exponents {
+            let law = PowerLaw {
+                coefficient: 1.5,
+                exponent: beta,
+            };
+            let change = law.approach_change_about(&2.0).unwrap();
+            for offset in [0.8, -1.998, -1.2, 14.0, 2e-9, -2e-9] {
+                let exact = exact_change(beta, 2.0, offset);
+                let value = change(&offset);
+                let error = (Float::with_val(300, value) - &exact).abs();
+                assert!(
+                    error <= exact.clone().abs() * 1e-14,
+                    "β = {beta}, x = {offset}: {value:e} vs {exact:.17e}"
+                );
+            }
+        }
+        let persson = Persson {
+            gamma: 0.01,
+            sigma: 1.0,
+        };
+        assert!(persson.approach_change_about(&1.0).is_none());
+        let hertz = Hertz {
+            radius: 1.0,
+            contact_modulus: 100.0,
+        };
+        let law = hertz.as_power_law();
+        let (mine, its_law) = (
+            hertz.approach_change_about(&1.0).unwrap(),
+            law.approach_change_about(&1.0).unwrap(),
+        );
+        for offset in [-1.0, -0.9, -1e-6, 0.3] {
+            assert_eq!(mine(&offset), its_law(&offset));
         }
     }
 }

@@ -23,6 +23,7 @@
 
 mod combinators;
 mod derivative_bounds;
+pub(crate) use derivative_bounds::scaled_range;
 mod families;
 mod slope_form;
 mod spec;
@@ -42,6 +43,9 @@ use crate::real::Real;
 
 /// x ↦ v'(P0 + x) − v'(P0) about a fixed P0 (see [`Compliance::slope_change_about`]).
 pub type SlopeChange<'a, R> = Box<dyn Fn(&R) -> R + Send + Sync + 'a>;
+
+/// x ↦ v(P0 + x) − v(P0) about a fixed P0 (see [`Compliance::approach_change_about`]).
+pub type ApproachChange<'a, R> = Box<dyn Fn(&R) -> R + Send + Sync + 'a>;
 
 /// A normal compliance function v(P) with its first two derivatives.
 pub trait Compliance<R: Real>: Debug + Send + Sync {
@@ -66,6 +70,15 @@ pub trait Compliance<R: Real>: Debug + Send + Sync {
     fn slope_change_about<'a>(&'a self, reference: &R) -> SlopeChange<'a, R> {
         let reference = reference.clone();
         Box::new(move |offset: &R| self.slope_change(&reference, offset))
+    }
+    /// x ↦ v(reference + x) − v(reference) in a form free of cancellation at small x,
+    /// prepared once for many offsets x (the harmonic-balance element evaluates its virgin
+    /// curve, such a difference, hundreds of times per call about one P). `None` for a
+    /// compliance without one: a caller then differences v where x is large and integrates
+    /// v' where it is small.
+    fn approach_change_about<'a>(&'a self, reference: &R) -> Option<ApproachChange<'a, R>> {
+        let _ = reference;
+        None
     }
     /// v'(scale·root²): v' at a load given as a positive scale times a square, as the
     /// bottom of a cycle near separation gives it (the lowest load δ times cosh²u).
@@ -118,13 +131,20 @@ pub trait Compliance<R: Real>: Debug + Send + Sync {
         let _ = (order, load);
         None
     }
-    /// An upper bound on |v⁽ᵒʳᵈᵉʳ⁾| over [low, high] (order ≥ 2, as for [`Compliance::derivative`]),
-    /// for the proven remainder of the small-amplitude series: on Arb balls the upper end
-    /// of the ball bounds it. `None` where the form gives none (a table's interpolant, a
-    /// range that reaches a singularity, an order below 2).
-    fn derivative_bound(&self, order: usize, low: &R, high: &R) -> Option<R> {
+    /// The least and the greatest value of v⁽ᵒʳᵈᵉʳ⁾ over [low, high] (order ≥ 2, as for
+    /// [`Compliance::derivative`]), for the proven remainder of the small-amplitude series:
+    /// on Arb balls every value lies between the lower end of the first and the upper end of
+    /// the second. `None` where the form gives none (a table's interpolant, a range that
+    /// reaches a singularity, an order below 2).
+    fn derivative_range(&self, order: usize, low: &R, high: &R) -> Option<(R, R)> {
         let _ = (order, low, high);
         None
+    }
+    /// An upper bound on |v⁽ᵒʳᵈᵉʳ⁾| over [low, high], from [`Compliance::derivative_range`]:
+    /// on Arb balls the upper end of the ball bounds it.
+    fn derivative_bound(&self, order: usize, low: &R, high: &R) -> Option<R> {
+        let (least, greatest) = self.derivative_range(order, low, high)?;
+        Some(least.abs().max_of(&greatest.abs()))
     }
 }
 

@@ -20,7 +20,13 @@
 //! one decision, whether u lies beyond ±1, reads the ball's whole interval, and where
 //! it may not (τ at a load's extreme) the arc's half-width is enclosed by its hull.
 //!
-//! The norm ‖K_{N+1}‖₁ is bounded by boxes in τ, not by sampling: K_{N+1}' = −K_N on each
+//! The norms are exact: W ≥ 0 for every admissible compliance makes K_1 ≤ 0, so every
+//! K_{N+1} is one-signed on each side of τ = 0 (≤ 0 above; (−1)^(N+1) below), and
+//! ‖K_{N+1}‖₁ = |K_{N+2}(0+)| + |K_{N+2}(0−)|, two evaluations ([`PeanoKernels::at_origin`];
+//! the derivation is proofs/cubic-law-remainder.md, "The sign of the kernels").
+//!
+//! Independently of that derivation, ‖K_{N+1}‖₁ is bounded by boxes in τ
+//! ([`PeanoKernels::norms`], the gate's check): K_{N+1}' = −K_N on each
 //! side of τ = 0 (where K_{N+1} jumps by I_N/N!), so on a box [a, b] of width h,
 //! |K_{N+1}| ≤ min(|K_{N+1}(a)| + (τ − a)S, |K_{N+1}(b)| + (b − τ)S) with S ≥ sup |K_N|,
 //! whose integral is at most h(|K_{N+1}(a)| + |K_{N+1}(b)|)/2 + h²S/4. S comes down the
@@ -60,6 +66,16 @@ pub struct PeanoKernels<R> {
     pieces: Vec<Piece<R>>,
     reach: R,
     highest: usize,
+}
+
+/// The kernels' integrals over each side of τ = 0 and the series' coefficients, from the
+/// kernels at 0± ([`PeanoKernels::at_origin`]).
+#[derive(Clone, Debug)]
+pub struct AtOrigin<R> {
+    /// Index n − 1: (∫_{τ<0} K_{n+1}, ∫_{τ>0} K_{n+1}).
+    pub sides: Vec<(R, R)>,
+    /// I₀ … I_N.
+    pub coefficients: Vec<R>,
 }
 
 /// Upper bounds on ‖K_{n+1}‖₁ for n = 1 … N, and how they were reached.
@@ -201,6 +217,36 @@ impl<R: Real> PeanoKernels<R> {
             let moved = tau + (towards - tau) * 1e-6 * f64::from(attempt);
             self.point(&R::from_f64(moved, precision), upper)
         })
+    }
+
+    /// What the kernels just above and below τ = 0 give, with N = `highest`: the integrals of
+    /// K_{n+1} over τ < 0 and over τ > 0 for n = 1 … N − 1 (index n − 1), −K_{n+2}(0−) and
+    /// K_{n+2}(0+), since K_{n+2}' = −K_{n+1} on each side and K_{n+2} vanishes past the
+    /// support; and the coefficients I₀ … I_N from the jumps K_{n+1}(0+) − K_{n+1}(0−) = Iₙ/n!.
+    /// K_{n+1} is one-signed on each side (proofs/cubic-law-remainder.md, "The sign of the
+    /// kernels"), so ‖K_{n+1}‖₁ is the sum of its sides' magnitudes. `None` where the kernels
+    /// at τ = 0 cannot be enclosed (a load's extreme there to within the working precision,
+    /// or a load of zero amplitude).
+    pub fn at_origin(&self) -> Option<AtOrigin<R>> {
+        let zero = self.reach.int(0);
+        let (above, below) = (self.at(&zero, true)?, self.at(&zero, false)?);
+        let sides: Vec<(R, R)> = (2..=self.highest)
+            .map(|j| (-below[j].clone(), above[j].clone()))
+            .collect();
+        let mut factorial = zero.int(1);
+        let coefficients: Vec<R> = (0..=self.highest)
+            .map(|n| {
+                if n > 0 {
+                    factorial *= &zero.int(n as i64);
+                }
+                (above[n].clone() - &below[n]) * &factorial
+            })
+            .collect();
+        let finite = sides
+            .iter()
+            .all(|(below, above)| below.is_finite() && above.is_finite())
+            && coefficients.iter().all(R::is_finite);
+        finite.then_some(AtOrigin { sides, coefficients })
     }
 
     /// Upper bounds on ‖K_{n+1}‖₁, n = 1 … N, by boxes in τ over [−L, 1].
@@ -389,6 +435,58 @@ fn upper_f64<R: Real>(x: &R) -> f64 {
 mod tests {
     use super::*;
     use crate::exact::series_coefficients;
+
+    /// K_1 ≤ 0 and K_3 ≤ 0 everywhere, K_2 ≥ 0 below τ = 0 and ≤ 0 above (the signs W ≥ 0
+    /// forces), across ρ from 10⁻³ to 10³ and φ over (0, π); and the exact norms agree with
+    /// the boxes' bound: below it, and within the 20% that a budget-capped refinement leaves.
+    #[test]
+    fn the_odd_kernels_are_never_positive_and_the_norms_are_exact() {
+        let pi = std::f64::consts::PI;
+        for i in 0..13 {
+            let rho = 10f64.powf(-3.0 + 0.5 * i as f64);
+            for j in 1..12 {
+                let phase = pi * j as f64 / 12.0;
+                let kernels = PeanoKernels::new(&rho, &phase, 3).unwrap();
+                let reach = *kernels.reach();
+                // The largest |K_j| seen, for a rounding tolerance.
+                let mut scale = [0.0f64; 3];
+                let mut worst = [f64::NEG_INFINITY; 3];
+                for t in 0..200 {
+                    let tau = -reach + (1.0 + reach) * (t as f64 + 0.5) / 200.0;
+                    let values = kernels.at(&tau, tau > 0.0).unwrap();
+                    let side = if tau > 0.0 { 1.0 } else { -1.0 };
+                    for (n, signed) in [values[0], side * values[1], values[2]].into_iter().enumerate() {
+                        scale[n] = scale[n].max(signed.abs());
+                        worst[n] = worst[n].max(signed);
+                    }
+                }
+                for n in 0..3 {
+                    assert!(
+                        worst[n] <= 1e-12 * scale[n],
+                        "ρ = {rho}, φ = {phase}: K{} reaches {:e} (scale {:e})",
+                        n + 1,
+                        worst[n],
+                        scale[n]
+                    );
+                }
+                let exact: Vec<f64> = kernels
+                    .at_origin()
+                    .unwrap()
+                    .sides
+                    .iter()
+                    .map(|(below, above)| below.abs() + above.abs())
+                    .collect();
+                let boxes = kernels.norms().unwrap();
+                for (n, (exact, bound)) in exact.iter().zip(&boxes.norms).enumerate() {
+                    assert!(
+                        *exact <= *bound && *exact >= bound / 1.2,
+                        "ρ = {rho}, φ = {phase}: ‖K{}‖₁ = {exact:e}, boxes {bound:e}",
+                        n + 2
+                    );
+                }
+            }
+        }
+    }
 
     /// ∫ K_{N+1} = I_{N+1}/(N+1)! and the jump at 0 is I_N/N!, from the kernels' values.
     #[test]

@@ -3,6 +3,8 @@
 //! small-amplitude series W = λ f² Σₙ v⁽ⁿ⁺¹⁾(P0)/n! · P1ⁿ⁺² Iₙ (proofs/series.md,
 //! proofs/small-amplitude-coefficient.md).
 
+#[cfg(feature = "certified")]
+pub mod case_remainders;
 pub mod coefficient;
 #[cfg(feature = "certified")]
 pub mod enclosure;
@@ -15,8 +17,8 @@ pub mod series;
 pub mod trig;
 
 pub use coefficient::closed_form_coefficient;
-pub use kernel::{cubic_kernel_majorant, KernelNorms, PeanoKernels};
+pub use kernel::{cubic_kernel_majorant, AtOrigin, KernelNorms, PeanoKernels};
 pub use polynomial_w::{coefficients_about, monomial_dissipations, polynomial_dissipation};
-pub use remainder::{remainder_bounds, RemainderError, SeriesShape};
+pub use remainder::{remainder_bounds, remainders, Remainder, RemainderError, SeriesShape};
 pub use series::{partial_sums, series_coefficients, SeriesError};
 pub use trig::TrigPolynomial;

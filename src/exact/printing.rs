@@ -10,6 +10,7 @@ use std::time::{Duration, Instant};
 use rug::{Float, Rational};
 
 use super::coefficient::closed_form_coefficient;
+use super::remainder::RemainderError;
 use super::series::{partial_sums, series_coefficients, SeriesError};
 use crate::answer::{Answer, Arithmetic, ExactReason, Provenance, Value};
 use crate::case::{parse_phase, Case, CaseText, InputError};
@@ -52,6 +53,9 @@ pub enum ExactAnswerError {
     /// The series itself failed.
     #[error(transparent)]
     Series(#[from] SeriesError),
+    /// The series' remainder could not be bounded.
+    #[error(transparent)]
+    Remainder(#[from] RemainderError),
     /// The case does not read.
     #[error(transparent)]
     Input(#[from] InputError),
@@ -89,7 +93,8 @@ impl ExactAnswerError {
         match self {
             ExactAnswerError::OutOfTime(_)
             | ExactAnswerError::Unreached { .. }
-            | ExactAnswerError::BeyondRange { .. } => true,
+            | ExactAnswerError::BeyondRange { .. }
+            | ExactAnswerError::Remainder(RemainderError::Kernel { .. }) => true,
             ExactAnswerError::Reference(error) => error.is_failure(),
             _ => false,
         }

@@ -1,15 +1,17 @@
-//! Proven remainders of the small-amplitude series: |W − W_N| ≤ λ f² P1^(N+3) ‖K_{N+1}‖₁
-//! max |v⁽ᴺ⁺²⁾| over [P_T, P0 + P1] (proofs/cubic-law-remainder.md).
+//! Proven remainders of the small-amplitude series: W − W_N = λ f² P1^(N+3) ∫ v⁽ᴺ⁺²⁾ K_{N+1},
+//! with K_{N+1} one-signed on each side of τ = 0, lies in λ f² P1^(N+3) [B₋ R₋ + B₊ R₊], B±
+//! the kernel's integrals over each side and R± the ranges of v⁽ᴺ⁺²⁾ over [P_T, P0] and
+//! [P0, P0 + P1] (proofs/cubic-law-remainder.md).
 //!
-//! The kernel norms depend on (ρ, φ) alone ([`PeanoKernels`]) and the derivative bound on
-//! the compliance over the loads the measure reaches ([`Compliance::derivative_bound`]):
+//! The kernel integrals depend on (ρ, φ) alone ([`PeanoKernels`]) and the derivative ranges
+//! on the compliance over the loads the measure reaches ([`Compliance::derivative_range`]):
 //! down to the permanent-stick load P_T, not only P0 − P1, since the slip loads P_S and P_K
 //! reach it. On Arb balls every factor is an enclosure, so the upper end of the product
 //! bounds the remainder; in f64 it is the same bound, unproven.
 
-use super::kernel::{KernelNorms, PeanoKernels};
-use super::series::{series_coefficients, sums_at_amplitude, SeriesError};
-use crate::compliance::Compliance;
+use super::kernel::PeanoKernels;
+use super::series::{sums_at_amplitude, SeriesError};
+use crate::compliance::{scaled_range, Compliance};
 use crate::cycle::LoadCycle;
 use crate::real::Real;
 
@@ -42,70 +44,119 @@ pub enum RemainderError {
     },
 }
 
-/// The pieces of a case's remainders that do not depend on the compliance's bound.
+/// The pieces of a case's remainders that do not depend on the compliance.
 #[derive(Clone, Debug)]
 pub struct SeriesShape<R> {
     /// ρ = Q1/(fP1).
     pub rho: R,
-    /// I₀ … I_{N+1} (I_{N+1}/(N+1)! = ∫ K_{N+1}).
+    /// I₀ … I_{N+1} (I_{N+1}/(N+1)! = ∫ K_{N+1}), from the kernels' jumps at τ = 0.
     pub coefficients: Vec<R>,
-    /// ‖K_{n+1}‖₁ bounds, index n − 1, and L.
-    pub kernels: KernelNorms<R>,
+    /// Index n − 1: the integrals of K_{n+1} below and above τ = 0, on each of which it is
+    /// one-signed ([`PeanoKernels::at_origin`]).
+    pub sides: Vec<(R, R)>,
+    /// L = (P0 − P_T)/P1, how far below P0 the measure reaches in units of P1.
+    pub reach: R,
+}
+
+/// W − W_N enclosed: every value of it lies between the lower end of `least` and the upper
+/// end of `greatest` (on Arb balls; in f64 the same numbers, unproven).
+#[derive(Clone, Debug)]
+pub struct Remainder<R> {
+    /// The least W − W_N can be.
+    pub least: R,
+    /// The greatest W − W_N can be.
+    pub greatest: R,
+}
+
+impl<R: Real> Remainder<R> {
+    /// An upper bound on |W − W_N|.
+    pub fn bound(&self) -> R {
+        self.least.abs().max_of(&self.greatest.abs())
+    }
 }
 
 impl<R: Real> SeriesShape<R> {
     /// The shape of (ρ, φ) for orders up to `order`.
     pub fn new(rho: &R, phase: &R, order: usize) -> Result<Self, RemainderError> {
-        let kernels = PeanoKernels::new(rho, phase, order)?;
-        let norms = kernels.norms().ok_or_else(|| RemainderError::Kernel {
+        let kernels = PeanoKernels::new(rho, phase, order + 1)?;
+        let origin = kernels.at_origin().ok_or_else(|| RemainderError::Kernel {
             rho: rho.to_f64_lossy(),
             phase: phase.to_f64_lossy(),
         })?;
-        let coefficients = series_coefficients(rho, phase, order + 1)?
-            .into_iter()
-            .map(|(value, _)| value)
-            .collect();
         Ok(SeriesShape {
             rho: rho.clone(),
-            coefficients,
-            kernels: norms,
+            coefficients: origin.coefficients,
+            sides: origin.sides,
+            reach: kernels.reach().clone(),
         })
     }
 
-    /// The partial sums W_1 … W_N and their remainder bounds (index N − 1) of the cycle
+    /// The shape of a cycle's (ρ, φ), ρ = Q1/(fP1), for orders up to `order`, once the cycle
+    /// is checked inside the theory with P1 > 0; `None` where Q1 = 0 (W = 0, and every W_N).
+    pub fn of_cycle(cycle: &LoadCycle<R>, order: usize) -> Result<Option<Self>, RemainderError> {
+        cycle.validate().map_err(SeriesError::from)?;
+        let zero = cycle.mean_normal_load.int(0);
+        let p1 = &cycle.normal_amplitude;
+        if *p1 == zero {
+            return Err(SeriesError::NoNormalAmplitude.into());
+        }
+        let rho = cycle.tangential_amplitude.clone() / &(cycle.friction.clone() * p1);
+        if rho == zero {
+            return Ok(None);
+        }
+        Ok(Some(SeriesShape::new(&rho, &cycle.phase, order)?))
+    }
+
+    /// ‖K_{n+1}‖₁ (index n − 1): the sum of its sides' magnitudes.
+    pub fn norms(&self) -> Vec<R> {
+        self.sides
+            .iter()
+            .map(|(below, above)| below.abs() + &above.abs())
+            .collect()
+    }
+
+    /// The partial sums W_1 … W_N and the enclosures of W − W_N (index N − 1) of the cycle
     /// with this shape, at normal amplitude `amplitude` (the tangential amplitude is
     /// ρ f P1: the shape is kept as P1 moves).
+    ///
+    /// W − W_N = λ f² P1^(N+3) [v⁽ᴺ⁺²⁾(ξ₋) ∫_{τ<0} K_{N+1} + v⁽ᴺ⁺²⁾(ξ₊) ∫_{τ>0} K_{N+1}] for some
+    /// ξ₋ in [P_T, P0] and ξ₊ in [P0, P0 + P1], K_{N+1} being one-signed on each side: the
+    /// ranges of v⁽ᴺ⁺²⁾ there give the enclosure.
     pub fn at_amplitude(
         &self,
         cycle: &LoadCycle<R>,
         compliance: &dyn Compliance<R>,
         amplitude: &R,
-    ) -> Result<(Vec<R>, Vec<R>), RemainderError> {
+    ) -> Result<(Vec<R>, Vec<Remainder<R>>), RemainderError> {
         let p0 = &cycle.mean_normal_load;
-        let order = self.kernels.norms.len();
+        let order = self.sides.len();
         let sums = sums_at_amplitude(&self.coefficients[..=order], cycle, compliance, amplitude)?;
         let scale = cycle.compliance_ratio.clone() * &cycle.friction.square() * &amplitude.square();
-        let (low, high) = (
-            p0.clone() - &(self.kernels.reach.clone() * amplitude),
-            p0.clone() + amplitude,
-        );
-        let mut bounds = Vec::with_capacity(sums.len());
+        let (low, high) = (p0.clone() - &(self.reach.clone() * amplitude), p0.clone() + amplitude);
+        let mut remainders = Vec::with_capacity(sums.len());
         let mut power = amplitude.clone();
-        for (n, norm) in self.kernels.norms.iter().enumerate().map(|(i, norm)| (i + 1, norm)) {
+        for (n, (below, above)) in self.sides.iter().enumerate().map(|(i, sides)| (i + 1, sides)) {
             power *= amplitude;
-            let largest =
+            let range = |from: &R, to: &R| {
                 compliance
-                    .derivative_bound(n + 2, &low, &high)
+                    .derivative_range(n + 2, from, to)
                     .ok_or_else(|| RemainderError::NoDerivativeBound {
                         describe: compliance.describe(),
                         order: n + 2,
                         low: low.to_f64_lossy(),
                         high: high.to_f64_lossy(),
-                    })?;
-            // λ f² P1² · P1^(n+1) ‖K_{n+1}‖₁ max |v⁽ⁿ⁺²⁾|.
-            bounds.push(scale.clone() * &power * norm * &largest);
+                    })
+            };
+            let lower_side = scaled_range(below, &range(&low, p0)?);
+            let upper_side = scaled_range(above, &range(p0, &high)?);
+            // λ f² P1² · P1^(n+1) is positive.
+            let factor = scale.clone() * &power;
+            remainders.push(Remainder {
+                least: (lower_side.0 + &upper_side.0) * &factor,
+                greatest: (lower_side.1 + &upper_side.1) * &factor,
+            });
         }
-        Ok((sums, bounds))
+        Ok((sums, remainders))
     }
 }
 
@@ -140,18 +191,54 @@ pub fn remainder_bounds<R: Real>(
     compliance: &dyn Compliance<R>,
     order: usize,
 ) -> Result<Vec<R>, RemainderError> {
-    cycle.validate().map_err(SeriesError::from)?;
-    let zero = cycle.mean_normal_load.int(0);
-    let p1 = &cycle.normal_amplitude;
-    if *p1 == zero {
-        return Err(SeriesError::NoNormalAmplitude.into());
-    }
-    let rho = cycle.tangential_amplitude.clone() / &(cycle.friction.clone() * p1);
-    if rho == zero {
-        return Ok(vec![zero; order]);
-    }
-    let shape = SeriesShape::new(&rho, &cycle.phase, order)?;
-    Ok(shape.at_amplitude(cycle, compliance, p1)?.1)
+    Ok(remainders(cycle, compliance, order)?
+        .iter()
+        .map(Remainder::bound)
+        .collect())
+}
+
+/// W − W_N enclosed, N = 1 … `order` (index N − 1), for a cycle on a compliance: sharper
+/// than ± [`remainder_bounds`], and one-sided where the derivative's sign makes it so (a
+/// completely monotone v' at even N: W ≥ W_N).
+pub fn remainders<R: Real>(
+    cycle: &LoadCycle<R>,
+    compliance: &dyn Compliance<R>,
+    order: usize,
+) -> Result<Vec<Remainder<R>>, RemainderError> {
+    Ok(sums_and_remainders(cycle, compliance, order)?.1)
+}
+
+/// The partial sums W_1 … W_N and the enclosures of W − W_N (index N − 1) of a cycle on a
+/// compliance: all 0 where Q1 = 0, where W and every W_N are.
+pub fn sums_and_remainders<R: Real>(
+    cycle: &LoadCycle<R>,
+    compliance: &dyn Compliance<R>,
+    order: usize,
+) -> Result<(Vec<R>, Vec<Remainder<R>>), RemainderError> {
+    let shape = SeriesShape::of_cycle(cycle, order)?;
+    sums_and_remainders_with(shape.as_ref(), cycle, compliance, order)
+}
+
+/// [`sums_and_remainders`] from the cycle's shape already formed ([`SeriesShape::of_cycle`],
+/// to `order` or beyond).
+pub fn sums_and_remainders_with<R: Real>(
+    shape: Option<&SeriesShape<R>>,
+    cycle: &LoadCycle<R>,
+    compliance: &dyn Compliance<R>,
+    order: usize,
+) -> Result<(Vec<R>, Vec<Remainder<R>>), RemainderError> {
+    let Some(shape) = shape else {
+        let zero = cycle.mean_normal_load.int(0);
+        let none = Remainder {
+            least: zero.clone(),
+            greatest: zero.clone(),
+        };
+        return Ok((vec![zero; order], vec![none; order]));
+    };
+    let (mut sums, mut remainders) = shape.at_amplitude(cycle, compliance, &cycle.normal_amplitude)?;
+    sums.truncate(order);
+    remainders.truncate(order);
+    Ok((sums, remainders))
 }
 
 /// Why the amplitude stops where `--within` stops it.
@@ -218,17 +305,24 @@ mod within {
     ) -> Result<bool, WithinLimit> {
         let cycle = moved(cycle, amplitude);
         inside(&cycle)?;
-        let Ok((sums, bounds)) = shape.at_amplitude(&cycle, compliance, &cycle.normal_amplitude) else {
+        let Ok((sums, remainders)) = shape.at_amplitude(&cycle, compliance, &cycle.normal_amplitude) else {
             return Ok(false);
         };
+        // |W| from below: the enclosure W_N + [least, greatest] farthest from 0.
         let smallest_w = sums
             .iter()
-            .zip(&bounds)
-            .map(|(sum, bound)| ends(&sum.abs()).0 - ends(bound).1)
+            .zip(&remainders)
+            .map(|(sum, remainder)| {
+                let (low, high) = (
+                    ends(&(sum.clone() + &remainder.least)).0,
+                    ends(&(sum.clone() + &remainder.greatest)).1,
+                );
+                low.max(-high)
+            })
             .fold(f64::NEG_INFINITY, f64::max);
         // The f64 products are rounded down by a few ulps to stay on the proven side.
         let allowed = ratio * smallest_w * (1.0 - 8.0 * f64::EPSILON);
-        Ok(smallest_w > 0.0 && ends(&bounds[0]).1 <= allowed)
+        Ok(smallest_w > 0.0 && ends(&remainders[0].bound()).1 <= allowed)
     }
 
     /// The largest P1 (ρ, φ, P0, Q0, f, λ and the compliance kept) at which

@@ -26,11 +26,13 @@ pub enum SeriesError {
     /// The series needs P1 > 0 (ρ = Q1/(fP1)).
     #[error("the series in P1 needs a normal load amplitude P1 > 0")]
     NoNormalAmplitude,
-    /// The compliance cannot give its derivatives of every order.
-    #[error("the compliance {describe} does not provide its derivatives of every order at P0")]
+    /// The compliance cannot give the derivative the order asked needs.
+    #[error("the compliance {describe} gives no v^({order}) at P0, which the partial sums to this order need (a table's interpolant has v'' but not v''', which jumps at its knots: give --order 1)")]
     NoDerivatives {
         /// The compliance, described.
         describe: String,
+        /// The order of the derivative of v.
+        order: usize,
     },
     /// A derivative is not finite at P0.
     #[error("the derivative of order {order} of the compliance is not finite at P0")]
@@ -151,6 +153,7 @@ pub(super) fn sums_at_amplitude<R: Real>(
                 .derivative(n + 1, &cycle.mean_normal_load)
                 .ok_or_else(|| SeriesError::NoDerivatives {
                     describe: compliance.describe(),
+                    order: n + 1,
                 })?;
         if !derivative.is_finite() {
             return Err(SeriesError::NotFinite { order: n + 1 });

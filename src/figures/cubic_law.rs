@@ -274,10 +274,10 @@ mod enclosed {
         };
         let certified = certified_dissipation(read, W_DIGITS).map_err(|e| fail(&e))?;
         let Case { cycle, compliance } = case_balls(&spec, Precision::bits(SERIES_BITS)).map_err(|e| fail(&e))?;
-        let (sums, bounds) = shape
+        let (sums, remainders) = shape
             .at_amplitude(&cycle, compliance.as_ref(), &cycle.normal_amplitude)
             .map_err(|e| fail(&e))?;
-        let (cubic_law, bound) = (&sums[0], &bounds[0]);
+        let (cubic_law, bound) = (&sums[0], &remainders[0].bound());
         let w = &certified.enclosure.total;
         let error = (w.clone() - cubic_law).abs();
         let size = w.abs();

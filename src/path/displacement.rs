@@ -489,7 +489,7 @@ impl<'a, R: Real> DisplacementCycle<'a, R> {
 
     /// The angles over the steady period where Q(θ) is not smooth: the turning points and
     /// where an inner loop closes or gross slip begins.
-    fn smooth_pieces(&self) -> Vec<(R, R)> {
+    pub(crate) fn smooth_pieces(&self) -> Vec<(R, R)> {
         let mut pieces = Vec::new();
         for i in 0..self.turning_angles.len() - 1 {
             let (a, b) = (&self.turning_angles[i], &self.turning_angles[i + 1]);

@@ -61,7 +61,7 @@ pub enum PathError {
     },
     /// Displacement driving with a normal load that varies.
     #[error(
-        "displacement driving needs a constant normal load, but P has harmonic k = {harmonic}: give P's harmonics k ≥ 1 as 0, or drive by force (Q) with a varying P"
+        "displacement driving needs a constant normal load, but P has harmonic k = {harmonic}: give P's harmonics k ≥ 1 as 0, drive by force (Q), or simulate it with `microslip simulate --drive displacement`, which follows a varying P"
     )]
     VaryingNormalLoad {
         /// The first harmonic k ≥ 1 of P that is not zero.

@@ -76,7 +76,20 @@ impl Bed {
         };
         bed.add_elements(compliance, &[low, lowest_slip], stuck, &|s| s);
         bed.never_slipping = bed.entry.len();
-        bed.add_elements(compliance, &between(lowest_slip, lowest), kept, &|s| s);
+        // Where every element slips (gross slip, P_T = 0), K and v may have power-law
+        // singularities at s = 0 (Hertz: K ∝ s^(1/3), v ∝ s^(2/3)): the piece from 0 is
+        // graded s ∝ τ³, in which they are smooth (Hertz) or vanish fast enough that the
+        // bed's error stays O(h²).
+        let kept_nodes = between(lowest_slip, lowest);
+        let first = kept_nodes.get(1).copied().unwrap_or(lowest);
+        let from_zero = |x: f64| {
+            if lowest_slip == 0.0 && x < first {
+                first * (x / first).powi(3)
+            } else {
+                x
+            }
+        };
+        bed.add_elements(compliance, &kept_nodes, kept, &from_zero);
         if leaving_range > 0.0 {
             let extremes: Vec<f64> = history
                 .normal_extremes()

@@ -1,7 +1,9 @@
 //! The state of every element of the bed through the loading, and one load step: which
-//! elements touch, the force balance Σ t_s(u) = Q, and the frictional work of the slip.
+//! elements touch, the displacement u (prescribed, or solved from the force balance
+//! Σ t_s(u) = Q), and the frictional work of the slip.
 
 use crate::compliance::Compliance;
+use crate::path::Drive;
 
 use super::bed::Bed;
 
@@ -16,6 +18,8 @@ pub(super) struct Contact<'a> {
     /// for an element that entered contact during the step).
     engagement: Vec<f64>,
     pub(super) displacement: f64,
+    /// Q at the last step: the one prescribed, or Σ t_s under a prescribed displacement.
+    pub(super) tangential_load: f64,
     /// P at the last step.
     load: f64,
     /// v(P) at the last step.
@@ -35,6 +39,7 @@ impl<'a> Contact<'a> {
             offset: vec![0.0; bed.entry.len()],
             engagement: vec![1.0; bed.entry.len()],
             displacement: 0.0,
+            tangential_load: 0.0,
             load: 0.0,
             approach: f64::NEG_INFINITY,
             base_load: 0.0,
@@ -46,6 +51,10 @@ impl<'a> Contact<'a> {
     /// λ·f·n/k: for an element λf(v(P) − v(s)) (with v(P) given), for the base element
     /// λf times its share of the normal load over its stiffness.
     fn slip_limit(&self, j: usize, approach: f64, base_normal: f64) -> f64 {
+        // A base element of no stiffness (K(0) = 0) carries nothing.
+        if self.bed.stiffness[j] == 0.0 {
+            return 0.0;
+        }
         let per_stiffness = if j == 0 {
             base_normal / self.bed.stiffness[0]
         } else {
@@ -90,9 +99,16 @@ impl<'a> Contact<'a> {
         (self.displacement - self.offset[j]) + self.engagement[j] * (u - self.displacement)
     }
 
-    /// Moves to loads (P, Q): updates contact, solves Σ t_s(u) = Q, and returns the
-    /// frictional work of the step, Σ f n_s |Δw_s|.
-    pub(super) fn step(&mut self, compliance: &dyn Compliance<f64>, load: f64, tangential: f64) -> Option<f64> {
+    /// Moves to the normal load P and the prescribed tangential quantity (Q under force
+    /// driving, u under displacement driving): updates contact, solves Σ t_s(u) = Q where Q
+    /// is prescribed, and returns the frictional work of the step, Σ f n_s |Δw_s|.
+    pub(super) fn step(
+        &mut self,
+        compliance: &dyn Compliance<f64>,
+        load: f64,
+        prescribed: f64,
+        drive: Drive,
+    ) -> Option<f64> {
         let approach = compliance.approach(&load);
         let (previous_approach, previous_base) = (self.approach, self.base_load);
         self.approach = approach;
@@ -120,8 +136,10 @@ impl<'a> Contact<'a> {
             }
             self.in_contact[j] = touching;
         }
-        let target = self.ratio * tangential;
-        let u = self.solve(approach, target)?;
+        let u = match drive {
+            Drive::Force => self.solve(approach, self.ratio * prescribed)?,
+            Drive::Displacement => prescribed,
+        };
         // A leaving element's limit falls to zero: it slips back to no force, releasing
         // its elastic displacement through friction at (on average) half its starting limit.
         let mut work = 0.0;
@@ -130,6 +148,7 @@ impl<'a> Contact<'a> {
             work += self.bed.stiffness[j] * 0.5 * start_limit / self.ratio * slip;
         }
         // Return mapping: the offsets of slipping elements follow u.
+        let mut force = 0.0;
         for j in 0..self.bed.entry.len() {
             if !self.in_contact[j] {
                 continue;
@@ -142,6 +161,7 @@ impl<'a> Contact<'a> {
                 elastic
             };
             self.offset[j] = u - held;
+            force += self.bed.stiffness[j] * held;
             if elastic.abs() > limit {
                 let moved = elastic - held;
                 // |t| = f n = k·limit/λ, times the slip |Δw|, with the limit averaged over
@@ -155,6 +175,13 @@ impl<'a> Contact<'a> {
             }
         }
         self.displacement = u;
+        self.tangential_load = match drive {
+            Drive::Force => prescribed,
+            Drive::Displacement => force / self.ratio,
+        };
+        if !self.tangential_load.is_finite() {
+            return None;
+        }
         Some(work)
     }
 

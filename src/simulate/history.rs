@@ -2,12 +2,22 @@
 //! P0 + P1 cos θ, Q0 + Q1 cos(θ − φ) as one, its quantities in closed form.
 
 use crate::cycle::LoadCycle;
+use crate::path::Drive;
 
-/// A periodic load history P(θ), Q(θ) on a contact, as the simulation follows it: the
-/// loads at any angle and what the grids are built on.
+/// A periodic history P(θ) and Q(θ) or u(θ) on a contact, as the simulation follows it:
+/// what it prescribes at any angle and what the grids are built on.
 pub(super) trait LoadHistory {
-    /// P(θ) and Q(θ).
+    /// P(θ) and the prescribed tangential quantity: Q(θ), or u(θ) under displacement driving.
     fn loads(&self, theta: f64) -> (f64, f64);
+    /// Which tangential quantity [`LoadHistory::loads`] prescribes.
+    fn drive(&self) -> Drive {
+        Drive::Force
+    }
+    /// The angle in [0, 2π) the contact is loaded to from the unloaded state, where the
+    /// cycling starts.
+    fn start_angle(&self) -> f64 {
+        0.0
+    }
     /// The Coulomb friction coefficient f.
     fn friction(&self) -> f64;
     /// The tangential/normal compliance ratio λ.
@@ -32,6 +42,38 @@ pub(super) trait LoadHistory {
     fn normal_range(&self) -> (f64, f64) {
         let (centre, half_width) = self.normal_span();
         (centre - half_width, centre + half_width)
+    }
+}
+
+/// How close, relative to the highest load, two loads where the dissipation is not smooth
+/// are one node (found two ways, they differ by rounding; two nodes would leave a piece
+/// of nothing between them).
+const SAME_LOAD: f64 = 1e-9;
+
+/// The loads that are nodes of the bed so far: P_T and the ends of the range of P, then
+/// those admitted.
+pub(super) struct LoadNodes {
+    nodes: Vec<f64>,
+    lowest_slip: f64,
+    margin: f64,
+}
+
+impl LoadNodes {
+    pub(super) fn new(lowest_slip: f64, lowest: f64, highest: f64) -> Self {
+        LoadNodes {
+            nodes: vec![lowest_slip, lowest, highest],
+            lowest_slip,
+            margin: SAME_LOAD * highest,
+        }
+    }
+
+    /// Whether `load` is a new node (above P_T, apart from every node so far), kept if so.
+    pub(super) fn admit(&mut self, load: f64) -> bool {
+        let new = load > self.lowest_slip && !self.nodes.iter().any(|node| (node - load).abs() <= self.margin);
+        if new {
+            self.nodes.push(load);
+        }
+        new
     }
 }
 
@@ -90,13 +132,19 @@ fn turning_angles(cycle: &LoadCycle<f64>) -> Vec<f64> {
     angles
 }
 
-/// Exactly `steps` angles over one cycle, ending at 2π, with a node at each turning point
+/// Exactly `steps` angles over one cycle, ending at 2π, with a node at the start angle and each turning point
 /// (where slip starts or stops, the state's error jumps by an amount that depends on
 /// where the event falls in its step; on a node it does not) and uniform between them.
 pub(super) fn cycle_angles(history: &dyn LoadHistory, steps: usize) -> Vec<f64> {
     let tau = 2.0 * std::f64::consts::PI;
     let mut nodes = vec![0.0, tau];
-    nodes.extend(history.turning_angles().into_iter().filter(|&t| t > 0.0 && t < tau));
+    nodes.extend(
+        history
+            .turning_angles()
+            .into_iter()
+            .chain([history.start_angle()])
+            .filter(|&t| t > 0.0 && t < tau),
+    );
     nodes.sort_by(f64::total_cmp);
     nodes.dedup();
     // Steps per piece in proportion to its length, at least one, exactly `steps` in all

@@ -1,7 +1,8 @@
 //! An independent check of W: a brute-force simulation of the contact through its
 //! loading history, using none of the four-segment formulas nor the path module's event
-//! decomposition. It follows the paper's harmonic cycle ([`simulate`]) or any periodic
-//! force path ([`simulate_path`]) through the same stepping loop.
+//! decomposition. It follows the paper's harmonic cycle ([`simulate`]), any periodic
+//! force path ([`simulate_path`]) or any periodic displacement-driven path
+//! ([`simulate_displacement_path`]) through the same stepping loop.
 //!
 //! The contact is a bed of independent spring elements indexed by the normal load s
 //! at which each enters contact (the method-of-dimensionality-reduction picture).
@@ -12,7 +13,9 @@
 //! (dK/λ)(u − w_s) is limited by Coulomb, |t_s| ≤ f·n_s, the slip offset w_s moving
 //! when the limit is reached. An element entering contact carries no tangential
 //! force; one leaving contact forgets its state. The rigid tangential displacement u
-//! is found at every step from Σ t_s(u) = Q. proofs/independent-simulation.md shows
+//! is found at every step from Σ t_s(u) = Q, or, driven by displacement, prescribed, and
+//! Q = Σ t_s follows (gross slip needs nothing of its own: every element at its limit
+//! sums to Q = ±fP). proofs/independent-simulation.md shows
 //! why this realises the paper's constitutive assumption u = λf[v(P) − v(P*)].
 //!
 //! Both grids — entry loads and cycle angles — have nodes where the dissipation is not
@@ -23,11 +26,13 @@
 //!
 //! - `history`: what the loop needs of a load history, the harmonic cycle's;
 //! - `path_history`: the same for any periodic force path;
+//! - `displacement_history`: the same for any periodic path driven by displacement;
 //! - `bed`: the elements, graded to the history's loads;
 //! - `elements`: their state and one load step;
 //! - `run`: the one stepping loop, from the unloaded state to the steady cycle.
 
 mod bed;
+mod displacement_history;
 mod elements;
 mod history;
 mod path_history;
@@ -136,6 +141,29 @@ impl SimulationResult {
         }
         ((-error.log10()).floor() as u32).min(15)
     }
+
+    /// Q_a, half the spread of Q over the steady loop of the finest run.
+    pub fn tangential_amplitude(&self) -> f64 {
+        half_spread(self.steady_loop.iter().map(|sample| sample.tangential_load))
+    }
+
+    /// u_a, half the spread of u over the steady loop of the finest run.
+    pub fn displacement_amplitude(&self) -> f64 {
+        half_spread(self.steady_loop.iter().map(|sample| sample.displacement))
+    }
+
+    /// The loss factor η = W/(π Q_a u_a), as `microslip path` defines it.
+    pub fn loss_factor(&self) -> f64 {
+        self.w_work / (std::f64::consts::PI * self.tangential_amplitude() * self.displacement_amplitude())
+    }
+}
+
+/// Half the difference of the largest and the smallest value.
+fn half_spread(values: impl Iterator<Item = f64>) -> f64 {
+    let (low, high) = values.fold((f64::INFINITY, f64::NEG_INFINITY), |(low, high), x| {
+        (low.min(x), high.max(x))
+    });
+    0.5 * (high - low)
 }
 
 /// Why a simulation could not run.
@@ -281,16 +309,56 @@ pub fn simulate_path(
     simulate_history(&history, compliance, options)
 }
 
+/// W of the steady cycle of any periodic path driven by displacement, P(θ) and u(θ) (the
+/// path's `tangential`), by simulation (f64), extrapolated from three resolutions: the same
+/// loop as [`simulate_path`], each step setting u and summing the element forces to Q. P may
+/// vary but must stay positive; |Q| saturates at fP where u moves far enough (gross slip).
+/// The contact is loaded from unloaded to the extreme of u of largest magnitude, as
+/// `microslip path --drive displacement` does; the loop then closes within two cycles.
+///
+/// ```
+/// use microslip::compliance::Persson;
+/// use microslip::path::displacement::displacement_dissipation;
+/// use microslip::path::{Contact, LoadPath};
+/// use microslip::simulate::{simulate_displacement_path, SimulationOptions};
+///
+/// // u = 0.3 cos θ at P = 1.
+/// let path = LoadPath::harmonic(&1.0, &0.0, &0.0, &0.3, &0.0);
+/// let contact = Contact { friction: 1.0, compliance_ratio: 1.0 };
+/// let persson = Persson { gamma: 1.0, sigma: 1.0 };
+/// let coarse = SimulationOptions { elements: Some(100), steps: Some(400), ..SimulationOptions::default() };
+/// let simulated = simulate_displacement_path(&path, &contact, &persson, &coarse)?;
+/// let integrated = displacement_dissipation(&path, &contact, &persson, None)?.total;
+/// assert!((simulated.w_work / integrated - 1.0).abs() < 1e-4);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn simulate_displacement_path(
+    path: &LoadPath<f64>,
+    contact: &Contact<f64>,
+    compliance: &dyn Compliance<f64>,
+    options: &SimulationOptions,
+) -> Result<SimulationResult, SimulationError> {
+    let history = PathHistory::driven_by_displacement(path, contact, compliance)?;
+    simulate_history(&history, compliance, options)
+}
+
 /// The runs on a history inside the theory, checked against the options and the compliance first.
 fn simulate_history(
     history: &dyn LoadHistory,
     compliance: &dyn Compliance<f64>,
     options: &SimulationOptions,
 ) -> Result<SimulationResult, SimulationError> {
-    // The bed reaches down to 0.9 P_T (never-slipping elements that check the grid).
+    // The bed reaches down to 0.9 P_T (never-slipping elements that check the grid); where
+    // every element slips (P_T = 0), to 0, where v' may be infinite (Hertz), which the bed
+    // takes as K(0) = 0: checked from P/1024 as `microslip path` checks gross slip.
     let lowest_slip = history.lowest_slip();
     let (lowest, highest) = history.normal_range();
-    check_admissible(compliance, &(0.9 * lowest_slip.min(lowest)), &highest)?;
+    let bottom = if lowest_slip > 0.0 {
+        0.9 * lowest_slip.min(lowest)
+    } else {
+        lowest / 1024.0
+    };
+    check_admissible(compliance, &bottom, &highest)?;
     let elements = options.elements.unwrap_or(400);
     let steps = options.steps.unwrap_or(1200);
     if elements < 20 || steps < 40 {

@@ -1,34 +1,33 @@
-//! Any periodic force path P(θ), Q(θ) as a load history: its quantities found from its
+//! Any periodic path as a load history (the quantities of a force path P(θ), Q(θ) here,
+//! those of a displacement-driven one in `displacement_history`); a force path's found from its
 //! harmonics (the extremes of P, of Q + fP and of Q − fP), its lowest slipping load and
 //! the loads where its slip fronts stop from the path module's steady cycle, which also
 //! refuses a path outside the theory. They only place the grids' nodes: W is the bed's.
 
 use crate::path::events::{extreme, sign_changes};
 use crate::path::input::padded;
-use crate::path::{Contact, LoadPath, PathError, SteadyCycle, TrigPoly};
+use crate::path::{Contact, Drive, LoadPath, PathError, SteadyCycle, TrigPoly};
 
-use super::history::LoadHistory;
-
-/// How close, relative to the highest load, two loads where the dissipation is not smooth
-/// are one node (found two ways, they differ by rounding; two nodes would leave a piece
-/// of nothing between them).
-const SAME_LOAD: f64 = 1e-9;
+use super::history::{LoadHistory, LoadNodes};
 
 /// How close to a turning angle a segment of the steady cycle must end to end there.
 const STOP_ANGLE: f64 = 1e-12;
 
-/// A force path on a contact, with what the grids are built on.
+/// A path on a contact, driven by force or by displacement, with what the grids are built on.
 pub(super) struct PathHistory {
-    normal: TrigPoly<f64>,
-    tangential: TrigPoly<f64>,
-    friction: f64,
-    compliance_ratio: f64,
-    lowest_slip: f64,
-    lowest: f64,
-    highest: f64,
-    turning_angles: Vec<f64>,
-    kinked_loads: Vec<f64>,
-    normal_extremes: Vec<f64>,
+    pub(super) normal: TrigPoly<f64>,
+    /// Q, or u under displacement driving.
+    pub(super) tangential: TrigPoly<f64>,
+    pub(super) drive: Drive,
+    pub(super) start_angle: f64,
+    pub(super) friction: f64,
+    pub(super) compliance_ratio: f64,
+    pub(super) lowest_slip: f64,
+    pub(super) lowest: f64,
+    pub(super) highest: f64,
+    pub(super) turning_angles: Vec<f64>,
+    pub(super) kinked_loads: Vec<f64>,
+    pub(super) normal_extremes: Vec<f64>,
 }
 
 impl PathHistory {
@@ -53,21 +52,9 @@ impl PathHistory {
         };
         let (forward_turns, backward_turns) = (stationary(-1), stationary(1));
         let turning_angles: Vec<f64> = forward_turns.iter().chain(&backward_turns).copied().collect();
-        // Loads this close (relative to the highest) are one node.
-        let margin = SAME_LOAD * highest;
-        let mut nodes = vec![steady.lowest_slip, lowest, highest];
-        let mut new_node = |load: f64| {
-            let new = load > steady.lowest_slip && !nodes.iter().any(|node| (node - load).abs() <= margin);
-            if new {
-                nodes.push(load);
-            }
-            new
-        };
-        let normal_extremes: Vec<f64> = sign_changes(&normal.derivative())
-            .iter()
-            .map(|theta| normal.value(theta))
-            .filter(|&load| new_node(load))
-            .collect();
+        let mut nodes = LoadNodes::new(steady.lowest_slip, lowest, highest);
+        let mut new_node = |load: f64| nodes.admit(load);
+        let normal_extremes = interior_extremes(&normal, &mut new_node);
         let mut kinked_loads: Vec<f64> = turning_angles
             .iter()
             .map(|theta| normal.value(theta))
@@ -81,6 +68,8 @@ impl PathHistory {
         Ok(PathHistory {
             normal,
             tangential,
+            drive: Drive::Force,
+            start_angle: 0.0,
             friction,
             compliance_ratio: contact.compliance_ratio,
             lowest_slip: steady.lowest_slip,
@@ -91,6 +80,15 @@ impl PathHistory {
             normal_extremes,
         })
     }
+}
+
+/// P's local extremes that `new_node` admits as new nodes of the bed.
+pub(super) fn interior_extremes(normal: &TrigPoly<f64>, new_node: &mut impl FnMut(f64) -> bool) -> Vec<f64> {
+    sign_changes(&normal.derivative())
+        .iter()
+        .map(|theta| normal.value(theta))
+        .filter(|&load| new_node(load))
+        .collect()
 }
 
 /// The loads the slip fronts have reached where slip stops (at the turning angles of
@@ -120,6 +118,14 @@ fn stopped_fronts(steady: &SteadyCycle<f64>, forward_turns: &[f64], backward_tur
 impl LoadHistory for PathHistory {
     fn loads(&self, theta: f64) -> (f64, f64) {
         (self.normal.value(&theta), self.tangential.value(&theta))
+    }
+
+    fn drive(&self) -> Drive {
+        self.drive
+    }
+
+    fn start_angle(&self) -> f64 {
+        self.start_angle
     }
 
     fn friction(&self) -> f64 {

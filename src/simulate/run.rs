@@ -1,5 +1,6 @@
-//! The one stepping loop: the contact from unloaded to the start of the cycle, then
-//! cycles of the load history until the loop closes.
+//! The one stepping loop: the contact from unloaded to the history's start angle and on
+//! to the end of that cycle, then cycles of the load history until the loop closes,
+//! whichever tangential quantity the history prescribes.
 
 use std::time::Instant;
 
@@ -26,52 +27,72 @@ pub(super) fn run(
 ) -> Result<Run, SimulationError> {
     let bed = Bed::new(compliance, history, lowest_slip, elements);
     let mut contact = Contact::new(&bed, history.friction(), history.compliance_ratio());
+    let drive = history.drive();
     let equilibrium = |theta: f64| SimulationError::Equilibrium { theta };
     let in_time = || match deadline {
         Some(deadline) if Instant::now() > deadline => Err(SimulationError::OutOfTime { elements, steps }),
         _ => Ok(()),
     };
-    let (p_start, q_start) = history.loads(0.0);
+    // From the unloaded state to the start angle, then on to the end of its cycle.
+    let start_angle = history.start_angle();
+    let (p_start, x_start) = history.loads(start_angle);
     let ramp = steps.max(100);
     for i in 1..=ramp {
         let t = i as f64 / ramp as f64;
-        let (p, q) = match path {
-            InitialPath::NormalThenTangential => (p_start * (2.0 * t).min(1.0), q_start * (2.0 * t - 1.0).max(0.0)),
-            InitialPath::Proportional => (p_start * t, q_start * t),
+        let (p, x) = match path {
+            InitialPath::NormalThenTangential => (p_start * (2.0 * t).min(1.0), x_start * (2.0 * t - 1.0).max(0.0)),
+            InitialPath::Proportional => (p_start * t, x_start * t),
         };
         in_time()?;
-        contact.step(compliance, p, q).ok_or_else(|| equilibrium(0.0))?;
+        contact
+            .step(compliance, p, x, drive)
+            .ok_or_else(|| equilibrium(start_angle))?;
     }
     let angles = cycle_angles(history, steps);
-    let mut previous_start = f64::NAN;
+    if start_angle > 0.0 {
+        for &theta in angles.iter().filter(|&&theta| theta > start_angle) {
+            let (p, x) = history.loads(theta);
+            in_time()?;
+            contact
+                .step(compliance, p, x, drive)
+                .ok_or_else(|| equilibrium(theta))?;
+        }
+    }
+    let normal_at_zero = history.loads(0.0).0;
+    let mut previous_start = (f64::NAN, f64::NAN);
     let mut last = (0.0, 0.0, Vec::new());
     for _ in 0..8 {
         let mut samples = vec![LoopSample {
             theta: 0.0,
-            normal_load: p_start,
-            tangential_load: q_start,
+            normal_load: normal_at_zero,
+            tangential_load: contact.tangential_load,
             displacement: contact.displacement,
         }];
         let mut friction_work = 0.0;
         let mut work = 0.0;
         contact.work_below_lowest_slip = 0.0;
         for &theta in &angles {
-            let (p, q) = history.loads(theta);
+            let (p, x) = history.loads(theta);
             let before = *samples.last().unwrap_or(&samples[0]);
             in_time()?;
-            friction_work += contact.step(compliance, p, q).ok_or_else(|| equilibrium(theta))?;
-            work += 0.5 * (before.tangential_load + q) * (contact.displacement - before.displacement);
-
+            friction_work += contact
+                .step(compliance, p, x, drive)
+                .ok_or_else(|| equilibrium(theta))?;
+            work +=
+                0.5 * (before.tangential_load + contact.tangential_load) * (contact.displacement - before.displacement);
             samples.push(LoopSample {
                 theta,
                 normal_load: p,
-                tangential_load: q,
+                tangential_load: contact.tangential_load,
                 displacement: contact.displacement,
             });
         }
-        let start = samples[0].displacement;
-
-        let closed = (start - previous_start).abs() <= 1e-13 * (start.abs() + work.abs() + 1e-300);
+        // The loop closes when the state at its start repeats: u under force driving,
+        // Q under displacement driving (the prescribed one repeats by itself).
+        let start = (samples[0].displacement, samples[0].tangential_load);
+        let closed = (start.0 - previous_start.0).abs() <= 1e-13 * (start.0.abs() + work.abs() + 1e-300)
+            && (start.1 - previous_start.1).abs()
+                <= 1e-13 * (start.1.abs() + history.friction() * normal_at_zero.abs() + 1e-300);
         last = (work, friction_work, samples);
         if closed {
             break;

@@ -41,6 +41,18 @@ const INTEGRAL_POINTS: usize = 16;
 /// this wide is integrated by 16 points far below f64 rounding.
 const INTEGRAL_STRETCH: f64 = 0.5;
 
+/// Piece k's node values and tangents, a = m0 − δ, b = m1 − δ (δ the secant), and y at a
+/// fraction of the piece ([`Piecewise::cubic_at`]).
+struct CubicAt<R> {
+    y0: R,
+    y1: R,
+    m0: R,
+    m1: R,
+    a: R,
+    b: R,
+    value: R,
+}
+
 /// A monotone cubic Hermite y(x) through the node values (x_i, y_i) with node
 /// derivatives m_i ≤ 0, y = ln v' or v', x = ln P or P: v' > 0, non-increasing (v'' ≤ 0)
 /// with a continuous v'' between the first and the last load, and nothing outside.
@@ -101,16 +113,33 @@ impl Piecewise {
         Some(upper.clamp(1, self.loads.len() - 1) - 1)
     }
 
-    /// y and dy/dx of piece k at its fraction t, h its width in x.
-    fn hermite<R: Real>(&self, k: usize, t: &R, h: &R) -> (R, R) {
+    /// Piece k's cubic at its fraction t, h its width in x: the node values and tangents,
+    /// a = m0 − δ and b = m1 − δ (δ the secant), and y = y0 + t·(y1 − y0) +
+    /// h·t(1 − t)·[(1 − t)a − tb], which its derivatives are formed beside.
+    fn cubic_at<R: Real>(&self, k: usize, t: &R, h: &R) -> CubicAt<R> {
         let at = |value: f64| R::from_f64(value, t.precision());
         let (y0, y1, m0, m1) = (at(self.y[k]), at(self.y[k + 1]), at(self.m[k]), at(self.m[k + 1]));
-        // y0 + t·(y1 − y0) + h·t(1 − t)·[(1 − t)(m0 − δ) − t(m1 − δ)], δ the secant.
         let delta = (y1.clone() - &y0) / h;
+        let (a, b) = (m0.clone() - &delta, m1.clone() - &delta);
         let one_minus = t.int(1) - t;
-        let bump =
-            (one_minus.clone() * &(m0.clone() - &delta) - &(t.clone() * &(m1.clone() - &delta))) * t * &one_minus * h;
+        let bump = (one_minus.clone() * &a - &(t.clone() * &b)) * t * &one_minus * h;
         let value = y0.clone() + &((y1.clone() - &y0) * t) + &bump;
+        CubicAt {
+            y0,
+            y1,
+            m0,
+            m1,
+            a,
+            b,
+            value,
+        }
+    }
+
+    /// y and dy/dx of piece k at its fraction t, h its width in x.
+    fn hermite<R: Real>(&self, k: usize, t: &R, h: &R) -> (R, R) {
+        let CubicAt {
+            y0, y1, m0, m1, value, ..
+        } = self.cubic_at(k, t, h);
         // The derivatives of the Hermite basis, the value terms over h.
         let t2 = t.square();
         let d00 = (t2.clone() - t) * &t.int(6);
@@ -188,6 +217,45 @@ impl Piecewise {
             }
         });
         curvature.min_of(&load.int(0))
+    }
+
+    /// v'' (`order` 2) or v''' (`order` 3) at `load` (NaN outside the table), with y and its
+    /// derivatives in the fraction t in Horner form, so that a ball over part of a piece
+    /// gets a range as narrow as the variation there (the node values' cancellations are
+    /// done on numbers, not on the ball). v''' jumps at the knots (the interpolant is C¹ in
+    /// its coordinates): a ball across a knot gets the union of both sides' values.
+    pub fn higher_derivative<R: Real>(&self, order: usize, load: &R) -> R {
+        self.on_pieces(load, |k, h, t| {
+            let (y, first, second) = self.hermite_in_horner_form(k, t, h);
+            match (self.coordinates, order) {
+                // v' = e^y with y(ln P): v'' = e^y y'/P, v''' = e^y (y'² + y'' − y')/P².
+                (Coordinates::LogLog, 2) => y.exp() * &first / load,
+                (Coordinates::LogLog, _) => y.exp() * &(first.square() + &second - &first) / &load.square(),
+                (Coordinates::Linear, 2) => first,
+                (Coordinates::Linear, _) => second,
+            }
+        })
+    }
+
+    /// y, dy/dx and d²y/dx² of piece k at its fraction t, h its width in x, the derivatives
+    /// as polynomials in t whose coefficients are formed from a and b first.
+    fn hermite_in_horner_form<R: Real>(&self, k: usize, t: &R, h: &R) -> (R, R, R) {
+        let CubicAt { m0, a, b, value, .. } = self.cubic_at(k, t, h);
+        // dy/dx = m0 + t·c1 + t²·c2 and d²y/dx² = (c1 + 2t·c2)/h, with c1 = −4a − 2b and
+        // c2 = 3(a + b).
+        let linear = -(a.clone() * &t.int(4)) - &(b.clone() * &t.int(2));
+        let quadratic = (a + &b) * &t.int(3);
+        let first = m0 + &(t.clone() * &(linear.clone() + &(t.clone() * &quadratic)));
+        let second = (linear + &(t.clone() * &(quadratic * &t.int(2)))) / h;
+        (value, first, second)
+    }
+
+    /// The knots strictly between `low` and `high`.
+    pub fn knots_between(&self, low: f64, high: f64) -> impl Iterator<Item = f64> + '_ {
+        self.loads
+            .iter()
+            .copied()
+            .filter(move |&load| low < load && load < high)
     }
 
     /// ∫ v' from the first load to `load` (NaN outside the table).

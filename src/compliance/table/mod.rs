@@ -411,6 +411,9 @@ impl TableCompliance {
     }
 }
 
+/// The parts each knot interval is cut in for the range of a table's v'' or v'''.
+const SUBDIVISIONS: usize = 8;
+
 impl<R: Real> Compliance<R> for TableCompliance {
     fn approach(&self, load: &R) -> R {
         let data = self.data();
@@ -423,6 +426,46 @@ impl<R: Real> Compliance<R> for TableCompliance {
 
     fn curvature(&self, load: &R) -> R {
         self.data().interpolant.curvature(load)
+    }
+
+    fn slope_derivative(&self, order: usize, load: &R) -> Option<R> {
+        // v' and v'' are continuous; v''' jumps at the knots and is no value there.
+        match order {
+            0 => Some(self.slope(load)),
+            1 => Some(self.curvature(load)),
+            _ => None,
+        }
+    }
+
+    fn derivative_range(&self, order: usize, low: &R, high: &R) -> Option<(R, R)> {
+        // v'' is continuous and v''' bounded on each piece, which is what the remainder of
+        // the cubic law needs (v'' absolutely continuous); v'''' has Dirac masses at the
+        // knots, and no range. Each knot interval is cut in SUBDIVISIONS parts, each
+        // evaluated on a ball that covers it.
+        let interpolant = &self.data().interpolant;
+        let value = |load: &R| (order == 2 || order == 3).then(|| interpolant.higher_derivative(order, load));
+        let (from, to) = (low.to_f64_lossy(), high.to_f64_lossy());
+        let mut cuts = vec![low.clone()];
+        for knot in interpolant.knots_between(from, to).chain(std::iter::once(to)) {
+            let start = cuts.last().expect("a first cut").to_f64_lossy();
+            for i in 1..SUBDIVISIONS {
+                let cut = start + (knot - start) * i as f64 / SUBDIVISIONS as f64;
+                cuts.push(R::from_f64(cut, low.precision()));
+            }
+            cuts.push(if knot == to {
+                high.clone()
+            } else {
+                R::from_f64(knot, low.precision())
+            });
+        }
+        let mut values = cuts.windows(2).map(|ends| value(&ends[0].union(&ends[1])));
+        let first = values.next()??;
+        let (mut least, mut greatest) = (first.clone(), first);
+        for value in values {
+            let value = value?;
+            (least, greatest) = (least.min_of(&value), greatest.max_of(&value));
+        }
+        (least.is_finite() && greatest.is_finite()).then_some((least, greatest))
     }
 
     fn admissible_by_form(&self, low: &R, high: &R) -> bool {

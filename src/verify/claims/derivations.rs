@@ -14,7 +14,7 @@ use crate::cycle::LoadCycle;
 use crate::exact::series_coefficients;
 use crate::real::{Precision, Real};
 use crate::verify::generators::compliance_spec;
-use crate::verify::{ClaimReport, Proof};
+use crate::verify::ClaimReport;
 
 /// The working precision of the checks.
 const BITS: u32 = 128;
@@ -24,11 +24,7 @@ const DIGITS: u32 = 30;
 
 /// The row of a claim proved by the derivation in `document`, once its checks passed.
 fn proved_by(tally: Tally, document: &'static str, note: String) -> ClaimReport {
-    let mut report = tally.note(format!("derived in {document}; {note}"));
-    if report.passed {
-        report.proof = Some(Proof::Derivation { document });
-    }
-    report
+    tally.proved_by(document, format!("derived in {document}; {note}"))
 }
 
 /// The lower end of |x| over the upper end of |scale|: 0 where x may be 0, positive only

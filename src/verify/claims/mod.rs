@@ -49,6 +49,8 @@ pub use simulation::{
 pub use super::generators::gross_slip_amplitude;
 use super::generators::{compliance_spec, cycle_case, Draw, CYCLE};
 use super::ClaimReport;
+#[cfg(feature = "certified")]
+use super::Proof;
 use crate::case::CaseText;
 use crate::compliance::Compliance;
 use crate::cycle::LoadCycle;
@@ -157,6 +159,17 @@ impl Tally {
             self.report.passed = false;
             self.report.note = format!("{case}: {why}");
         }
+    }
+
+    /// The report of a claim proved by the derivation in `document`, marked proved once its
+    /// checks passed, with `note` as its measured figure.
+    #[cfg(feature = "certified")]
+    fn proved_by(self, document: &'static str, note: impl Into<String>) -> ClaimReport {
+        let mut report = self.note(note);
+        if report.passed {
+            report.proof = Some(Proof::Derivation { document });
+        }
+        report
     }
 
     /// The report, with `note` as its measured figure unless a failure is noted.
