@@ -284,11 +284,11 @@ mod certified {
         // formed from it, where the difference of P0 and P1 each rounded would carry
         // their rounding amplified P1/(P0 − P1)-fold.
         let lowest = case.lowest_normal_load::<Interval>(Precision::DOUBLE).ok()?;
-        // Near separation what doubles prove is set by the cancellation of the slip terms:
-        // beyond HOPELESS_CANCELLATION the attempt is not made (proofs/printing.md, "Near
-        // separation in f64 intervals").
+        // Near separation what doubles prove is set by how far the stick segments cancel:
+        // away from φ ≡ π/2 the attempt is not made (proofs/printing.md, "Near separation in
+        // f64 intervals").
         let near_separation = lowest.to_f64_lossy() * NEAR_SEPARATION as f64 <= cycle.normal_amplitude.to_f64_lossy();
-        if near_separation && cycle.cancellation_amplification().to_f64_lossy() > HOPELESS_CANCELLATION {
+        if near_separation && cycle.phase_trig().sin.square().to_f64_lossy() < LEAST_SQUARED_PHASE_SINE {
             return None;
         }
         let enclosure =
@@ -298,11 +298,13 @@ mod certified {
         (answer.value.digits() >= least).then_some(answer)
     }
 
-    /// The cancellation of the slip terms ([`crate::cycle::LoadCycle::cancellation_amplification`])
-    /// beyond which a cycle near separation is not tried in f64 intervals: of 200 cycles
-    /// within 1e-3 to 1e-9 of separation (benches/default_rows.py), none beyond 1e8 was
-    /// proven to 12 digits in doubles.
-    const HOPELESS_CANCELLATION: f64 = 1e8;
+    /// The least sin²φ at which a cycle near separation is tried in f64 intervals (φ within
+    /// about 24° of π/2). BC and CH, each larger than W by up to about 1/sin²φ, cancel in
+    /// W, and the width of their enclosures does not: of 700 cycles within 1e-3 to 1e-9 of
+    /// separation (benches/default_rows.py, seeds 2026 and 2027), those the intervals prove
+    /// lie mostly here, and beyond it the attempts that fail cost more than those that
+    /// succeed save the Arb ladder.
+    const LEAST_SQUARED_PHASE_SINE: f64 = 5.0 / 6.0;
 
     /// W to `digits` certified digits by the Arb ladder.
     fn in_balls(

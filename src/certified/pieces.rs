@@ -16,7 +16,7 @@ use crate::dissipation::closed_forms::{
     constant_normal_load_segments, constant_normal_load_term, in_phase_segments, in_phase_terms, weighted_pieces,
 };
 use crate::dissipation::slope::knot_offsets;
-use crate::dissipation::{Segment, SegmentIntegrands, Segments, SlopeBetween, SlopesAtLoads};
+use crate::dissipation::{Segment, SegmentIntegrands, Segments, SlopeBetween, SlopesAtLoads, NEAR_SEPARATION};
 use crate::doubts::{watch, with_analytic, Doubts};
 use crate::quad::Piece;
 use crate::real::Precision;
@@ -34,7 +34,11 @@ pub fn enclose_dissipation<R: Enclosing>(
 /// [`enclose_dissipation`], with the lowest normal load P0 − P1 enclosed by the caller
 /// (read exactly from the decimals) where given: near separation the loads at the bottom
 /// of the cycle are formed from it ([`EllipseGeometry::with_lowest_normal_load`]), which
-/// the difference of the rounded P0 and P1 would widen P0/(P0 − P1)-fold.
+/// the difference of the rounded P0 and P1 would widen P0/(P0 − P1)-fold. Given, it also
+/// asks for the forms that keep the digits of a precision that cannot be raised (f64
+/// intervals): the slip loads apart and the low loads from the lowest load, near
+/// separation or where the slip terms cancel ([`SlopesAtLoads`]); the Arb ladder, which
+/// raises its precision instead, keeps the cheaper segment formulas.
 pub fn enclose_dissipation_with_lowest_load<R: Enclosing>(
     cycle: &LoadCycle<R>,
     lowest_normal_load: Option<&R>,
@@ -226,10 +230,19 @@ fn enclose_segments<R: Enclosing>(
     if !doubts.none() {
         return Err(undecided(bits, doubts));
     }
-    let at_loads = slopes_at_loads(compliance, &geometry.mean_normal_load, slopes.len() > 1, bits)?;
+    let at_loads = if lowest_normal_load.is_some() && loads_apart(valid, &geometry) {
+        Some(slopes_at_loads(
+            compliance,
+            &geometry.mean_normal_load,
+            slopes.len() > 1,
+            bits,
+        )?)
+    } else {
+        None
+    };
     for slope in &slopes {
         let (pieces, doubts) =
-            watch(|| certified_pieces(&integrands, slope.as_ref(), &bound_slope, &at_bottom, &at_loads));
+            watch(|| certified_pieces(&integrands, slope.as_ref(), &bound_slope, &at_bottom, at_loads.as_ref()));
         if !doubts.none() {
             return Err(undecided(bits, doubts));
         }
@@ -371,6 +384,23 @@ pub(super) fn difference_of_slopes<'a, R: Enclosing>(
     Box::new(move |offset: &R| at_load(&(mean_load.clone() + offset)))
 }
 
+/// Whether the integrands take the slip loads apart and the low loads from the lowest
+/// load ([`SlopesAtLoads`]): near separation (P0 − P1 below P1/[`NEAR_SEPARATION`]), where
+/// the loads at the bottom of the cycle need it, and where the slip terms cancel by more
+/// than [`SLIP_CANCELLATION`]. Elsewhere the segment formulas lose no digit that matters
+/// and are cheaper to evaluate. Decided by doubles: both forms are the same function.
+fn loads_apart<R: Enclosing>(valid: &ValidCycle<R>, geometry: &EllipseGeometry<R>) -> bool {
+    let lowest = geometry.lowest_normal_load.to_f64_lossy();
+    let near_separation = lowest * NEAR_SEPARATION as f64 <= geometry.normal_amplitude.to_f64_lossy();
+    near_separation || valid.cancellation_amplification().to_f64_lossy() > SLIP_CANCELLATION
+}
+
+/// The cancellation of the slip terms ([`crate::cycle::LoadCycle::cancellation_amplification`])
+/// beyond which the integrands take the slip loads apart away from separation: it costs
+/// three of a double's sixteen digits there (proofs/printing.md, "Near separation in f64
+/// intervals").
+const SLIP_CANCELLATION: f64 = 1e3;
+
 /// The slope change at loads given themselves ([`SlopesAtLoads`]): v'(L + x) − v'(L) by
 /// the compliance's own form where `own_form` (its form about P0 decided all it asks, see
 /// [`slopes`]), else as a plain difference.
@@ -456,7 +486,7 @@ fn certified_pieces<'a, R: Enclosing>(
     slope: &'a (dyn Fn(&R) -> R + Send + Sync + 'a),
     bound_slope: &'a (dyn Fn(&R) -> R + Send + Sync + 'a),
     at_bottom: &'a (dyn Fn(&R) -> R + Send + Sync + 'a),
-    at_loads: &'a SlopesAtLoads<'a, R>,
+    at_loads: Option<&'a SlopesAtLoads<'a, R>>,
 ) -> Vec<CertifiedPiece<'a, R>> {
     integrands
         .plans()
@@ -469,7 +499,7 @@ fn certified_pieces<'a, R: Enclosing>(
                 plan.map.clone(),
                 slope,
                 None::<fn(&R) -> R>,
-                Some(at_loads),
+                at_loads,
             ),
             bound: Some(integrands.plan_integrand_at_bottom(
                 plan.segment,
