@@ -5,12 +5,12 @@
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use microslip::accuracy::standard_cases;
+use microslip::answer::agreed::verified_dissipation;
+use microslip::answer::dissipation::dissipation_answer;
 use microslip::case::Case;
 use microslip::dissipation::{dissipation, Options};
-use microslip::dissipation_answer::dissipation_answer;
 use microslip::quad::gauss_legendre::{clear_node_cache, compute_node_table, node_table};
 use microslip::real::{Precision, Real};
-use microslip::reference::verified_dissipation;
 use microslip::simulate::{simulate, SimulationOptions};
 use rug::Float;
 use std::time::Duration;

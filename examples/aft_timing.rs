@@ -7,12 +7,14 @@
 //! force and Jacobian (the same inputs give the same sum, so two builds can be compared
 //! value for value). Without SPECs it times the benchmark's compliances. `--values` prints
 //! instead every force and Jacobian entry over a spread of displacements, one per line,
-//! for comparing two builds entry by entry.
+//! for comparing two builds entry by entry. `--normal` (before CALLS) times instead the
+//! element under the normal load P = 1 + 0.3 cos t + 0.05 sin 3t (the spring bed of
+//! `DEFAULT_ELEMENTS` elements).
 
 use std::hint::black_box;
 use std::time::Instant;
 
-use microslip::aft::{aft, FrictionElement};
+use microslip::aft::{aft, aft_with_normal_load, FrictionElement, NormalLoad, VaryingLoadElement, DEFAULT_ELEMENTS};
 
 const COMPLIANCES: [&str; 5] = [
     "hertz:r=1,estar=100",
@@ -23,12 +25,15 @@ const COMPLIANCES: [&str; 5] = [
 ];
 const HARMONICS: [usize; 3] = [0, 1, 3];
 const DISPLACEMENT: [f64; 5] = [1e-3, 1e-2, 0.0, 2e-3, 1e-3];
+/// The normal load's harmonics of `--normal`, about P = 1.
+const NORMAL_HARMONICS: [f64; 5] = [0.0, 0.3, 0.0, 0.0, 0.05];
 const TIME_POINTS: usize = 128;
 const RUNS: usize = 7;
 
 fn main() {
     let mut arguments = std::env::args().skip(1).peekable();
     let values = arguments.next_if(|a| a == "--values").is_some();
+    let normal = arguments.next_if(|a| a == "--normal").is_some();
     let calls: usize = match arguments.next_if(|a| a.parse::<usize>().is_ok()) {
         Some(count) => count.parse().unwrap_or(20000),
         None => 20000,
@@ -51,13 +56,26 @@ fn main() {
             print_values(spec, &element);
             continue;
         }
-        let force = aft(&element, &HARMONICS, &DISPLACEMENT, TIME_POINTS).expect("the benchmark's inputs are valid");
+        let load = NormalLoad {
+            mean: 1.0,
+            harmonics: &HARMONICS,
+            coefficients: &NORMAL_HARMONICS,
+            time_points: TIME_POINTS,
+        };
+        let varying = normal.then(|| {
+            VaryingLoadElement::from_spec(&load, 0.5, 1.2, spec, DEFAULT_ELEMENTS).expect("the normal load is valid")
+        });
+        let call = |displacement: &[f64]| match &varying {
+            Some(varying) => aft_with_normal_load(varying, displacement),
+            None => aft(&element, &HARMONICS, displacement, TIME_POINTS),
+        };
+        let force = call(&DISPLACEMENT).expect("the benchmark's inputs are valid");
         let checksum: f64 = force.force.iter().chain(&force.jacobian).sum();
         let (mut wall, mut cpu) = (f64::INFINITY, f64::INFINITY);
         for _ in 0..RUNS {
             let (started, cpu_started) = (Instant::now(), thread_cpu_seconds());
             for _ in 0..calls {
-                black_box(aft(&element, &HARMONICS, black_box(&DISPLACEMENT), TIME_POINTS).ok());
+                black_box(call(black_box(&DISPLACEMENT)).ok());
             }
             wall = wall.min(started.elapsed().as_secs_f64() / calls as f64);
             cpu = cpu.min((thread_cpu_seconds() - cpu_started) / calls as f64);

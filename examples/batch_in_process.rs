@@ -7,8 +7,8 @@
 
 use std::time::Duration;
 
+use microslip::answer::dissipation::dissipation_report;
 use microslip::batch::read_input;
-use microslip::dissipation_answer::dissipation_report;
 
 /// CPU time of this process, user and system (the machine is shared: wall time would count
 /// other work), as the batch's is measured.

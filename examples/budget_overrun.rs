@@ -4,8 +4,8 @@
 
 use std::time::{Duration, Instant};
 
+use microslip::answer::dissipation::dissipation_report;
 use microslip::case::CaseText;
-use microslip::dissipation_answer::dissipation_report;
 
 fn main() {
     for (phase, compliance) in [("0.4pi", "persson:gamma=1,sigma=1"), ("0.3pi", "hertz:r=1,estar=1")] {

@@ -12,9 +12,9 @@ use std::time::{Duration, Instant};
 use microslip::answer::Value;
 use microslip::ball::Ball;
 use microslip::case::{Case, CaseText};
-use microslip::certified::{certified_dissipation, enclose_dissipation};
 use microslip::compliance::Compliance;
 use microslip::cycle::LoadCycle;
+use microslip::digits::enclosure::{certified_dissipation, enclose_dissipation};
 use microslip::dissipation::{dissipation, Options};
 use microslip::real::{Precision, Real};
 

@@ -2,8 +2,8 @@
 //! 12–15 digits a rigorous enclosure of the exact value proves, then to 40.
 use std::time::Duration;
 
+use microslip::answer::dissipation::dissipation_of;
 use microslip::case::CaseText;
-use microslip::dissipation_answer::dissipation_of;
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     // P = 1 + 0.4 cos θ, Q = 0.5 cos(θ − 0.4π), f = λ = 1, and Persson's v'(P) = γσ/P.

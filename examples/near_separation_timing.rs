@@ -8,8 +8,8 @@
 
 use std::time::{Duration, Instant};
 
+use microslip::answer::dissipation::dissipation_of;
 use microslip::case::{CaseSpec, CaseText};
-use microslip::dissipation_answer::dissipation_of;
 
 const FAMILIES: [&str; 3] = ["persson:gamma=1,sigma=1", "power:c=1,beta=-1.5", "hertz:r=1,estar=1"];
 

@@ -13,12 +13,12 @@ use std::time::{Duration, Instant};
 use rug::Float;
 use serde::Serialize;
 
+use crate::answer::agreed::verified_dissipation;
 use crate::case::{Case, CaseSpec, CaseText};
 use crate::dissipation::{Segment, SegmentIntegrands};
 use crate::files::csv_text;
 use crate::quad::{gauss_legendre, tanh_sinh, Piece};
 use crate::real::{Precision, Real};
-use crate::reference::verified_dissipation;
 
 /// One measured configuration.
 #[derive(Clone, Debug, Serialize)]
@@ -89,7 +89,7 @@ pub fn standard_cases(quick: bool) -> Vec<BenchCase> {
 }
 
 /// The 100-digit reference value of a case (computed, verified).
-pub fn reference_value(case: &CaseText) -> Result<Float, crate::reference::ReferenceError> {
+pub fn reference_value(case: &CaseText) -> Result<Float, crate::answer::agreed::ReferenceError> {
     Ok(verified_dissipation(case, 100, Duration::from_secs(300))?.value.total)
 }
 

@@ -12,9 +12,9 @@ use std::time::{Duration, Instant};
 
 use serde::{Deserialize, Serialize};
 
+use crate::answer::dissipation::dissipation_answer;
 use crate::batch::CaseError;
 use crate::case::CaseText;
-use crate::dissipation_answer::dissipation_answer;
 use crate::files::{write_text_atomically, OutputError};
 
 /// One catalogue case and, once computed, its reference value.

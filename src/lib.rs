@@ -23,25 +23,26 @@
 //!   [`dissipation::MindlinDeresiewicz`]);
 //! - [`real`]: the number type every computation is generic over (`f64`, `rug::Float`
 //!   at any precision);
-//! - [`reference`](mod@reference) (verified digits by two precisions) and `certified` (feature
-//!   `certified`: proven digits from Arb ball arithmetic);
-//! - [`answer`]: a printed value with its digits, enclosure and provenance;
 //! - [`exact`]: the small-amplitude series and its exact coefficients;
 //! - [`case`]: a case built from numbers or decimals ([`case::CaseText::builder`]) or read
 //!   once from its text ([`case::CaseText`] → [`case::CaseSpec`]), computed at any precision;
-//! - [`dissipation_answer`]: the one policy that picks how W is computed and vouched for
-//!   ([`dissipation_answer::dissipation_of`]);
-//! - [`ladder`]: the one loop over working precisions that every proven digit climbs;
-//! - [`simulate`]: the independent check by a time-stepped simulation, and
-//!   [`simulation_answer`] its W as an answer;
+//! - [`simulate`]: the independent check by a time-stepped simulation;
+//! - [`digits`]: where digits are decided — the one loop over working precisions that
+//!   every proven digit climbs, its rungs `digits::enclosure` (feature `certified`: W
+//!   enclosed in f64 intervals and Arb balls) and [`digits::agreement`] (two precisions
+//!   agreeing);
+//! - [`decimal`]: exact decimals in, the one printing rule out ([`decimal::printing`]);
+//! - [`answer`]: a printed value with its digits, enclosure and provenance, and the one
+//!   policy per quantity that builds it: [`answer::dissipation`] (how W is computed and
+//!   vouched for, [`answer::dissipation::dissipation_of`]), [`answer::agreed`] (W by
+//!   agreement, and the errors of every path to W), [`answer::simulation`];
 //! - [`verify`]: the theorem gate ([`verify::run`]).
 //!
 //! Beside them: [`batch`] (many cases from a CSV, on all cores), [`path`] (any periodic
 //! load path), [`aft`] (the harmonic-balance friction element), [`interval`] (f64
 //! intervals as a [`real::Real`]), `ball` (feature `certified`: Arb balls), [`doubts`]
 //! (how those number types report a comparison they cannot decide), [`quad`],
-//! [`phase`], [`verified`] (agreement of two precisions and the printing rule),
-//! [`files`] (atomic output), [`messages`], and with feature `cli` `accuracy` and
+//! [`phase`], [`files`] (atomic output), [`messages`], and with feature `cli` `accuracy` and
 //! `catalogue`. Only `figures` and `plot` (feature `cli`: the paper's figures and their
 //! pictures) are hidden from this documentation: they serve the command line and its
 //! tests, and change without notice.
@@ -57,22 +58,16 @@ pub mod aft;
 pub mod answer;
 pub mod boundaries;
 pub mod case;
-#[cfg(feature = "certified")]
-pub mod certified;
 pub mod compliance;
 pub mod cycle;
-mod decimal;
+pub mod decimal;
+pub mod digits;
 pub mod dissipation;
-pub mod dissipation_answer;
 pub mod doubts;
 pub mod exact;
-pub mod ladder;
 pub mod path;
 pub mod real;
-pub mod reference;
-mod rounding;
 pub mod simulate;
-pub mod simulation_answer;
 pub mod verify;
 
 #[cfg(feature = "cli")]
@@ -97,5 +92,4 @@ pub mod phase;
 #[doc(hidden)]
 pub mod plot;
 pub mod quad;
-pub mod verified;
 mod workers;

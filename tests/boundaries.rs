@@ -7,13 +7,13 @@ mod common;
 use std::time::Duration;
 
 use common::case;
+use microslip::answer::agreed::ReferenceError;
+use microslip::answer::dissipation::dissipation_report;
 use microslip::answer::Provenance;
 use microslip::case::InputError;
 use microslip::compliance::AdmissibilityError;
 use microslip::cycle::CycleError;
 use microslip::dissipation::DissipationError;
-use microslip::dissipation_answer::dissipation_report;
-use microslip::reference::ReferenceError;
 
 const BUDGET: Duration = Duration::from_secs(60);
 

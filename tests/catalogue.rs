@@ -5,11 +5,11 @@
 use std::path::Path;
 use std::time::Duration;
 
+use microslip::answer::agreed::{verified_dissipation, ReferenceError};
 use microslip::case::Case;
 use microslip::catalogue::{self, CatalogueEntry};
 use microslip::dissipation::{dissipation, DissipationError, Options};
 use microslip::real::Precision;
-use microslip::reference::{verified_dissipation, ReferenceError};
 
 fn entries() -> Vec<CatalogueEntry> {
     catalogue::load(Path::new(concat!(

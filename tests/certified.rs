@@ -6,20 +6,20 @@
 
 mod common;
 
+use microslip::answer::agreed::ReferenceError;
+use microslip::answer::dissipation::dissipation_answer;
 use microslip::answer::{Answer, Decimal, Provenance, Value};
 use microslip::ball::{hull, watch, Ball};
 use microslip::case::CaseText;
-use microslip::certified::{certified_dissipation, enclose_dissipation, CertifiedError};
 use microslip::compliance::{parse_spec, Compliance, Polynomial};
 use microslip::cycle::LoadCycle;
+use microslip::digits::enclosure::{certified_dissipation, enclose_dissipation, CertifiedError};
 use microslip::dissipation::{dissipation, Options, Segment, SegmentIntegrands};
-use microslip::dissipation_answer::dissipation_answer;
 use microslip::exact::polynomial_dissipation;
 use microslip::phase::ExactPhase;
 use microslip::quad::sinh_map::{resolve_peaks, Peak};
 use microslip::quad::{integrate, Piece, Settings};
 use microslip::real::{Precision, Real};
-use microslip::reference::ReferenceError;
 use rug::ops::Pow;
 use rug::Float;
 use std::time::Duration;
@@ -725,7 +725,7 @@ fn segment_enclosures_hold_the_exact_polynomial_w() {
 fn text_enclosure(
     text: &microslip::case::CaseText,
     digits: u32,
-) -> Result<microslip::certified::Certified, CertifiedError> {
+) -> Result<microslip::digits::enclosure::Certified, CertifiedError> {
     let spec = text.spec().unwrap_or_else(|e| panic!("{text:?}: {e}"));
     let read = |precision| {
         let case = spec.at::<Ball>(precision).map_err(|e| e.to_string())?;

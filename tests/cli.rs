@@ -711,9 +711,9 @@ fn json_reports_share_one_vocabulary() {
 
 #[test]
 fn library_error_texts_name_no_command_line_flags() {
+    use microslip::answer::agreed::ReferenceError;
+    use microslip::digits::agreement::OutOfBudget;
     use microslip::dissipation::DissipationError;
-    use microslip::reference::ReferenceError;
-    use microslip::verified::OutOfBudget;
     let errors: Vec<String> = vec![
         DissipationError::NotConverged {
             points: 512,
@@ -975,7 +975,7 @@ fn encloses(report: &serde_json::Value, reference: &str) -> bool {
 
 #[test]
 fn digits_asked_and_the_default_digits_are_proven_by_an_enclosure() {
-    use microslip::reference::verified_dissipation;
+    use microslip::answer::agreed::verified_dissipation;
     let budget = std::time::Duration::from_secs(120);
     for flags in [
         vec![],
@@ -1032,7 +1032,7 @@ fn a_phase_near_pi_gets_proven_relative_digits_without_digits_asked() {
 
 #[test]
 fn the_misrounded_f64_reproducers_print_only_digits_of_w() {
-    use microslip::reference::verified_dissipation;
+    use microslip::answer::agreed::verified_dissipation;
     for flags in common::MISROUNDED_F64_CASES {
         let args: Vec<&str> = flags.iter().flat_map(|(f, v)| [*f, *v]).collect();
         let printed = dissipation_json(&args);

@@ -18,7 +18,7 @@ use std::time::{Duration, Instant};
 
 use microslip::ball::Ball;
 use microslip::case::{Case, CaseText};
-use microslip::certified::certified_dissipation_by;
+use microslip::digits::enclosure::certified_dissipation_by;
 use microslip::dissipation::{dissipation, Options};
 use microslip::real::{Precision, Real};
 use proptest::prelude::*;

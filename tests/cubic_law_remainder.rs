@@ -5,9 +5,9 @@
 mod common;
 
 use microslip::ball::Ball;
-use microslip::certified::certified_dissipation;
 use microslip::compliance::{Compliance, Exponential, Hertz, Persson, PowerLaw, Rational, Sum};
 use microslip::cycle::LoadCycle;
+use microslip::digits::enclosure::certified_dissipation;
 use microslip::exact::remainder::{largest_amplitude, WithinLimit};
 use microslip::exact::{cubic_kernel_majorant, partial_sums, remainder_bounds, remainders, SeriesShape};
 use microslip::real::{Precision, Real};

@@ -9,8 +9,8 @@ mod common;
 use std::time::Duration;
 
 use common::Draws;
+use microslip::answer::dissipation::{dissipation_report, DEFAULT_DIGITS, DEFAULT_LEAST_DIGITS};
 use microslip::case::CaseText;
-use microslip::dissipation_answer::{dissipation_report, DEFAULT_DIGITS, DEFAULT_LEAST_DIGITS};
 use rug::ops::Pow;
 use rug::Float;
 

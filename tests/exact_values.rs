@@ -5,8 +5,8 @@
 
 use std::time::Duration;
 
+use microslip::answer::dissipation::dissipation_report;
 use microslip::case::CaseText;
-use microslip::dissipation_answer::dissipation_report;
 use microslip::real::{Precision, Real};
 use rug::Float;
 

@@ -8,10 +8,10 @@ mod common;
 
 use std::time::Duration;
 
+use microslip::answer::dissipation::{dissipation_report, DEFAULT_DIGITS, DEFAULT_LEAST_DIGITS};
 use microslip::answer::{Answer, Arithmetic, Decimal};
 use microslip::case::{Case, CaseText};
-use microslip::certified::{enclose_dissipation, INTERVAL_GOAL_BITS};
-use microslip::dissipation_answer::{dissipation_report, DEFAULT_DIGITS, DEFAULT_LEAST_DIGITS};
+use microslip::digits::enclosure::{enclose_dissipation, INTERVAL_GOAL_BITS};
 use microslip::interval::Interval;
 use microslip::real::Precision;
 use microslip::verify::generators::{cycle_case, Draw, Family, CYCLE};

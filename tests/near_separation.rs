@@ -9,13 +9,13 @@
 
 use std::time::Duration;
 
+use microslip::answer::agreed::verified_dissipation;
+use microslip::answer::dissipation::dissipation_report;
 use microslip::case::{Case, CaseText};
 use microslip::dissipation::{dissipation, DissipationError, Options, Segment, SegmentIntegrands};
-use microslip::dissipation_answer::dissipation_report;
 use microslip::quad::gauss_legendre::node_table;
 use microslip::quad::RuleError;
 use microslip::real::Precision;
-use microslip::reference::verified_dissipation;
 use microslip::simulate::{simulate, SimulationOptions};
 use rug::Float;
 

@@ -6,10 +6,10 @@
 
 use std::time::Duration;
 
+use microslip::answer::dissipation::dissipation_of;
 use microslip::answer::{Answer, Arithmetic};
 use microslip::case::{Case, CaseSpec, CaseText};
-use microslip::certified::{enclose_dissipation, enclose_dissipation_with_lowest_load, INTERVAL_GOAL_BITS};
-use microslip::dissipation_answer::dissipation_of;
+use microslip::digits::enclosure::{enclose_dissipation, enclose_dissipation_with_lowest_load, INTERVAL_GOAL_BITS};
 use microslip::interval::Interval;
 use microslip::real::Precision;
 use rug::ops::Pow;

@@ -3,11 +3,11 @@
 
 use microslip::compliance::{parse_spec, Compliance};
 use microslip::cycle::LoadCycle;
+use microslip::digits::agreement::agreeing_digits;
 use microslip::dissipation::{dissipation, Options};
 use microslip::path::input::{read_harmonics, read_samples};
 use microslip::path::{path_dissipation, path_outputs, Contact, LoadPath, SteadyCycle, TrigPoly};
 use microslip::real::{Precision, Real};
-use microslip::verified::agreeing_digits;
 use rug::Float;
 
 const PERSSON: &str = "persson:gamma=1,sigma=1";

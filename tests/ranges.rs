@@ -5,12 +5,12 @@
 
 use std::time::Duration;
 
+use microslip::answer::agreed::{verified_dissipation, ReferenceError};
+use microslip::answer::dissipation::{dissipation_report, DissipationAnswer};
 use microslip::case::{CaseText, InputError};
 use microslip::compliance::parse_spec;
 use microslip::dissipation::{dissipation, DissipationError, Options};
-use microslip::dissipation_answer::{dissipation_report, DissipationAnswer};
 use microslip::real::{Precision, Real};
-use microslip::reference::{verified_dissipation, ReferenceError};
 use rug::float::Constant;
 use rug::ops::Pow;
 use rug::Float;

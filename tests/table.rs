@@ -6,9 +6,9 @@ mod common;
 use std::path::PathBuf;
 use std::time::Duration;
 
+use microslip::answer::dissipation::dissipation_report;
 use microslip::case::{Case, CaseText};
 use microslip::dissipation::{dissipation, Options};
-use microslip::dissipation_answer::dissipation_report;
 use microslip::real::Precision;
 use rug::Float;
 
@@ -264,7 +264,7 @@ fn mpfr_w(case: &CaseText) -> Float {
 
 /// `digits` certified digits of the interpolant's W for `case`, checked against the
 /// MPFR integration and with the table's error stated beside them; the report.
-fn assert_certified_table(case: &CaseText, digits: u32) -> microslip::dissipation_answer::DissipationAnswer {
+fn assert_certified_table(case: &CaseText, digits: u32) -> microslip::answer::dissipation::DissipationAnswer {
     let report = dissipation_report(case, Some(digits), Duration::from_secs(120)).expect("table W to digits");
     let answer = &report.answer;
     assert_eq!(answer.provenance.key(), "certified", "{case:?}: {report:?}");

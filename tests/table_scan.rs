@@ -7,9 +7,9 @@
 use std::path::{Path, PathBuf};
 use std::time::Duration;
 
+use microslip::answer::dissipation::dissipation_report;
 use microslip::case::CaseText;
 use microslip::cycle::LoadCycle;
-use microslip::dissipation_answer::dissipation_report;
 
 mod common;
 
@@ -225,7 +225,7 @@ fn scan_spacings(
                         let digits = result.answer.digits() as usize;
                         let rounded = |value: f64| format!("{:.*e}", digits.max(1) - 1, value);
                         // Where W ± its error straddle a rounding boundary, the digit count is the
-                        // printing rule's to lower (verified::decimal_f64), not the estimate's.
+                        // printing rule's to lower (decimal::printing::decimal_f64), not the estimate's.
                         let straddles = rounded(estimate.unrounded - bound) != rounded(estimate.unrounded + bound);
                         if digits == 0 {
                             if !result.total().is_empty() {

@@ -1,8 +1,8 @@
 //! `Answer`: a printed value with its digits, enclosure and provenance
 //! ([`microslip::answer::Answer`]), and for W what the policy says beside it.
 
+use microslip::answer::dissipation::DissipationAnswer;
 use microslip::answer::{Answer, Decimal, Provenance, Value};
-use microslip::dissipation_answer::DissipationAnswer;
 use numpy::IntoPyArray;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -35,7 +35,7 @@ impl PyAnswer {
         }
     }
 
-    /// W as the policy of [`microslip::dissipation_answer`] gave it.
+    /// W as the policy of [`microslip::answer::dissipation`] gave it.
     pub fn of_report(report: DissipationAnswer) -> Self {
         let table_error = report.table.as_ref().map(|table| table.error);
         let quadrature_error = report.table.as_ref().map(|table| table.quadrature_error);

@@ -1,6 +1,6 @@
 //! `dissipation(case)`: W by the one policy ([`dissipation_report`]), off the GIL.
 
-use microslip::dissipation_answer::dissipation_report;
+use microslip::answer::dissipation::dissipation_report;
 use pyo3::prelude::*;
 
 use crate::answer::PyAnswer;

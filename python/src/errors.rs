@@ -4,9 +4,9 @@
 
 use std::time::Duration;
 
+use microslip::answer::agreed::ReferenceError;
 use microslip::exact::printing::ExactAnswerError;
 use microslip::messages::printable;
-use microslip::reference::ReferenceError;
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::PyErr;
 

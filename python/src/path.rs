@@ -187,7 +187,7 @@ pub fn path_of_text(
         friction,
         ratio,
         compliance,
-        digits: digits.unwrap_or(microslip::dissipation_answer::DEFAULT_DIGITS),
+        digits: digits.unwrap_or(microslip::answer::dissipation::DEFAULT_DIGITS),
         deadline: Instant::now() + budget,
         harmonics_out,
         loop_points: LOOP_POINTS,

@@ -3,9 +3,9 @@
 
 use std::time::Instant;
 
+use microslip::answer::simulation::{simulated_answer, SimulatedAnswer};
 use microslip::answer::Answer;
 use microslip::simulate::SimulationOptions;
-use microslip::simulation_answer::{simulated_answer, SimulatedAnswer};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 

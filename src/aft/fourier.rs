@@ -96,6 +96,11 @@ impl Layout {
         self.orders.len()
     }
 
+    /// The time points per period.
+    pub(super) fn time_points(&self) -> usize {
+        self.time_points
+    }
+
     /// The basis functions at time point n: du(t_n)/dU.
     pub(super) fn at(&self, n: usize) -> &[f64] {
         let width = self.coefficients();

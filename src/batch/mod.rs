@@ -4,11 +4,11 @@
 
 use std::time::Duration;
 
+use crate::answer::agreed::ReferenceError;
+use crate::answer::dissipation::{dissipation_report, DissipationAnswer};
 use crate::answer::{Answer, Provenance};
-use crate::dissipation_answer::{dissipation_report, DissipationAnswer};
 use crate::messages::printable;
 use crate::path::{path_answer, AgreedW, PathAnswer, PathFormat, PathRequest, RatioText};
-use crate::reference::ReferenceError;
 
 mod input;
 mod pool;
@@ -16,7 +16,7 @@ mod pool;
 pub use input::{check_input, read_input, BatchInput, InputRow, PathRow, MAX_RECORD_BYTES};
 pub use pool::{RowPool, Ticket};
 
-pub use crate::dissipation_answer::{TableEstimate, TABLE_QUADRATURE_TOLERANCE};
+pub use crate::answer::dissipation::{TableEstimate, TABLE_QUADRATURE_TOLERANCE};
 
 /// Why a case gives no W: the one error of every path to W.
 pub type CaseError = ReferenceError;
@@ -164,7 +164,7 @@ fn path_result(row: &PathRow, digits: Option<u32>, budget: Duration) -> Result<P
         friction: row.friction.clone(),
         ratio,
         compliance: row.compliance.clone(),
-        digits: digits.unwrap_or(crate::dissipation_answer::DEFAULT_DIGITS),
+        digits: digits.unwrap_or(crate::answer::dissipation::DEFAULT_DIGITS),
         deadline: std::time::Instant::now() + budget,
         harmonics_out: 0,
         loop_points: 1,

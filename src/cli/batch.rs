@@ -9,7 +9,7 @@ use std::time::{Duration, Instant};
 
 use clap::Args;
 
-use microslip::batch::{self, BatchError, InputRow, RowPool, RowResult, Ticket};
+use microslip::batch::{self, BatchError, BatchInput, InputRow, RowPool, RowResult, Ticket};
 use microslip::files::{check_writable, StreamedOutput};
 
 use super::case::Jobs;
@@ -57,27 +57,8 @@ const ROWS_PER_CHUNK: usize = 256;
 pub fn run(args: &BatchArgs) -> Result<usize, Failure> {
     let output_path = Path::new(&args.output);
     check_writable(output_path, &[])?;
-    let input_name = if args.input == "-" {
-        "standard input"
-    } else {
-        &args.input
-    };
-    let refused = |e: BatchError| Failure::refused(format!("{input_name}: {e}"));
-    let source: Box<dyn Read> = if args.input == "-" {
-        Box::new(std::io::stdin().lock())
-    } else {
-        Box::new(std::fs::File::open(&args.input).map_err(|e| Failure::refused(format!("{}: {e}", args.input)))?)
-    };
-    let input_is_file = args.input != "-" && std::fs::metadata(&args.input).is_ok_and(|m| m.is_file());
-    if input_is_file {
-        let file = std::fs::File::open(&args.input).map_err(|e| Failure::refused(format!("{}: {e}", args.input)))?;
-        batch::check_input(std::io::BufReader::new(file)).map_err(refused)?;
-    }
-    let mut input = batch::read_input(source).map_err(refused)?;
-    // A row's path file is named relative to the batch input's directory.
-    if let Some(directory) = Path::new(&args.input).parent().filter(|_| args.input != "-") {
-        input = input.relative_to(directory);
-    }
+    let (mut input, input_is_file) = open_input(&args.input)?;
+    let refused = |e: BatchError| Failure::refused(format!("{}: {e}", input_name(&args.input)));
     let header = input.header.clone();
     let mut output = StreamedOutput::create(output_path).map_err(|e| Failure::failed(e.to_string()))?;
     let lost = |e: std::io::Error| Failure::failed(format!("{}: {e}", args.output));
@@ -110,10 +91,7 @@ pub fn run(args: &BatchArgs) -> Result<usize, Failure> {
                 break;
             }
             if phase_warning.is_none() {
-                phase_warning = chunk.iter().find_map(|row| {
-                    let phi = row.case.as_ref().ok().map(|case| case.phi.as_str())?;
-                    radians_warning(&format!("line {}: phi", row.line), phi)
-                });
+                phase_warning = first_phase_warning(&chunk);
             }
             rows_read += chunk.len();
             let chunk: Arc<[InputRow]> = chunk.into();
@@ -124,11 +102,7 @@ pub fn run(args: &BatchArgs) -> Result<usize, Failure> {
         };
         let results = pool.collect(ticket, &mut |answered| progress.at_of(answered, rows_read, "rows"));
         let mut bytes = std::mem::take(&mut pending);
-        bytes.extend(if jsonl {
-            super::json::lines(&super::json::batch_rows(&header, &chunk, &results))?
-        } else {
-            batch::csv_rows(&header, &chunk, &results)?
-        });
+        bytes.extend(rows_text(jsonl, &header, &chunk, &results)?);
         rows_done += chunk.len();
         failed += results.iter().filter(|r| !RowResult::succeeded(r)).count();
         match output.write_all(&bytes).and_then(|()| output.flush()) {
@@ -153,12 +127,66 @@ pub fn run(args: &BatchArgs) -> Result<usize, Failure> {
         warn(&format!("{warning} (the first such row)"));
     }
     if failed > 0 || args.output != "-" {
-        warn(&format!(
-            "{rows_done} {} in {:.2} s, {failed} failed{}",
-            if rows_done == 1 { "row" } else { "rows" },
-            started.elapsed().as_secs_f64(),
-            if failed > 0 { " (see their error column)" } else { "" }
-        ));
+        summarize(rows_done, failed, started);
     }
     Ok(failed)
+}
+
+/// The warning of the first row of `chunk` whose phase looks like degrees.
+fn first_phase_warning(chunk: &[InputRow]) -> Option<String> {
+    chunk.iter().find_map(|row| {
+        let phi = row.case.as_ref().ok().map(|case| case.phi.as_str())?;
+        radians_warning(&format!("line {}: phi", row.line), phi)
+    })
+}
+
+/// The rows of a chunk as written: JSON lines, or CSV records under `header`.
+fn rows_text(jsonl: bool, header: &[String], chunk: &[InputRow], results: &[RowResult]) -> Result<Vec<u8>, Failure> {
+    Ok(if jsonl {
+        super::json::lines(&super::json::batch_rows(header, chunk, results))?
+    } else {
+        batch::csv_rows(header, chunk, results)?
+    })
+}
+
+/// How the batch input is named in messages.
+fn input_name(input: &str) -> &str {
+    if input == "-" {
+        "standard input"
+    } else {
+        input
+    }
+}
+
+/// The batch input `input` (a file, or `-` for standard input) opened as a stream of rows,
+/// with its path files named relative to its directory, and whether it is a regular file
+/// (then read whole for what would stop the batch before any row is computed).
+fn open_input(input: &str) -> Result<(BatchInput<Box<dyn Read>>, bool), Failure> {
+    let refused = |e: BatchError| Failure::refused(format!("{}: {e}", input_name(input)));
+    let open = || std::fs::File::open(input).map_err(|e| Failure::refused(format!("{input}: {e}")));
+    let source: Box<dyn Read> = if input == "-" {
+        Box::new(std::io::stdin().lock())
+    } else {
+        Box::new(open()?)
+    };
+    let input_is_file = input != "-" && std::fs::metadata(input).is_ok_and(|m| m.is_file());
+    if input_is_file {
+        batch::check_input(std::io::BufReader::new(open()?)).map_err(refused)?;
+    }
+    let mut rows = batch::read_input(source).map_err(refused)?;
+    // A row's path file is named relative to the batch input's directory.
+    if let Some(directory) = Path::new(input).parent().filter(|_| input != "-") {
+        rows = rows.relative_to(directory);
+    }
+    Ok((rows, input_is_file))
+}
+
+/// The one line on stderr that ends a batch: rows, time, failures.
+fn summarize(rows_done: usize, failed: usize, started: Instant) {
+    warn(&format!(
+        "{rows_done} {} in {:.2} s, {failed} failed{}",
+        if rows_done == 1 { "row" } else { "rows" },
+        started.elapsed().as_secs_f64(),
+        if failed > 0 { " (see their error column)" } else { "" }
+    ));
 }

@@ -2,11 +2,11 @@
 
 use clap::Args;
 
+use microslip::answer::agreed::ReferenceError;
+use microslip::answer::dissipation::{dissipation_report, DissipationAnswer};
 use microslip::answer::Provenance;
+use microslip::decimal::printing::Decimal;
 use microslip::dissipation::Method;
-use microslip::dissipation_answer::{dissipation_report, DissipationAnswer};
-use microslip::reference::ReferenceError;
-use microslip::verified::Decimal;
 
 use super::case::{Answer, CaseArgs};
 use super::json::DissipationReport;

@@ -10,10 +10,10 @@
 use serde::ser::SerializeMap;
 use serde::Serialize;
 
+use microslip::answer::dissipation::DissipationAnswer;
 use microslip::answer::{Answer, Provenance, Value};
 use microslip::batch::{InputRow, RowResult};
 use microslip::case::CaseText;
-use microslip::dissipation_answer::DissipationAnswer;
 use microslip::path::AgreedW;
 
 /// Keys and values serialized as a JSON object in the order given.

@@ -4,8 +4,8 @@
 use std::num::NonZeroUsize;
 use std::time::Duration;
 
+use microslip::answer::agreed::MAX_DIGITS;
 use microslip::phase::ExactPhase;
-use microslip::reference::MAX_DIGITS;
 
 /// The longest time budget accepted: 1e6 s (about 11.6 days). Larger values would
 /// overflow the clock's arithmetic and mean "no limit", which is not on offer.

@@ -7,7 +7,7 @@ use std::time::{Duration, Instant};
 use clap::{ArgGroup, Args, ValueEnum};
 use serde::Serialize;
 
-use microslip::dissipation_answer::DEFAULT_DIGITS;
+use microslip::answer::dissipation::DEFAULT_DIGITS;
 use microslip::files::{check_writable, csv_text, destination, write_text_atomically, Destination};
 use microslip::path::{path_answer, AgreedW, Drive, PathAnswer, PathFormat, PathOutputs, PathRequest, RatioText};
 

@@ -9,6 +9,7 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use clap::error::{ContextKind, ContextValue, ErrorKind};
 
+use microslip::exact::printing::ExactAnswerError;
 use microslip::messages::printable;
 
 /// Exit code of refused input: bad flags, a case outside the theory, a limit.
@@ -39,6 +40,16 @@ impl Failure {
             message: message.into(),
             code: FAILED,
         }
+    }
+}
+
+/// A failure of an exact answer (I, Iₙ, W_N): refused input (exit 2), or a result that
+/// could not be vouched for (exit 1).
+pub fn exact_answer_failure(error: ExactAnswerError) -> Failure {
+    if error.is_failure() {
+        Failure::failed(error.to_string())
+    } else {
+        Failure::refused(error.to_string())
     }
 }
 

@@ -7,11 +7,11 @@ use serde::Serialize;
 use microslip::answer::{Answer, Provenance};
 use microslip::case::CaseText;
 use microslip::compliance::{spec_help, spec_summary};
-use microslip::exact::printing::{coefficient_answers, partial_sum_answers, ExactAnswerError, PartialSums};
+use microslip::exact::printing::{coefficient_answers, partial_sum_answers, PartialSums};
 
 use super::case::Answer as AnswerArgs;
 use super::json::{printed, ShapeInputs, ValueEnvelope, ValueReport};
-use super::report::Failure;
+use super::report::{exact_answer_failure, Failure};
 use super::series_remainder::{read_ratio, remainders, Remainders, WithinAnswer};
 
 /// `--rho` for the coefficients Iₙ alone, or a case (`--p0 … --compliance`) for its partial sums.
@@ -77,16 +77,6 @@ pub fn shown(answer: &Answer) -> String {
     format!("{}   ({})", answer.value.decimal, answer.provenance)
 }
 
-/// A failure of an answer: refused input (exit 2), or a result that could not be
-/// vouched for (exit 1).
-pub fn failure(error: ExactAnswerError) -> Failure {
-    if error.is_failure() {
-        Failure::failed(error.to_string())
-    } else {
-        Failure::refused(error.to_string())
-    }
-}
-
 /// `microslip series --rho … --json`.
 #[derive(Serialize)]
 struct SeriesReport<'a> {
@@ -150,8 +140,8 @@ fn coefficients(args: &SeriesArgs, rho: &str) -> Result<String, Failure> {
     let order = args
         .order
         .ok_or_else(|| Failure::refused("--order is needed with --rho"))?;
-    let answers =
-        coefficient_answers(rho, &args.phi, order, args.answer.digits, args.answer.max_seconds).map_err(failure)?;
+    let answers = coefficient_answers(rho, &args.phi, order, args.answer.digits, args.answer.max_seconds)
+        .map_err(exact_answer_failure)?;
     if args.answer.json {
         let in_f64: Option<Vec<f64>> = answers
             .iter()
@@ -199,7 +189,8 @@ fn case_series(args: &SeriesArgs, p0: &str) -> Result<String, Failure> {
     };
     let order = args.order.unwrap_or(1);
     let ratio = args.within.as_deref().map(read_ratio).transpose()?;
-    let sums = partial_sum_answers(&case, order, args.answer.digits, args.answer.max_seconds).map_err(failure)?;
+    let sums =
+        partial_sum_answers(&case, order, args.answer.digits, args.answer.max_seconds).map_err(exact_answer_failure)?;
     let all_exact = exact_reason(&sums.dissipation);
     if let (Some(reason), Some(_)) = (all_exact, ratio) {
         return Err(Failure::refused(format!(

@@ -9,8 +9,8 @@ use microslip::case::CaseText;
 use microslip::exact::case_remainders::case_remainders;
 use microslip::exact::remainder::WithinLimit;
 
+use super::report::exact_answer_failure;
 use super::report::Failure;
-use super::series::failure;
 
 /// The remainders of a case's partial sums and what they prove.
 pub struct Remainders {
@@ -49,7 +49,7 @@ pub fn read_ratio(text: &str) -> Result<f64, Failure> {
 /// The remainders of the case's partial sums to `order`, and `--within` where asked,
 /// formatted as the command prints them.
 pub fn remainders(case: &CaseText, order: usize, within: Option<f64>) -> Result<Remainders, Failure> {
-    let found = case_remainders(case, order, within).map_err(failure)?;
+    let found = case_remainders(case, order, within).map_err(exact_answer_failure)?;
     Ok(Remainders {
         bounds: found.bounds.iter().map(|&bound| three_digits(bound, true)).collect(),
         from_below: found.from_below,

@@ -8,13 +8,13 @@ use std::time::{Duration, Instant};
 
 use clap::{ArgGroup, Args};
 
+use microslip::answer::simulation::{simulated_answer, simulated_path_answer, SimulatedAnswer, SimulatedError};
 use microslip::answer::{Answer, Value};
+use microslip::decimal::printing::F64_MOST_DIGITS;
 use microslip::files::{check_writable, destination, write_text_atomically, Destination};
 use microslip::path::PathRequest;
 use microslip::plot::{plot_cycle, PLOT_EXTENSIONS};
 use microslip::simulate::{loop_csv, SimulationOptions, SimulationResult};
-use microslip::simulation_answer::{simulated_answer, simulated_path_answer, SimulatedAnswer, SimulatedError};
-use microslip::verified::F64_MOST_DIGITS;
 
 use super::case::{ContactArgs, CycleArgs};
 use super::json::{

@@ -7,8 +7,9 @@ use microslip::exact::printing::coefficient_answer;
 
 use super::case::Answer;
 use super::json::{printed, ShapeInputs, ValueEnvelope};
+use super::report::exact_answer_failure;
 use super::report::Failure;
-use super::series::{failure, shown};
+use super::series::shown;
 
 #[derive(Args)]
 #[command(mut_arg("digits", |digits| digits.help(
@@ -41,8 +42,8 @@ struct CoefficientReport<'a> {
 }
 
 pub fn run(args: &SmallAmplitudeArgs) -> Result<String, Failure> {
-    let answer =
-        coefficient_answer(&args.rho, &args.phi, args.answer.digits, args.answer.max_seconds).map_err(failure)?;
+    let answer = coefficient_answer(&args.rho, &args.phi, args.answer.digits, args.answer.max_seconds)
+        .map_err(exact_answer_failure)?;
     if args.answer.json {
         let report = CoefficientReport {
             i: printed(&answer.value),

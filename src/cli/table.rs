@@ -6,12 +6,12 @@ use serde::Serialize;
 
 use std::time::Duration;
 
+use microslip::answer::dissipation::dissipation_of;
 use microslip::answer::Value;
 use microslip::case::{CaseText, InputError};
 use microslip::compliance::{spec_help, spec_summary};
 use microslip::cycle::CycleError;
 use microslip::dissipation::ExactZero;
-use microslip::dissipation_answer::dissipation_of;
 use microslip::files::csv_text;
 
 use super::report::Failure;

@@ -3,8 +3,8 @@
 //! alone proves, and the largest P1 at which the cubic law is proven within a ratio of W
 //! (proofs/cubic-law-remainder.md).
 
+use super::answer_error::ExactAnswerError;
 use super::enclosure::case_balls;
-use super::printing::ExactAnswerError;
 use super::remainder::{largest_amplitude, sums_and_remainders_with, Remainder, Within};
 use super::SeriesShape;
 use crate::answer::{Answer, Arithmetic, Provenance, Value};

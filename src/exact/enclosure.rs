@@ -15,16 +15,16 @@ use std::time::Instant;
 
 use rug::Float;
 
+use super::answer_error::ExactAnswerError;
 use super::coefficient::closed_form_coefficient;
-use super::printing::ExactAnswerError;
 use super::series::{partial_sums, series_coefficients};
 use crate::ball::{watch, Ball};
 use crate::case::{Case, CaseSpec};
-use crate::certified::{phase_offset, MAX_BITS};
-use crate::ladder::{doubled, Ladder, Rung, Stop};
+use crate::decimal::printing::decimal_interval;
+use crate::digits::enclosure::{phase_offset, MAX_BITS};
+use crate::digits::{doubled, Ladder, Rung, Stop};
 use crate::phase::ReducedPhase;
 use crate::real::{Precision, Real};
-use crate::verified::decimal_interval;
 
 /// Why no enclosure narrow enough could be given.
 #[derive(Debug, Clone, PartialEq, thiserror::Error)]

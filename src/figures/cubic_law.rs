@@ -189,7 +189,7 @@ mod enclosed {
     use super::{CompliancePanel, CubicLawError, ErrorPoint, AMPLITUDE_RANGE, PANELS, RHO, W_DIGITS};
     use crate::ball::Ball;
     use crate::case::{Case, CaseSpec, CaseText};
-    use crate::certified::certified_dissipation;
+    use crate::digits::enclosure::certified_dissipation;
     use crate::exact::enclosure::case_balls;
     use crate::exact::SeriesShape;
     use crate::real::{Precision, Real};
@@ -382,7 +382,7 @@ pub const CSV_HEADER: [&str; 10] = [
 
 /// `x` rounded up to 4 significant digits, so that a bound stays one.
 fn rounded_up(x: f64) -> String {
-    crate::rounding::DecimalEnd::directed(&x, 4, rug::float::Round::Up)
+    crate::decimal::rounding::DecimalEnd::directed(&x, 4, rug::float::Round::Up)
 }
 
 /// `cubic_law_error.csv`: one row per point.

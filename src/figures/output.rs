@@ -17,9 +17,9 @@ use super::draw::figure_picture;
 use super::evaluate::{LimitSlope, FIGURE_RELATIVE_ERROR};
 use super::sweeps::{compute, step_count, Facts, Figures, SweepError, FIG5_NORMAL, FIG8_PHASES};
 use super::{Figure, Progress};
+use crate::decimal::printing::decimal_f64;
 use crate::files::csv_text;
 use crate::plot::{write_all_or_none, Format, PlotError};
-use crate::verified::decimal_f64;
 
 /// Why the figures could not be written.
 #[derive(Debug, thiserror::Error)]

@@ -9,8 +9,9 @@ use rug::Float;
 
 use crate::compliance::{parse_spec, Compliance};
 use crate::cycle::compliance_ratio_from_poisson;
+use crate::decimal::printing::decimal_ball;
+use crate::digits::agreement::{agreement_radius, verify, TwoPrecisions, VerifyError};
 use crate::real::{Precision, Real};
-use crate::verified::{agreement_radius, decimal_ball, verify, TwoPrecisions, VerifyError};
 
 use super::displacement::{displacement_dissipation, displacement_outputs, DisplacementCycle};
 use super::dissipation::{dissipation_of, path_dissipation};

@@ -14,6 +14,7 @@
 pub mod accuracy;
 pub mod layout;
 pub(crate) mod overlay;
+mod rect;
 mod render;
 pub mod style;
 pub mod ticks;

@@ -7,7 +7,7 @@ use std::fmt::Write;
 
 use plotters::style::{Color, RGBAColor};
 
-use super::layout::Rect;
+use super::rect::Rect;
 use super::style::{Marker, SeriesStyle, FAMILY};
 
 /// SVG elements to be drawn over the axes, in order.

@@ -27,69 +27,20 @@ pub(super) fn run(
 ) -> Result<Run, SimulationError> {
     let bed = Bed::new(compliance, history, lowest_slip, elements);
     let mut contact = Contact::new(&bed, history.friction(), history.compliance_ratio());
-    let drive = history.drive();
-    let equilibrium = |theta: f64| SimulationError::Equilibrium { theta };
     let in_time = || match deadline {
         Some(deadline) if Instant::now() > deadline => Err(SimulationError::OutOfTime { elements, steps }),
         _ => Ok(()),
     };
-    // From the unloaded state to the start angle, then on to the end of its cycle.
-    let start_angle = history.start_angle();
-    let (p_start, x_start) = history.loads(start_angle);
-    let ramp = steps.max(100);
-    for i in 1..=ramp {
-        let t = i as f64 / ramp as f64;
-        let (p, x) = match path {
-            InitialPath::NormalThenTangential => (p_start * (2.0 * t).min(1.0), x_start * (2.0 * t - 1.0).max(0.0)),
-            InitialPath::Proportional => (p_start * t, x_start * t),
-        };
-        in_time()?;
-        contact
-            .step(compliance, p, x, drive)
-            .ok_or_else(|| equilibrium(start_angle))?;
-    }
     let angles = cycle_angles(history, steps);
-    if start_angle > 0.0 {
-        for &theta in angles.iter().filter(|&&theta| theta > start_angle) {
-            let (p, x) = history.loads(theta);
-            in_time()?;
-            contact
-                .step(compliance, p, x, drive)
-                .ok_or_else(|| equilibrium(theta))?;
-        }
-    }
-    let normal_at_zero = history.loads(0.0).0;
+    load_to_start(&mut contact, history, compliance, &angles, steps, path, &in_time)?;
     let mut previous_start = (f64::NAN, f64::NAN);
     let mut last = (0.0, 0.0, Vec::new());
     for _ in 0..8 {
-        let mut samples = vec![LoopSample {
-            theta: 0.0,
-            normal_load: normal_at_zero,
-            tangential_load: contact.tangential_load,
-            displacement: contact.displacement,
-        }];
-        let mut friction_work = 0.0;
-        let mut work = 0.0;
-        contact.work_below_lowest_slip = 0.0;
-        for &theta in &angles {
-            let (p, x) = history.loads(theta);
-            let before = *samples.last().unwrap_or(&samples[0]);
-            in_time()?;
-            friction_work += contact
-                .step(compliance, p, x, drive)
-                .ok_or_else(|| equilibrium(theta))?;
-            work +=
-                0.5 * (before.tangential_load + contact.tangential_load) * (contact.displacement - before.displacement);
-            samples.push(LoopSample {
-                theta,
-                normal_load: p,
-                tangential_load: contact.tangential_load,
-                displacement: contact.displacement,
-            });
-        }
+        let (work, friction_work, samples) = one_cycle(&mut contact, history, compliance, &angles, &in_time)?;
         // The loop closes when the state at its start repeats: u under force driving,
         // Q under displacement driving (the prescribed one repeats by itself).
         let start = (samples[0].displacement, samples[0].tangential_load);
+        let normal_at_zero = samples[0].normal_load;
         let closed = (start.0 - previous_start.0).abs() <= 1e-13 * (start.0.abs() + work.abs() + 1e-300)
             && (start.1 - previous_start.1).abs()
                 <= 1e-13 * (start.1.abs() + history.friction() * normal_at_zero.abs() + 1e-300);
@@ -108,6 +59,81 @@ pub(super) fn run(
         });
     }
     Ok(last)
+}
+
+/// Steps the contact from the unloaded state to the history's start angle along `path`,
+/// then on to the end of that cycle.
+fn load_to_start(
+    contact: &mut Contact<'_>,
+    history: &dyn LoadHistory,
+    compliance: &dyn Compliance<f64>,
+    angles: &[f64],
+    steps: usize,
+    path: InitialPath,
+    in_time: &dyn Fn() -> Result<(), SimulationError>,
+) -> Result<(), SimulationError> {
+    let drive = history.drive();
+    let equilibrium = |theta: f64| SimulationError::Equilibrium { theta };
+    let start_angle = history.start_angle();
+    let (p_start, x_start) = history.loads(start_angle);
+    let ramp = steps.max(100);
+    for i in 1..=ramp {
+        let t = i as f64 / ramp as f64;
+        let (p, x) = match path {
+            InitialPath::NormalThenTangential => (p_start * (2.0 * t).min(1.0), x_start * (2.0 * t - 1.0).max(0.0)),
+            InitialPath::Proportional => (p_start * t, x_start * t),
+        };
+        in_time()?;
+        contact
+            .step(compliance, p, x, drive)
+            .ok_or_else(|| equilibrium(start_angle))?;
+    }
+    if start_angle > 0.0 {
+        for &theta in angles.iter().filter(|&&theta| theta > start_angle) {
+            let (p, x) = history.loads(theta);
+            in_time()?;
+            contact
+                .step(compliance, p, x, drive)
+                .ok_or_else(|| equilibrium(theta))?;
+        }
+    }
+    Ok(())
+}
+
+/// One cycle of the history from θ = 0: W as the work of the load, W as frictional work,
+/// and the loop's samples.
+fn one_cycle(
+    contact: &mut Contact<'_>,
+    history: &dyn LoadHistory,
+    compliance: &dyn Compliance<f64>,
+    angles: &[f64],
+    in_time: &dyn Fn() -> Result<(), SimulationError>,
+) -> Result<Run, SimulationError> {
+    let drive = history.drive();
+    let mut samples = vec![LoopSample {
+        theta: 0.0,
+        normal_load: history.loads(0.0).0,
+        tangential_load: contact.tangential_load,
+        displacement: contact.displacement,
+    }];
+    let (mut work, mut friction_work) = (0.0, 0.0);
+    contact.work_below_lowest_slip = 0.0;
+    for &theta in angles {
+        let (p, x) = history.loads(theta);
+        let before = *samples.last().unwrap_or(&samples[0]);
+        in_time()?;
+        friction_work += contact
+            .step(compliance, p, x, drive)
+            .ok_or(SimulationError::Equilibrium { theta })?;
+        work += 0.5 * (before.tangential_load + contact.tangential_load) * (contact.displacement - before.displacement);
+        samples.push(LoopSample {
+            theta,
+            normal_load: p,
+            tangential_load: contact.tangential_load,
+            displacement: contact.displacement,
+        });
+    }
+    Ok((work, friction_work, samples))
 }
 
 #[cfg(test)]

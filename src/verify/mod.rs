@@ -4,9 +4,7 @@
 //! fails when any claim fails; the property tests in `tests/theorems.rs` run the
 //! same checks on shrinking cases drawn from the same families, with fixed seeds.
 
-#[doc(hidden)]
 pub mod claims;
-#[doc(hidden)]
 pub mod generators;
 pub mod small_amplitude;
 

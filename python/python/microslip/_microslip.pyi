@@ -176,9 +176,12 @@ def aft(
     lam: float | None = None,
     nu: float | None = None,
     time_points: int = 128,
+    p_harmonics: npt.ArrayLike | None = None,
+    elements: int = 256,
 ) -> tuple[npt.NDArray[np.float64], npt.NDArray[np.float64]]:
     # The friction force's harmonics F (ordered as U: [U_0 if h holds 0, cos h1, sin h1, …])
-    # and their exact Jacobian dF/dU (n × n), at constant normal load p0.
+    # and their exact Jacobian dF/dU (n × n), at normal load p0 (constant: Masing's element),
+    # plus p_harmonics in U's order where given (the spring bed of `elements` elements).
     ...
 
 def sweep(

@@ -97,12 +97,16 @@ pub enum Chart {
 /// end points, so bisection is exact).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Cell {
+    /// The chart the box lies in.
     pub chart: Chart,
+    /// The box's extent in the chart's x.
     pub x: (f64, f64),
+    /// The box's extent in the chart's y.
     pub y: (f64, f64),
 }
 
 impl Cell {
+    /// The box [x.0, x.1] × [y.0, y.1] of `chart`.
     pub fn new(chart: Chart, x: (f64, f64), y: (f64, f64)) -> Cell {
         Cell { chart, x, y }
     }
@@ -139,6 +143,7 @@ impl Cell {
 /// is a false claim (I → 0 at the edges), which the prover must refuse.
 #[derive(Clone, Copy, Debug)]
 pub struct Statement {
+    /// The shift added to I (0 for the claim itself).
     pub shift: f64,
 }
 

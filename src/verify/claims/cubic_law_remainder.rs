@@ -4,9 +4,9 @@
 
 use super::{Draw, Tally};
 use crate::ball::Ball;
-use crate::certified::certified_dissipation;
 use crate::compliance::{Compliance, ComplianceSpec};
 use crate::cycle::LoadCycle;
+use crate::digits::enclosure::certified_dissipation;
 use crate::exact::{cubic_kernel_majorant, partial_sums, remainders, PeanoKernels, SeriesShape};
 use crate::real::{Precision, Real};
 use crate::verify::generators::{compliance_spec, Family, Loads};

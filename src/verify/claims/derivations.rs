@@ -8,9 +8,9 @@
 
 use super::{Draw, Tally};
 use crate::ball::Ball;
-use crate::certified::certified_dissipation;
 use crate::compliance::{Compliance, ComplianceSpec, LoadScaled, Scaled, Sum};
 use crate::cycle::LoadCycle;
+use crate::digits::enclosure::certified_dissipation;
 use crate::exact::series_coefficients;
 use crate::real::{Precision, Real};
 use crate::verify::generators::compliance_spec;

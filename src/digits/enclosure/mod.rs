@@ -26,8 +26,8 @@ use crate::arb::enclose_pi_multiple;
 use crate::ball::{watch, Ball};
 use crate::compliance::Compliance;
 use crate::cycle::{CycleError, CycleKind, LoadCycle};
+use crate::digits::{doubled, Ladder, Rung, Stop};
 use crate::dissipation::{Segments, NEAR_SEPARATION};
-use crate::ladder::{doubled, Ladder, Rung, Stop};
 use crate::phase::ReducedPhase;
 use crate::real::{Precision, Real};
 
@@ -162,6 +162,8 @@ where
 
 /// [`certified_dissipation`] that starts no attempt after `deadline` (an attempt itself
 /// cannot be interrupted): [`CertifiedError::OutOfTime`] then names the digits reached.
+/// One function because its rung shares with the ladder's stop what the attempts learn:
+/// the case read for the first precision, the digits reached, whether Arb gave up.
 pub fn certified_dissipation_by<F>(case: F, digits: u32, deadline: Option<Instant>) -> Result<Certified, CertifiedError>
 where
     F: Fn(Precision) -> Result<(LoadCycle<Ball>, Box<dyn Compliance<Ball>>), String>,
@@ -183,18 +185,9 @@ where
     let out_of_time = || deadline.is_some_and(|deadline| Instant::now() >= deadline);
     // An attempt at twice the bits costs about four times the last: one that would end
     // past the deadline is not started.
-    let mut first_cost = std::time::Duration::ZERO;
-    if deadline.is_some_and(|deadline| needs_probe(first, deadline)) {
-        // A probe at a low precision foretells the first attempt's cost (quadratic in the bits).
-        let started = Instant::now();
-        if let Ok((cycle, compliance)) = case(Precision::bits(PROBE_BITS)) {
-            let _ = enclose_dissipation(&cycle, compliance.as_ref(), PROBE_BITS);
-        }
-        first_cost = started.elapsed() * (first / PROBE_BITS).pow(2);
-    }
     let ladder = Ladder::new(Precision::bits(first), Precision::bits(MAX_BITS))
         .until(deadline)
-        .foreseeing(4, first_cost);
+        .foreseeing(4, foreseen_first_cost(&case, first, deadline));
     // The digits the last enclosure settled, and whether Arb gave up on a piece there.
     let (mut reached, mut gave_up_before) = (0, false);
     let rung = |precision: Precision| {
@@ -215,17 +208,12 @@ where
                 return Rung::Final(CertifiedError::BeyondDecimalExponents);
             }
             Ok(enclosure) => {
-                // The one printing rule decides the digits settled.
-                let value = Value::of_ball(&enclosure.total, bits, digits);
-                let settled = match value.decimal {
-                    Decimal::Zero => digits,
-                    _ => value.digits(),
-                };
+                let (settled, text) = settled_digits(&enclosure.total, bits, digits);
                 // Digits that arrive after the deadline are out of time all the same.
                 if settled >= digits && !out_of_time() {
                     return Rung::Reached(Certified {
                         enclosure,
-                        text: value.decimal.to_string(),
+                        text,
                         digits: settled,
                     });
                 }
@@ -259,6 +247,34 @@ where
             bits: last_attempt.map_or(first, Precision::in_bits),
         }),
     }
+}
+
+/// The cost of a first attempt at `first` bits, foretold by a probe at [`PROBE_BITS`]
+/// (quadratic in the bits) where the deadline is near enough for it to matter; zero
+/// otherwise.
+fn foreseen_first_cost<F>(case: &F, first: u32, deadline: Option<Instant>) -> std::time::Duration
+where
+    F: Fn(Precision) -> Result<(LoadCycle<Ball>, Box<dyn Compliance<Ball>>), String>,
+{
+    if !deadline.is_some_and(|deadline| needs_probe(first, deadline)) {
+        return std::time::Duration::ZERO;
+    }
+    let started = Instant::now();
+    if let Ok((cycle, compliance)) = case(Precision::bits(PROBE_BITS)) {
+        let _ = enclose_dissipation(&cycle, compliance.as_ref(), PROBE_BITS);
+    }
+    started.elapsed() * (first / PROBE_BITS).pow(2)
+}
+
+/// The digits of `digits` asked that the one printing rule settles for W's enclosure at
+/// `bits` (all of them for an exact zero), and W as printed with them.
+fn settled_digits(total: &Ball, bits: u32, digits: u32) -> (u32, String) {
+    let value = Value::of_ball(total, bits, digits);
+    let settled = match value.decimal {
+        Decimal::Zero => digits,
+        _ => value.digits(),
+    };
+    (settled, value.decimal.to_string())
 }
 
 /// The bits a phase φ near a multiple of π costs beyond the digits asked: the angles of

@@ -21,14 +21,14 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use crate::admissibility::prove_admissible;
+use crate::answer::agreed::{check_case, checked_exact_zero, verified_dissipation_of, ReferenceError, MAX_DIGITS};
 use crate::answer::{Answer, Provenance, Value};
 use crate::case::{Case, CaseSpec, CaseText, InputError};
 use crate::compliance::{ComplianceTable, TableInterpolant, TABLE_ORDER};
 use crate::cycle::LoadCycle;
+use crate::decimal::printing::F64_MOST_DIGITS;
 use crate::dissipation::{dissipation, Dissipation, DissipationError, Options, Segment, Segments};
 use crate::real::Precision;
-use crate::reference::{check_case, checked_exact_zero, verified_dissipation_of, ReferenceError, MAX_DIGITS};
-use crate::verified::F64_MOST_DIGITS;
 
 /// W as printed, with why the policy took the path it took.
 #[derive(Clone, Debug, PartialEq)]
@@ -61,7 +61,7 @@ pub enum NoEnclosure {
     /// analytic on a piece, an enclosure too wide at the largest precision, or not narrow
     /// enough within its share of the budget.
     #[cfg(feature = "certified")]
-    Refused(crate::certified::CertifiedError),
+    Refused(crate::digits::enclosure::CertifiedError),
 }
 
 impl std::fmt::Display for NoEnclosure {
@@ -124,7 +124,7 @@ pub fn dissipation_report(
 /// use std::time::Duration;
 ///
 /// use microslip::case::CaseText;
-/// use microslip::dissipation_answer::dissipation_of;
+/// use microslip::answer::dissipation::dissipation_of;
 ///
 /// let case = CaseText::builder()
 ///     .p0(1).p1(0.4).q1(0.5).phi("0.4pi").friction(1).lambda(1)
@@ -211,10 +211,10 @@ fn to_digits(
 
 /// Where both the enclosure and agreement ran out of time, the one that got further (the
 /// enclosure on a tie: its digits are proven).
-fn further_in_time(no_enclosure: NoEnclosure, spent: crate::verified::OutOfBudget) -> ReferenceError {
+fn further_in_time(no_enclosure: NoEnclosure, spent: crate::digits::agreement::OutOfBudget) -> ReferenceError {
     match no_enclosure {
         #[cfg(feature = "certified")]
-        NoEnclosure::Refused(error @ crate::certified::CertifiedError::OutOfTime { reached, .. })
+        NoEnclosure::Refused(error @ crate::digits::enclosure::CertifiedError::OutOfTime { reached, .. })
             if reached >= spent.digits_reached() =>
         {
             ReferenceError::Certified(error)
@@ -227,17 +227,17 @@ fn further_in_time(no_enclosure: NoEnclosure, spent: crate::verified::OutOfBudge
 mod certified {
     use std::time::Instant;
 
+    use crate::answer::agreed::ReferenceError;
     use crate::answer::{Answer, Arithmetic, Provenance};
     use crate::ball::Ball;
     use crate::case::{Case, CaseSpec};
-    use crate::certified::{
+    use crate::digits::enclosure::{
         certified_dissipation_by, enclose_dissipation_with_lowest_load, CertifiedError, Enclosing, Enclosure,
         INTERVAL_GOAL_BITS,
     };
     use crate::dissipation::{DissipationError, Method, Segments, NEAR_SEPARATION};
     use crate::interval::Interval;
     use crate::real::{Precision, Real};
-    use crate::reference::ReferenceError;
 
     use super::{NoEnclosure, DEFAULT_LEAST_DIGITS};
 
@@ -366,9 +366,9 @@ mod certified {
 mod certified {
     use std::time::Instant;
 
+    use crate::answer::agreed::ReferenceError;
     use crate::answer::Answer;
     use crate::case::CaseSpec;
-    use crate::reference::ReferenceError;
 
     use super::NoEnclosure;
 

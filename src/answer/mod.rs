@@ -3,19 +3,27 @@
 //! and its difference from W — so that the command line, JSON, batch rows and the
 //! catalogue only format it.
 //!
-//! An [`Answer`] is a value printed by the one rule ([`crate::verified::decimal_ball`]:
+//! An [`Answer`] is a value printed by the one rule ([`crate::decimal::printing::decimal_ball`]:
 //! a digit is printed only if every point of the value's interval rounds to it), the
 //! interval itself, and its [`Provenance`]: what vouches for the interval — a proof
 //! (exact by reason, a rigorous enclosure) or an estimate (f64's error estimate, two
 //! precisions agreeing, a table's error, the simulation).
+//!
+//! One policy per quantity builds it: [`dissipation`](mod@dissipation) for W (enclosure,
+//! else agreement, else the reason), [`agreed`] for W by agreement and the errors of
+//! every path to W, [`simulation`] for the simulation's W.
+
+pub mod agreed;
+pub mod dissipation;
+pub mod simulation;
 
 use rug::Float;
 
+use crate::decimal::printing::{decimal_f64, decimal_interval, rounded_alike_expanded, F64_MOST_DIGITS};
+use crate::decimal::rounding::{scientific, DecimalEnd, ENCLOSURE_DIGITS};
 use crate::dissipation::{ExactZero, Method, Segments};
-use crate::rounding::{scientific, DecimalEnd, ENCLOSURE_DIGITS};
-use crate::verified::{decimal_f64, decimal_interval, rounded_alike_expanded, F64_MOST_DIGITS};
 
-pub use crate::verified::Decimal;
+pub use crate::decimal::printing::Decimal;
 
 /// What vouches for a printed value.
 #[derive(Clone, Debug, PartialEq)]
@@ -244,7 +252,7 @@ impl Value {
         };
         let (lower, upper) = scaled.bounds(bits);
         let value = Value::within(&lower, &upper, most);
-        let shift_text = |text: String| crate::verified::shift_exponent(&text, shift);
+        let shift_text = |text: String| crate::decimal::printing::shift_exponent(&text, shift);
         // Beyond MPFR's exponents the value is far beyond f64's too.
         Value {
             decimal: value.decimal.shifted(shift),
@@ -265,7 +273,7 @@ impl Value {
     /// The value in [`value` − `radius`, `value` + `radius`], with at most `most`
     /// significant digits.
     pub fn about(value: &Float, radius: &Float, most: u32) -> Self {
-        let (lower, upper) = crate::verified::ends(value, &radius.clone().abs());
+        let (lower, upper) = crate::decimal::printing::ends(value, &radius.clone().abs());
         Value::within(&lower, &upper, most)
     }
 

@@ -2,11 +2,11 @@
 //! f64 cycle or path it runs on, the tables it reads, a W of 0 it cannot vouch for —
 //! decided here, so that the command line and the bindings only format the result.
 
+use crate::answer::dissipation::tables_cover;
 use crate::answer::{Answer, Provenance, Value};
 use crate::case::{Case, CaseSpec, InputError};
 use crate::compliance::TableError;
 use crate::cycle::{CycleError, LoadCycle};
-use crate::dissipation_answer::tables_cover;
 use crate::path::{Drive, PathRequest, PathRequestError};
 use crate::real::Precision;
 use crate::simulate::{

@@ -17,6 +17,11 @@
 //! the chain rule runs through them): Newton's method on the balance needs no finite
 //! differences. proofs/aft.md derives the relation and records the checks.
 //!
+//! Under a periodic normal load P(t) (its harmonics in the displacement's layout),
+//! [`aft_with_normal_load`] steps the spring bed of `microslip simulate` through the samples
+//! instead, Masing's rules no longer holding, with the exact Jacobian of that discrete map;
+//! a [`VaryingLoadElement`] whose load is constant is Masing's element.
+//!
 //! ```
 //! use microslip::aft::{aft, FrictionElement};
 //!
@@ -31,11 +36,15 @@
 mod backbone;
 mod fourier;
 mod masing;
+mod normal_load;
+mod spring_bed;
+mod varying_load;
 
 use crate::compliance::{check_admissible, parse_spec, AdmissibilityError, Compliance, SpecError};
 use crate::real::Precision;
 
 pub use fourier::MAX_TIME_POINTS;
+pub use normal_load::{aft_with_normal_load, NormalLoad, VaryingLoadElement, DEFAULT_ELEMENTS};
 
 /// Why an element cannot be built or a displacement not evaluated.
 #[non_exhaustive]
@@ -92,6 +101,32 @@ pub enum AftError {
         /// The sample there.
         value: f64,
     },
+    /// The normal load's harmonics do not match the harmonic numbers.
+    #[error("the normal load has {given} harmonic coefficients but the harmonics {harmonics:?} need {expected} (in the displacement's order, added to p0)")]
+    NormalLoadLength {
+        /// The coefficients given.
+        given: usize,
+        /// The coefficients needed.
+        expected: usize,
+        /// The harmonic numbers.
+        harmonics: Vec<usize>,
+    },
+    /// A normal-load coefficient is not a finite number.
+    #[error("normal-load coefficient {index} is {value}: give finite numbers")]
+    NormalLoadNotFinite {
+        /// Its position in the normal load's harmonics.
+        index: usize,
+        /// Its value.
+        value: f64,
+    },
+    /// The normal load is not positive at a time point: the contact would separate.
+    #[error("the normal load P = {load} at time point {time_point} is not positive (the contact separates): give p0 and normal harmonics that keep P above 0 over the whole period")]
+    Separation {
+        /// The first time point where it is not.
+        time_point: usize,
+        /// P there.
+        load: f64,
+    },
     /// Too few or too many time points for the harmonics.
     #[error("time_points = {given}: the harmonics up to k = {highest} need more than {} time points per period (at most {MAX_TIME_POINTS})", 2 * highest)]
     TimePoints {
@@ -125,6 +160,24 @@ pub struct FrictionElement {
 /// zone reaches below it only within a hair of gross slip.
 const ADMISSIBLE_FROM: f64 = 1.0 / 1048576.0;
 
+/// f > 0 finite and λ in [1, 2].
+fn check_contact(friction: f64, compliance_ratio: f64) -> Result<(), AftError> {
+    let refuse = |quantity, value, requirement| {
+        Err(AftError::Parameter {
+            quantity,
+            value,
+            requirement,
+        })
+    };
+    if !(friction > 0.0 && friction.is_finite()) {
+        return refuse("the friction coefficient f", friction, "must be positive and finite");
+    }
+    if !(1.0..=2.0).contains(&compliance_ratio) {
+        return refuse("the compliance ratio λ", compliance_ratio, "lies outside [1, 2]");
+    }
+    Ok(())
+}
+
 impl FrictionElement {
     /// The element for P = `normal_load` > 0, f = `friction` > 0, λ = `compliance_ratio` in
     /// [1, 2] and a compliance admissible (v' > 0, v'' ≤ 0) on the loads the slip zone
@@ -135,22 +188,14 @@ impl FrictionElement {
         compliance_ratio: f64,
         compliance: Box<dyn Compliance<f64>>,
     ) -> Result<Self, AftError> {
-        let refuse = |quantity, value, requirement| {
-            Err(AftError::Parameter {
-                quantity,
-                value,
-                requirement,
-            })
-        };
         if !(normal_load > 0.0 && normal_load.is_finite()) {
-            return refuse("the normal load P", normal_load, "must be positive and finite");
+            return Err(AftError::Parameter {
+                quantity: "the normal load P",
+                value: normal_load,
+                requirement: "must be positive and finite",
+            });
         }
-        if !(friction > 0.0 && friction.is_finite()) {
-            return refuse("the friction coefficient f", friction, "must be positive and finite");
-        }
-        if !(1.0..=2.0).contains(&compliance_ratio) {
-            return refuse("the compliance ratio λ", compliance_ratio, "lies outside [1, 2]");
-        }
+        check_contact(friction, compliance_ratio)?;
         check_admissible(compliance.as_ref(), &(normal_load * ADMISSIBLE_FROM), &normal_load)?;
         let approach_at_load = compliance.approach(&normal_load);
         let approach_at_zero = compliance.approach(&0.0);
@@ -248,6 +293,25 @@ pub fn aft(
     time_points: usize,
 ) -> Result<AftForce, AftError> {
     let layout = fourier::Layout::cached(harmonics, time_points)?;
+    let samples = sampled_displacement(&layout, harmonics, displacement)?;
+    let steady = masing::steady_loop(element, &samples, &layout);
+    Ok(AftForce {
+        harmonics: harmonics.to_vec(),
+        displacement: displacement.to_vec(),
+        force: layout.analyze(&steady.load),
+        jacobian: layout.analyze_gradients(&steady.gradient),
+        displacement_samples: samples,
+        load_samples: steady.load,
+    })
+}
+
+/// u(t_n) at the layout's time points, the displacement's harmonics checked first: as many
+/// as the layout has, finite, and samples within f64's range.
+fn sampled_displacement(
+    layout: &fourier::Layout,
+    harmonics: &[usize],
+    displacement: &[f64],
+) -> Result<Vec<f64>, AftError> {
     if displacement.len() != layout.coefficients() {
         return Err(AftError::DisplacementLength {
             given: displacement.len(),
@@ -262,13 +326,5 @@ pub fn aft(
     if let Some((time_point, &value)) = samples.iter().enumerate().find(|(_, value)| !value.is_finite()) {
         return Err(AftError::Overflow { time_point, value });
     }
-    let steady = masing::steady_loop(element, &samples, &layout);
-    Ok(AftForce {
-        harmonics: harmonics.to_vec(),
-        displacement: displacement.to_vec(),
-        force: layout.analyze(&steady.load),
-        jacobian: layout.analyze_gradients(&steady.gradient),
-        displacement_samples: samples,
-        load_samples: steady.load,
-    })
+    Ok(samples)
 }

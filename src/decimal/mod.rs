@@ -1,5 +1,11 @@
-//! Decimals as written, read exactly: `0.4` is the rational 4/10, rounded once to each
-//! working precision, and refused in f64 where f64 cannot hold it.
+//! Exact decimals in, the printing rule out.
+//!
+//! Decimals as written are read exactly: `0.4` is the rational 4/10, rounded once to each
+//! working precision, and refused in f64 where f64 cannot hold it. [`printing`] holds the
+//! one rule by which every value is printed.
+
+pub mod printing;
+pub(crate) mod rounding;
 
 use rug::ops::Pow;
 use rug::{Integer, Rational};

@@ -1,11 +1,18 @@
-//! The one precision ladder: every quantity whose digits are proven or checked (W and its
-//! segments, I(ρ, φ), the coefficients Iₙ, a partial sum W_N) climbs it.
+//! Where digits are decided: the one precision ladder, which every quantity whose digits
+//! are proven or checked (W and its segments, I(ρ, φ), the coefficients Iₙ, a partial sum
+//! W_N) climbs, and its rungs — `enclosure` (feature `certified`: W as rigorous
+//! enclosures in f64 intervals and Arb balls) and [`agreement`] (two working precisions
+//! agreeing, where no enclosure reaches).
 //!
 //! As an optimizer's executor owns its loop and a solver does one step, [`Ladder::climb`]
 //! owns the loop over working precisions and the deadline, and a rung computes the quantity
 //! at one precision and says how that went ([`Rung`]): reached, short of the digits (a
 //! higher precision may settle them), or failed for good. The ladder stops for one reason
 //! ([`Stop`]); each caller turns it into its own error with what it knows of the digits.
+
+pub mod agreement;
+#[cfg(feature = "certified")]
+pub mod enclosure;
 
 use std::time::{Duration, Instant};
 

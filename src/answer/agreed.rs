@@ -1,8 +1,8 @@
 //! W to a requested number of digits by agreement of two precisions — the path
-//! [`crate::dissipation_answer`] takes where no rigorous enclosure can be had — and the
+//! [`crate::answer::dissipation`] takes where no rigorous enclosure can be had — and the
 //! errors of every path to W.
 //!
-//! The case is computed twice by [`crate::verified::verify`] — at a working precision
+//! The case is computed twice by [`crate::digits::agreement::verify`] — at a working precision
 //! and rule chosen for the target, then again at a higher precision with twice the
 //! quadrature points — with the decimal inputs re-read exactly at each precision. Digits
 //! are only reported when the two agree to the target plus guard digits; otherwise both
@@ -17,12 +17,14 @@ use crate::admissibility::prove_admissible;
 use crate::answer::{Answer, Provenance, Value};
 use crate::case::{Case, CaseSpec, CaseText, InputError};
 use crate::compliance::TableError;
+use crate::digits::agreement::{
+    agreeing_digits, agreement_radius, verify, OutOfBudget, TwoPrecisions, Verified, GUARD_DIGITS,
+};
 use crate::dissipation::{dissipation, Dissipation, DissipationError, ExactZero, Method, Options, Rules, Segments};
 use crate::quad::{FixedRule, RuleError};
 use crate::real::{Precision, Real};
-use crate::verified::{agreeing_digits, agreement_radius, verify, OutOfBudget, TwoPrecisions, Verified, GUARD_DIGITS};
 
-pub use crate::verified::MAX_DIGITS;
+pub use crate::digits::agreement::MAX_DIGITS;
 
 /// W with its segments, rounded to the verified digits.
 #[derive(Clone, Debug)]
@@ -65,7 +67,7 @@ pub enum ReferenceError {
     /// The certified enclosure could not be had in time.
     #[cfg(feature = "certified")]
     #[error(transparent)]
-    Certified(crate::certified::CertifiedError),
+    Certified(crate::digits::enclosure::CertifiedError),
     /// A table of the compliance.
     #[error(transparent)]
     Table(#[from] TableError),
@@ -112,7 +114,7 @@ impl ReferenceError {
             // More time helps an enclosure only where time is what it ran out of.
             #[cfg(feature = "certified")]
             ReferenceError::Certified(error)
-                if !matches!(error, crate::certified::CertifiedError::OutOfTime { .. }) =>
+                if !matches!(error, crate::digits::enclosure::CertifiedError::OutOfTime { .. }) =>
             {
                 ""
             }
