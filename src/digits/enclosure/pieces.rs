@@ -5,10 +5,9 @@
 //! scaled by a rough W; W is λ times the sum of the pieces.
 
 use std::cell::Cell;
-use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::rc::Rc;
 
-use super::enclosing::Enclosing;
+use super::enclosing::{CertifiedPiece, Enclosing};
 use super::{CertifiedError, Enclosure};
 use crate::compliance::{Compliance, SlopeChange};
 use crate::cycle::{CycleKind, EllipseGeometry, LoadCycle, ValidCycle};
@@ -17,7 +16,7 @@ use crate::dissipation::closed_forms::{
 };
 use crate::dissipation::slope::knot_offsets;
 use crate::dissipation::{Segment, SegmentIntegrands, Segments, SlopeBetween, SlopesAtLoads, NEAR_SEPARATION};
-use crate::doubts::{watch, with_analytic, Doubts};
+use crate::doubts::{watch, Doubts};
 use crate::quad::Piece;
 use crate::real::Precision;
 
@@ -457,28 +456,6 @@ fn integrate_pieces<R: Enclosing>(
     Ok((sums, pieces.len()))
 }
 
-/// One integral of W: ∫ from `start` to `end` of `integrand`, summed into `group`.
-pub struct CertifiedPiece<'a, R> {
-    /// The segment's (or the closed form's term's) position.
-    group: usize,
-    /// Its name, for messages.
-    label: &'static str,
-    pub(super) start: R,
-    pub(super) end: R,
-    /// The integrand at real points, with the slope change formed without cancellation.
-    integrand: PieceIntegrand<'a, R>,
-    /// The same analytic function with the slope change as a plain difference of slopes,
-    /// for Arb's bound on complex balls: the precision of a bound does not matter, its
-    /// width does, and the algebraic forms of the slope change (a root raised to powers
-    /// and divided) widen far more on a complex ball than one `acb_pow` does.
-    /// `None` where the integrand serves for both.
-    bound: Option<PieceIntegrand<'a, R>>,
-    /// Integrand evaluations so far, against the piece's budget ([`evaluation_limit`]).
-    pub(super) evaluations: Cell<i64>,
-}
-
-type PieceIntegrand<'a, R> = Box<dyn Fn(&R) -> R + 'a>;
-
 /// The pieces of the four segments, as [`SegmentIntegrands::pieces`] splits them (the
 /// sinh map is analytic on complex balls: Arb's sinh and cosh).
 fn certified_pieces<'a, R: Enclosing>(
@@ -513,55 +490,6 @@ fn certified_pieces<'a, R: Enclosing>(
             end: plan.end,
         })
         .collect()
-}
-
-impl<R: Enclosing> CertifiedPiece<'_, R> {
-    /// The integrand on `x` (required to be analytic there where `analytic`), or `None`
-    /// where the evaluation met an undecided comparison or a branch cut, or panicked.
-    pub(super) fn value(&self, x: &R, analytic: bool) -> Option<R> {
-        self.evaluations.set(self.evaluations.get() + 1);
-        let integrand = match (&self.bound, analytic) {
-            (Some(bound), true) => bound,
-            _ => &self.integrand,
-        };
-        let outcome = catch_unwind(AssertUnwindSafe(|| watch(|| with_analytic(analytic, || integrand(x)))));
-        match outcome {
-            Ok((value, doubts)) if doubts.none() => Some(value),
-            _ => None,
-        }
-    }
-
-    /// A rough value of the integral (three-point Gauss–Legendre on the midpoints),
-    /// only to scale the tolerance Arb aims at; `None` where an evaluation fails.
-    fn rough_integral(&self) -> Option<R> {
-        let half = (self.end.clone() - &self.start) / &self.start.int(2);
-        let middle = self.start.clone() + &half;
-        let offset = half.clone() * &(self.start.int(3) / &self.start.int(5)).sqrt();
-        let mut sum = self.value(&middle, false)? * &self.start.int(8);
-        for node in [middle.clone() - &offset, middle + &offset] {
-            sum += self.value(&node, false)? * &self.start.int(5);
-        }
-        Some(sum * &half / &self.start.int(9))
-    }
-
-    /// A rough value of the integral that also sees the ends, where the pieces' narrow
-    /// peaks lie (five-point Gauss–Lobatto); the three-point value where an end cannot
-    /// be evaluated.
-    fn rough_integral_with_ends(&self) -> Option<R> {
-        let (Some(at_start), Some(at_end)) = (self.value(&self.start, false), self.value(&self.end, false)) else {
-            return self.rough_integral();
-        };
-        let int = |n: i64| self.start.int(n);
-        let half = (self.end.clone() - &self.start) / &int(2);
-        let middle = self.start.clone() + &half;
-        let offset = half.clone() * &(int(3) / &int(7)).sqrt();
-        // Weights 1/10, 49/90, 32/45, 49/90, 1/10 on [−1, 1], over 90.
-        let mut sum = (at_start + &at_end) * &int(9) + &(self.value(&middle, false)? * &int(64));
-        for node in [middle.clone() - &offset, middle + &offset] {
-            sum += self.value(&node, false)? * &int(49);
-        }
-        Some(sum * &half / &int(90))
-    }
 }
 
 /// An absolute error Arb may stop at on a subinterval: 2^−goal of a rough W, so that a

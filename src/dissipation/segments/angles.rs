@@ -3,7 +3,7 @@
 //! end), at a point in s or at a point of the bottom map, where every sine and cosine
 //! is formed from the half-angle α to the lowest load rather than from an angle near π.
 
-use super::plans::Bottom;
+use super::plans::{rise_of, Bottom};
 use super::{Segment, SegmentIntegrands};
 use crate::quad::bottom_map::BottomPoint;
 use crate::real::Real;
@@ -47,16 +47,6 @@ pub(super) enum SegmentAngle<R> {
         /// sin 2h.
         double_sin: R,
     },
-}
-
-/// 1 + cos θ from (sin θ, cos θ): as sin²θ/(1 − cos θ) where cos θ < 0 (a double
-/// decides), which near θ ≡ π keeps the relative accuracy of sin θ where 1 + cos θ cancels.
-pub(super) fn rise_of<R: Real>((sin, cos): &(R, R)) -> R {
-    if cos.to_f64_lossy() < 0.0 {
-        sin.square() / &(cos.int(1) - cos)
-    } else {
-        cos.int(1) + cos
-    }
 }
 
 impl<'a, R: Real> SegmentIntegrands<'a, R> {

@@ -3,7 +3,6 @@
 //! cycle through the bottom map, with limits in u formed from the sines of the angles
 //! at the segment's ends.
 
-use super::angles::rise_of;
 use super::{LowLoad, Segment, SegmentIntegrands};
 use crate::quad::bottom_map::BottomMap;
 use crate::quad::sinh_map::{resolve_peaks, Peak, SinhMap};
@@ -18,6 +17,16 @@ pub(crate) const NEAR_SEPARATION: i64 = 1 << 10;
 /// piece in u; the rest is integrated in s, where 1 + cos θ ≥ 1 − cos(1/4) no longer
 /// cancels much (measured: proofs/certified-digits.md, "Near separation").
 const BOTTOM_REACH: i64 = 4;
+
+/// 1 + cos θ from (sin θ, cos θ): as sin²θ/(1 − cos θ) where cos θ < 0 (a double
+/// decides), which near θ ≡ π keeps the relative accuracy of sin θ where 1 + cos θ cancels.
+pub(super) fn rise_of<R: Real>((sin, cos): &(R, R)) -> R {
+    if cos.to_f64_lossy() < 0.0 {
+        sin.square() / &(cos.int(1) - cos)
+    } else {
+        cos.int(1) + cos
+    }
+}
 
 /// A bottom map in one segment, with what the segment's integrand needs besides.
 #[derive(Clone, Debug)]
