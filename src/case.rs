@@ -274,6 +274,18 @@ impl CaseSpec {
         Ok(Case { cycle, compliance })
     }
 
+    /// P0 − P1, the lowest normal load, from the exact decimals rounded once to the
+    /// precision (enclosed by the two doubles around it in intervals), where the
+    /// difference of P0 and P1 each rounded would carry their rounding amplified
+    /// P0/(P0 − P1)-fold ([`crate::cycle::EllipseGeometry::with_lowest_normal_load`]).
+    pub fn lowest_normal_load<R: Real>(&self, precision: Precision) -> Result<R, InputError> {
+        let lowest = Rational::from(&self.mean_normal_load.value - &self.normal_amplitude.value);
+        rounded(&lowest, precision).ok_or_else(|| InputError::OutsideF64Range {
+            quantity: "the lowest normal load P0 − P1",
+            text: format!("{} − {}", self.mean_normal_load.text, self.normal_amplitude.text),
+        })
+    }
+
     /// The phase the cycle is read with at the precision ([`ReducedPhase::cycle_phase`]) and
     /// whether it is the mirror image's. An offset from a multiple of π that f64 cannot hold
     /// (1e-400) is refused in f64 like any number.

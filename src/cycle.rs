@@ -603,6 +603,14 @@ pub struct EllipseGeometry<R> {
     pub slip_angle: R,
     /// P_T − P0 = −(σ₊ + σ₋)/(2f).
     pub permanent_stick_offset: R,
+    /// P0 − P1, the lowest normal load: P0 minus P1 as the cycle holds them, or as read
+    /// exactly by [`EllipseGeometry::with_lowest_normal_load`]. Near separation the loads
+    /// at the bottom of the cycle are formed from it, and keep its relative accuracy.
+    pub lowest_normal_load: R,
+    /// P0 − P1 − P_T = (σ₊ + σ₋)/(2f) − P1 ≥ 0, how far the permanent-stick load lies
+    /// below the lowest normal load, formed without the cancellation of its definition
+    /// ([`stick_load_depth`]), so that P_T ≤ P0 − P1 is as accurate as both near separation.
+    pub stick_load_depth: R,
     /// (sin φ, cos φ), for Q at angles whose sine and cosine are known.
     pub phase_sin_cos: (R, R),
     /// (sin θ_C, cos θ_C), for P at θ_C ± s.
@@ -611,6 +619,12 @@ pub struct EllipseGeometry<R> {
     pub theta_b_sin_cos: (R, R),
     /// (sin θ_E, cos θ_E), for the angles of HE measured from E.
     pub theta_e_sin_cos: (R, R),
+    /// (sin θ_H, cos θ_H).
+    pub theta_h_sin_cos: (R, R),
+    /// (sin δ, cos δ) of the stick angle δ = θ_C − θ_B.
+    pub stick_sin_cos: (R, R),
+    /// (sin, cos) of half the slip angle, (π − δ)/2.
+    pub half_slip_sin_cos: (R, R),
 }
 
 impl<R: Real> EllipseGeometry<R> {
@@ -622,7 +636,8 @@ impl<R: Real> EllipseGeometry<R> {
         let fp1 = cycle.friction.clone() * &cycle.normal_amplitude;
         let q1_sin = q1.clone() * &trig.sin;
         let pi = phi.pi_like();
-        let theta_e = q1_sin.atan2(&cycle.difference_line_offset(&trig));
+        let difference_offset = cycle.difference_line_offset(&trig);
+        let theta_e = q1_sin.atan2(&difference_offset);
         // δ = θ_E − θ_A, the angle between (Q1 cos φ + fP1, Q1 sin φ) and (Q1 cos φ − fP1, Q1 sin φ),
         // from their cross and dot products, formed with the loads scaled to at most 1 so
         // that products of loads near the top of the range cannot overflow.
@@ -631,21 +646,35 @@ impl<R: Real> EllipseGeometry<R> {
         let cross = q.clone() * &trig.sin * &p * &phi.int(2);
         let dot = (q.clone() - &p) * &(q + &p);
         let stick_angle = cross.atan2(&dot);
-        let slip_angle = cross.atan2(&(-dot));
+        let slip_angle = cross.atan2(&(-dot.clone()));
+        let theta_e_sin_cos = direction_sin_cos(&q1_sin, &difference_offset, &theta_e);
+        let stick_sin_cos = direction_sin_cos(&cross, &dot, &stick_angle);
         let theta_c = theta_e.clone() + &pi;
         let theta_b = theta_c.clone() - &stick_angle;
         let theta_h = theta_c.clone() + &stick_angle;
         let permanent_stick_offset =
             -((sum_amplitude.clone() + &difference_amplitude) / &(cycle.friction.clone() * &phi.int(2)));
+        let lowest_normal_load = cycle.mean_normal_load.clone() - &cycle.normal_amplitude;
+        let stick_load_depth =
+            stick_load_depth(&sum_amplitude, &difference_amplitude, &q1, &fp1, &trig.sin) / &cycle.friction;
         let phase_sin_cos = (trig.sin, trig.cos);
-        let theta_c_sin_cos = theta_c.sin_cos();
-        let theta_b_sin_cos = theta_b.sin_cos();
-        let theta_e_sin_cos = theta_e.sin_cos();
+        // θ_C = θ_E + π and θ_B = θ_C − δ by the addition formulas, free of the rounding
+        // of the angles themselves, which near the bottom of the cycle (θ ≈ π) is large
+        // against their sines.
+        let theta_c_sin_cos = (-theta_e_sin_cos.0.clone(), -theta_e_sin_cos.1.clone());
+        let ((c_sin, c_cos), (d_sin, d_cos)) = (&theta_c_sin_cos, &stick_sin_cos);
+        let (sin_part, cos_part) = (c_sin.clone() * d_cos, c_cos.clone() * d_sin);
+        let (cos_a, sin_b) = (c_cos.clone() * d_cos, c_sin.clone() * d_sin);
+        let theta_b_sin_cos = (sin_part.clone() - &cos_part, cos_a.clone() + &sin_b);
+        let theta_h_sin_cos = (sin_part + &cos_part, cos_a - &sin_b);
+        let half_slip_sin_cos = slip_angle.clone().times_power_of_two(-1).sin_cos();
         EllipseGeometry {
             phase_sin_cos,
             theta_c_sin_cos,
             theta_b_sin_cos,
             theta_e_sin_cos,
+            theta_h_sin_cos,
+            stick_sin_cos,
             mean_normal_load: cycle.mean_normal_load.clone(),
             normal_amplitude: cycle.normal_amplitude.clone(),
             tangential_amplitude: q1,
@@ -660,12 +689,27 @@ impl<R: Real> EllipseGeometry<R> {
             stick_angle,
             slip_angle,
             permanent_stick_offset,
+            lowest_normal_load,
+            stick_load_depth,
+            half_slip_sin_cos,
         }
     }
 
-    /// P_T, the permanent-stick load.
+    /// The same geometry with the lowest normal load P0 − P1 given by the caller: read
+    /// exactly from the decimals (enclosed, in intervals, by the two doubles around
+    /// it), where P0 − P1 formed from the rounded P0 and P1 would carry their rounding
+    /// amplified P0/(P0 − P1)-fold.
+    pub fn with_lowest_normal_load(self, lowest_normal_load: R) -> Self {
+        EllipseGeometry {
+            lowest_normal_load,
+            ..self
+        }
+    }
+
+    /// P_T, the permanent-stick load, as P0 − P1 − [`EllipseGeometry::stick_load_depth`]:
+    /// accurate where P_T is small (it is at most P0 − P1).
     pub fn permanent_stick_load(&self) -> R {
-        self.mean_normal_load.clone() + &self.permanent_stick_offset
+        self.lowest_normal_load.clone() - &self.stick_load_depth
     }
 
     /// P(θ) − P0 = P1 cos θ.
@@ -716,6 +760,40 @@ impl<R: Real> EllipseGeometry<R> {
     pub fn mirror(&self, theta: &R) -> R {
         self.theta_c.clone() * &theta.int(2) - theta
     }
+}
+
+/// (sin, cos) of `angle` = atan2(y, x), as (y, x)/hypot(x, y): as accurate as y and x,
+/// where the sine of the rounded angle is not (a sine near 0 at an angle near π); the
+/// angle's own where hypot(x, y) is 0 or below the doubles.
+fn direction_sin_cos<R: Real>(y: &R, x: &R, angle: &R) -> (R, R) {
+    let radius = x.hypot(y);
+    if radius.to_f64_lossy() > 0.0 {
+        (y.clone() / &radius, x.clone() / &radius)
+    } else {
+        angle.sin_cos()
+    }
+}
+
+/// (σ₊ + σ₋)/2 − fP1 ≥ 0 (with `p` = fP1 and `sin` = sin φ), from
+/// ((σ₊ + σ₋)/2)² − p² = (σ₊σ₋ − (p² − Q1²))/2 and, for p > Q1,
+/// σ₊σ₋ − (p² − Q1²) = 4Q1²p² sin²φ/(σ₊σ₋ + p² − Q1²) ((σ₊σ₋)² = (Q1² + p²)² − 4Q1²p² cos²φ):
+/// sums of terms of one sign, where the definition cancels to a difference of size Q1²/p.
+/// Both forms hold wherever they are defined; a double decides which is taken.
+fn stick_load_depth<R: Real>(plus: &R, minus: &R, q1: &R, p: &R, sin: &R) -> R {
+    let zero = p.int(0);
+    let half_sum = (plus.clone() + minus).times_power_of_two(-1);
+    if half_sum == zero {
+        // σ₊ = σ₋ = 0: Q1 = fP1 = 0.
+        return zero;
+    }
+    let product = plus.clone() * minus;
+    let squares = (p.clone() - q1) * &(p.clone() + q1);
+    let excess = if p.to_f64_lossy() > q1.to_f64_lossy() {
+        (q1.clone() * p * sin).square().times_power_of_two(2) / &(product + &squares)
+    } else {
+        product - &squares
+    };
+    excess.times_power_of_two(-1) / &(half_sum + p)
 }
 
 /// The loads and their rates at one angle of the cycle, from its sine and cosine. Each is
@@ -830,6 +908,45 @@ mod tests {
             let p_k = g.permanent_stick_load() + 0.5 * ((q_e - c.friction * p_e) - minus(theta)) / c.friction;
             let half = ((theta - g.theta_e) / 2.0).sin();
             assert!((g.mean_normal_load + g.forward_slip_offset(&half) - p_k).abs() < 1e-14);
+        }
+    }
+
+    /// P_T's depth below P0 − P1 and the sines and cosines of E, B, C, H, formed without
+    /// cancellation in f64, against their definitions at 300 bits: near separation (P_T and
+    /// θ_B − π both small) and on an ordinary cycle.
+    #[test]
+    fn the_stick_depth_and_the_angles_sines_keep_their_relative_accuracy() {
+        use crate::real::Precision;
+        use rug::Float;
+        let p = Precision::bits(300);
+        for (p1, q1, phase) in [(1.0 - 1e-9, 5e-10, 1.2), (0.4, 0.5, 1.25), (0.4, 0.3, 0.3)] {
+            let cycle = LoadCycle {
+                normal_amplitude: p1,
+                tangential_amplitude: q1,
+                mean_tangential_load: 0.0,
+                ..cycle(phase)
+            };
+            let g = ValidCycle::new(cycle.clone()).unwrap().geometry();
+            let precise = ValidCycle::new(cycle.map(|x| Float::from_f64(x, p)))
+                .unwrap()
+                .geometry();
+            let depth =
+                (precise.sum_amplitude.clone() + &precise.difference_amplitude) / 2u32 - &precise.normal_amplitude;
+            let close = |name: &str, found: f64, expected: &Float| {
+                let error = (Float::with_val(300, found) - expected).abs() / expected.clone().abs();
+                assert!(error < 1e-13, "P1 = {p1}, {name}: {found:e} against {expected:e}");
+            };
+            close("P0 − P1 − P_T", g.stick_load_depth, &depth);
+            for (name, (sin, cos), angle) in [
+                ("θ_E", &g.theta_e_sin_cos, &precise.theta_e),
+                ("θ_B", &g.theta_b_sin_cos, &precise.theta_b),
+                ("θ_C", &g.theta_c_sin_cos, &precise.theta_c),
+                ("θ_H", &g.theta_h_sin_cos, &precise.theta_h),
+            ] {
+                let (expected_sin, expected_cos) = angle.clone().sin_cos(Float::new(300));
+                close(name, *sin, &expected_sin);
+                close(name, *cos, &expected_cos);
+            }
         }
     }
 

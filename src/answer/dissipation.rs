@@ -232,7 +232,8 @@ mod certified {
     use crate::ball::Ball;
     use crate::case::{Case, CaseSpec};
     use crate::digits::enclosure::{
-        certified_dissipation_by, enclose_dissipation, CertifiedError, Enclosing, Enclosure, INTERVAL_GOAL_BITS,
+        certified_dissipation_by, enclose_dissipation_with_lowest_load, CertifiedError, Enclosing, Enclosure,
+        INTERVAL_GOAL_BITS,
     };
     use crate::dissipation::{DissipationError, Method, Segments, NEAR_SEPARATION};
     use crate::interval::Interval;
@@ -279,18 +280,31 @@ mod certified {
     /// bound, a number beyond the range of f64).
     fn in_intervals(case: &CaseSpec, least: u32, most: u32) -> Option<Answer> {
         let Case { cycle, compliance } = case.at::<Interval>(Precision::DOUBLE).ok()?;
-        // Near separation the rounding in doubles is amplified about P1/δ-fold (δ = P0 − P1):
-        // where the bottom map takes over the intervals prove 9 digits or fewer, and the
-        // attempt is not made.
-        let lowest = (cycle.mean_normal_load - cycle.normal_amplitude).to_f64_lossy();
-        let clear_of_separation = lowest * NEAR_SEPARATION as f64 > cycle.normal_amplitude.to_f64_lossy();
-        if !clear_of_separation {
+        // P0 − P1 read exactly: near separation the loads at the bottom of the cycle are
+        // formed from it, where the difference of P0 and P1 each rounded would carry
+        // their rounding amplified P1/(P0 − P1)-fold.
+        let lowest = case.lowest_normal_load::<Interval>(Precision::DOUBLE).ok()?;
+        // Near separation what doubles prove is set by how far the stick segments cancel:
+        // away from φ ≡ π/2 the attempt is not made (proofs/printing.md, "Near separation in
+        // f64 intervals").
+        let near_separation = lowest.to_f64_lossy() * NEAR_SEPARATION as f64 <= cycle.normal_amplitude.to_f64_lossy();
+        if near_separation && cycle.phase_trig().sin.square().to_f64_lossy() < LEAST_SQUARED_PHASE_SINE {
             return None;
         }
-        let enclosure = enclose_dissipation(&cycle, compliance.as_ref(), INTERVAL_GOAL_BITS).ok()?;
+        let enclosure =
+            enclose_dissipation_with_lowest_load(&cycle, Some(&lowest), compliance.as_ref(), INTERVAL_GOAL_BITS)
+                .ok()?;
         let answer = enclosure_answer(&enclosure, most, Arithmetic::F64Intervals);
         (answer.value.digits() >= least).then_some(answer)
     }
+
+    /// The least sin²φ at which a cycle near separation is tried in f64 intervals (φ within
+    /// about 24° of π/2). BC and CH, each larger than W by up to about 1/sin²φ, cancel in
+    /// W, and the width of their enclosures does not: of 700 cycles within 1e-3 to 1e-9 of
+    /// separation (benches/default_rows.py, seeds 2026 and 2027), those the intervals prove
+    /// lie mostly here, and beyond it the attempts that fail cost more than those that
+    /// succeed save the Arb ladder.
+    const LEAST_SQUARED_PHASE_SINE: f64 = 5.0 / 6.0;
 
     /// W to `digits` certified digits by the Arb ladder.
     fn in_balls(

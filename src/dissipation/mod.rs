@@ -47,9 +47,9 @@ pub use error::DissipationError;
 pub use four_segment::four_segment;
 pub use options::{Options, Rules};
 pub use segment::{Segment, Segments};
-#[cfg(feature = "certified")]
-pub(crate) use segments::NEAR_SEPARATION;
 pub use segments::{SegmentIntegrands, SegmentPieces};
+#[cfg(feature = "certified")]
+pub(crate) use segments::{SlopeBetween, SlopesAtLoads, NEAR_SEPARATION};
 
 use crate::compliance::Compliance;
 use crate::cycle::{CycleKind, LoadCycle, ValidCycle};

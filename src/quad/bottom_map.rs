@@ -54,7 +54,13 @@ impl<R: Real> BottomMap<R> {
     /// u = asinh(sin((s − c)/2)/t), the inverse map (for |s − c| < π).
     pub fn to_u(&self, s: &R) -> R {
         let half = (s.clone() - &self.center).times_power_of_two(-1);
-        asinh(&(half.sin() / &self.scale))
+        self.to_u_from_half_sin(&half.sin())
+    }
+
+    /// u = asinh(sin α/t) from sin α itself, α = (s − c)/2: for a point whose angle from
+    /// the lowest load is known more accurately than s − c.
+    pub fn to_u_from_half_sin(&self, half_sin: &R) -> R {
+        asinh(&(half_sin.clone() / &self.scale))
     }
 
     /// The half-angle and the rate at u.

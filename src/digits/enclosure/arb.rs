@@ -5,8 +5,8 @@
 
 use rug::Float;
 
+use super::enclosing::CertifiedPiece;
 use super::enclosing::Enclosing;
-use super::pieces::CertifiedPiece;
 use crate::answer::Value;
 use crate::arb::bisection;
 use crate::ball::{Ball, Mag};

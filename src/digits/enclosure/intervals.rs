@@ -5,8 +5,8 @@
 
 use rug::Float;
 
+use super::enclosing::CertifiedPiece;
 use super::enclosing::Enclosing;
-use super::pieces::CertifiedPiece;
 use crate::answer::Value;
 use crate::interval::{gauss, Interval};
 use crate::real::Real;

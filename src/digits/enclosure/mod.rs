@@ -32,7 +32,7 @@ use crate::phase::ReducedPhase;
 use crate::real::{Precision, Real};
 
 pub use enclosing::Enclosing;
-pub use pieces::{enclose_dissipation, MOST_DECAY_FOLDS};
+pub use pieces::{enclose_dissipation, enclose_dissipation_with_lowest_load, MOST_DECAY_FOLDS};
 
 /// W and its segments as enclosures (Arb balls, f64 intervals) that contain the exact
 /// values.

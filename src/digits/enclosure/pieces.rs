@@ -5,10 +5,9 @@
 //! scaled by a rough W; W is λ times the sum of the pieces.
 
 use std::cell::Cell;
-use std::panic::{catch_unwind, AssertUnwindSafe};
 use std::rc::Rc;
 
-use super::enclosing::Enclosing;
+use super::enclosing::{CertifiedPiece, Enclosing};
 use super::{CertifiedError, Enclosure};
 use crate::compliance::{Compliance, SlopeChange};
 use crate::cycle::{CycleKind, EllipseGeometry, LoadCycle, ValidCycle};
@@ -16,8 +15,8 @@ use crate::dissipation::closed_forms::{
     constant_normal_load_segments, constant_normal_load_term, in_phase_segments, in_phase_terms, weighted_pieces,
 };
 use crate::dissipation::slope::knot_offsets;
-use crate::dissipation::{Segment, SegmentIntegrands, Segments};
-use crate::doubts::{watch, with_analytic, Doubts};
+use crate::dissipation::{Segment, SegmentIntegrands, Segments, SlopeBetween, SlopesAtLoads, NEAR_SEPARATION};
+use crate::doubts::{watch, Doubts};
 use crate::quad::Piece;
 use crate::real::Precision;
 
@@ -25,6 +24,23 @@ use crate::real::Precision;
 /// Arb aiming at `goal_bits` relative accuracy per piece.
 pub fn enclose_dissipation<R: Enclosing>(
     cycle: &LoadCycle<R>,
+    compliance: &dyn Compliance<R>,
+    goal_bits: u32,
+) -> Result<Enclosure<R>, CertifiedError> {
+    enclose_dissipation_with_lowest_load(cycle, None, compliance, goal_bits)
+}
+
+/// [`enclose_dissipation`], with the lowest normal load P0 − P1 enclosed by the caller
+/// (read exactly from the decimals) where given: near separation the loads at the bottom
+/// of the cycle are formed from it ([`EllipseGeometry::with_lowest_normal_load`]), which
+/// the difference of the rounded P0 and P1 would widen P0/(P0 − P1)-fold. Given, it also
+/// asks for the forms that keep the digits of a precision that cannot be raised (f64
+/// intervals): the slip loads apart and the low loads from the lowest load, near
+/// separation or where the slip terms cancel ([`SlopesAtLoads`]); the Arb ladder, which
+/// raises its precision instead, keeps the cheaper segment formulas.
+pub fn enclose_dissipation_with_lowest_load<R: Enclosing>(
+    cycle: &LoadCycle<R>,
+    lowest_normal_load: Option<&R>,
     compliance: &dyn Compliance<R>,
     goal_bits: u32,
 ) -> Result<Enclosure<R>, CertifiedError> {
@@ -66,7 +82,7 @@ pub fn enclose_dissipation<R: Enclosing>(
             let (integrals, pieces) = enclose_terms(cycle, compliance, terms, goal_bits)?;
             (in_phase_segments(cycle, integrals), pieces)
         }
-        CycleKind::Elliptic => enclose_segments(&valid, compliance, goal_bits)?,
+        CycleKind::Elliptic => enclose_segments(&valid, lowest_normal_load, compliance, goal_bits)?,
     };
     let lambda = &cycle.compliance_ratio;
     let segments = Segments::from_fn(|segment| sums.get(segment).clone() * lambda);
@@ -172,11 +188,15 @@ fn integrand_ceiling<R: Enclosing>(geometry: &EllipseGeometry<R>, slope: &(dyn F
 /// The four segments of an elliptic cycle per unit λ, and how many pieces they took.
 fn enclose_segments<R: Enclosing>(
     valid: &ValidCycle<R>,
+    lowest_normal_load: Option<&R>,
     compliance: &dyn Compliance<R>,
     goal_bits: u32,
 ) -> Result<(Segments<R>, usize), CertifiedError> {
     let bits = valid.mean_normal_load.precision().in_bits();
-    let (geometry, doubts) = watch(|| valid.geometry());
+    let (geometry, doubts) = watch(|| match lowest_normal_load {
+        Some(lowest) => valid.geometry().with_lowest_normal_load(lowest.clone()),
+        None => valid.geometry(),
+    });
     if !doubts.none() {
         return Err(undecided(bits, doubts));
     }
@@ -209,8 +229,19 @@ fn enclose_segments<R: Enclosing>(
     if !doubts.none() {
         return Err(undecided(bits, doubts));
     }
+    let at_loads = if lowest_normal_load.is_some() && loads_apart(valid, &geometry) {
+        Some(slopes_at_loads(
+            compliance,
+            &geometry.mean_normal_load,
+            slopes.len() > 1,
+            bits,
+        )?)
+    } else {
+        None
+    };
     for slope in &slopes {
-        let (pieces, doubts) = watch(|| certified_pieces(&integrands, slope.as_ref(), &bound_slope, &at_bottom));
+        let (pieces, doubts) =
+            watch(|| certified_pieces(&integrands, slope.as_ref(), &bound_slope, &at_bottom, at_loads.as_ref()));
         if !doubts.none() {
             return Err(undecided(bits, doubts));
         }
@@ -338,7 +369,7 @@ pub(super) fn bottom_slope_change<'a, R: Enclosing>(
     compliance: &'a dyn Compliance<R>,
     geometry: &EllipseGeometry<R>,
 ) -> Box<dyn Fn(&R) -> R + Send + Sync + 'a> {
-    let lowest = geometry.mean_normal_load.clone() - &geometry.normal_amplitude;
+    let lowest = geometry.lowest_normal_load.clone();
     let at_mean = compliance.slope(&geometry.mean_normal_load);
     Box::new(move |root: &R| compliance.slope_at_scaled_square(&lowest, root) - &at_mean)
 }
@@ -348,8 +379,54 @@ pub(super) fn difference_of_slopes<'a, R: Enclosing>(
     compliance: &'a dyn Compliance<R>,
     mean_load: &R,
 ) -> SlopeChange<'a, R> {
-    let (mean_load, at_mean) = (mean_load.clone(), compliance.slope(mean_load));
-    Box::new(move |offset: &R| compliance.slope(&(mean_load.clone() + offset)) - &at_mean)
+    let (mean_load, at_load) = (mean_load.clone(), change_at_load(compliance, mean_load));
+    Box::new(move |offset: &R| at_load(&(mean_load.clone() + offset)))
+}
+
+/// Whether the integrands take the slip loads apart and the low loads from the lowest
+/// load ([`SlopesAtLoads`]): near separation (P0 − P1 below P1/[`NEAR_SEPARATION`]), where
+/// the loads at the bottom of the cycle need it, and where the slip terms cancel by more
+/// than [`SLIP_CANCELLATION`]. Elsewhere the segment formulas lose no digit that matters
+/// and are cheaper to evaluate. Decided by doubles: both forms are the same function.
+fn loads_apart<R: Enclosing>(valid: &ValidCycle<R>, geometry: &EllipseGeometry<R>) -> bool {
+    let lowest = geometry.lowest_normal_load.to_f64_lossy();
+    let near_separation = lowest * NEAR_SEPARATION as f64 <= geometry.normal_amplitude.to_f64_lossy();
+    near_separation || valid.cancellation_amplification().to_f64_lossy() > SLIP_CANCELLATION
+}
+
+/// The cancellation of the slip terms ([`crate::cycle::LoadCycle::cancellation_amplification`])
+/// beyond which the integrands take the slip loads apart away from separation: it costs
+/// three of a double's sixteen digits there (proofs/printing.md, "Near separation in f64
+/// intervals").
+const SLIP_CANCELLATION: f64 = 1e3;
+
+/// The slope change at loads given themselves ([`SlopesAtLoads`]): v'(L + x) − v'(L) by
+/// the compliance's own form where `own_form` (its form about P0 decided all it asks, see
+/// [`slopes`]), else as a plain difference.
+fn slopes_at_loads<'a, R: Enclosing>(
+    compliance: &'a dyn Compliance<R>,
+    mean_load: &R,
+    own_form: bool,
+    bits: u32,
+) -> Result<SlopesAtLoads<'a, R>, CertifiedError> {
+    let (at_load, doubts) = watch(|| change_at_load(compliance, mean_load));
+    if !doubts.none() {
+        return Err(undecided(bits, doubts));
+    }
+    let between: SlopeBetween<'a, R> = if own_form {
+        Box::new(move |load: &R, gap: &R| compliance.slope_change(load, gap))
+    } else {
+        Box::new(move |load: &R, gap: &R| compliance.slope(&(load.clone() + gap)) - &compliance.slope(load))
+    };
+    Ok(SlopesAtLoads { at_load, between })
+}
+
+/// P ↦ v'(P) − v'(P0), the slope change at a load given itself: at loads far below P0,
+/// formed from the cycle's lowest loads, where P0 + x would lose them to the rounding of
+/// P0 ([`crate::dissipation::segments`]).
+fn change_at_load<'a, R: Enclosing>(compliance: &'a dyn Compliance<R>, mean_load: &R) -> SlopeChange<'a, R> {
+    let at_mean = compliance.slope(mean_load);
+    Box::new(move |load: &R| compliance.slope(load) - &at_mean)
 }
 
 /// The pieces' enclosures summed per group (a segment, or a closed form's term), and
@@ -379,28 +456,6 @@ fn integrate_pieces<R: Enclosing>(
     Ok((sums, pieces.len()))
 }
 
-/// One integral of W: ∫ from `start` to `end` of `integrand`, summed into `group`.
-pub struct CertifiedPiece<'a, R> {
-    /// The segment's (or the closed form's term's) position.
-    group: usize,
-    /// Its name, for messages.
-    label: &'static str,
-    pub(super) start: R,
-    pub(super) end: R,
-    /// The integrand at real points, with the slope change formed without cancellation.
-    integrand: PieceIntegrand<'a, R>,
-    /// The same analytic function with the slope change as a plain difference of slopes,
-    /// for Arb's bound on complex balls: the precision of a bound does not matter, its
-    /// width does, and the algebraic forms of the slope change (a root raised to powers
-    /// and divided) widen far more on a complex ball than one `acb_pow` does.
-    /// `None` where the integrand serves for both.
-    bound: Option<PieceIntegrand<'a, R>>,
-    /// Integrand evaluations so far, against the piece's budget ([`evaluation_limit`]).
-    pub(super) evaluations: Cell<i64>,
-}
-
-type PieceIntegrand<'a, R> = Box<dyn Fn(&R) -> R + 'a>;
-
 /// The pieces of the four segments, as [`SegmentIntegrands::pieces`] splits them (the
 /// sinh map is analytic on complex balls: Arb's sinh and cosh).
 fn certified_pieces<'a, R: Enclosing>(
@@ -408,6 +463,7 @@ fn certified_pieces<'a, R: Enclosing>(
     slope: &'a (dyn Fn(&R) -> R + Send + Sync + 'a),
     bound_slope: &'a (dyn Fn(&R) -> R + Send + Sync + 'a),
     at_bottom: &'a (dyn Fn(&R) -> R + Send + Sync + 'a),
+    at_loads: Option<&'a SlopesAtLoads<'a, R>>,
 ) -> Vec<CertifiedPiece<'a, R>> {
     integrands
         .plans()
@@ -415,62 +471,25 @@ fn certified_pieces<'a, R: Enclosing>(
         .map(|plan| CertifiedPiece {
             group: segment_index(plan.segment),
             label: plan.segment.name(),
-            integrand: integrands.plan_integrand(plan.segment, plan.map.clone(), slope),
-            bound: Some(integrands.plan_integrand_at_bottom(plan.segment, plan.map, bound_slope, Some(at_bottom))),
+            integrand: integrands.plan_integrand_at_bottom(
+                plan.segment,
+                plan.map.clone(),
+                slope,
+                None::<fn(&R) -> R>,
+                at_loads,
+            ),
+            bound: Some(integrands.plan_integrand_at_bottom(
+                plan.segment,
+                plan.map,
+                bound_slope,
+                Some(at_bottom),
+                None,
+            )),
             evaluations: Cell::new(0),
             start: plan.start,
             end: plan.end,
         })
         .collect()
-}
-
-impl<R: Enclosing> CertifiedPiece<'_, R> {
-    /// The integrand on `x` (required to be analytic there where `analytic`), or `None`
-    /// where the evaluation met an undecided comparison or a branch cut, or panicked.
-    pub(super) fn value(&self, x: &R, analytic: bool) -> Option<R> {
-        self.evaluations.set(self.evaluations.get() + 1);
-        let integrand = match (&self.bound, analytic) {
-            (Some(bound), true) => bound,
-            _ => &self.integrand,
-        };
-        let outcome = catch_unwind(AssertUnwindSafe(|| watch(|| with_analytic(analytic, || integrand(x)))));
-        match outcome {
-            Ok((value, doubts)) if doubts.none() => Some(value),
-            _ => None,
-        }
-    }
-
-    /// A rough value of the integral (three-point Gauss–Legendre on the midpoints),
-    /// only to scale the tolerance Arb aims at; `None` where an evaluation fails.
-    fn rough_integral(&self) -> Option<R> {
-        let half = (self.end.clone() - &self.start) / &self.start.int(2);
-        let middle = self.start.clone() + &half;
-        let offset = half.clone() * &(self.start.int(3) / &self.start.int(5)).sqrt();
-        let mut sum = self.value(&middle, false)? * &self.start.int(8);
-        for node in [middle.clone() - &offset, middle + &offset] {
-            sum += self.value(&node, false)? * &self.start.int(5);
-        }
-        Some(sum * &half / &self.start.int(9))
-    }
-
-    /// A rough value of the integral that also sees the ends, where the pieces' narrow
-    /// peaks lie (five-point Gauss–Lobatto); the three-point value where an end cannot
-    /// be evaluated.
-    fn rough_integral_with_ends(&self) -> Option<R> {
-        let (Some(at_start), Some(at_end)) = (self.value(&self.start, false), self.value(&self.end, false)) else {
-            return self.rough_integral();
-        };
-        let int = |n: i64| self.start.int(n);
-        let half = (self.end.clone() - &self.start) / &int(2);
-        let middle = self.start.clone() + &half;
-        let offset = half.clone() * &(int(3) / &int(7)).sqrt();
-        // Weights 1/10, 49/90, 32/45, 49/90, 1/10 on [−1, 1], over 90.
-        let mut sum = (at_start + &at_end) * &int(9) + &(self.value(&middle, false)? * &int(64));
-        for node in [middle.clone() - &offset, middle + &offset] {
-            sum += self.value(&node, false)? * &int(49);
-        }
-        Some(sum * &half / &int(90))
-    }
 }
 
 /// An absolute error Arb may stop at on a subinterval: 2^−goal of a rough W, so that a
