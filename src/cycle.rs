@@ -609,7 +609,7 @@ pub struct EllipseGeometry<R> {
     pub lowest_normal_load: R,
     /// P0 − P1 − P_T = (σ₊ + σ₋)/(2f) − P1 ≥ 0, how far the permanent-stick load lies
     /// below the lowest normal load, formed without the cancellation of its definition
-    /// ([`stick_load_depth`]), so that P_T ≤ P0 − P1 is as accurate as both near separation.
+    /// (`stick_load_depth`), so that P_T ≤ P0 − P1 is as accurate as both near separation.
     pub stick_load_depth: R,
     /// (sin φ, cos φ), for Q at angles whose sine and cosine are known.
     pub phase_sin_cos: (R, R),

@@ -20,12 +20,15 @@
 //! - [`dissipation`](mod@dissipation): W by the quadrature engine, in any [`Real`];
 //! - [`displacement`]: displacement driving at constant P (Masing's rules, rainflow W);
 //! - [`outputs`]: amplitudes, loss factor, the harmonics of Q and u, and the loop;
-//! - [`proven`]: W of a force-driven path at constant P as a rigorous enclosure (Masing
-//!   over the rainflow cycles of Q, each cycle's W certified), up the one ladder;
-//! - [`request`]: a whole request (file text, contact, drive, digits, budget) answered
-//!   with W proven where [`proven`] covers the path, else on the digits two working
-//!   precisions agree on (saying why), and the outputs.
+//! - `proven` (feature `certified`): W of a force-driven path at constant P as a rigorous
+//!   enclosure (Masing over the rainflow cycles of Q, each cycle's W certified), up the
+//!   one ladder;
+//! - [`asked`]: a whole request as asked (file text, contact, drive, digits, budget), read
+//!   at any precision, and why it may have no answer;
+//! - [`request`]: the request answered with W proven where `proven` covers the path,
+//!   else on the digits two working precisions agree on (saying why), and the outputs.
 
+pub mod asked;
 pub mod displacement;
 pub mod dissipation;
 pub mod events;
@@ -35,12 +38,13 @@ pub mod outputs;
 pub mod proven;
 pub mod request;
 
+pub use asked::{PathFormat, PathRequest, PathRequestError, RatioText};
 pub use displacement::{displacement_dissipation, displacement_outputs, DisplacementCycle, MasingLaw};
 pub use dissipation::{path_dissipation, PathDissipation};
 pub use events::SteadyCycle;
 pub use input::{Drive, LoadPath, PathError, TrigPoly, MAX_HARMONICS, MAX_SAMPLES};
 pub use outputs::{path_outputs, LoopPoint, PathHarmonic, PathOutputs};
-pub use request::{path_answer, AgreedW, PathAnswer, PathFormat, PathRequest, PathRequestError, RatioText};
+pub use request::{path_answer, AgreedW, PathAnswer};
 
 use crate::real::Real;
 

@@ -23,10 +23,10 @@ use crate::doubts::watch;
 use crate::interval::Interval;
 use crate::real::{Precision, Real};
 
+use super::asked::PathRequest;
 use super::displacement::rainflow_ranges;
 use super::events::{check_path, sign_changes};
 use super::input::{Drive, LoadPath, TrigPoly};
-use super::request::PathRequest;
 use super::Contact;
 
 /// W proven to the digits asked for.

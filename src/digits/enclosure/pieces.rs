@@ -36,7 +36,7 @@ pub fn enclose_dissipation<R: Enclosing>(
 /// the difference of the rounded P0 and P1 would widen P0/(P0 − P1)-fold. Given, it also
 /// asks for the forms that keep the digits of a precision that cannot be raised (f64
 /// intervals): the slip loads apart and the low loads from the lowest load, near
-/// separation or where the slip terms cancel ([`SlopesAtLoads`]); the Arb ladder, which
+/// separation or where the slip terms cancel (`SlopesAtLoads`); the Arb ladder, which
 /// raises its precision instead, keeps the cheaper segment formulas.
 pub fn enclose_dissipation_with_lowest_load<R: Enclosing>(
     cycle: &LoadCycle<R>,

@@ -31,8 +31,11 @@ mod low_loads;
 mod plans;
 
 use angles::SegmentAngle;
-pub(crate) use low_loads::{SlopeBetween, Slopes, SlopesAtLoads};
+#[cfg(feature = "certified")]
+pub(crate) use low_loads::SlopeBetween;
+pub(crate) use low_loads::{Slopes, SlopesAtLoads};
 use plans::PieceMap;
+#[cfg(feature = "certified")]
 pub(crate) use plans::NEAR_SEPARATION;
 
 /// The pieces of the four segment integrals, with the segment each belongs to.
