@@ -37,6 +37,8 @@ struct Solved {
 
 /// The steady loop of the sampled displacement `u`: first loading along the virgin curve
 /// to the sample of largest |u| (the first such sample), then one period from there.
+/// One function because every sample's branch, reversal memory and derivative row follow
+/// from the sample before: the loop carries that state from step to step.
 pub(super) fn steady_loop(element: &FrictionElement, u: &[f64], layout: &Layout) -> SteadyLoop {
     let count = u.len();
     let width = layout.coefficients();

@@ -62,6 +62,21 @@ struct Varying {
     compliance_ratio: f64,
 }
 
+/// The normal load's coefficients checked: as many as the layout has, and finite.
+fn check_coefficients(load: &NormalLoad, layout: &Layout) -> Result<(), AftError> {
+    if load.coefficients.len() != layout.coefficients() {
+        return Err(AftError::NormalLoadLength {
+            given: load.coefficients.len(),
+            expected: layout.coefficients(),
+            harmonics: load.harmonics.to_vec(),
+        });
+    }
+    if let Some((index, &value)) = load.coefficients.iter().enumerate().find(|(_, c)| !c.is_finite()) {
+        return Err(AftError::NormalLoadNotFinite { index, value });
+    }
+    Ok(())
+}
+
 impl VaryingLoadElement {
     /// The element for the normal load `load`, f = `friction` > 0, λ = `compliance_ratio`
     /// in [1, 2], a compliance admissible (v' > 0, v'' ≤ 0) up to the highest P, and a bed of
@@ -77,16 +92,7 @@ impl VaryingLoadElement {
         elements: usize,
     ) -> Result<Self, AftError> {
         let layout = Layout::cached(load.harmonics, load.time_points)?;
-        if load.coefficients.len() != layout.coefficients() {
-            return Err(AftError::NormalLoadLength {
-                given: load.coefficients.len(),
-                expected: layout.coefficients(),
-                harmonics: load.harmonics.to_vec(),
-            });
-        }
-        if let Some((index, &value)) = load.coefficients.iter().enumerate().find(|(_, c)| !c.is_finite()) {
-            return Err(AftError::NormalLoadNotFinite { index, value });
-        }
+        check_coefficients(load, &layout)?;
         let element = |kind| VaryingLoadElement {
             harmonics: load.harmonics.to_vec(),
             time_points: load.time_points,

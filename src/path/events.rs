@@ -829,6 +829,55 @@ fn split<R: Real>(
     b: &R,
     signs: Signs,
 ) -> Vec<(R, R)> {
+    let mut nodes = vec![a.clone()];
+    nodes.extend(crossings(loads, memory, inflections, a, b, signs));
+    nodes.push(b.clone());
+    // Where a front meets the top of the contact (P falling onto it, or it onto P).
+    let capped = |t: &R, forward: bool| {
+        let point = loads.at(t);
+        let value = if forward { point.x() } else { point.y() };
+        memory.front(loads, &value, forward).is_none_or(|s| s >= point.p)
+    };
+    let mut pieces = Vec::new();
+    for w in nodes.windows(2) {
+        let mut inner = Vec::new();
+        for (active, forward) in [(signs.x > 0, true), (signs.y < 0, false)] {
+            if !active {
+                continue;
+            }
+            let quarter = |k: i64| w[0].clone() + &((w[1].clone() - &w[0]) * &w[0].ratio(k, 4));
+            // Tested just inside the ends: at an end the front may sit exactly at the top.
+            let (first, last) = (
+                quarter(0) + &((w[1].clone() - &w[0]) * &w[0].ratio(1, 1 << 20)),
+                quarter(4) - &((w[1].clone() - &w[0]) * &w[0].ratio(1, 1 << 20)),
+            );
+            let (at_first, at_last) = (capped(&first, forward), capped(&last, forward));
+            if at_first != at_last {
+                inner.push(bisect_predicate(|t: &R| capped(t, forward) == at_last, &first, &last));
+            }
+        }
+        inner.sort_by(|u, v| u.partial_cmp(v).unwrap_or(std::cmp::Ordering::Equal));
+        let mut previous = w[0].clone();
+        for cut in inner {
+            pieces.push((previous, cut.clone()));
+            previous = cut;
+        }
+        pieces.push((previous, w[1].clone()));
+    }
+    pieces.retain(|(u, v)| v > u);
+    pieces
+}
+
+/// The angles in (a, b), in order, where a front crosses an end of a piece of the memory
+/// or P crosses one: where the front's formula changes.
+fn crossings<R: Real>(
+    loads: &Loads<R>,
+    memory: &Memory<R>,
+    inflections: &Inflections<R>,
+    a: &R,
+    b: &R,
+    signs: Signs,
+) -> Vec<R> {
     let (start, end) = (loads.at(a), loads.at(b));
     let mut cuts: Vec<R> = Vec::new();
     let between = |v: &R, u: &R, w: &R| (*v > *u && *v < *w) || (*v > *w && *v < *u);
@@ -868,43 +917,7 @@ fn split<R: Real>(
     }
     cuts.sort_by(|u, v| u.partial_cmp(v).unwrap_or(std::cmp::Ordering::Equal));
     cuts.dedup();
-    let mut nodes = vec![a.clone()];
-    nodes.extend(cuts);
-    nodes.push(b.clone());
-    // Where a front meets the top of the contact (P falling onto it, or it onto P).
-    let capped = |t: &R, forward: bool| {
-        let point = loads.at(t);
-        let value = if forward { point.x() } else { point.y() };
-        memory.front(loads, &value, forward).is_none_or(|s| s >= point.p)
-    };
-    let mut pieces = Vec::new();
-    for w in nodes.windows(2) {
-        let mut inner = Vec::new();
-        for (active, forward) in [(signs.x > 0, true), (signs.y < 0, false)] {
-            if !active {
-                continue;
-            }
-            let quarter = |k: i64| w[0].clone() + &((w[1].clone() - &w[0]) * &w[0].ratio(k, 4));
-            // Tested just inside the ends: at an end the front may sit exactly at the top.
-            let (first, last) = (
-                quarter(0) + &((w[1].clone() - &w[0]) * &w[0].ratio(1, 1 << 20)),
-                quarter(4) - &((w[1].clone() - &w[0]) * &w[0].ratio(1, 1 << 20)),
-            );
-            let (at_first, at_last) = (capped(&first, forward), capped(&last, forward));
-            if at_first != at_last {
-                inner.push(bisect_predicate(|t: &R| capped(t, forward) == at_last, &first, &last));
-            }
-        }
-        inner.sort_by(|u, v| u.partial_cmp(v).unwrap_or(std::cmp::Ordering::Equal));
-        let mut previous = w[0].clone();
-        for cut in inner {
-            pieces.push((previous, cut.clone()));
-            previous = cut;
-        }
-        pieces.push((previous, w[1].clone()));
-    }
-    pieces.retain(|(u, v)| v > u);
-    pieces
+    cuts
 }
 
 #[cfg(all(test, feature = "certified"))]

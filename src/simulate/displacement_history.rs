@@ -60,36 +60,14 @@ impl PathHistory {
         let mut nodes = LoadNodes::new(lowest_slip, lowest, highest);
         let mut new_node = |load: f64| nodes.admit(load);
         let normal_extremes = interior_extremes(&normal, &mut new_node);
-        let (turning_angles, kinked_loads) = match &masing {
-            // At constant P the loop's smooth pieces start at the turning points of u and
-            // where an inner loop closes or sliding begins (dQ/du jumps); each rainflow cycle
-            // of range Δ slips the elements whose limit is below Δ/2, so their dissipation
-            // has a kink at the element whose limit is Δ/2.
-            Some(cycle) => {
-                let tau = std::f64::consts::TAU;
-                let angles = cycle
-                    .smooth_pieces()
-                    .iter()
-                    .map(|piece| piece.0.rem_euclid(tau))
-                    .collect();
-                let law = cycle.law();
-                let fronts = rainflow_ranges(cycle.turning_displacements())
-                    .iter()
-                    .map(|range| lowest - law.initial_load(&(0.5 * range)) / contact.friction)
-                    .filter(|&load| new_node(load))
-                    .collect();
-                (angles, fronts)
-            }
-            None => {
-                let angles: Vec<f64> = forward_turns.iter().chain(&backward_turns).copied().collect();
-                let loads = angles
-                    .iter()
-                    .map(|theta| normal.value(theta))
-                    .filter(|&load| new_node(load))
-                    .collect();
-                (angles, loads)
-            }
-        };
+        let (turning_angles, kinked_loads) = turning_angles_and_kinks(
+            masing.as_ref(),
+            (&forward_turns, &backward_turns),
+            &normal,
+            lowest,
+            contact.friction,
+            &mut new_node,
+        );
         let (top, bottom) = (extreme(&displacement, true), extreme(&displacement, false));
         let start_angle = if top.1.abs() >= bottom.1.abs() { top.0 } else { bottom.0 };
         Ok(PathHistory {
@@ -195,6 +173,52 @@ fn bisect(f: &dyn Fn(f64) -> f64, a: f64, b: f64) -> f64 {
             low = middle;
         } else {
             high = middle;
+        }
+    }
+}
+
+/// Where the history's smooth pieces start and the loads at which its dissipation has a
+/// kink, admitted as grid nodes by `new_node`. At constant P (`masing`) the pieces start
+/// at the turning points of u and where an inner loop closes or sliding begins (dQ/du
+/// jumps); each rainflow cycle of range Δ slips the elements whose limit is below Δ/2, so
+/// their dissipation has a kink at the element whose limit is Δ/2. Otherwise they start
+/// at the turning points of u ∓ λf v(P), the loads there the kinks.
+fn turning_angles_and_kinks(
+    masing: Option<&DisplacementCycle<'_, f64>>,
+    (forward_turns, backward_turns): (&[f64], &[f64]),
+    normal: &TrigPoly<f64>,
+    lowest: f64,
+    friction: f64,
+    new_node: &mut dyn FnMut(f64) -> bool,
+) -> (Vec<f64>, Vec<f64>) {
+    match masing {
+        // At constant P the loop's smooth pieces start at the turning points of u and
+        // where an inner loop closes or sliding begins (dQ/du jumps); each rainflow cycle
+        // of range Δ slips the elements whose limit is below Δ/2, so their dissipation
+        // has a kink at the element whose limit is Δ/2.
+        Some(cycle) => {
+            let tau = std::f64::consts::TAU;
+            let angles = cycle
+                .smooth_pieces()
+                .iter()
+                .map(|piece| piece.0.rem_euclid(tau))
+                .collect();
+            let law = cycle.law();
+            let fronts = rainflow_ranges(cycle.turning_displacements())
+                .iter()
+                .map(|range| lowest - law.initial_load(&(0.5 * range)) / friction)
+                .filter(|&load| new_node(load))
+                .collect();
+            (angles, fronts)
+        }
+        None => {
+            let angles: Vec<f64> = forward_turns.iter().chain(backward_turns).copied().collect();
+            let loads = angles
+                .iter()
+                .map(|theta| normal.value(theta))
+                .filter(|&load| new_node(load))
+                .collect();
+            (angles, loads)
         }
     }
 }

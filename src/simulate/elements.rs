@@ -101,7 +101,9 @@ impl<'a> Contact<'a> {
 
     /// Moves to the normal load P and the prescribed tangential quantity (Q under force
     /// driving, u under displacement driving): updates contact, solves Σ t_s(u) = Q where Q
-    /// is prescribed, and returns the frictional work of the step, Σ f n_s |Δw_s|.
+    /// is prescribed, and returns the frictional work of the step, Σ f n_s |Δw_s|. One
+    /// function because its three passes (contact, solve, return mapping) share the
+    /// step's loads and approaches and the state of the elements leaving contact.
     pub(super) fn step(
         &mut self,
         compliance: &dyn Compliance<f64>,
