@@ -6,7 +6,7 @@
 use std::time::Instant;
 
 use microslip::path::input::Drive;
-use microslip::path::request::{path_answer, PathAnswer, PathFormat, PathRequest, RatioText};
+use microslip::path::{path_answer, PathAnswer, PathFormat, PathRequest, RatioText};
 use numpy::IntoPyArray;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;

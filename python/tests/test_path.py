@@ -90,3 +90,14 @@ def test_refusals_name_the_problem():
         microslip.path(
             harmonics={"P": TWO["P"], "u": [(1, "0.001", 0)]}, drive="displacement", **CONTACT
         )
+
+
+def test_a_force_driven_path_at_constant_load_is_proven():
+    """Constant P: Masing's rule over the rainflow cycles of Q, each cycle's W enclosed."""
+    constant = {"P": [(0, 1, 0)], "Q": [(1, "0.3", "0"), (2, "0.1", "0.05")]}
+    result = microslip.path(harmonics=constant, **CONTACT)
+    assert result.provenance == "certified"
+    assert 12 <= result.digits_certified == result.digits <= 15
+    precise = microslip.path(harmonics=constant, digits=25, **CONTACT)
+    assert (precise.provenance, precise.digits_certified) == ("certified", 25)
+    assert float(precise.text) == pytest.approx(result.W, rel=10.0**-result.digits_certified)
