@@ -416,3 +416,16 @@ fn paths_it_does_not_cover_rest_on_agreement_and_say_why() {
     assert_eq!(answer.w.provenance, "agreement");
     assert!(answer.w.detail.contains("not proven"), "{}", answer.w.detail);
 }
+
+#[test]
+fn a_proof_the_budget_cuts_short_fails_rather_than_falling_back_on_agreement() {
+    let constant = "k,P_cos,P_sin,Q_cos,Q_sin\n0,1,0,0,0\n1,0,0,0.3,0\n2,0,0,0.1,0.05\n";
+    let mut asked = request(constant, ("1", "1.2", PERSSON), Some(1000));
+    asked.deadline = Instant::now() + Duration::from_millis(20);
+    let error = path_answer(&asked).expect_err("1000 digits do not fit in 20 ms");
+    assert_eq!(error.exit_code(), 1, "{error}");
+    assert!(
+        error.message.contains("time budget ran out before the enclosure"),
+        "{error}"
+    );
+}

@@ -142,10 +142,15 @@ fn in_balls(request: &PathRequest, digits: u32) -> Result<ProvenW, NotProven> {
             Err(_) => return Rung::Final(NotProven::NotCovered("inputs are not read as balls")),
         };
         let goal = digit_bits + GUARD_BITS + (bits - first);
-        match enclose_constant_load(&inputs.path, &inputs.contact, inputs.compliance.as_ref(), goal) {
+        let enclosed = enclose_constant_load(&inputs.path, &inputs.contact, inputs.compliance.as_ref(), goal);
+        // Digits that arrive after the deadline are out of time all the same.
+        if Instant::now() >= request.deadline {
+            return Rung::Final(NotProven::OutOfTime { asked: digits });
+        }
+        match enclosed {
             Ok((total, cycles)) => {
                 let value = total.decimal_value(digits);
-                if settles(&value, digits) && Instant::now() < request.deadline {
+                if settles(&value, digits) {
                     Rung::Reached(ProvenW {
                         value,
                         provenance: Provenance::Certified {

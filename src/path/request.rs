@@ -112,7 +112,7 @@ pub fn path_answer(request: &PathRequest) -> Result<PathAnswer, PathRequestError
             (cycle.dissipation(Some(request.deadline))?, None, Some(cycle))
         }
     };
-    let w = match proven_or_why(request, f64_w.total) {
+    let w = match proven_or_why(request, f64_w.total)? {
         Ok(w) => w,
         Err(why) => agreed_w(request, why)?,
     };
@@ -137,12 +137,20 @@ pub fn path_answer(request: &PathRequest) -> Result<PathAnswer, PathRequestError
     })
 }
 
-/// W proven by an enclosure, or why it is not.
+/// W proven by an enclosure, or why it is not (an error where the time budget ran out).
 #[cfg(feature = "certified")]
-fn proven_or_why(request: &PathRequest, estimate: f64) -> Result<AgreedW, String> {
-    let proven = super::proven::proven_w(request).map_err(|why| why.to_string())?;
+fn proven_or_why(request: &PathRequest, estimate: f64) -> Result<Result<AgreedW, String>, PathRequestError> {
+    use super::proven::NotProven;
+    let proven = match super::proven::proven_w(request) {
+        Ok(proven) => proven,
+        // A budget that runs out is a failure, not a reason to fall back on agreement.
+        Err(out @ NotProven::OutOfTime { .. }) => {
+            return Err(PathRequestError::failed(format!("{out}; raise --max-seconds")));
+        }
+        Err(why) => return Ok(Err(why.to_string())),
+    };
     let digits = proven.value.digits().min(request.digits_asked());
-    Ok(AgreedW {
+    Ok(Ok(AgreedW {
         text: proven.value.decimal.to_string(),
         value: proven.value.binary64.unwrap_or(if proven.value.digits() == u32::MAX {
             0.0
@@ -157,13 +165,13 @@ fn proven_or_why(request: &PathRequest, estimate: f64) -> Result<AgreedW, String
         arithmetic: proven.provenance.arithmetic().map(crate::answer::Arithmetic::key),
         no_enclosure: None,
         enclosure: proven.value.enclosure.clone(),
-    })
+    }))
 }
 
 /// Without ball arithmetic there is no enclosure.
 #[cfg(not(feature = "certified"))]
-fn proven_or_why(_: &PathRequest, _: f64) -> Result<AgreedW, String> {
-    Err("this build has no ball arithmetic".to_string())
+fn proven_or_why(_: &PathRequest, _: f64) -> Result<Result<AgreedW, String>, PathRequestError> {
+    Ok(Err("this build has no ball arithmetic".to_string()))
 }
 
 /// W on the digits two working precisions agree on; `why` says why it is not proven.
