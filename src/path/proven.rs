@@ -13,7 +13,7 @@
 use std::time::Instant;
 
 use crate::answer::dissipation::DEFAULT_LEAST_DIGITS;
-use crate::answer::{Arithmetic, Decimal, Provenance, Value};
+use crate::answer::{Arithmetic, Provenance, Value};
 use crate::ball::Ball;
 use crate::compliance::Compliance;
 use crate::cycle::LoadCycle;
@@ -105,7 +105,8 @@ pub fn proven_w(request: &PathRequest) -> Result<ProvenW, NotProven> {
             None => DEFAULT_LEAST_DIGITS,
             Some(_) => digits,
         };
-        if settles(&value, least) {
+        // An exact zero shows every digit (its `digits()` is u32::MAX).
+        if value.digits() >= least {
             return Ok(ProvenW {
                 value,
                 provenance: Provenance::Certified {
@@ -117,12 +118,6 @@ pub fn proven_w(request: &PathRequest) -> Result<ProvenW, NotProven> {
         }
     }
     in_balls(request, digits)
-}
-
-/// Whether a value printed by the one rule shows the digits asked for (an exact zero
-/// shows them all).
-fn settles(value: &Value, digits: u32) -> bool {
-    matches!(value.decimal, Decimal::Zero) || value.digits() >= digits
 }
 
 /// The bits that the enclosure's rounding and the sum of the cycles need beyond the
@@ -150,7 +145,7 @@ fn in_balls(request: &PathRequest, digits: u32) -> Result<ProvenW, NotProven> {
         match enclosed {
             Ok((total, cycles)) => {
                 let value = total.decimal_value(digits);
-                if settles(&value, digits) {
+                if value.digits() >= digits {
                     Rung::Reached(ProvenW {
                         value,
                         provenance: Provenance::Certified {
