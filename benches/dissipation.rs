@@ -119,7 +119,8 @@ fn bench_verified_digits(c: &mut Criterion) {
             b.iter(|| {
                 verified_dissipation(&case.text, digits, Duration::from_secs(60))
                     .unwrap()
-                    .digits_verified
+                    .answer
+                    .digits()
             })
         });
     }
@@ -202,7 +203,7 @@ fn bench_near_separation(c: &mut Criterion) {
             b.iter(|| dissipation_answer(&text, None, budget).unwrap().digits())
         });
         group.bench_function(format!("{distance}/digits20"), |b| {
-            b.iter(|| verified_dissipation(&text, 20, budget).unwrap().digits_verified)
+            b.iter(|| verified_dissipation(&text, 20, budget).unwrap().answer.digits())
         });
     }
     group.finish();

@@ -89,7 +89,7 @@ pub fn standard_cases(quick: bool) -> Vec<BenchCase> {
 }
 
 /// The 100-digit reference value of a case (computed, verified).
-pub fn reference_value(case: &CaseText) -> Result<Float, crate::answer::agreed::ReferenceError> {
+pub fn reference_value(case: &CaseText) -> Result<Float, crate::answer::DissipationAnswerError> {
     Ok(verified_dissipation(case, 100, Duration::from_secs(300))?.value.total)
 }
 

@@ -57,33 +57,39 @@ pub(crate) fn compliance_ratio_of_poisson(nu: &Rational, text: &str) -> Result<R
     Ok(Rational::from(&two - nu) / (two * Rational::from(1 - nu)))
 }
 
+/// The double nearest an exact value, for a refusal's message: `-1/5` reads `-2e-1`, where
+/// GMP's own conversion (towards zero) would print `-1.9999999999999998e-1`.
+fn nearest(value: &Rational) -> f64 {
+    Float::with_val(53, value).to_f64()
+}
+
 /// Whether the cycle is one the theory covers, decided exactly (see the module
 /// documentation); the first boundary crossed otherwise, in the order
 /// [`crate::cycle::LoadCycle::validate`] checks them.
 pub(crate) fn decide(cycle: &ExactCycle) -> Result<(), CycleError> {
     let p0 = cycle.mean_normal_load;
     if *p0 <= 0 {
-        return Err(CycleError::NonPositiveMeanLoad { p0: p0.to_f64() });
+        return Err(CycleError::NonPositiveMeanLoad { p0: nearest(p0) });
     }
     for (quantity, value) in [("P1", cycle.normal_amplitude), ("Q1", cycle.tangential_amplitude)] {
         if *value < 0 {
             return Err(CycleError::NegativeAmplitude {
                 quantity,
-                value: value.to_f64(),
+                value: nearest(value),
             });
         }
     }
     let margin = Rational::from(p0 - cycle.normal_amplitude);
     if margin <= 0 {
         return Err(CycleError::Separation {
-            p0: p0.to_f64(),
-            p1: cycle.normal_amplitude.to_f64(),
-            margin: margin.to_f64(),
+            p0: nearest(p0),
+            p1: nearest(cycle.normal_amplitude),
+            margin: nearest(&margin),
         });
     }
     if *cycle.friction <= 0 {
         return Err(CycleError::NonPositiveFriction {
-            f: cycle.friction.to_f64(),
+            f: nearest(cycle.friction),
         });
     }
     let lambda = cycle.compliance_ratio;

@@ -13,7 +13,7 @@ use std::time::{Duration, Instant};
 use serde::{Deserialize, Serialize};
 
 use crate::answer::dissipation::dissipation_answer;
-use crate::batch::CaseError;
+use crate::answer::DissipationAnswerError;
 use crate::case::CaseText;
 use crate::files::{write_text_atomically, OutputError};
 
@@ -81,7 +81,7 @@ pub enum CatalogueError {
 pub enum EntryError {
     /// Its computation failed, or its compliance has a table.
     #[error(transparent)]
-    Case(#[from] CaseError),
+    Case(#[from] DissipationAnswerError),
     /// The run's time budget ran out before the case was started.
     #[error("not computed: the time budget of {0:.1} s for the whole run ran out before this case")]
     NotReached(f64),
@@ -90,7 +90,11 @@ pub enum EntryError {
 /// The reference value of `case` to `digits` digits, by `deadline`, as
 /// [`dissipation_answer`] gives them (certified where an enclosure can be had): for a
 /// compliance with a table, the digits of its interpolant's W.
-pub fn reference_value(case: &CaseText, digits: u32, deadline: Instant) -> Result<ReferenceValue, CaseError> {
+pub fn reference_value(
+    case: &CaseText,
+    digits: u32,
+    deadline: Instant,
+) -> Result<ReferenceValue, DissipationAnswerError> {
     let budget = deadline.saturating_duration_since(Instant::now());
     let answer = dissipation_answer(case, Some(digits), budget)?;
     Ok(ReferenceValue {

@@ -35,7 +35,9 @@
 //! - [`answer`]: a printed value with its digits, enclosure and provenance, and the one
 //!   policy per quantity that builds it: [`answer::dissipation`] (how W is computed and
 //!   vouched for, [`answer::dissipation::dissipation_of`]), [`answer::agreed`] (W by
-//!   agreement, and the errors of every path to W), [`answer::simulation`];
+//!   agreement), [`answer::series`] (I, Iₙ, W_N), [`answer::path`] (a path's W),
+//!   [`answer::simulation`]; each error says how a command ends on it
+//!   ([`answer::ExitStatus`]);
 //! - [`verify`]: the theorem gate ([`verify::run`]).
 //!
 //! Beside them: [`batch`] (many cases from a CSV, on all cores), [`path`] (any periodic

@@ -7,9 +7,9 @@ mod common;
 use std::time::Duration;
 
 use common::case;
-use microslip::answer::agreed::ReferenceError;
 use microslip::answer::dissipation::dissipation_report;
 use microslip::answer::Provenance;
+use microslip::answer::{DissipationAnswerError, ExitStatus};
 use microslip::case::InputError;
 use microslip::compliance::AdmissibilityError;
 use microslip::cycle::CycleError;
@@ -18,7 +18,7 @@ use microslip::dissipation::DissipationError;
 const BUDGET: Duration = Duration::from_secs(60);
 
 /// W in the default mode and at `--digits 20`, each as (printed W, proven?).
-fn both_modes(text: &microslip::case::CaseText) -> [Result<(String, bool), ReferenceError>; 2] {
+fn both_modes(text: &microslip::case::CaseText) -> [Result<(String, bool), DissipationAnswerError>; 2] {
     [None, Some(20)].map(|digits| {
         dissipation_report(text, digits, BUDGET).map(|report| {
             let proven = report.answer.provenance.is_proven();
@@ -37,9 +37,9 @@ fn rounds_to(printed: &str, proven: &str) -> bool {
     rounded == rug::Float::with_val(256, rug::Float::parse(printed).unwrap())
 }
 
-fn cycle_error(result: &Result<(String, bool), ReferenceError>) -> Option<&CycleError> {
+fn cycle_error(result: &Result<(String, bool), DissipationAnswerError>) -> Option<&CycleError> {
     match result {
-        Err(ReferenceError::Input(InputError::Cycle(error))) => Some(error),
+        Err(DissipationAnswerError::Input(InputError::Cycle(error))) => Some(error),
         _ => None,
     }
 }
@@ -83,6 +83,24 @@ fn separation_is_decided_on_the_decimals_not_their_f64_copies() {
         } else {
             assert_refused(&text, |e| matches!(e, CycleError::Separation { .. }));
         }
+    }
+}
+
+#[test]
+fn a_refusal_quotes_the_exact_margin_not_one_rounded_towards_zero() {
+    // 1 − 1.2 = −1/5 exactly: the message reads −2e-1 (the double nearest), in both modes.
+    let text = case().p1("1.2").text();
+    for result in both_modes(&text) {
+        let message = result.unwrap_err().to_string();
+        assert!(
+            message.contains("P0 − P1 = -2e-1 ≤ 0 (P0 = 1e0, P1 = 1.2e0)"),
+            "{message}"
+        );
+    }
+    let text = case().p1("0.4").q1("0.5").friction("-0.3").text();
+    for result in both_modes(&text) {
+        let message = result.unwrap_err().to_string();
+        assert!(message.contains("f = -3e-1"), "{message}");
     }
 }
 
@@ -159,7 +177,7 @@ fn a_convex_compliance_is_refused_in_both_modes_naming_a_load() {
         for result in both_modes(&case().compliance(spec).text()) {
             let refused = matches!(
                 result,
-                Err(ReferenceError::Dissipation(DissipationError::Compliance(
+                Err(DissipationAnswerError::Dissipation(DissipationError::Compliance(
                     AdmissibilityError::PositiveCurvature { .. } | AdmissibilityError::NonPositiveSlope { .. }
                 )))
             );

@@ -5,7 +5,8 @@
 use std::path::Path;
 use std::time::Duration;
 
-use microslip::answer::agreed::{verified_dissipation, ReferenceError};
+use microslip::answer::agreed::verified_dissipation;
+use microslip::answer::DissipationAnswerError;
 use microslip::case::Case;
 use microslip::catalogue::{self, CatalogueEntry};
 use microslip::dissipation::{dissipation, DissipationError, Options};
@@ -72,7 +73,7 @@ fn reference_values_recompute_at_60_digits_and_round_to_the_committed_50() {
     for name in chosen {
         let entry = entries.iter().find(|e| e.name == name).unwrap();
         let verified = verified_dissipation(&entry.case, 60, Duration::from_secs(120)).unwrap();
-        assert_eq!(verified.digits_verified, 60);
+        assert_eq!(verified.answer.digits(), 60);
         let rounded = microslip::real::Real::to_scientific(&verified.value.total, 50);
         assert_eq!(rounded, reference_of(entry), "{name}");
     }
@@ -136,10 +137,11 @@ fn verified_digits_are_the_requested_number_and_correct() {
     let entry = entries.iter().find(|e| e.name == "exp-ordinary").unwrap();
     for digits in [1u32, 12, 30] {
         let verified = verified_dissipation(&entry.case, digits, Duration::from_secs(60)).unwrap();
-        assert_eq!(verified.digits_verified, digits);
-        let mantissa = verified.total.split('e').next().unwrap().replace('.', "");
+        assert_eq!(verified.answer.digits(), digits);
+        let total = verified.answer.value.decimal.to_string();
+        let mantissa = total.split('e').next().unwrap().replace('.', "");
         assert_eq!(mantissa.len(), digits as usize);
-        let printed: f64 = verified.total.parse().unwrap();
+        let printed: f64 = total.parse().unwrap();
         let reference: f64 = reference_of(entry).parse().unwrap();
         assert!(((printed - reference) / reference).abs() <= 0.5 * 10f64.powi(1 - digits as i32) + 1e-16);
     }
@@ -150,7 +152,7 @@ fn an_unreachable_target_fails_and_says_how_many_digits_were_reached() {
     let entries = entries();
     let entry = entries.iter().find(|e| e.name == "persson-ordinary").unwrap();
     match verified_dissipation(&entry.case, 1000, Duration::from_millis(1)) {
-        Err(ReferenceError::Budget(budget)) => {
+        Err(DissipationAnswerError::Budget(budget)) => {
             assert_eq!(budget.digits_requested, 1000);
             assert!(budget.digits_reached() < 1000);
         }

@@ -6,8 +6,8 @@
 
 mod common;
 
-use microslip::answer::agreed::ReferenceError;
 use microslip::answer::dissipation::dissipation_answer;
+use microslip::answer::DissipationAnswerError;
 use microslip::answer::{Answer, Decimal, Provenance, Value};
 use microslip::ball::{hull, watch, Ball};
 use microslip::case::CaseText;
@@ -825,7 +825,7 @@ fn random_cases_at_the_corners_hold_their_100_digit_references() {
 }
 
 /// W of `case` printed by the library's one policy, with `digits` digits, or its refusal.
-fn printed_w(case: &Case, digits: u32) -> Result<Answer, ReferenceError> {
+fn printed_w(case: &Case, digits: u32) -> Result<Answer, DissipationAnswerError> {
     dissipation_answer(case, Some(digits), Duration::from_secs(60))
 }
 
@@ -916,14 +916,16 @@ fn an_exponential_beyond_what_the_enclosure_resolves_is_refused_at_once() {
     let started = std::time::Instant::now();
     let steep = printed_w(&decay_case("1e41", "5e40", "5e39", "2.39", "2.486"), 15);
     assert!(
-        matches!(steep, Err(ReferenceError::Certified(CertifiedError::TooSteep { folds })) if folds > 4e40),
+        matches!(steep, Err(DissipationAnswerError::Certified(CertifiedError::TooSteep { folds })) if folds > 4e40),
         "{steep:?}"
     );
     let tiny = printed_w(&decay_case("1e20", "1e7", "1e6", "2.39", "1"), 15);
     assert!(
         matches!(
             tiny,
-            Err(ReferenceError::Certified(CertifiedError::BeyondDecimalExponents))
+            Err(DissipationAnswerError::Certified(
+                CertifiedError::BeyondDecimalExponents
+            ))
         ),
         "{tiny:?}"
     );
@@ -942,7 +944,10 @@ fn an_exponential_beyond_what_the_enclosure_resolves_is_refused_at_once() {
     match printed_w(&near_limit, 15) {
         Ok(answer) => assert!(matches!(answer.provenance, Provenance::Certified { .. }), "{answer:?}"),
         Err(refusal) => assert!(
-            matches!(refusal, ReferenceError::Certified(CertifiedError::NotFinite { .. })),
+            matches!(
+                refusal,
+                DissipationAnswerError::Certified(CertifiedError::NotFinite { .. })
+            ),
             "{refusal:?}"
         ),
     }

@@ -711,7 +711,7 @@ fn json_reports_share_one_vocabulary() {
 
 #[test]
 fn library_error_texts_name_no_command_line_flags() {
-    use microslip::answer::agreed::ReferenceError;
+    use microslip::answer::DissipationAnswerError;
     use microslip::digits::agreement::OutOfBudget;
     use microslip::dissipation::DissipationError;
     let errors: Vec<String> = vec![
@@ -729,8 +729,8 @@ fn library_error_texts_name_no_command_line_flags() {
         }
         .to_string(),
         DissipationError::OutOfRange { scale: 1e-300 }.to_string(),
-        ReferenceError::DigitsOutOfRange(0).to_string(),
-        ReferenceError::Budget(OutOfBudget {
+        DissipationAnswerError::DigitsOutOfRange(0).to_string(),
+        DissipationAnswerError::Budget(OutOfBudget {
             digits_requested: 50,
             digits_agreed: 3,
             seconds: 1.0,
@@ -988,7 +988,12 @@ fn digits_asked_and_the_default_digits_are_proven_by_an_enclosure() {
         assert_eq!(proven["provenance"], "certified", "{proven}");
         assert_eq!(proven["digits_certified"], 30, "{proven}");
         // An independent reference: 60 digits by agreement of two MPFR precisions.
-        let reference = verified_dissipation(&case_text(&flags), 60, budget).unwrap().total;
+        let reference = verified_dissipation(&case_text(&flags), 60, budget)
+            .unwrap()
+            .answer
+            .value
+            .decimal
+            .to_string();
         assert!(encloses(&proven, &reference), "{proven} vs {reference}");
         let w = proven["W"].as_str().unwrap();
         let rounded = rug::Float::with_val(400, rug::Float::parse(&reference).unwrap()).to_string_radix(10, Some(30));
@@ -1039,7 +1044,10 @@ fn the_misrounded_f64_reproducers_print_only_digits_of_w() {
         let digits = printed["digits"].as_u64().unwrap() as usize;
         let reference = verified_dissipation(&case_text(flags), 30, std::time::Duration::from_secs(120))
             .unwrap()
-            .total;
+            .answer
+            .value
+            .decimal
+            .to_string();
         let reference: f64 = reference.parse().unwrap();
         let w = printed["W"].as_str().unwrap();
         assert_eq!(w, format!("{:.*e}", digits - 1, reference), "{printed}");

@@ -10,12 +10,13 @@ use std::time::{Duration, Instant};
 
 use common::{microslip, PERSSON};
 use microslip::answer::dissipation::dissipation_of;
+use microslip::answer::{path::path_answer, ExitStatus};
 use microslip::case::CaseText;
 use microslip::compliance::parse_spec;
 use microslip::path::displacement::rainflow_ranges;
 use microslip::path::input::read_harmonics;
 use microslip::path::proven::{proven_w, NotProven, ProvenW};
-use microslip::path::{path_answer, path_dissipation, Contact, Drive, PathFormat, PathRequest, RatioText};
+use microslip::path::{path_dissipation, Contact, Drive, PathFormat, PathRequest, RatioText};
 use microslip::real::Precision;
 use rug::Float;
 use serde_json::Value;

@@ -367,7 +367,7 @@ fn shapes() -> Vec<(String, i64, String)> {
 /// trigonometric integrals evaluated in MPFR at 2000 bits on the phase kπ + x itself.
 #[test]
 fn coefficient_enclosures_contain_2000_bit_references() {
-    use microslip::exact::printing::{coefficient_answer, coefficient_answers};
+    use microslip::answer::series::{coefficient_answer, coefficient_answers};
     let bits = 2000;
     let budget = std::time::Duration::from_secs(60);
     for (rho, k, offset) in shapes() {
@@ -395,8 +395,8 @@ fn coefficient_enclosures_contain_2000_bit_references() {
 /// several compliance families and phases near 0 and π.
 #[test]
 fn partial_sum_enclosures_contain_2000_bit_references() {
+    use microslip::answer::series::partial_sum_answers;
     use microslip::case::{Case, CaseText};
-    use microslip::exact::printing::partial_sum_answers;
     let budget = std::time::Duration::from_secs(60);
     for (spec, phi) in [
         ("persson:gamma=1,sigma=1", "0.4pi"),

@@ -20,6 +20,6 @@ pub fn dissipation(
     let text = case.get().text.clone();
     let report = py
         .detach(|| dissipation_report(&text, digits, budget))
-        .map_err(errors::of_reference)?;
+        .map_err(errors::of)?;
     Ok(PyAnswer::of_report(report))
 }

@@ -1,11 +1,10 @@
 //! The library's errors as Python exceptions, split as the command line splits its exit
 //! codes: input refused (exit 2) is a `ValueError`, a result that could not be vouched for
-//! in time (exit 1) a `RuntimeError`; the message is the command line's line.
+//! in time (exit 1) a `RuntimeError`; the message is the command line's, without its hint.
 
 use std::time::Duration;
 
-use microslip::answer::agreed::ReferenceError;
-use microslip::exact::printing::ExactAnswerError;
+use microslip::answer::ExitStatus;
 use microslip::messages::printable;
 use pyo3::exceptions::{PyRuntimeError, PyValueError};
 use pyo3::PyErr;
@@ -20,17 +19,10 @@ pub fn failed(message: impl std::fmt::Display) -> PyErr {
     PyRuntimeError::new_err(printable(&message.to_string()).into_owned())
 }
 
-/// An error on the path to W.
-pub fn of_reference(error: ReferenceError) -> PyErr {
-    if error.is_failure() {
-        failed(error)
-    } else {
-        refused(error)
-    }
-}
-
-/// An error of the series or of the small-amplitude coefficient.
-pub fn of_exact_answer(error: ExactAnswerError) -> PyErr {
+/// A library error as the library maps it to an exit code: refused input a `ValueError`,
+/// a failed run a `RuntimeError`. The message leaves out the command line's hint, which
+/// names its flags.
+pub fn of(error: impl ExitStatus) -> PyErr {
     if error.is_failure() {
         failed(error)
     } else {

@@ -1,12 +1,13 @@
 //! `path(...)`: W, the amplitudes, the damping, the harmonics of Q and u and the steady
 //! loop of a contact under any periodic load path, as `microslip path` computes them
-//! (`microslip::path::request`). The Python side writes the path as the CSV text the
+//! (`microslip::answer::path`). The Python side writes the path as the CSV text the
 //! command reads; this module only converts the request and the answer.
 
 use std::time::Instant;
 
+use microslip::answer::path::{path_answer, PathAnswer};
 use microslip::path::input::Drive;
-use microslip::path::{path_answer, PathAnswer, PathFormat, PathRequest, RatioText};
+use microslip::path::{PathFormat, PathRequest, RatioText};
 use numpy::IntoPyArray;
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
@@ -200,12 +201,6 @@ pub fn path_of_text(
         harmonics_out,
         loop_points: LOOP_POINTS,
     };
-    let answer = py.detach(|| path_answer(&request)).map_err(|error| {
-        let message = format!("{error}{}", error.hint());
-        match error.exit_code() {
-            1 => errors::failed(message),
-            _ => errors::refused(message),
-        }
-    })?;
+    let answer = py.detach(|| path_answer(&request)).map_err(errors::of)?;
     Ok(PyPath { answer })
 }

@@ -2,9 +2,9 @@
 //! (the coefficient I(ρ, φ)), as `microslip series` and `microslip small-amplitude`
 //! print them.
 
+use microslip::answer::remainders::{case_remainders, CaseRemainders};
+use microslip::answer::series::{coefficient_answer, partial_sum_answers, PartialSums};
 use microslip::answer::Provenance;
-use microslip::exact::case_remainders::{case_remainders, CaseRemainders};
-use microslip::exact::printing::{coefficient_answer, partial_sum_answers, PartialSums};
 use pyo3::prelude::*;
 
 use crate::answer::PyAnswer;
@@ -98,9 +98,9 @@ pub fn series(
                 Provenance::Exact(_) => None,
                 _ => Some(case_remainders(&text, order, None)?),
             };
-            Ok::<_, microslip::exact::printing::ExactAnswerError>((sums, remainders))
+            Ok::<_, microslip::answer::series::ExactAnswerError>((sums, remainders))
         })
-        .map_err(errors::of_exact_answer)?;
+        .map_err(errors::of)?;
     Ok(PySeries { sums, remainders })
 }
 
@@ -119,6 +119,6 @@ pub fn small_amplitude(
     let (rho, phi) = (decimal_text(rho, "rho")?, decimal_text(phi, "phi")?);
     let answer = py
         .detach(|| coefficient_answer(&rho, &phi, digits, budget))
-        .map_err(errors::of_exact_answer)?;
+        .map_err(errors::of)?;
     Ok(PyAnswer::of(answer))
 }

@@ -105,12 +105,6 @@ pub fn simulate(
     };
     // The library decides what the command line decides (the f64 cycle, the tables, a W
     // that underflows), with the same exit code: refused input or a failed run.
-    let simulated = py.detach(|| simulated_answer(&spec, &options)).map_err(|error| {
-        let message = format!("{error}{}", error.hint());
-        match error.exit_code() {
-            1 => errors::failed(message),
-            _ => errors::refused(message),
-        }
-    })?;
+    let simulated = py.detach(|| simulated_answer(&spec, &options)).map_err(errors::of)?;
     Ok(PySimulation { simulated })
 }

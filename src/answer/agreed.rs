@@ -1,6 +1,5 @@
 //! W to a requested number of digits by agreement of two precisions — the path
-//! [`crate::answer::dissipation`] takes where no rigorous enclosure can be had — and the
-//! errors of every path to W.
+//! [`crate::answer::dissipation`] takes where no rigorous enclosure can be had.
 //!
 //! The case is computed twice by [`crate::digits::agreement::verify`] — at a working precision
 //! and rule chosen for the target, then again at a higher precision with twice the
@@ -14,122 +13,31 @@ use std::time::{Duration, Instant};
 use rug::Float;
 
 use crate::admissibility::prove_admissible;
-use crate::answer::{Answer, Provenance, Value};
-use crate::case::{Case, CaseSpec, CaseText, InputError};
-use crate::compliance::TableError;
-use crate::digits::agreement::{
-    agreeing_digits, agreement_radius, verify, OutOfBudget, TwoPrecisions, Verified, GUARD_DIGITS,
-};
+use crate::answer::{Answer, DissipationAnswerError, Provenance, Value};
+use crate::case::{Case, CaseSpec, CaseText};
+use crate::digits::agreement::{agreeing_digits, agreement_radius, verify, TwoPrecisions, Verified, GUARD_DIGITS};
 use crate::dissipation::{dissipation, Dissipation, DissipationError, ExactZero, Method, Options, Rules, Segments};
 use crate::quad::{FixedRule, RuleError};
 use crate::real::{Precision, Real};
 
 pub use crate::digits::agreement::MAX_DIGITS;
 
-/// W with its segments, rounded to the verified digits.
+/// W with its segments to the digits two precisions agree on: the answer as printed, and
+/// the higher precision's whole result.
 #[derive(Clone, Debug)]
 pub struct VerifiedDissipation {
-    /// W, rounded to `digits_verified` significant digits (`0` for a closed form's zero).
-    pub total: String,
-    /// The segments (EB, BC, CH, HE), each printed by the same rule as W to the digits
-    /// its own agreement between the two precisions determines (at most W's).
-    pub segments: [(&'static str, String); 4],
-    /// The digits asked for.
-    pub digits_requested: u32,
-    /// The significant digits on which the two estimates agreed, capped at the request.
-    pub digits_verified: u32,
-    /// The higher of the two working precisions.
-    pub precision_bits: u32,
-    /// How W was computed.
-    pub method: Method,
+    /// W and its segments as printed, each bounded by its agreement with the first run
+    /// (W to the digits asked for; `Provenance::Agreement` names the higher precision).
+    pub answer: Answer,
     /// The full higher-precision result.
     pub value: Dissipation<Float>,
-    /// W and its segments as printed, each bounded by its agreement with the first run.
-    pub answer: Answer,
-}
-
-/// Why a verified value could not be produced.
-#[non_exhaustive]
-#[derive(Debug, Clone, PartialEq, thiserror::Error)]
-pub enum ReferenceError {
-    /// The case's text is wrong.
-    #[error(transparent)]
-    Input(#[from] InputError),
-    /// The case is outside the theory, or would not converge.
-    #[error(transparent)]
-    Dissipation(#[from] DissipationError),
-    /// The digits asked for are out of range.
-    #[error("the significant digits asked for must be between 1 and {MAX_DIGITS}, got {0}")]
-    DigitsOutOfRange(u32),
-    /// The budget ran out first.
-    #[error("only {} of {} digits could be verified within {:.1} s (two precisions must agree to {GUARD_DIGITS} digits more; last attempt at {} bits)", .0.digits_reached(), .0.digits_requested, .0.seconds, .0.precision_bits)]
-    Budget(OutOfBudget),
-    /// The certified enclosure could not be had in time.
-    #[cfg(feature = "certified")]
-    #[error(transparent)]
-    Certified(crate::digits::enclosure::CertifiedError),
-    /// A table of the compliance.
-    #[error(transparent)]
-    Table(#[from] TableError),
-    /// f64 cannot compute this cycle, and a table is not computed at other precisions.
-    #[error("{source} — but a table compliance is computed in f64 only, so this cycle cannot be computed from a table (where its loads are extreme, rescale the cycle and the table's loads together: W scales with the load scale)")]
-    TableInF64 {
-        /// Why f64 cannot compute the cycle.
-        source: DissipationError,
-    },
-}
-
-impl ReferenceError {
-    /// Whether the input was fine and the run could not vouch for W in time (or at all): a
-    /// failure (exit 1) rather than a refusal of the input (exit 2).
-    pub fn is_failure(&self) -> bool {
-        match self {
-            ReferenceError::Budget(_) | ReferenceError::Dissipation(DissipationError::OutOfTime) => true,
-            #[cfg(feature = "certified")]
-            ReferenceError::Certified(_) => true,
-            _ => false,
-        }
-    }
-
-    /// The exit code of a command that ends on this error: 1 for a failure of the run
-    /// ([`Self::is_failure`]), 2 for refused input.
-    pub fn exit_code(&self) -> u8 {
-        if self.is_failure() {
-            1
-        } else {
-            2
-        }
-    }
-
-    /// What the user may change to get W, as a clause to append to the message (empty
-    /// where no flag helps); `digits_given`: whether `--digits` was.
-    pub fn hint(&self, digits_given: bool) -> &'static str {
-        match self {
-            // A table is computed in f64, where these end; any other W goes up to Arb.
-            ReferenceError::Dissipation(
-                DissipationError::NotConverged { .. }
-                | DissipationError::IllConditioned { .. }
-                | DissipationError::OutOfRange { .. },
-            ) if !digits_given => "; try --digits N (digits in MPFR)",
-            // More time helps an enclosure only where time is what it ran out of.
-            #[cfg(feature = "certified")]
-            ReferenceError::Certified(error)
-                if !matches!(error, crate::digits::enclosure::CertifiedError::OutOfTime { .. }) =>
-            {
-                ""
-            }
-            _ if !self.is_failure() => "",
-            _ if digits_given => "; raise --max-seconds or ask for fewer --digits",
-            _ => "; raise --max-seconds",
-        }
-    }
 }
 
 fn attempt(
     case: &CaseSpec,
     precision: Precision,
     options: &Options<Float>,
-) -> Result<Dissipation<Float>, ReferenceError> {
+) -> Result<Dissipation<Float>, DissipationAnswerError> {
     let Case { cycle, compliance } = case.at::<Float>(precision)?;
     Ok(dissipation(&cycle, compliance.as_ref(), options)?)
 }
@@ -175,14 +83,14 @@ impl FourSegmentW<'_> {
 
 impl TwoPrecisions for FourSegmentW<'_> {
     type Output = Dissipation<Float>;
-    type Error = ReferenceError;
+    type Error = DissipationAnswerError;
 
     /// Twelve digits beyond those required, and those the case's conditioning costs.
     fn starting_precision(&self, required: u32) -> Precision {
         Precision::decimal_digits(required + 12 + conditioning_digits(self.case))
     }
 
-    fn first(&mut self, precision: Precision, attempt_number: u32) -> Result<Self::Output, ReferenceError> {
+    fn first(&mut self, precision: Precision, attempt_number: u32) -> Result<Self::Output, DissipationAnswerError> {
         let options = Options {
             relative_tolerance: self.tolerance(precision, 0),
             rules: Rules::Adaptive {
@@ -200,7 +108,7 @@ impl TwoPrecisions for FourSegmentW<'_> {
         first: &Self::Output,
         higher: Precision,
         attempt_number: u32,
-    ) -> Result<Self::Output, ReferenceError> {
+    ) -> Result<Self::Output, DissipationAnswerError> {
         // The check's own error estimate goes unused and its compliance was checked by the
         // first run: it only has to agree (a check that missed something disagrees, and the
         // full run below decides).
@@ -242,17 +150,17 @@ impl TwoPrecisions for FourSegmentW<'_> {
     }
 
     /// An integral that did not converge within the attempt's points or time.
-    fn retries(&self, error: &ReferenceError) -> bool {
+    fn retries(&self, error: &DissipationAnswerError) -> bool {
         matches!(
             error,
-            ReferenceError::Dissipation(DissipationError::NotConverged { .. } | DissipationError::OutOfTime)
+            DissipationAnswerError::Dissipation(DissipationError::NotConverged { .. } | DissipationError::OutOfTime)
         )
     }
 }
 
 /// Why W is exactly 0 for a case the theory covers, if it is ([`CaseSpec::exact_zero`]);
 /// the cycle is validated and the compliance checked over its loads as for a computation.
-pub(crate) fn checked_exact_zero(case: &CaseSpec) -> Result<Option<ExactZero>, ReferenceError> {
+pub(crate) fn checked_exact_zero(case: &CaseSpec) -> Result<Option<ExactZero>, DissipationAnswerError> {
     let Some(reason) = case.exact_zero() else {
         return Ok(None);
     };
@@ -262,7 +170,7 @@ pub(crate) fn checked_exact_zero(case: &CaseSpec) -> Result<Option<ExactZero>, R
 
 /// Refuses a case whose compliance is not admissible over the cycle's loads
 /// ([`prove_admissible`]; the cycle itself was decided exactly when the case was read).
-pub(crate) fn check_case(case: &CaseSpec) -> Result<(), ReferenceError> {
+pub(crate) fn check_case(case: &CaseSpec) -> Result<(), DissipationAnswerError> {
     prove_admissible(case).map_err(DissipationError::from)?;
     Ok(())
 }
@@ -273,7 +181,7 @@ pub fn verified_dissipation(
     case: &CaseText,
     digits: u32,
     budget: Duration,
-) -> Result<VerifiedDissipation, ReferenceError> {
+) -> Result<VerifiedDissipation, DissipationAnswerError> {
     verified_dissipation_of(&case.spec()?, digits, budget)
 }
 
@@ -282,9 +190,9 @@ pub fn verified_dissipation_of(
     case: &CaseSpec,
     digits: u32,
     budget: Duration,
-) -> Result<VerifiedDissipation, ReferenceError> {
+) -> Result<VerifiedDissipation, DissipationAnswerError> {
     if digits == 0 || digits > MAX_DIGITS {
-        return Err(ReferenceError::DigitsOutOfRange(digits));
+        return Err(DissipationAnswerError::DigitsOutOfRange(digits));
     }
     if let Some(reason) = checked_exact_zero(case)? {
         let zero = Float::with_val(Precision::decimal_digits(digits).in_bits(), 0);
@@ -296,12 +204,6 @@ pub fn verified_dissipation_of(
         };
         return Ok(VerifiedDissipation {
             answer: Answer::exact_zero(reason, Some(digits)),
-            total: "0".to_string(),
-            segments: segments.named().map(|(name, _)| (name, "0".to_string())),
-            digits_requested: digits,
-            digits_verified: digits,
-            precision_bits: zero.prec(),
-            method: Method::Exact(reason),
             value: Dissipation {
                 total: zero.clone(),
                 segments,
@@ -323,7 +225,7 @@ pub fn verified_dissipation_of(
         first,
         precision,
         ..
-    } = verify(digits, w.deadline, &mut w).map_err(|error| error.into_error(ReferenceError::Budget))?;
+    } = verify(digits, w.deadline, &mut w).map_err(|error| error.into_error(DissipationAnswerError::Budget))?;
     // Each value by the one rule, bounded by its agreement with the first run: W has the
     // digits asked for (verify holds out for them), a segment as many as its own allows.
     let value = |value: &Float, first: &Float| Value::about(value, &agreement_radius(first, value), digits);
@@ -338,55 +240,12 @@ pub fn verified_dissipation_of(
         },
         method: Some(output.method),
     };
-    let segments = answer.segments.as_ref().expect("W's segments");
-    Ok(VerifiedDissipation {
-        total: answer.value.decimal.to_string(),
-        segments: segments.named().map(|(name, value)| (name, value.decimal.to_string())),
-        answer,
-        digits_requested: digits,
-        digits_verified: digits,
-        precision_bits: precision.in_bits(),
-        method: output.method,
-        value: output,
-    })
+    Ok(VerifiedDissipation { answer, value: output })
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
-
-    #[test]
-    fn the_digits_hint_is_given_only_where_digits_were_not() {
-        let out_of_range = || ReferenceError::Dissipation(DissipationError::OutOfRange { scale: 1e-310 });
-        assert_eq!(out_of_range().hint(false), "; try --digits N (digits in MPFR)");
-        assert_eq!(out_of_range().hint(true), "");
-        assert_eq!(out_of_range().exit_code(), 2);
-        let budget = || {
-            ReferenceError::Budget(OutOfBudget {
-                digits_requested: 30,
-                digits_agreed: 3,
-                seconds: 1.0,
-                precision_bits: 256,
-            })
-        };
-        assert!(budget().hint(true).contains("fewer --digits"));
-        assert!(!budget().hint(false).contains("--digits"));
-        assert_eq!(budget().exit_code(), 1);
-    }
-
-    #[test]
-    fn the_budget_error_reads_as_before() {
-        let budget = OutOfBudget {
-            digits_requested: 1000,
-            digits_agreed: 1002,
-            seconds: 0.01,
-            precision_bits: 3834,
-        };
-        assert_eq!(
-            ReferenceError::Budget(budget).to_string(),
-            "only 1000 of 1000 digits could be verified within 0.0 s (two precisions must agree to 4 digits more; last attempt at 3834 bits)"
-        );
-    }
 
     #[test]
     fn a_closed_form_zero_is_verified_as_exact() {
@@ -402,9 +261,13 @@ mod tests {
             compliance: "persson:gamma=1,sigma=1".into(),
         };
         let zero = verified_dissipation(&case("0"), 20, Duration::from_secs(30)).unwrap();
-        assert_eq!(zero.method, Method::Exact(ExactZero::NoTangentialOscillation));
-        assert_eq!(zero.total, "0");
+        assert_eq!(
+            zero.answer.method,
+            Some(Method::Exact(ExactZero::NoTangentialOscillation))
+        );
+        assert_eq!(zero.answer.value.decimal.to_string(), "0");
         let w = verified_dissipation(&case("0.5"), 20, Duration::from_secs(30)).unwrap();
-        assert_eq!(w.total, "4.0624757924582385709e-1");
+        assert_eq!(w.answer.value.decimal.to_string(), "4.0624757924582385709e-1");
+        assert_eq!(w.answer.provenance.key(), "agreement");
     }
 }

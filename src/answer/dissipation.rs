@@ -21,7 +21,8 @@ use std::sync::Arc;
 use std::time::{Duration, Instant};
 
 use crate::admissibility::prove_admissible;
-use crate::answer::agreed::{check_case, checked_exact_zero, verified_dissipation_of, ReferenceError, MAX_DIGITS};
+use crate::answer::agreed::{check_case, checked_exact_zero, verified_dissipation_of, MAX_DIGITS};
+use crate::answer::DissipationAnswerError;
 use crate::answer::{Answer, Provenance, Value};
 use crate::case::{Case, CaseSpec, CaseText, InputError};
 use crate::compliance::{ComplianceTable, TableInterpolant, TABLE_ORDER};
@@ -91,7 +92,11 @@ pub struct TableEstimate {
 }
 
 /// W as printed: [`dissipation_report`] without the reasons.
-pub fn dissipation_answer(case: &CaseText, digits: Option<u32>, budget: Duration) -> Result<Answer, ReferenceError> {
+pub fn dissipation_answer(
+    case: &CaseText,
+    digits: Option<u32>,
+    budget: Duration,
+) -> Result<Answer, DissipationAnswerError> {
     dissipation_report(case, digits, budget).map(|report| report.answer)
 }
 
@@ -113,7 +118,7 @@ pub fn dissipation_report(
     case: &CaseText,
     digits: Option<u32>,
     budget: Duration,
-) -> Result<DissipationAnswer, ReferenceError> {
+) -> Result<DissipationAnswer, DissipationAnswerError> {
     // The case is read once; every precision below is computed from it.
     dissipation_of(&case.spec()?, digits, budget)
 }
@@ -144,11 +149,11 @@ pub fn dissipation_of(
     case: &CaseSpec,
     digits: Option<u32>,
     budget: Duration,
-) -> Result<DissipationAnswer, ReferenceError> {
+) -> Result<DissipationAnswer, DissipationAnswerError> {
     let started = Instant::now();
     let deadline = started + budget;
     if let Some(digits) = digits.filter(|&d| d == 0 || d > MAX_DIGITS) {
-        return Err(ReferenceError::DigitsOutOfRange(digits));
+        return Err(DissipationAnswerError::DigitsOutOfRange(digits));
     }
     prove_admissible(case).map_err(DissipationError::from)?;
     let tables = case.compliance().tables();
@@ -190,7 +195,7 @@ fn to_digits(
     case: &CaseSpec,
     (least, digits): (u32, u32),
     (started, deadline): (Instant, Instant),
-) -> Result<(Answer, Option<NoEnclosure>), ReferenceError> {
+) -> Result<(Answer, Option<NoEnclosure>), DissipationAnswerError> {
     // The enclosure needs a case inside the theory, which it does not check itself.
     check_case(case)?;
     let no_enclosure = match certified::answer(case, (least, digits), deadline) {
@@ -200,7 +205,7 @@ fn to_digits(
     let budget = deadline.saturating_duration_since(Instant::now());
     match verified_dissipation_of(case, digits, budget) {
         Ok(verified) => Ok((verified.answer, Some(no_enclosure))),
-        Err(ReferenceError::Budget(mut spent)) => {
+        Err(DissipationAnswerError::Budget(mut spent)) => {
             // The time the request took, not agreement's share of it.
             spent.seconds = started.elapsed().as_secs_f64();
             Err(further_in_time(no_enclosure, spent))
@@ -211,15 +216,15 @@ fn to_digits(
 
 /// Where both the enclosure and agreement ran out of time, the one that got further (the
 /// enclosure on a tie: its digits are proven).
-fn further_in_time(no_enclosure: NoEnclosure, spent: crate::digits::agreement::OutOfBudget) -> ReferenceError {
+fn further_in_time(no_enclosure: NoEnclosure, spent: crate::digits::agreement::OutOfBudget) -> DissipationAnswerError {
     match no_enclosure {
         #[cfg(feature = "certified")]
         NoEnclosure::Refused(error @ crate::digits::enclosure::CertifiedError::OutOfTime { reached, .. })
             if reached >= spent.digits_reached() =>
         {
-            ReferenceError::Certified(error)
+            DissipationAnswerError::Certified(error)
         }
-        _ => ReferenceError::Budget(spent),
+        _ => DissipationAnswerError::Budget(spent),
     }
 }
 
@@ -227,7 +232,7 @@ fn further_in_time(no_enclosure: NoEnclosure, spent: crate::digits::agreement::O
 mod certified {
     use std::time::Instant;
 
-    use crate::answer::agreed::ReferenceError;
+    use crate::answer::DissipationAnswerError;
     use crate::answer::{Answer, Arithmetic, Provenance};
     use crate::ball::Ball;
     use crate::case::{Case, CaseSpec};
@@ -265,7 +270,7 @@ mod certified {
         case: &CaseSpec,
         (least, most): (u32, u32),
         deadline: Instant,
-    ) -> Result<Answer, Result<NoEnclosure, ReferenceError>> {
+    ) -> Result<Answer, Result<NoEnclosure, DissipationAnswerError>> {
         if least <= DEFAULT_LEAST_DIGITS {
             if let Some(answer) = in_intervals(case, least, most) {
                 return Ok(answer);
@@ -311,7 +316,7 @@ mod certified {
         case: &CaseSpec,
         digits: u32,
         deadline: Instant,
-    ) -> Result<Answer, Result<NoEnclosure, ReferenceError>> {
+    ) -> Result<Answer, Result<NoEnclosure, DissipationAnswerError>> {
         let read = |precision| {
             let Case { cycle, compliance } = case.at::<Ball>(precision).map_err(|e| e.to_string())?;
             Ok((cycle, compliance))
@@ -326,8 +331,8 @@ mod certified {
                 error @ (CertifiedError::BeyondDecimalExponents
                 | CertifiedError::TooSteep { .. }
                 | CertifiedError::OutOfTime { .. }),
-            ) => return Err(Err(ReferenceError::Certified(error))),
-            Err(error) if beyond_mpfr(case) => return Err(Err(ReferenceError::Certified(error))),
+            ) => return Err(Err(DissipationAnswerError::Certified(error))),
+            Err(error) if beyond_mpfr(case) => return Err(Err(DissipationAnswerError::Certified(error))),
             Err(error) => return Err(Ok(NoEnclosure::Refused(error))),
         };
         let enclosure = &certified.enclosure;
@@ -366,8 +371,8 @@ mod certified {
 mod certified {
     use std::time::Instant;
 
-    use crate::answer::agreed::ReferenceError;
     use crate::answer::Answer;
+    use crate::answer::DissipationAnswerError;
     use crate::case::CaseSpec;
 
     use super::NoEnclosure;
@@ -377,7 +382,7 @@ mod certified {
         _: &CaseSpec,
         _: (u32, u32),
         _: Instant,
-    ) -> Result<Answer, Result<NoEnclosure, ReferenceError>> {
+    ) -> Result<Answer, Result<NoEnclosure, DissipationAnswerError>> {
         Err(Ok(NoEnclosure::NotBuilt))
     }
 }
@@ -440,12 +445,12 @@ fn refinement_scale(refinement: f64) -> f64 {
 const ROUNDING_FACTOR: f64 = 2.0;
 
 /// An f64 failure on a table, for which no more precision is offered.
-fn table_in_f64(error: DissipationError) -> ReferenceError {
+fn table_in_f64(error: DissipationError) -> DissipationAnswerError {
     match error {
         DissipationError::IllConditioned { .. }
         | DissipationError::NotConverged { .. }
         | DissipationError::OutOfRange { .. }
-        | DissipationError::OutsideRange { .. } => ReferenceError::TableInF64 { source: error },
+        | DissipationError::OutsideRange { .. } => DissipationAnswerError::TableInF64 { source: error },
         other => other.into(),
     }
 }
@@ -458,11 +463,11 @@ fn table_shift(
     options: &Options<f64>,
     result: &Dissipation<f64>,
     interpolant: TableInterpolant,
-) -> Result<(f64, Segments<f64>), ReferenceError> {
+) -> Result<(f64, Segments<f64>), DissipationAnswerError> {
     let other = case
         .compliance()
         .build_with::<f64>(Precision::DOUBLE, interpolant)
-        .map_err(|e| ReferenceError::Input(InputError::from(e)))?;
+        .map_err(|e| DissipationAnswerError::Input(InputError::from(e)))?;
     let moved = dissipation(cycle, other.as_ref(), options).map_err(table_in_f64)?;
     let uncertainty = moved.error_estimate + result.error_estimate;
     let segments =
@@ -476,7 +481,7 @@ fn table_answer(
     case: &CaseSpec,
     tables: &[Arc<ComplianceTable>],
     deadline: Instant,
-) -> Result<DissipationAnswer, ReferenceError> {
+) -> Result<DissipationAnswer, DissipationAnswerError> {
     let Case { cycle, compliance } = case.at::<f64>(Precision::DOUBLE)?;
     cycle.validate().map_err(DissipationError::from)?;
     tables_cover(tables, &cycle)?;
@@ -542,7 +547,7 @@ fn table_to_digits(
     estimate: DissipationAnswer,
     digits: u32,
     clock: (Instant, Instant),
-) -> Result<DissipationAnswer, ReferenceError> {
+) -> Result<DissipationAnswer, DissipationAnswerError> {
     let (answer, no_enclosure) = match checked_exact_zero(case)? {
         Some(reason) => (Answer::exact_zero(reason, Some(digits)), None),
         None => to_digits(case, (digits, digits), clock)?,

@@ -3,7 +3,7 @@
 //! decided here, so that the command line and the bindings only format the result.
 
 use crate::answer::dissipation::tables_cover;
-use crate::answer::{Answer, Provenance, Value};
+use crate::answer::{Answer, ExitStatus, Provenance, Value};
 use crate::case::{Case, CaseSpec, InputError};
 use crate::compliance::TableError;
 use crate::cycle::{CycleError, LoadCycle};
@@ -68,25 +68,21 @@ pub enum SimulatedError {
     PathZeroInF64,
 }
 
-impl SimulatedError {
-    /// The exit code of a command that ends on it: 1 where the input was fine and the run
-    /// could not vouch for W, 2 for refused input.
-    pub fn exit_code(&self) -> u8 {
+impl ExitStatus for SimulatedError {
+    fn is_failure(&self) -> bool {
         match self {
-            SimulatedError::Path(error) => error.exit_code(),
+            SimulatedError::Path(error) => error.is_failure(),
             SimulatedError::RoundedAcrossBoundary(_)
             | SimulatedError::ZeroInF64
             | SimulatedError::PathZeroInF64
             | SimulatedError::Simulation(
                 SimulationError::ToleranceNotReached { .. } | SimulationError::OutOfTime { .. },
-            ) => 1,
-            _ => 2,
+            ) => true,
+            _ => false,
         }
     }
 
-    /// What the user may change, as a clause to append to the message (empty where
-    /// nothing helps).
-    pub fn hint(&self) -> &'static str {
+    fn hint(&self, _digits_asked: bool) -> &'static str {
         match self {
             SimulatedError::Simulation(SimulationError::ToleranceNotReached { .. }) => {
                 "; more --elements and --steps may reach it, or a larger --tolerance accepts it"

@@ -4,11 +4,12 @@
 
 use std::time::Duration;
 
-use crate::answer::agreed::ReferenceError;
 use crate::answer::dissipation::{dissipation_report, DissipationAnswer};
+use crate::answer::path::{path_answer, AgreedW, PathAnswer};
+use crate::answer::ExitStatus;
 use crate::answer::{Answer, Provenance};
 use crate::messages::printable;
-use crate::path::{path_answer, AgreedW, PathAnswer, PathFormat, PathRequest, RatioText};
+use crate::path::{PathFormat, PathRequest, RatioText};
 
 mod input;
 mod pool;
@@ -17,9 +18,6 @@ pub use input::{check_input, read_input, BatchInput, InputRow, PathRow, MAX_RECO
 pub use pool::{RowPool, Ticket};
 
 pub use crate::answer::dissipation::{TableEstimate, TABLE_QUADRATURE_TOLERANCE};
-
-/// Why a case gives no W: the one error of every path to W.
-pub type CaseError = ReferenceError;
 
 /// A batch input that cannot be used at all.
 #[derive(Debug, thiserror::Error)]
@@ -170,7 +168,7 @@ fn path_result(row: &PathRow, digits: Option<u32>, budget: Duration) -> Result<P
         harmonics_out: 0,
         loop_points: 1,
     };
-    path_answer(&request).map_err(|error| format!("{error}{}", error.hint()))
+    path_answer(&request).map_err(|error| error.line(digits.is_some()))
 }
 
 /// The result of a row that failed with `error`, naming the row's line.
@@ -188,7 +186,7 @@ fn row_result(row: &InputRow, digits: Option<u32>, budget: Duration) -> RowResul
         (Some(Ok(path)), _) => path_result(path, digits, budget).map(RowResult::of_path),
         (None, Ok(case)) => dissipation_report(case, digits, budget)
             .map(RowResult::of)
-            .map_err(|error| error.to_string()),
+            .map_err(|error| error.line(digits.is_some())),
     };
     outcome.unwrap_or_else(|error| failed_row(row, &error))
 }

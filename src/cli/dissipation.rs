@@ -2,7 +2,6 @@
 
 use clap::Args;
 
-use microslip::answer::agreed::ReferenceError;
 use microslip::answer::dissipation::{dissipation_report, DissipationAnswer};
 use microslip::answer::Provenance;
 use microslip::decimal::printing::Decimal;
@@ -37,19 +36,10 @@ exact) or estimated (a table's error, or agreement of two precisions where no en
 had). For a table compliance, --digits proves the digits of \
 its interpolant's W and states the table's own error beside them.";
 
-/// A library error with the flag that may help, and its exit code (both the library's).
-fn reference_failure(error: ReferenceError, digits_given: bool) -> Failure {
-    let message = format!("{error}{}", error.hint(digits_given));
-    match error.exit_code() {
-        1 => Failure::failed(message),
-        _ => Failure::refused(message),
-    }
-}
-
 pub fn run(args: &DissipationArgs) -> Result<String, Failure> {
     let case = args.case.text();
     let report = dissipation_report(&case, args.answer.digits, args.answer.max_seconds)
-        .map_err(|error| reference_failure(error, args.answer.digits.is_some()))?;
+        .map_err(|error| Failure::of(&error, args.answer.digits.is_some()))?;
     if args.answer.json {
         return Ok(serde_json::to_string(&DissipationReport::new(&report, &case))?);
     }

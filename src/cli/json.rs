@@ -11,10 +11,10 @@ use serde::ser::SerializeMap;
 use serde::Serialize;
 
 use microslip::answer::dissipation::DissipationAnswer;
+use microslip::answer::path::AgreedW;
 use microslip::answer::{Answer, Provenance, Value};
 use microslip::batch::{InputRow, RowResult};
 use microslip::case::CaseText;
-use microslip::path::AgreedW;
 
 /// Keys and values serialized as a JSON object in the order given.
 pub struct InOrder<K, V>(Vec<(K, V)>);

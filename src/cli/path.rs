@@ -7,8 +7,9 @@ use std::time::{Duration, Instant};
 use clap::{ArgGroup, Args, ValueEnum};
 use serde::Serialize;
 
+use microslip::answer::path::{path_answer, AgreedW, PathAnswer};
 use microslip::files::{check_writable, csv_text, destination, write_text_atomically, Destination};
-use microslip::path::{path_answer, AgreedW, Drive, PathAnswer, PathFormat, PathOutputs, PathRequest, RatioText};
+use microslip::path::{Drive, PathFormat, PathOutputs, PathRequest, RatioText};
 
 use super::case::ContactArgs;
 use super::parse;
@@ -182,10 +183,7 @@ pub fn run(args: &PathArgs) -> Result<String, Failure> {
             .request(&args.contact, deadline)?
             .unwrap_or_else(|| unreachable!("clap requires one of --harmonics and --samples"))
     };
-    let answer = path_answer(&request).map_err(|error| Failure {
-        message: format!("{error}{}", error.hint()),
-        code: error.exit_code(),
-    })?;
+    let answer = path_answer(&request).map_err(|error| Failure::of(&error, request.digits.is_some()))?;
     let printed = &answer.w;
     if let Some(path) = &args.loop_csv {
         let rows = answer

@@ -9,13 +9,9 @@ use std::sync::atomic::{AtomicBool, Ordering};
 
 use clap::error::{ContextKind, ContextValue, ErrorKind};
 
-use microslip::exact::printing::ExactAnswerError;
+use microslip::answer::ExitStatus;
+pub use microslip::answer::{FAILED, REFUSED};
 use microslip::messages::printable;
-
-/// Exit code of refused input: bad flags, a case outside the theory, a limit.
-pub const REFUSED: u8 = 2;
-/// Exit code of a run whose result cannot be vouched for or written.
-pub const FAILED: u8 = 1;
 
 /// A failure to report: a message (one line, or several for a list of findings) and
 /// the exit code.
@@ -43,13 +39,14 @@ impl Failure {
     }
 }
 
-/// A failure of an exact answer (I, Iₙ, W_N): refused input (exit 2), or a result that
-/// could not be vouched for (exit 1).
-pub fn exact_answer_failure(error: ExactAnswerError) -> Failure {
-    if error.is_failure() {
-        Failure::failed(error.to_string())
-    } else {
-        Failure::refused(error.to_string())
+impl Failure {
+    /// A library error as the library maps it: its line (message and hint) and exit code;
+    /// `digits_asked`: whether `--digits` was given.
+    pub fn of(error: &impl ExitStatus, digits_asked: bool) -> Self {
+        Failure {
+            message: error.line(digits_asked),
+            code: error.exit_code(),
+        }
     }
 }
 

@@ -4,14 +4,14 @@ use clap::{ArgGroup, Args};
 
 use serde::Serialize;
 
+use microslip::answer::series::{coefficient_answers, partial_sum_answers, PartialSums};
 use microslip::answer::{Answer, Provenance};
 use microslip::case::CaseText;
 use microslip::compliance::{spec_help, spec_summary};
-use microslip::exact::printing::{coefficient_answers, partial_sum_answers, PartialSums};
 
 use super::case::Answer as AnswerArgs;
 use super::json::{printed, ShapeInputs, ValueEnvelope, ValueReport};
-use super::report::{exact_answer_failure, Failure};
+use super::report::Failure;
 use super::series_remainder::{read_ratio, remainders, Remainders, WithinAnswer};
 
 /// `--rho` for the coefficients Iₙ alone, or a case (`--p0 … --compliance`) for its partial sums.
@@ -141,7 +141,7 @@ fn coefficients(args: &SeriesArgs, rho: &str) -> Result<String, Failure> {
         .order
         .ok_or_else(|| Failure::refused("--order is needed with --rho"))?;
     let answers = coefficient_answers(rho, &args.phi, order, args.answer.digits, args.answer.max_seconds)
-        .map_err(exact_answer_failure)?;
+        .map_err(|error| Failure::of(&error, false))?;
     if args.answer.json {
         let in_f64: Option<Vec<f64>> = answers
             .iter()
@@ -189,8 +189,8 @@ fn case_series(args: &SeriesArgs, p0: &str) -> Result<String, Failure> {
     };
     let order = args.order.unwrap_or(1);
     let ratio = args.within.as_deref().map(read_ratio).transpose()?;
-    let sums =
-        partial_sum_answers(&case, order, args.answer.digits, args.answer.max_seconds).map_err(exact_answer_failure)?;
+    let sums = partial_sum_answers(&case, order, args.answer.digits, args.answer.max_seconds)
+        .map_err(|error| Failure::of(&error, false))?;
     let all_exact = exact_reason(&sums.dissipation);
     if let (Some(reason), Some(_)) = (all_exact, ratio) {
         return Err(Failure::refused(format!(

@@ -4,12 +4,11 @@
 
 use serde::Serialize;
 
+use microslip::answer::remainders::case_remainders;
 use microslip::answer::Answer;
 use microslip::case::CaseText;
-use microslip::exact::case_remainders::case_remainders;
 use microslip::exact::remainder::WithinLimit;
 
-use super::report::exact_answer_failure;
 use super::report::Failure;
 
 /// The remainders of a case's partial sums and what they prove.
@@ -49,7 +48,7 @@ pub fn read_ratio(text: &str) -> Result<f64, Failure> {
 /// The remainders of the case's partial sums to `order`, and `--within` where asked,
 /// formatted as the command prints them.
 pub fn remainders(case: &CaseText, order: usize, within: Option<f64>) -> Result<Remainders, Failure> {
-    let found = case_remainders(case, order, within).map_err(exact_answer_failure)?;
+    let found = case_remainders(case, order, within).map_err(|error| Failure::of(&error, false))?;
     Ok(Remainders {
         bounds: found.bounds.iter().map(|&bound| three_digits(bound, true)).collect(),
         from_below: found.from_below,

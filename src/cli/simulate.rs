@@ -8,7 +8,7 @@ use std::time::{Duration, Instant};
 
 use clap::{ArgGroup, Args};
 
-use microslip::answer::simulation::{simulated_answer, simulated_path_answer, SimulatedAnswer, SimulatedError};
+use microslip::answer::simulation::{simulated_answer, simulated_path_answer, SimulatedAnswer};
 use microslip::answer::{Answer, Value};
 use microslip::decimal::printing::F64_MOST_DIGITS;
 use microslip::files::{check_writable, destination, write_text_atomically, Destination};
@@ -93,16 +93,6 @@ fn same_file(a: &Path, b: &Path) -> bool {
     resolve(a) == resolve(b)
 }
 
-/// A failure of the simulation's answer, with the flag that may help and the exit code
-/// (both the library's).
-fn simulation_failure(error: SimulatedError) -> Failure {
-    let message = format!("{error}{}", error.hint());
-    match error.exit_code() {
-        1 => Failure::failed(message),
-        _ => Failure::refused(message),
-    }
-}
-
 /// W as the work of the load and as the frictional work, and the runs, of either loads.
 struct Simulated<'a> {
     answer: &'a Answer,
@@ -154,7 +144,7 @@ pub fn run(args: &SimulateArgs) -> Result<String, Failure> {
 fn run_cycle(args: &SimulateArgs, cycle: &CycleArgs, options: &SimulationOptions) -> Result<String, Failure> {
     let case = cycle.text(&args.contact);
     let spec = case.spec()?;
-    let simulated: SimulatedAnswer = simulated_answer(&spec, options).map_err(simulation_failure)?;
+    let simulated: SimulatedAnswer = simulated_answer(&spec, options).map_err(|error| Failure::of(&error, false))?;
     let view = Simulated {
         answer: &simulated.answer,
         friction: &simulated.friction,
@@ -170,7 +160,7 @@ fn run_cycle(args: &SimulateArgs, cycle: &CycleArgs, options: &SimulationOptions
 
 /// The simulation of the force path of a file.
 fn run_path(args: &SimulateArgs, request: &PathRequest, options: &SimulationOptions) -> Result<String, Failure> {
-    let simulated = simulated_path_answer(request, options).map_err(simulation_failure)?;
+    let simulated = simulated_path_answer(request, options).map_err(|error| Failure::of(&error, false))?;
     let view = Simulated {
         answer: &simulated.answer,
         friction: &simulated.friction,

@@ -3,11 +3,10 @@
 use clap::Args;
 use serde::Serialize;
 
-use microslip::exact::printing::coefficient_answer;
+use microslip::answer::series::coefficient_answer;
 
 use super::case::Answer;
 use super::json::{printed, ShapeInputs, ValueEnvelope};
-use super::report::exact_answer_failure;
 use super::report::Failure;
 use super::series::shown;
 
@@ -43,7 +42,7 @@ struct CoefficientReport<'a> {
 
 pub fn run(args: &SmallAmplitudeArgs) -> Result<String, Failure> {
     let answer = coefficient_answer(&args.rho, &args.phi, args.answer.digits, args.answer.max_seconds)
-        .map_err(exact_answer_failure)?;
+        .map_err(|error| Failure::of(&error, false))?;
     if args.answer.json {
         let report = CoefficientReport {
             i: printed(&answer.value),

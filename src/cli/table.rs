@@ -187,7 +187,7 @@ impl TableArgs {
                             .value,
                     ),
                 };
-                let w = value.as_ref().map(|value| value.binary64.unwrap_or(0.0));
+                let w = value.as_ref().map(|value| value.to_f64().unwrap_or(0.0));
                 let exact_zero = spec.as_ref().and_then(|spec| spec.exact_zero());
                 let regime = match (w, exact_zero) {
                     (None, _) => "gross slip",

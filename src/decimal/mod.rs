@@ -2,10 +2,12 @@
 //!
 //! Decimals as written are read exactly: `0.4` is the rational 4/10, rounded once to each
 //! working precision, and refused in f64 where f64 cannot hold it. [`printing`] holds the
-//! one rule by which every value is printed.
+//! one rule by which every value is printed, and [`value`] a value as printed with its
+//! interval.
 
 pub mod printing;
 pub(crate) mod rounding;
+pub mod value;
 
 use rug::ops::Pow;
 use rug::{Integer, Rational};

@@ -3,15 +3,9 @@
 //! small-amplitude series W = λ f² Σₙ v⁽ⁿ⁺¹⁾(P0)/n! · P1ⁿ⁺² Iₙ (proofs/series.md,
 //! proofs/small-amplitude-coefficient.md).
 
-mod answer_error;
-#[cfg(feature = "certified")]
-pub mod case_remainders;
 pub mod coefficient;
-#[cfg(feature = "certified")]
-pub mod enclosure;
 pub mod kernel;
 pub mod polynomial_w;
-pub mod printing;
 pub mod remainder;
 pub mod series;
 pub mod trig;

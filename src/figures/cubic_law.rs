@@ -190,7 +190,7 @@ mod enclosed {
     use crate::ball::Ball;
     use crate::case::{Case, CaseSpec, CaseText};
     use crate::digits::enclosure::certified_dissipation;
-    use crate::exact::enclosure::case_balls;
+    use crate::digits::enclosure::series::case_balls;
     use crate::exact::SeriesShape;
     use crate::real::{Precision, Real};
 

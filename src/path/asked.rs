@@ -4,7 +4,6 @@
 
 use std::time::Instant;
 
-use crate::answer::dissipation::DEFAULT_DIGITS;
 use crate::compliance::{parse_spec, Compliance};
 use crate::cycle::compliance_ratio_from_poisson;
 use crate::real::{Precision, Real};
@@ -99,22 +98,6 @@ impl PathRequestError {
             failure: true,
         }
     }
-
-    /// The exit code of a command that ends on this error: 1 for a failed run, 2 for
-    /// refused input.
-    pub fn exit_code(&self) -> u8 {
-        if self.failure {
-            1
-        } else {
-            2
-        }
-    }
-
-    /// What the user may change, as a clause to append to the message (empty where
-    /// nothing helps).
-    pub fn hint(&self) -> &'static str {
-        ""
-    }
 }
 
 /// A path failure: input the theory does not cover is refused, a quadrature that did not
@@ -136,12 +119,6 @@ pub(crate) struct Inputs<R: Real> {
 }
 
 impl PathRequest {
-    /// The significant digits W is printed to at most: those asked for, else
-    /// [`DEFAULT_DIGITS`].
-    pub fn digits_asked(&self) -> u32 {
-        self.digits.unwrap_or(DEFAULT_DIGITS)
-    }
-
     pub(crate) fn read<R: Real>(&self, precision: Precision) -> Result<Inputs<R>, PathRequestError> {
         let path = match self.format {
             PathFormat::Samples => read_driven_samples::<R>(&self.contents, precision, self.drive),

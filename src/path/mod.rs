@@ -25,8 +25,9 @@
 //!   one ladder;
 //! - [`asked`]: a whole request as asked (file text, contact, drive, digits, budget), read
 //!   at any precision, and why it may have no answer;
-//! - [`request`]: the request answered with W proven where `proven` covers the path,
-//!   else on the digits two working precisions agree on (saying why), and the outputs.
+//!
+//! The request answered (W proven where `proven` covers the path, else on agreement) is
+//! the path's policy, in [`crate::answer::path`].
 
 pub mod asked;
 pub mod displacement;
@@ -36,7 +37,6 @@ pub mod input;
 pub mod outputs;
 #[cfg(feature = "certified")]
 pub mod proven;
-pub mod request;
 
 pub use asked::{PathFormat, PathRequest, PathRequestError, RatioText};
 pub use displacement::{displacement_dissipation, displacement_outputs, DisplacementCycle, MasingLaw};
@@ -44,7 +44,6 @@ pub use dissipation::{path_dissipation, PathDissipation};
 pub use events::SteadyCycle;
 pub use input::{Drive, LoadPath, PathError, TrigPoly, MAX_HARMONICS, MAX_SAMPLES};
 pub use outputs::{path_outputs, LoopPoint, PathHarmonic, PathOutputs};
-pub use request::{path_answer, AgreedW, PathAnswer};
 
 use crate::real::Real;
 

@@ -8,7 +8,7 @@
 //!
 //! The functions here compute I by the four-segment quadrature (the gate checks the
 //! closed form against them); what `microslip small-amplitude` prints is the closed form
-//! of [`crate::exact::coefficient`], enclosed ([`crate::exact::printing::coefficient_answer`]).
+//! of [`crate::exact::coefficient`], enclosed ([`crate::answer::series::coefficient_answer`]).
 
 use crate::compliance::Polynomial;
 use crate::cycle::LoadCycle;

@@ -7,10 +7,10 @@ use rug::Float;
 
 use super::enclosing::CertifiedPiece;
 use super::enclosing::Enclosing;
-use crate::answer::Value;
 use crate::arb::bisection;
 use crate::ball::{Ball, Mag};
 use crate::ball_gauss;
+use crate::decimal::value::Value;
 use crate::real::Real;
 
 impl Enclosing for Ball {

@@ -8,7 +8,7 @@ use std::panic::{catch_unwind, AssertUnwindSafe};
 
 use rug::Float;
 
-use crate::answer::Value;
+use crate::decimal::value::Value;
 use crate::doubts::{watch, with_analytic};
 use crate::real::Real;
 

@@ -7,7 +7,7 @@ use rug::Float;
 
 use super::enclosing::CertifiedPiece;
 use super::enclosing::Enclosing;
-use crate::answer::Value;
+use crate::decimal::value::Value;
 use crate::interval::{gauss, Interval};
 use crate::real::Real;
 

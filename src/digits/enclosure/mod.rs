@@ -16,16 +16,17 @@ mod arb;
 mod enclosing;
 mod intervals;
 mod pieces;
+pub mod series;
 
 use std::time::Instant;
 
 use rug::Rational;
 
-use crate::answer::{Decimal, Value};
 use crate::arb::enclose_pi_multiple;
 use crate::ball::{watch, Ball};
 use crate::compliance::Compliance;
 use crate::cycle::{CycleError, CycleKind, LoadCycle};
+use crate::decimal::{printing::Decimal, value::Value};
 use crate::digits::{doubled, Ladder, Rung, Stop};
 use crate::dissipation::{Segments, NEAR_SEPARATION};
 use crate::phase::ReducedPhase;

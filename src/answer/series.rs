@@ -1,7 +1,7 @@
 //! I(ρ, φ), the series coefficients Iₙ and a case's partial sums W_N beside W, as
 //! [`Answer`]s: exact by reason where the input decides the value (I₀ ≡ 0, nothing slips,
 //! the series ends, W's zeros), otherwise rigorous enclosures of the exact input's value
-//! (`exact::enclosure`, feature `certified`) printed by the one rule, and — only where no enclosure can be
+//! (`digits::enclosure::series`, feature `certified`) printed by the one rule, and — only where no enclosure can be
 //! had (feature `certified` off, or a comparison no precision decides) — two precisions'
 //! agreement, labelled as such.
 
@@ -9,13 +9,12 @@ use std::time::{Duration, Instant};
 
 use rug::{Float, Rational};
 
-pub use super::answer_error::{ExactAnswerError, MAX_ORDER};
-use super::coefficient::closed_form_coefficient;
-use super::series::{partial_sums, series_coefficients, SeriesError};
-use crate::answer::{Answer, Arithmetic, ExactReason, Provenance, Value};
+pub use super::series_error::{ExactAnswerError, MAX_ORDER};
+use super::{Answer, Arithmetic, ExactReason, Provenance, Value};
 use crate::case::{parse_phase, Case, CaseText};
 use crate::decimal::printing::{Decimal, F64_MOST_DIGITS};
 use crate::digits::agreement::{agreement_radius, verified_values, OutOfBudget, MAX_DIGITS};
+use crate::exact::{closed_form_coefficient, partial_sums, series_coefficients, SeriesError};
 use crate::phase::{decimal, ExactPhase, ReducedPhase};
 use crate::real::{ParseRealError, Precision, Real};
 
@@ -84,7 +83,7 @@ fn enclosures<E: Into<ExactAnswerError>>(
     budget: Duration,
     compute: impl Fn(Precision) -> Result<Vec<crate::ball::Ball>, E>,
 ) -> Result<Enclosures, ExactAnswerError> {
-    use super::enclosure::{enclose, EnclosureError};
+    use crate::digits::enclosure::series::{enclose, EnclosureError};
     match enclose(asked, must_decide, started + budget, compute) {
         Ok(enclosed) => Ok(Some((
             (0..enclosed.values.len()).map(|i| enclosed.bounds(i, asked)).collect(),
@@ -198,7 +197,11 @@ pub fn coefficient_answer(
     }
     #[cfg(feature = "certified")]
     let enclosed = enclosures("I", asked, false, started, budget, |precision| {
-        Ok::<_, ExactAnswerError>(vec![super::enclosure::coefficient_ball(rho, &exact_phase, precision)])
+        Ok::<_, ExactAnswerError>(vec![crate::digits::enclosure::series::coefficient_ball(
+            rho,
+            &exact_phase,
+            precision,
+        )])
     })?;
     #[cfg(not(feature = "certified"))]
     let enclosed = no_enclosure(&exact_phase);
@@ -260,7 +263,7 @@ pub fn coefficient_answers(
     }
     #[cfg(feature = "certified")]
     let enclosed = enclosures("Iₙ", asked, true, started, budget, |precision| {
-        super::enclosure::coefficient_balls(rho, &exact_phase, order, precision)
+        crate::digits::enclosure::series::coefficient_balls(rho, &exact_phase, order, precision)
     })?;
     #[cfg(not(feature = "certified"))]
     let enclosed = no_enclosure(&exact_phase);
@@ -356,7 +359,8 @@ pub fn partial_sum_answers(
     }
     #[cfg(feature = "certified")]
     let enclosed = enclosures("W_N", asked, true, started, budget, |precision| {
-        super::enclosure::partial_sum_balls(&spec, order, precision)
+        let Case { cycle, compliance } = crate::digits::enclosure::series::case_balls(&spec, precision)?;
+        Ok::<_, ExactAnswerError>(partial_sums(&cycle, compliance.as_ref(), order)?)
     })?;
     #[cfg(not(feature = "certified"))]
     let enclosed = no_enclosure(&spec);

@@ -3,16 +3,16 @@
 
 use rug::Float;
 
+use super::dissipation::DEFAULT_DIGITS;
 use crate::decimal::printing::decimal_ball;
 use crate::digits::agreement::{agreement_radius, verify, TwoPrecisions, VerifyError};
 use crate::real::{Precision, Real};
 
-use super::asked::{PathRequest, PathRequestError};
-use super::displacement::{displacement_dissipation, displacement_outputs, DisplacementCycle};
-use super::dissipation::{dissipation_of, path_dissipation};
-use super::input::Drive;
-use super::outputs::{path_outputs, PathOutputs};
-use super::SteadyCycle;
+use crate::path::dissipation::dissipation_of;
+use crate::path::{
+    displacement_dissipation, displacement_outputs, path_dissipation, path_outputs, DisplacementCycle, Drive,
+    PathOutputs, PathRequest, PathRequestError, SteadyCycle,
+};
 
 /// W as printed: its digits, its value in f64 and what vouches for it (an enclosure or
 /// the agreement of two precisions).
@@ -55,16 +55,30 @@ pub struct PathAnswer {
 }
 
 impl PathRequest {
-    /// W at one precision.
-    fn dissipation<R: Real>(&self, precision: Precision) -> Result<R, PathRequestError> {
-        let inputs = self.read::<R>(precision)?;
-        let (path, contact, compliance) = (&inputs.path, &inputs.contact, inputs.compliance.as_ref());
-        let w = match self.drive {
-            Drive::Force => path_dissipation(path, contact, compliance, Some(self.deadline)),
-            Drive::Displacement => displacement_dissipation(path, contact, compliance, Some(self.deadline)),
-        }?;
-        Ok(w.total)
+    /// The significant digits W is printed to at most: those asked for, else
+    /// [`DEFAULT_DIGITS`].
+    pub fn digits_asked(&self) -> u32 {
+        self.digits.unwrap_or(DEFAULT_DIGITS)
     }
+}
+
+/// A failed run (the integrals, the budget) or refused input.
+impl super::ExitStatus for PathRequestError {
+    fn is_failure(&self) -> bool {
+        self.failure
+    }
+}
+
+/// W of the request at one precision.
+fn dissipation_at<R: Real>(request: &PathRequest, precision: Precision) -> Result<R, PathRequestError> {
+    let inputs = request.read::<R>(precision)?;
+    let (path, contact, compliance) = (&inputs.path, &inputs.contact, inputs.compliance.as_ref());
+    let deadline = Some(request.deadline);
+    let w = match request.drive {
+        Drive::Force => path_dissipation(path, contact, compliance, deadline),
+        Drive::Displacement => displacement_dissipation(path, contact, compliance, deadline),
+    }?;
+    Ok(w.total)
 }
 
 /// W at two precisions until they agree to the digits asked for.
@@ -77,7 +91,7 @@ impl TwoPrecisions for Agreement<'_> {
     type Error = PathRequestError;
 
     fn first(&mut self, precision: Precision, _attempt: u32) -> Result<Vec<Float>, PathRequestError> {
-        Ok(vec![self.request.dissipation::<Float>(precision)?])
+        Ok(vec![dissipation_at::<Float>(self.request, precision)?])
     }
 
     fn check(
@@ -140,8 +154,8 @@ pub fn path_answer(request: &PathRequest) -> Result<PathAnswer, PathRequestError
 /// W proven by an enclosure, or why it is not (an error where the time budget ran out).
 #[cfg(feature = "certified")]
 fn proven_or_why(request: &PathRequest, estimate: f64) -> Result<Result<AgreedW, String>, PathRequestError> {
-    use super::proven::NotProven;
-    let proven = match super::proven::proven_w(request) {
+    use crate::path::proven::NotProven;
+    let proven = match crate::path::proven::proven_w(request) {
         Ok(proven) => proven,
         // A budget that runs out is a failure, not a reason to fall back on agreement.
         Err(out @ NotProven::OutOfTime { .. }) => {

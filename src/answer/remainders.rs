@@ -3,12 +3,12 @@
 //! alone proves, and the largest P1 at which the cubic law is proven within a ratio of W
 //! (proofs/cubic-law-remainder.md).
 
-use super::answer_error::ExactAnswerError;
-use super::enclosure::case_balls;
-use super::remainder::{largest_amplitude, sums_and_remainders_with, Remainder, Within};
-use super::SeriesShape;
-use crate::answer::{Answer, Arithmetic, Provenance, Value};
+use super::series_error::ExactAnswerError;
+use super::{Answer, Arithmetic, Provenance, Value};
 use crate::case::{Case, CaseText};
+use crate::digits::enclosure::series::case_balls;
+use crate::exact::remainder::{largest_amplitude, sums_and_remainders_with, Within};
+use crate::exact::{Remainder, SeriesShape};
 use crate::real::{Precision, Real};
 
 /// The working precision of the remainders: they are bounds, read to a few digits.

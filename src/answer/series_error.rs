@@ -1,11 +1,11 @@
 //! Why I(ρ, φ), the Iₙ or a case's partial sums could not be given: the one error of
-//! their answers ([`super::printing`]) and of their enclosures ([`super::enclosure`]).
+//! their answers ([`super::series`], [`super::remainders`]).
 
-use super::remainder::RemainderError;
-use super::series::SeriesError;
-use crate::answer::agreed::ReferenceError;
+use super::DissipationAnswerError;
+use super::ExitStatus;
 use crate::case::InputError;
 use crate::digits::agreement::{OutOfBudget, VerifyError, GUARD_DIGITS, MAX_DIGITS};
+use crate::exact::{RemainderError, SeriesError};
 use crate::phase::PhaseError;
 use crate::real::ParseRealError;
 
@@ -47,7 +47,7 @@ pub enum ExactAnswerError {
     Input(#[from] InputError),
     /// W failed.
     #[error(transparent)]
-    Reference(#[from] ReferenceError),
+    Reference(#[from] DissipationAnswerError),
     /// The time budget ran out before the enclosures were narrow enough.
     #[error("only {reached} of the {asked} digits of {quantity} asked were certified within {seconds:.1} s; ask for fewer digits or a larger --max-seconds")]
     Unreached {
@@ -72,10 +72,8 @@ pub enum ExactAnswerError {
     OutOfTime(OutOfBudget),
 }
 
-impl ExactAnswerError {
-    /// Whether the input was fine and the run could not vouch for its result (exit 1),
-    /// rather than refused (exit 2).
-    pub fn is_failure(&self) -> bool {
+impl ExitStatus for ExactAnswerError {
+    fn is_failure(&self) -> bool {
         match self {
             ExactAnswerError::OutOfTime(_)
             | ExactAnswerError::Unreached { .. }

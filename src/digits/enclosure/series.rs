@@ -1,5 +1,5 @@
 //! Rigorous enclosures of the small-amplitude coefficient I(ρ, φ), the series
-//! coefficients Iₙ and a case's partial sums W_N (proofs/series.md,
+//! coefficients Iₙ and a case's partial sums W_N, up the one ladder of Arb precisions (proofs/series.md,
 //! proofs/small-amplitude.md).
 //!
 //! The closed form and the exact trigonometric integrals are generic over [`Real`]; run on
@@ -15,14 +15,12 @@ use std::time::Instant;
 
 use rug::Float;
 
-use super::answer_error::ExactAnswerError;
-use super::coefficient::closed_form_coefficient;
-use super::series::{partial_sums, series_coefficients};
+use super::{phase_offset, MAX_BITS};
 use crate::ball::{watch, Ball};
-use crate::case::{Case, CaseSpec};
+use crate::case::{Case, CaseSpec, InputError};
 use crate::decimal::printing::decimal_interval;
-use crate::digits::enclosure::{phase_offset, MAX_BITS};
 use crate::digits::{doubled, Ladder, Rung, Stop};
+use crate::exact::{closed_form_coefficient, series_coefficients, SeriesError};
 use crate::phase::ReducedPhase;
 use crate::real::{Precision, Real};
 
@@ -176,24 +174,16 @@ pub fn coefficient_balls(
     phase: &ReducedPhase,
     order: usize,
     precision: Precision,
-) -> Result<Vec<Ball>, ExactAnswerError> {
+) -> Result<Vec<Ball>, SeriesError> {
     let rho = decimal_ball(rho, precision).expect("ρ is checked to read before");
     let (psi, _) = phase_offset(phase, precision);
     let values = series_coefficients(&rho, &psi, order)?;
     Ok(values.into_iter().skip(1).map(|(value, _)| value).collect())
 }
 
-/// W_1 … W_`order` of a case enclosed at a precision: the case's decimals as balls, its
-/// phase as the exact offset ψ from the nearest multiple nπ (with Q0 reversed for odd
-/// n: the mirror image, which has the same W).
-pub fn partial_sum_balls(case: &CaseSpec, order: usize, precision: Precision) -> Result<Vec<Ball>, ExactAnswerError> {
-    let Case { cycle, compliance } = case_balls(case, precision)?;
-    Ok(partial_sums(&cycle, compliance.as_ref(), order)?)
-}
-
 /// A case read as balls, its phase as the exact offset ψ from the nearest multiple nπ
 /// (with Q0 reversed for odd n: the mirror image, which has the same W).
-pub fn case_balls(case: &CaseSpec, precision: Precision) -> Result<Case<Ball>, ExactAnswerError> {
+pub fn case_balls(case: &CaseSpec, precision: Precision) -> Result<Case<Ball>, InputError> {
     let Case { mut cycle, compliance } = case.at::<Ball>(precision)?;
     let (psi, reverses) = phase_offset(case.phase(), precision);
     // `at` reverses Q0 for the mirror image it reads near an odd multiple of π; here it
