@@ -2,6 +2,7 @@
 //! cheapest configuration per target, and the files the command writes.
 
 mod common;
+use common::Scratch;
 
 use microslip::accuracy::{
     cheapest_for, measure_case, pareto_front, reference_value, standard_cases, to_csv, Measurement,
@@ -66,7 +67,8 @@ fn gauss_legendre_in_theta_converges_geometrically_where_the_load_integral_does_
 
 #[test]
 fn accuracy_command_writes_the_csv_and_both_plots() {
-    let dir = std::env::temp_dir().join(format!("microslip-accuracy-{}", std::process::id()));
+    let scratch = Scratch::new("out");
+    let dir = scratch.join("accuracy");
     let output = common::run(["accuracy", "--quick", "--out"]).arg(&dir).output();
     assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
     let stdout = String::from_utf8_lossy(&output.stdout);
@@ -80,14 +82,11 @@ fn accuracy_command_writes_the_csv_and_both_plots() {
     }
     let svg = std::fs::read_to_string(dir.join("accuracy.svg")).unwrap();
     assert!(svg.contains("Pareto front") && svg.contains("tanh-sinh"));
-    std::fs::remove_dir_all(&dir).ok();
 }
 
 #[test]
 fn accuracy_writes_all_three_files_or_none() {
-    let dir = std::env::temp_dir().join(format!("microslip-accuracy-full-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = Scratch::new("full");
     // File size limited to 64 KiB, as a full disk would stop it: the CSV and the SVG fit,
     // the PNG does not (a write beyond the limit fails with "File too large").
     let output = common::run(["accuracy", "--quick", "--out"])
@@ -102,7 +101,6 @@ fn accuracy_writes_all_three_files_or_none() {
     );
     let left: Vec<_> = std::fs::read_dir(&dir).unwrap().collect();
     assert!(left.is_empty(), "{left:?}");
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 /// The measurements of a CSV written by `to_csv`.

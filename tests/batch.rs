@@ -1,12 +1,12 @@
 //! `microslip batch`: rows in, results out in input order, every row as a single run
 //! prints it; bad rows reported in their row, unreadable input refused.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::Output;
 
 mod common;
 
-use common::Draws;
+use common::{Draws, Scratch};
 
 fn microslip(args: &[&str], stdin: Option<&str>) -> Output {
     common::run(args).stdin(stdin.unwrap_or("")).output()
@@ -15,12 +15,6 @@ fn microslip(args: &[&str], stdin: Option<&str>) -> Output {
 /// `microslip batch` from the file `input` to the file `output`.
 fn batch_files(input: &Path, output: &Path) -> common::Run {
     common::run(["batch", "--input", &path_text(input), "--output", &path_text(output)])
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("microslip-batch-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
 }
 
 fn path_text(path: &Path) -> String {
@@ -200,7 +194,7 @@ fn batch_with_verified_digits_equals_single_runs() {
 
 #[test]
 fn bad_rows_are_reported_in_their_row_and_the_others_computed() {
-    let dir = scratch("bad-rows");
+    let dir = Scratch::new("bad-rows");
     let table = format!("{}/tests/data/rough-surface.csv", env!("CARGO_MANIFEST_DIR"));
     let bad_table = dir.join("bad-table.csv");
     std::fs::write(&bad_table, "load,slope\n1,1\n2,0.5\n").expect("write");
@@ -275,7 +269,7 @@ fn bad_rows_are_reported_in_their_row_and_the_others_computed() {
 
 #[test]
 fn all_rows_computed_exits_0_and_replaces_the_output_whole() {
-    let dir = scratch("ok");
+    let dir = Scratch::new("ok");
     let output_path = dir.join("result.jsonl");
     std::fs::write(&output_path, "old contents\n").expect("write");
     let example = format!("{}/tests/data/batch-example.csv", env!("CARGO_MANIFEST_DIR"));
@@ -310,7 +304,7 @@ fn all_rows_computed_exits_0_and_replaces_the_output_whole() {
 
 #[test]
 fn an_unreadable_input_exits_2_and_writes_nothing() {
-    let dir = scratch("unreadable");
+    let dir = Scratch::new("unreadable");
     let output_path = dir.join("out.csv");
     for (name, input) in [
         ("missing", None),
@@ -565,7 +559,7 @@ fn rows_whose_node_tables_are_computed_on_the_pool_finish_within_their_budget() 
 
 #[test]
 fn a_path_column_names_a_path_file_relative_to_the_csv_and_a_bad_file_fails_its_row_alone() {
-    let dir = scratch("path-column");
+    let dir = Scratch::new("path-column");
     let paths = dir.join("paths");
     std::fs::create_dir_all(&paths).unwrap();
     let force = "k,P_cos,P_sin,Q_cos,Q_sin\n0,1,0,0.05,0\n1,0.25,0.05,0.2,-0.3\n2,0.08,-0.04,0.1,0.06\n";
@@ -674,7 +668,7 @@ fn a_path_column_names_a_path_file_relative_to_the_csv_and_a_bad_file_fails_its_
 /// the same bytes on one thread as on two.
 #[test]
 fn rows_of_unequal_cost_over_several_chunks_come_out_in_order_the_same_on_one_or_two_threads() {
-    let dir = scratch("unequal");
+    let dir = Scratch::new("unequal");
     let mut rows = random_rows(36, 600);
     for (i, row) in rows.iter_mut().enumerate().step_by(25) {
         let spec = ["power:c=1,beta=-4", "persson:gamma=1,sigma=1"][i % 2];
@@ -712,5 +706,4 @@ fn rows_of_unequal_cost_over_several_chunks_come_out_in_order_the_same_on_one_or
             .is_some_and(|line| line.contains("0.999999999") && line.contains("certified")),
         "{slow:?}"
     );
-    std::fs::remove_dir_all(&dir).expect("clean up");
 }

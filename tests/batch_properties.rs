@@ -7,21 +7,15 @@
 
 use std::io::Write;
 use std::os::unix::fs::FileTypeExt;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::process::{Child, Command};
 use std::time::{Duration, Instant};
 
 use proptest::prelude::*;
 
 mod common;
+use common::Scratch;
 use proptest::test_runner::{TestCaseError, TestRunner};
-
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("microslip-batch-properties-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
-}
 
 fn text(path: &Path) -> String {
     path.display().to_string()
@@ -201,7 +195,7 @@ fn one_line_refusal(outcome: &Outcome, needle: &str) -> Result<(), TestCaseError
 
 #[test]
 fn every_row_in_gives_one_row_out_in_order_and_a_column_named_twice_is_refused() {
-    let dir = scratch("random");
+    let dir = Scratch::new("random");
     let count = std::sync::atomic::AtomicUsize::new(0);
     runner(21)
         .run(&(random_csv(), formats(), 0..3usize), |(csv, format, target)| {
@@ -246,7 +240,6 @@ fn every_row_in_gives_one_row_out_in_order_and_a_column_named_twice_is_refused()
         let name = entry.expect("entry").file_name().to_string_lossy().into_owned();
         assert!(!name.starts_with('.'), "{name} left behind");
     }
-    std::fs::remove_dir_all(&dir).expect("clean up");
 }
 
 const CASES: &str = "id,p0,p1,q1,phi,friction,lambda,compliance\n\
@@ -255,7 +248,7 @@ const CASES: &str = "id,p0,p1,q1,phi,friction,lambda,compliance\n\
 
 #[test]
 fn devices_fifos_and_standard_output_are_written_in_place_and_never_replaced() {
-    let dir = scratch("in-place");
+    let dir = Scratch::new("in-place");
     let input = dir.join("in.csv");
     std::fs::write(&input, CASES).expect("input");
     // A character device.
@@ -308,12 +301,11 @@ fn devices_fifos_and_standard_output_are_written_in_place_and_never_replaced() {
     );
     assert!(std::fs::symlink_metadata(&fifo).expect("fifo").file_type().is_fifo());
     assert!(std::fs::symlink_metadata(&link).expect("link").file_type().is_symlink());
-    std::fs::remove_dir_all(&dir).expect("clean up");
 }
 
 #[test]
 fn an_output_that_cannot_be_written_is_refused_before_any_row_is_computed() {
-    let dir = scratch("unwritable");
+    let dir = Scratch::new("unwritable");
     // One row that would take its whole budget: refused long before it.
     let slow = "p0,p1,q1,phi,friction,lambda,compliance\n1,0.4,0.5,0.4pi,1,1,\"persson:gamma=1,sigma=1\"\n";
     let missing = text(&dir.join("no/such/directory/out.csv"));
@@ -344,7 +336,6 @@ fn an_output_that_cannot_be_written_is_refused_before_any_row_is_computed() {
         assert_eq!(outcome.stderr.trim_end().lines().count(), 1, "{}", outcome.stderr);
         assert!(outcome.stderr.contains(needle), "{output:?}: {}", outcome.stderr);
     }
-    std::fs::remove_dir_all(&dir).expect("clean up");
 }
 
 /// The resident memory of a running process, in KiB.
@@ -427,7 +418,7 @@ fn endless_input_is_refused_or_streamed_in_bounded_memory() {
 
 #[test]
 fn no_batch_row_and_no_reference_run_outlasts_its_budget_by_a_second() {
-    let dir = scratch("budget");
+    let dir = Scratch::new("budget");
     let input = dir.join("in.csv");
     std::fs::write(&input, CASES).expect("input");
     let outcome = run(
@@ -508,5 +499,4 @@ fn no_batch_row_and_no_reference_run_outlasts_its_budget_by_a_second() {
     let outcome = reference(&[]);
     assert_eq!(outcome.code, 0, "{}", outcome.stderr);
     assert_ne!(before, before_table);
-    std::fs::remove_dir_all(&dir).expect("clean up");
 }

@@ -8,7 +8,7 @@ use std::path::{Path, PathBuf};
 use std::process::{Command, Stdio};
 
 mod common;
-use common::{microslip, CASE_FLAGS};
+use common::{microslip, Scratch, CASE_FLAGS};
 
 /// `microslip <command>` on the acceptance case with `extra` flags (a flag given again
 /// in `extra` replaces the case's).
@@ -33,13 +33,6 @@ fn assert_one_line_failure(outcome: (i32, String, String), code: i32, expected: 
         stderr.contains(expected),
         "stderr should mention '{expected}': {stderr}"
     );
-}
-
-fn scratch(name: &str) -> PathBuf {
-    let directory = std::env::temp_dir().join(format!("microslip-cli-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&directory);
-    std::fs::create_dir_all(&directory).unwrap();
-    directory
 }
 
 fn json(stdout: &str) -> serde_json::Value {
@@ -318,7 +311,7 @@ fn every_example_in_the_readme_runs() {
     for command in &commands {
         // Commands that write files get a scratch directory for them.
         let mut args: Vec<String> = command.clone();
-        let directory = scratch("readme");
+        let directory = Scratch::new("readme");
         let mut previous = String::new();
         for arg in args.iter_mut() {
             let is_output = ["--loop", "--plot", "--out", "--output"].contains(&previous.as_str());
@@ -538,7 +531,7 @@ fn running_out_of_time_exits_1_whichever_notices_it() {
 
 #[test]
 fn output_paths_are_checked_before_computing_and_failures_are_one_human_line() {
-    let directory = scratch("paths");
+    let directory = Scratch::new("paths");
     let in_dir = |name: &str| directory.join(name).display().to_string();
     assert_one_line_failure(
         on_case("simulate", &["--plot", &in_dir("x.eps")]),
@@ -614,7 +607,7 @@ fn altered_catalogue(directory: &Path) -> (PathBuf, String) {
 
 #[test]
 fn reference_checks_by_default_reports_every_difference_and_writes_only_when_asked() {
-    let directory = scratch("catalogue");
+    let directory = Scratch::new("catalogue");
     let (path, original) = altered_catalogue(&directory);
     let before = std::fs::read_to_string(&path).unwrap();
     let path_text = path.display().to_string();
@@ -852,7 +845,7 @@ fn the_manual_pages_are_roff_for_the_program_and_each_command() {
 
 #[test]
 fn jobs_sets_the_worker_threads_and_refuses_what_is_not_a_thread_count() {
-    let directory = scratch("jobs");
+    let directory = Scratch::new("jobs");
     let input = concat!(env!("CARGO_MANIFEST_DIR"), "/tests/data/batch-example.csv");
     let mut outputs = Vec::new();
     for jobs in [None, Some("1"), Some("3")] {
@@ -1065,7 +1058,7 @@ fn an_exact_zero_is_one_answer_in_json_and_in_batch_rows() {
         "{zero}"
     );
     assert_eq!(zero["digits_certified"], 25);
-    let directory = scratch("exact-zero-batch");
+    let directory = Scratch::new("exact-zero-batch");
     let input = directory.join("in.csv");
     std::fs::write(
         &input,

@@ -4,22 +4,15 @@
 //! batch headers, facts.json without unexplained nulls, one-line parse errors, signals,
 //! input refused whole, overlong records, duplicate table keys and control characters.
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::time::{Duration, Instant};
 
 mod common;
-use common::{case_args, microslip, run};
+use common::{case_args, microslip, run, Scratch};
 
 use microslip::compliance::FAMILIES;
 
 const PERSSON: &str = "persson:gamma=1,sigma=1";
-
-fn scratch(name: &str) -> PathBuf {
-    let directory = std::env::temp_dir().join(format!("microslip-edges-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&directory);
-    std::fs::create_dir_all(&directory).unwrap();
-    directory
-}
 
 /// Exit 2, nothing on stdout, one line on stderr containing `expected`; that line.
 fn refused_in_one_line(outcome: (i32, String, String), expected: &str) -> String {
@@ -313,7 +306,7 @@ fn batch_headers_may_carry_units_as_table_headers_do() {
 
 #[test]
 fn facts_json_has_no_unexplained_null() {
-    let directory = scratch("facts");
+    let directory = Scratch::new("facts");
     let (code, _, stderr) = microslip(&["figures", "--out", directory.to_str().unwrap()]);
     assert_eq!(code, 0, "{stderr}");
     let text = std::fs::read_to_string(directory.join("facts.json")).unwrap();
@@ -328,7 +321,6 @@ fn facts_json_has_no_unexplained_null() {
     assert!(gains["0.5"].as_f64().unwrap() > 1.0);
     assert!(unbounded["0.2"].as_str().unwrap().contains("nothing slips"));
     assert!(unbounded["0.6"].as_str().unwrap().contains("gross slip"));
-    std::fs::remove_dir_all(&directory).unwrap();
 }
 
 #[test]
@@ -367,23 +359,38 @@ fn others(directory: &Path, keep: &[&str]) -> Vec<String> {
         .collect()
 }
 
+/// A running command, killed and waited for when dropped before it ends (a failed assertion),
+/// so that the scratch directory it writes in is removed after it rather than under it.
+struct Ended(std::process::Child);
+
+impl Drop for Ended {
+    fn drop(&mut self) {
+        if let Ok(None) = self.0.try_wait() {
+            let _ = self.0.kill();
+        }
+        let _ = self.0.wait();
+    }
+}
+
 #[test]
 fn a_signal_during_a_batch_leaves_no_temporary_file_and_the_output_as_it_was() {
     use std::os::unix::process::ExitStatusExt;
-    let directory = scratch("signals");
+    let directory = Scratch::new("signals");
     let input = directory.join("in.csv");
     std::fs::write(&input, big_input(200_000)).unwrap();
     let output = directory.join("out.csv");
     for (signal, number) in [("TERM", 15), ("INT", 2), ("HUP", 1)] {
         std::fs::write(&output, "old\n").unwrap();
-        let mut child = run([
-            "batch",
-            "--input",
-            input.to_str().unwrap(),
-            "--output",
-            output.to_str().unwrap(),
-        ])
-        .spawn();
+        let mut batch = Ended(
+            run([
+                "batch",
+                "--input",
+                input.to_str().unwrap(),
+                "--output",
+                output.to_str().unwrap(),
+            ])
+            .spawn(),
+        );
         // Until the temporary file exists: the batch is writing.
         let started = Instant::now();
         while others(&directory, &["in.csv", "out.csv"]).is_empty() {
@@ -395,11 +402,11 @@ fn a_signal_during_a_batch_leaves_no_temporary_file_and_the_output_as_it_was() {
         }
         std::thread::sleep(Duration::from_millis(300));
         let killed = std::process::Command::new("kill")
-            .args([format!("-{signal}"), child.id().to_string()])
+            .args([format!("-{signal}"), batch.0.id().to_string()])
             .status()
             .unwrap();
         assert!(killed.success());
-        let status = child.wait().unwrap();
+        let status = batch.0.wait().unwrap();
         assert_eq!(
             status.signal(),
             Some(number),
@@ -412,12 +419,11 @@ fn a_signal_during_a_batch_leaves_no_temporary_file_and_the_output_as_it_was() {
         );
         assert_eq!(std::fs::read_to_string(&output).unwrap(), "old\n", "{signal}");
     }
-    std::fs::remove_dir_all(&directory).unwrap();
 }
 
 #[test]
 fn a_file_that_stops_being_csv_is_refused_before_any_row_is_written() {
-    let directory = scratch("nul");
+    let directory = Scratch::new("nul");
     let mut input = big_input(499);
     input.push_str("500,1,0.4,0.5,0.4pi,1,1,const:c=\0\n");
     let path = directory.join("in.csv");
@@ -438,7 +444,6 @@ fn a_file_that_stops_being_csv_is_refused_before_any_row_is_written() {
             "{line}"
         );
     }
-    std::fs::remove_dir_all(&directory).unwrap();
 }
 
 #[test]
@@ -458,7 +463,7 @@ fn a_record_over_one_mebibyte_is_refused_in_a_batch_and_in_a_table() {
     let (code, _, stderr) = batch_on_stdin(input, &[]);
     assert_eq!(code, 0, "{stderr}");
 
-    let directory = scratch("long-table");
+    let directory = Scratch::new("long-table");
     let table = directory.join("t.csv");
     std::fs::write(&table, format!("load,slope\n0.5,2\n1,1{long}\n1.5,0.66\n2,0.5\n")).unwrap();
     let spec = format!("table:{}", table.display());
@@ -467,7 +472,6 @@ fn a_record_over_one_mebibyte_is_refused_in_a_batch_and_in_a_table() {
         "longer than 1 MiB",
     );
     assert!(stderr.contains("line 3"), "{stderr}");
-    std::fs::remove_dir_all(&directory).unwrap();
 }
 
 #[test]
@@ -487,7 +491,7 @@ fn a_table_key_given_twice_is_refused() {
 
 #[test]
 fn control_characters_of_the_input_are_escaped_in_messages() {
-    let directory = scratch("control");
+    let directory = Scratch::new("control");
     let table = directory.join("t.csv");
     std::fs::write(&table, "load,slope\n0.5,2\n1,1\0\n1.5,0.66\n2,0.5\n").unwrap();
     let spec = format!("table:{}", table.display());
@@ -511,5 +515,4 @@ fn control_characters_of_the_input_are_escaped_in_messages() {
     // (The input's own cell is echoed as it was: data, not a message.)
     let error = stdout.split("line 2: ").nth(1).unwrap();
     assert!(error.contains("'1\\u{7}'") && !error.contains('\u{7}'), "{stdout}");
-    std::fs::remove_dir_all(&directory).unwrap();
 }

@@ -26,6 +26,7 @@ use proptest::test_runner::{TestCaseError, TestRunner};
 use rug::Float;
 
 mod common;
+use common::Scratch;
 
 fn runner(seed: u8) -> TestRunner {
     common::seeded_runner(seed, 64)
@@ -618,8 +619,7 @@ fn simulate_on_any_flags_never_panics_hangs_or_prints_on_failure() {
             1 => Just(vec![("--loop", "missing/loop.csv")]),
         ],
     );
-    let directory = std::env::temp_dir().join(format!("microslip-cli-properties-{}", std::process::id()));
-    std::fs::create_dir_all(&directory).unwrap();
+    let directory = Scratch::new("simulate-files");
     let _serial = SERIAL.lock().unwrap_or_else(|poisoned| poisoned.into_inner());
     runner(3)
         .run(&strategy, |(case, elements, steps, tolerance, budget, files)| {
@@ -653,7 +653,6 @@ fn simulate_on_any_flags_never_panics_hangs_or_prints_on_failure() {
             })())
         })
         .unwrap();
-    let _ = std::fs::remove_dir_all(&directory);
 }
 
 /// Digits of the certified enclosure the f64 digits are checked against.

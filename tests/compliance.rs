@@ -11,6 +11,9 @@ use microslip::real::{Precision, Real};
 use proptest::prelude::*;
 use rug::Float;
 
+mod common;
+use common::Scratch;
+
 const SPECS: [&str; 9] = [
     "power:c=1,beta=-1",
     "power:c=0.3,beta=-0.4",
@@ -329,7 +332,8 @@ fn the_spec_tree_builds_each_family_and_combinator_as_its_decimals_mean() {
 
 #[test]
 fn a_table_is_read_once_when_its_spec_is_parsed() {
-    let path = std::env::temp_dir().join(format!("microslip-read-once-{}.csv", std::process::id()));
+    let scratch = Scratch::new("read-once");
+    let path = scratch.join("rough-surface.csv");
     std::fs::copy("tests/data/rough-surface.csv", &path).unwrap();
     let text = format!("2*table:{}", path.display());
     let spec = ComplianceSpec::parse(&text).unwrap();

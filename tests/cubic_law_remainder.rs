@@ -3,6 +3,7 @@
 //! at P1/P0 from 0.01 to 0.1 and random phases, and is within a small factor of it.
 
 mod common;
+use common::Scratch;
 
 use microslip::ball::Ball;
 use microslip::compliance::{Compliance, Exponential, Hertz, Persson, PowerLaw, Rational, Sum};
@@ -351,8 +352,7 @@ fn the_gate_proves_the_completely_monotone_bracket_by_derivation() {
 /// is refused naming v'''.
 #[test]
 fn a_table_gets_the_cubic_laws_bound_and_stops_at_order_one() {
-    let dir = std::env::temp_dir().join(format!("microslip-remainder-table-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = Scratch::new("tables");
     let mut draws = Draw::new(43);
     type Slope = fn(f64) -> f64;
     let slopes: [(&str, Slope); 3] = [
@@ -411,5 +411,4 @@ fn a_table_gets_the_cubic_laws_bound_and_stops_at_order_one() {
         assert_eq!(code, 2, "{name}");
         assert!(stderr.contains("v^(3)") && stderr.contains("--order 1"), "{stderr}");
     }
-    std::fs::remove_dir_all(&dir).ok();
 }

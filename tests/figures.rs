@@ -2,6 +2,7 @@
 //! computed values, and the `microslip figures` command (proofs/figures.md).
 
 mod common;
+use common::Scratch;
 
 use std::sync::OnceLock;
 
@@ -350,8 +351,8 @@ fn expected_files(extensions: &[&str]) -> Vec<String> {
 
 #[test]
 fn figures_command_writes_every_file_atomically_with_numeric_facts() {
-    let dir = std::env::temp_dir().join(format!("microslip-figures-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
+    let scratch = Scratch::new("out");
+    let dir = scratch.join("figures");
     let output = common::run(["figures", "--out"]).arg(&dir).output();
     assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
     assert_eq!(
@@ -395,15 +396,14 @@ fn figures_command_writes_every_file_atomically_with_numeric_facts() {
         stdout.contains("cubic law's error, hertz, φ = 0.9π: proven band / true error"),
         "{stdout}"
     );
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 #[test]
 fn figures_command_refuses_an_unusable_directory_before_computing() {
-    let file = std::env::temp_dir().join(format!("microslip-figures-file-{}", std::process::id()));
+    let scratch = Scratch::new("file");
+    let file = scratch.join("figures");
     std::fs::write(&file, b"not a directory").unwrap();
     let output = common::run(["figures", "--out"]).arg(&file).output();
-    std::fs::remove_file(&file).unwrap();
     assert_eq!(output.status.code(), Some(2));
     assert!(output.stdout.is_empty());
     let stderr = String::from_utf8_lossy(&output.stderr);
@@ -725,9 +725,7 @@ fn pngs_are_rendered_at_twice_the_old_size_and_anti_aliased() {
 
 #[test]
 fn figures_that_cannot_be_written_exit_1_and_leave_no_file_of_the_run() {
-    let dir = std::env::temp_dir().join(format!("microslip-figures-full-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = Scratch::new("full");
     // 100 KiB a file: Fig. 4's CSV and SVG fit, its PNG (over 300 KB) does not.
     let output = common::run(["figures", "--out"])
         .arg(&dir)
@@ -747,7 +745,6 @@ fn figures_that_cannot_be_written_exit_1_and_leave_no_file_of_the_run() {
         stderr.contains("fig6.png") && stderr.contains("is a directory"),
         "{stderr}"
     );
-    std::fs::remove_dir_all(&dir).unwrap();
 }
 
 /// The font sizes of an SVG's text elements.
@@ -935,8 +932,8 @@ fn the_accuracy_chart_has_a_panel_per_case_and_draws_the_clamp_as_a_floor_marker
 
 #[test]
 fn figures_command_writes_vector_pdfs_with_the_font_embedded() {
-    let dir = std::env::temp_dir().join(format!("microslip-figures-pdf-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&dir);
+    let scratch = Scratch::new("pdf");
+    let dir = scratch.join("figures");
     let output = common::run(["figures", "--format", "pdf", "--out"]).arg(&dir).output();
     assert!(output.status.success(), "{}", String::from_utf8_lossy(&output.stderr));
     assert_eq!(file_names_in(&dir), expected_files(&["csv", "pdf"]));
@@ -960,5 +957,4 @@ fn figures_command_writes_vector_pdfs_with_the_font_embedded() {
             "fig{n}.pdf is {width} pt wide"
         );
     }
-    std::fs::remove_dir_all(&dir).unwrap();
 }

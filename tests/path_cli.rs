@@ -3,9 +3,7 @@
 
 mod common;
 
-use std::path::PathBuf;
-
-use common::{microslip, samples_text, PERSSON};
+use common::{microslip, samples_text, Scratch, PERSSON};
 use microslip::compliance::parse_spec;
 use microslip::path::input::{read_driven_harmonics, read_harmonics};
 use microslip::path::{displacement_dissipation, path_dissipation, Contact, Drive};
@@ -13,13 +11,6 @@ use microslip::real::Precision;
 use serde_json::Value;
 
 const TWO_HARMONICS: &str = "k,P_cos,P_sin,Q_cos,Q_sin\n0,1,0,0.05,0\n1,0.25,0.05,0.2,-0.3\n2,0.08,-0.04,0.1,0.06\n";
-
-fn scratch(name: &str) -> PathBuf {
-    let directory = std::env::temp_dir().join(format!("microslip-path-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&directory);
-    std::fs::create_dir_all(&directory).unwrap();
-    directory
-}
 
 /// `microslip path --harmonics FILE --friction 0.8 --lambda 1.2 --compliance persson extra…`
 /// with `contents` in FILE.
@@ -56,7 +47,7 @@ fn library_w() -> f64 {
 
 #[test]
 fn the_json_conforms_to_its_schema_and_carries_the_library_w() {
-    let directory = scratch("json");
+    let directory = Scratch::new("json");
     let validator = schema();
     for extra in [
         &["--json"][..],
@@ -99,7 +90,7 @@ fn the_json_conforms_to_its_schema_and_carries_the_library_w() {
 
 #[test]
 fn samples_of_the_path_give_the_same_w_as_its_harmonics() {
-    let directory = scratch("samples");
+    let directory = Scratch::new("samples");
     let path = read_harmonics::<f64>(TWO_HARMONICS, Precision::DOUBLE).unwrap();
     let samples = samples_text(&path, 16);
     let file = directory.join("samples.csv");
@@ -129,7 +120,7 @@ fn samples_of_the_path_give_the_same_w_as_its_harmonics() {
 
 #[test]
 fn the_loop_is_written_whole_to_a_file_or_to_standard_output() {
-    let directory = scratch("loop");
+    let directory = Scratch::new("loop");
     let out = directory.join("loop.csv");
     let (code, stdout, stderr) = path_run(&directory, TWO_HARMONICS, &["--loop", out.to_str().unwrap()]);
     assert_eq!(code, 0, "{stderr}");
@@ -152,7 +143,7 @@ fn the_loop_is_written_whole_to_a_file_or_to_standard_output() {
 
 #[test]
 fn bad_paths_are_refused_in_one_line_naming_the_problem_and_leave_no_file() {
-    let directory = scratch("refusals");
+    let directory = Scratch::new("refusals");
     let out = directory.join("loop.csv");
     let cases: [(&str, &str); 6] = [
         ("k,P_cos,P_sin,Q_cos\n0,1,0,0\n", "column Q_sin"),
@@ -186,7 +177,7 @@ fn bad_paths_are_refused_in_one_line_naming_the_problem_and_leave_no_file() {
 
 #[test]
 fn displacement_driving_prints_the_library_w_and_names_its_drive() {
-    let directory = scratch("displacement");
+    let directory = Scratch::new("displacement");
     let validator = schema();
     let text = "k,P_cos,P_sin,u_cos,u_sin\n0,1.2,0,0.01,0\n1,0,0,0.2,-0.1\n2,0,0,0.04,0.05\n";
     let (code, stdout, stderr) = path_run(&directory, text, &["--drive", "displacement", "--json"]);
@@ -222,7 +213,7 @@ fn displacement_driving_prints_the_library_w_and_names_its_drive() {
 
 #[test]
 fn displacement_driving_refuses_a_varying_normal_load_and_force_columns() {
-    let directory = scratch("displacement-refusals");
+    let directory = Scratch::new("displacement-refusals");
     let out = directory.join("loop.csv");
     let cases = [
         (

@@ -7,7 +7,7 @@
 
 mod common;
 
-use common::{case_args, microslip, PERSSON};
+use common::{case_args, microslip, Scratch, PERSSON};
 use serde_json::Value;
 
 /// The schema of docs/schema/`name`.schema.json, checked against draft 2020-12's
@@ -62,12 +62,6 @@ fn data(file: &str) -> String {
     format!("{}/tests/data/{file}", env!("CARGO_MANIFEST_DIR"))
 }
 
-fn scratch(name: &str) -> std::path::PathBuf {
-    let dir = std::env::temp_dir().join(format!("microslip-schema-{name}-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("scratch directory");
-    dir
-}
-
 /// Flags and values that replace the acceptance case's or add to them.
 type Overrides<'a> = &'a [(&'a str, &'a str)];
 
@@ -115,7 +109,7 @@ fn dissipation_json_conforms_in_every_provenance() {
 /// decides which side of it the load lies, and two precisions agreeing give the digits.
 #[test]
 fn dissipation_json_conforms_where_digits_rest_on_agreement() {
-    let dir = scratch("agreement");
+    let dir = Scratch::new("agreement");
     let rows: String = (1..=16)
         .map(|k| 0.125 * f64::from(k))
         .map(|p| format!("{p:e},{:e}\n", 1.0 / p))
@@ -131,7 +125,6 @@ fn dissipation_json_conforms_where_digits_rest_on_agreement() {
     let report = conforming("dissipation", &args);
     assert_eq!(report["provenance"], "agreement", "{report}");
     assert!(report["no_enclosure"].is_string(), "{report}");
-    std::fs::remove_dir_all(&dir).expect("clean up");
 }
 
 #[test]

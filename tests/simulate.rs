@@ -153,6 +153,7 @@ fn simulation_reproduces_the_closed_forms() {
 }
 
 mod common;
+use common::Scratch;
 #[path = "common/strategies.rs"]
 mod strategies;
 
@@ -232,8 +233,7 @@ fn a_constant_compliance_dissipates_nothing_in_the_simulation() {
 
 #[test]
 fn simulate_command_prints_json_and_writes_the_loop() {
-    let dir = std::env::temp_dir().join(format!("microslip-simulate-{}", std::process::id()));
-    std::fs::create_dir_all(&dir).unwrap();
+    let dir = Scratch::new("loop");
     let csv = dir.join("loop.csv");
     let output = common::run(common::case_args("simulate", &[]))
         .args(["--json", "--loop"])
@@ -273,5 +273,4 @@ fn simulate_command_prints_json_and_writes_the_loop() {
     let bad = common::run(common::case_args("simulate", &[("--p1", "1.2"), ("--phi", "1")])).output();
     assert_eq!(bad.status.code(), Some(2));
     assert!(String::from_utf8_lossy(&bad.stderr).contains("the contact separates"));
-    std::fs::remove_dir_all(&dir).ok();
 }

@@ -5,9 +5,9 @@
 
 mod common;
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
-use common::{microslip, samples_text, PERSSON};
+use common::{microslip, samples_text, Scratch, PERSSON};
 use microslip::compliance::{parse_spec, Compliance};
 use microslip::path::displacement::DisplacementCycle;
 use microslip::path::input::{read_driven_harmonics, read_harmonics};
@@ -37,13 +37,6 @@ const VARYING_LOAD: &str = "k,P_cos,P_sin,u_cos,u_sin\n0,1.2,0,0.01,0\n1,0.3,0.1
 
 /// The contact of every run here: f = 0.8, λ = 1.2, v' = 1/P.
 const CONTACT: [&str; 6] = ["--friction", "0.8", "--lambda", "1.2", "--compliance", PERSSON];
-
-fn scratch(name: &str) -> PathBuf {
-    let directory = std::env::temp_dir().join(format!("microslip-simulate-path-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&directory);
-    std::fs::create_dir_all(&directory).unwrap();
-    directory
-}
 
 /// `microslip <command> --<format> FILE <CONTACT> extra…` with `contents` in FILE.
 fn on_file(directory: &Path, command: &str, format: &str, contents: &str, extra: &[&str]) -> (i32, String, String) {
@@ -109,7 +102,7 @@ fn simulated(document: &Value) -> (f64, f64) {
 
 #[test]
 fn a_harmonic_path_file_gives_the_w_of_its_case_flags() {
-    let directory = scratch("harmonic");
+    let directory = Scratch::new("harmonic");
     for (q0, q1, phi) in [(0.0, 0.4, 0.3), (0.05, 0.35, 1.2), (-0.05, 0.3, 2.5), (0.0, 0.4, 4.0)] {
         let (p0, p1) = (1.0, 0.4);
         let text = format!(
@@ -146,7 +139,7 @@ fn a_harmonic_path_file_gives_the_w_of_its_case_flags() {
 
 #[test]
 fn the_simulation_of_two_harmonics_agrees_with_microslip_path_within_its_estimate() {
-    let directory = scratch("two-harmonics");
+    let directory = Scratch::new("two-harmonics");
     for contents in [TWO_HARMONICS, LOCAL_EXTREME] {
         let simulation = json_of(on_file(&directory, "simulate", "harmonics", contents, &["--json"]));
         let (w, estimate) = simulated(&simulation);
@@ -185,7 +178,7 @@ fn the_library_simulates_a_path_as_the_event_decomposition_integrates_it() {
 
 #[test]
 fn samples_and_harmonics_of_one_path_give_one_w() {
-    let directory = scratch("samples");
+    let directory = Scratch::new("samples");
     let path = read_harmonics::<f64>(TWO_HARMONICS, Precision::DOUBLE).unwrap();
     let samples = samples_text(&path, 16);
     let resolution = ["--elements", "100", "--steps", "300", "--tolerance", "1e-3", "--json"];
@@ -199,7 +192,7 @@ fn samples_and_harmonics_of_one_path_give_one_w() {
 
 #[test]
 fn the_loop_of_a_path_is_written_whole() {
-    let directory = scratch("loop");
+    let directory = Scratch::new("loop");
     let out = directory.join("loop.csv");
     let extra = [
         "--elements",
@@ -228,7 +221,7 @@ fn the_loop_of_a_path_is_written_whole() {
 
 #[test]
 fn bad_path_input_is_refused_in_one_line_and_leaves_no_file() {
-    let directory = scratch("refusals");
+    let directory = Scratch::new("refusals");
     let out = directory.join("loop.csv");
     let keep_out = ["--loop", out.to_str().unwrap()];
     let refused = |(code, stdout, stderr): (i32, String, String), expected: &str| {
@@ -343,7 +336,7 @@ fn displacement_pair(directory: &Path, contents: &str, compliance: &str) -> ((f6
 
 #[test]
 fn displacement_driving_at_constant_load_agrees_with_microslip_path_below_and_beyond_gross_slip() {
-    let directory = scratch("displacement");
+    let directory = Scratch::new("displacement");
     let hertz = "hertz:r=1,estar=1";
     let power = "power:c=1,beta=-0.5";
     let cases = [
@@ -441,7 +434,7 @@ fn a_varying_normal_load_under_displacement_driving_closes_its_loop_and_converge
 
 #[test]
 fn samples_of_a_displacement_driven_path_give_the_w_of_its_harmonics() {
-    let directory = scratch("displacement-samples");
+    let directory = Scratch::new("displacement-samples");
     let path = read_driven_harmonics::<f64>(VARYING_LOAD, Precision::DOUBLE, Drive::Displacement).unwrap();
     let samples = samples_text(&path, 16).replacen("P,Q", "P,u", 1);
     let resolution = [

@@ -2,8 +2,8 @@
 //! error estimate, and every refusal of a bad table through the command line.
 
 mod common;
+use common::Scratch;
 
-use std::path::PathBuf;
 use std::time::Duration;
 
 use microslip::answer::dissipation::dissipation_report;
@@ -11,13 +11,6 @@ use microslip::case::{Case, CaseText};
 use microslip::dissipation::{dissipation, Options};
 use microslip::real::Precision;
 use rug::Float;
-
-/// A fresh directory for this test's files.
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("microslip-table-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
-}
 
 struct Family {
     name: &'static str,
@@ -78,7 +71,7 @@ fn table_w(path: &str, exact: f64) -> (f64, f64) {
 
 #[test]
 fn table_w_converges_to_the_analytic_w_at_a_measured_order() {
-    let dir = scratch("order");
+    let dir = Scratch::new("order");
     for family in &FAMILIES {
         let exact = analytic(family.spec);
         for (column, f) in [("slope", family.slope), ("approach", family.approach)] {
@@ -148,7 +141,7 @@ fn good_rows() -> Vec<String> {
 
 #[test]
 fn bad_tables_are_refused_with_the_line_and_the_problem() {
-    let dir = scratch("bad");
+    let dir = Scratch::new("bad");
     let rows = good_rows();
     let with = |header: &str, rows: &[String]| format!("# measured\n{header}\n{}\n", rows.join("\n"));
     let edited = |line: usize, replacement: &str| {
@@ -227,7 +220,7 @@ fn bad_tables_are_refused_with_the_line_and_the_problem() {
 
 #[test]
 fn a_cycle_leaving_the_table_is_refused_with_the_range() {
-    let dir = scratch("range");
+    let dir = Scratch::new("range");
     let path = persson_table(&dir, "good.csv", &format!("load,slope\n{}\n", good_rows().join("\n")));
     // P1 = 0.6 reaches 1.6 > 1.5 and P_T below 0.2.
     let message = refusal(&run_cli("0.6", &format!("table:{path}"), &[]));
@@ -303,7 +296,7 @@ fn digits_of_a_table_are_proven_for_its_interpolant_with_the_table_error_beside(
     let example = format!("table:{}/tests/data/rough-surface.csv", env!("CARGO_MANIFEST_DIR"));
     assert_certified_table(&case(&example), 30);
     // Loads ≤ 0 in the table: v' as a cubic in P itself.
-    let dir = scratch("certified");
+    let dir = Scratch::new("certified");
     let quadratic = dyadic_table(&dir, "quadratic.csv", 0.25, -2..=10, |p| {
         3.0 - 0.1 * (p + 1.0) * (p + 1.0)
     });
@@ -315,7 +308,7 @@ fn digits_of_a_table_are_proven_for_its_interpolant_with_the_table_error_beside(
 
 #[test]
 fn knots_exactly_at_the_extreme_loads_and_the_permanent_stick_load_are_enclosed() {
-    let dir = scratch("knots");
+    let dir = Scratch::new("knots");
     // Knots at 0.5, 1 and 1.5 = P0 − P1, P0 and P0 + P1, exactly, in log–log and in P.
     let log_log = dyadic_table(&dir, "persson.csv", 0.125, 1..=16, |p| 1.0 / p);
     let linear = dyadic_table(&dir, "quadratic.csv", 0.25, -2..=10, |p| {
@@ -355,7 +348,7 @@ fn knots_exactly_at_the_extreme_loads_and_the_permanent_stick_load_are_enclosed(
 
 #[test]
 fn a_table_of_constant_slope_is_exactly_zero_at_any_digits() {
-    let dir = scratch("constant");
+    let dir = Scratch::new("constant");
     // v = 3P: v' ≡ 3 between and beyond the rows' rounding.
     let text: String = (0..12)
         .map(|i| 0.1 + 1.9 * f64::from(i) / 11.0)
@@ -417,7 +410,7 @@ fn noisy_table(dir: &std::path::Path, size: f64) -> String {
 
 #[test]
 fn noisy_data_are_fitted_within_the_smoothing_tolerance_and_the_residual_reported() {
-    let dir = scratch("noisy");
+    let dir = Scratch::new("noisy");
     let path = noisy_table(&dir, 2e-2);
     // Without smoothing the noise is a violation of v'' ≤ 0.
     let message = refusal(&run_cli("0.4", &format!("table:{path}"), &[]));
@@ -437,7 +430,7 @@ fn noisy_data_are_fitted_within_the_smoothing_tolerance_and_the_residual_reporte
 #[test]
 fn the_interpolant_keeps_the_physics_between_the_rows() {
     use microslip::compliance::{cached_table, Compliance, TableCompliance, TableInterpolant};
-    let dir = scratch("shape");
+    let dir = Scratch::new("shape");
     for (name, column, rows, f) in [
         ("hertz", "approach", 6, FAMILIES[1].approach),
         ("exponential", "slope", 5, FAMILIES[2].slope),
@@ -478,7 +471,7 @@ fn the_quadrature_estimate_holds_on_the_piecewise_cubic() {
     use microslip::compliance::{cached_table, TableCompliance, TableInterpolant};
     use microslip::dissipation::{dissipation, Options};
     use microslip::quad::RuleError;
-    let dir = scratch("quadrature");
+    let dir = Scratch::new("quadrature");
     let path = write_table(&dir, "persson", "slope", 40, FAMILIES[0].slope);
     let compliance = TableCompliance {
         table: cached_table(&path, 0.0).expect("table"),
@@ -519,7 +512,7 @@ fn the_example_table_gives_w_within_its_estimate() {
 #[test]
 fn the_closed_form_paths_take_tables_too() {
     // In phase (φ = 0, integrals from P1 down to −Q1/f) and at constant normal load (P1 = 0).
-    let dir = scratch("closed-forms");
+    let dir = Scratch::new("closed-forms");
     let path = write_table(&dir, "persson", "slope", 80, FAMILIES[0].slope);
     for (p1, phi) in [("0.4", "0"), ("0.4", "pi"), ("0", "0.4pi")] {
         let with = |compliance: &str| common::case().p1(p1).phi(phi).compliance(compliance).text();
@@ -541,7 +534,7 @@ fn the_closed_form_paths_take_tables_too() {
 
 #[test]
 fn a_convex_approach_is_refused_at_the_row_where_its_secants_rise() {
-    let dir = scratch("convex-approach");
+    let dir = Scratch::new("convex-approach");
     // Secants 3, 2, then 7 (rising at the row of load 1.0), then 1.
     let path = persson_table(
         &dir,
@@ -623,7 +616,7 @@ fn table_w_converges_with_an_estimate_that_bounds_a_dense_rule_between_knots() {
 fn a_table_of_a_quadratic_slope_gives_the_analytic_w() {
     use microslip::compliance::{cached_table, Polynomial, TableCompliance, TableInterpolant};
     use microslip::dissipation::{dissipation, Options};
-    let dir = scratch("quadratic");
+    let dir = Scratch::new("quadratic");
     let rows: String = (0..30)
         .map(|i| {
             let load = 1.5 * f64::from(i) / 29.0;
@@ -741,7 +734,7 @@ fn analytic_w(flags: &[&str], spec: &str) -> f64 {
 #[test]
 fn a_cycle_below_a_wide_table_is_refused_not_extrapolated() {
     // Loads 1e-2 … 1e12: a slack proportional to the largest load let P_T = 2.8e-3 through.
-    let dir = scratch("wide");
+    let dir = Scratch::new("wide");
     let path = sampled_table(&dir, "wide.csv", "load,slope", (1e-2, 1e12, 60), |p| p.powf(-0.5));
     let flags = cycle_flags(["5e-3", "2e-3", "1e-3", "0.4pi", "1", "1"]);
     let mut args = vec!["dissipation"];
@@ -763,7 +756,7 @@ fn a_cycle_below_a_wide_table_is_refused_not_extrapolated() {
 
 #[test]
 fn exact_tables_of_linear_data_are_accepted() {
-    let dir = scratch("exact");
+    let dir = Scratch::new("exact");
     let flags = cycle_flags(["1", "0.4", "0.3", "1", "1", "1"]);
     // v = 3P (v' = 3, v'' = 0): rounding of the secants is not a violation of v'' ≤ 0.
     let loads: Vec<f64> = (0..12).map(|i| 0.1 + 1.9 * f64::from(i) / 11.0).collect();
@@ -809,7 +802,7 @@ fn exact_tables_of_linear_data_are_accepted() {
 #[test]
 fn a_table_too_coarse_for_any_digit_prints_none() {
     // Four rows of v' = e^(−2P) + 0.2: its own error estimate exceeds W.
-    let dir = scratch("coarse");
+    let dir = Scratch::new("coarse");
     let path = sampled_table(&dir, "coarse.csv", "load,slope", (0.1, 1.5, 4), |p| {
         (-p / 0.5).exp() + 0.2
     });
@@ -838,7 +831,7 @@ fn a_table_too_coarse_for_any_digit_prints_none() {
 
 #[test]
 fn column_names_may_carry_units_in_any_case() {
-    let dir = scratch("units");
+    let dir = Scratch::new("units");
     let flags = cycle_flags(["1", "0.4", "0.5", "0.4pi", "1", "1"]);
     let exact = analytic_w(&flags, "hertz:r=1,estar=1");
     let approach = |p: f64| (9.0 * p * p / 16.0).cbrt();
@@ -869,7 +862,7 @@ fn column_names_may_carry_units_in_any_case() {
 
 #[test]
 fn a_cycle_too_close_to_zero_load_for_f64_does_not_suggest_digits() {
-    let dir = scratch("tiny");
+    let dir = Scratch::new("tiny");
     let path = sampled_table(&dir, "tiny.csv", "load,slope", (1e-201, 1e-199, 20), |p| p.powf(-0.5));
     let mut args = vec!["dissipation"];
     args.extend(cycle_flags(["1e-200", "4e-201", "5e-201", "0.4pi", "1", "1"]));
@@ -888,7 +881,7 @@ fn a_cycle_too_close_to_zero_load_for_f64_does_not_suggest_digits() {
 /// at fourth order where the interpolant is not exact (proofs/table-compliance.md).
 #[test]
 fn eighty_rows_over_three_decades_give_w_to_a_tenth_of_a_millionth() {
-    let dir = scratch("decades");
+    let dir = Scratch::new("decades");
     let args = cycle_flags(["1", "0.4", "0.3", "1.9", "0.5", "1.2"]);
     let mut flags = args.clone();
     flags.extend(["--q0", "0.05"]);
@@ -932,7 +925,7 @@ fn eighty_rows_over_three_decades_give_w_to_a_tenth_of_a_millionth() {
 #[test]
 fn half_tables_are_as_coarse_as_their_actual_gaps_make_them() {
     use microslip::compliance::ComplianceTable;
-    let dir = scratch("refinement");
+    let dir = Scratch::new("refinement");
     let write = |name: &str, loads: &[f64]| {
         let path = dir.join(name);
         let rows: String = loads.iter().map(|p| format!("{p:e},{:e}\n", 1.0 / p)).collect();
@@ -948,5 +941,4 @@ fn half_tables_are_as_coarse_as_their_actual_gaps_make_them() {
     let pairs: Vec<f64> = (0..5).flat_map(|i| [1.0 + i as f64, 1.001 + i as f64]).collect();
     let refinements = write("pairs.csv", &pairs[..9]).half_refinements(1.0, 5.0);
     assert!(refinements[0] < 1.01, "{refinements:?}");
-    std::fs::remove_dir_all(&dir).expect("remove the scratch tables");
 }

@@ -4,7 +4,7 @@
 //! must bound the error of W from the table, and every digit printed must be a digit
 //! of the analytic W (computed by the library from the family's SPEC to 20 digits).
 
-use std::path::{Path, PathBuf};
+use std::path::Path;
 use std::time::Duration;
 
 use microslip::answer::dissipation::dissipation_report;
@@ -12,6 +12,7 @@ use microslip::case::CaseText;
 use microslip::cycle::LoadCycle;
 
 mod common;
+use common::Scratch;
 
 struct Family {
     spec: &'static str,
@@ -98,12 +99,6 @@ fn reach(cycle: &[&str; 7]) -> (f64, f64) {
     (low, number(0) + number(1))
 }
 
-fn scratch(name: &str) -> PathBuf {
-    let dir = std::env::temp_dir().join(format!("microslip-table-scan-{}-{name}", std::process::id()));
-    std::fs::create_dir_all(&dir).expect("temp dir");
-    dir
-}
-
 /// How a table's loads are spaced.
 #[derive(Clone, Copy, Debug)]
 enum Spacing {
@@ -180,7 +175,7 @@ fn scan_spacings(
     rows: &[usize],
     spacings: &dyn Fn(u64) -> Vec<Spacing>,
 ) -> (usize, f64) {
-    let dir = scratch(name);
+    let dir = Scratch::new(name);
     let (mut tables, mut worst) = (0, f64::INFINITY);
     let mut failures = Vec::new();
     for (c, cycle) in cycles.iter().enumerate() {
@@ -245,7 +240,6 @@ fn scan_spacings(
             }
         }
     }
-    std::fs::remove_dir_all(&dir).expect("remove the scratch tables");
     assert!(
         failures.is_empty(),
         "{} of the tables failed:\n{}",

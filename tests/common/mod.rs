@@ -5,6 +5,10 @@ use microslip::cycle::LoadCycle;
 use microslip::path::LoadPath;
 use microslip::real::Real;
 
+mod scratch;
+#[allow(unused_imports)] // not every test binary writes files
+pub use scratch::Scratch;
+
 /// The first acceptance case of the project: P0 = f = λ = 1, P1 = 0.4, Q1 = 0.5, Q0 = 0
 /// (with v' = 1/P in most tests), at the given phase and the phase's precision.
 #[allow(dead_code)] // not every test binary uses it
