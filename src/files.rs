@@ -447,15 +447,19 @@ mod tests {
     use super::*;
     use std::os::unix::fs::FileTypeExt;
 
-    fn scratch(name: &str) -> PathBuf {
-        let directory = std::env::temp_dir().join(format!("microslip-files-{}-{name}", std::process::id()));
-        std::fs::create_dir_all(&directory).unwrap();
-        directory
+    /// A fresh directory, removed with everything in it when the test ends (also on a
+    /// failure).
+    fn scratch(name: &str) -> tempfile::TempDir {
+        tempfile::Builder::new()
+            .prefix(&format!("microslip-files-{name}-"))
+            .tempdir()
+            .unwrap()
     }
 
     #[test]
     fn a_failed_write_leaves_the_old_file_and_no_temporary() {
-        let directory = scratch("failed");
+        let scratch = scratch("failed");
+        let directory = scratch.path();
         let target = directory.join("out.csv");
         std::fs::write(&target, "old").unwrap();
         let outcome = write_atomically(&target, |temporary| {
@@ -464,16 +468,16 @@ mod tests {
         });
         assert!(matches!(outcome, Err(OutputError::Content { .. })), "{outcome:?}");
         assert_eq!(std::fs::read_to_string(&target).unwrap(), "old");
-        assert_eq!(std::fs::read_dir(&directory).unwrap().count(), 1);
+        assert_eq!(std::fs::read_dir(directory).unwrap().count(), 1);
         write_text_atomically(&target, "new").unwrap();
         assert_eq!(std::fs::read_to_string(&target).unwrap(), "new");
-        assert_eq!(std::fs::read_dir(&directory).unwrap().count(), 1);
-        std::fs::remove_dir_all(&directory).unwrap();
+        assert_eq!(std::fs::read_dir(directory).unwrap().count(), 1);
     }
 
     #[test]
     fn targets_are_checked_for_extension_directory_and_writability() {
-        let directory = scratch("check");
+        let scratch = scratch("check");
+        let directory = scratch.path();
         assert!(check_writable(&directory.join("a.svg"), &["svg", "png"]).is_ok());
         assert!(check_writable(&directory.join("a.PNG"), &["svg", "png"]).is_ok());
         let wrong = check_writable(&directory.join("a.pdf"), &["svg", "png"]).unwrap_err();
@@ -481,16 +485,16 @@ mod tests {
         let missing = check_writable(&directory.join("nowhere/a.svg"), &["svg"]).unwrap_err();
         assert!(matches!(missing, OutputError::NoDirectory { .. }), "{missing}");
         assert!(matches!(
-            check_writable(&directory, &[]),
+            check_writable(directory, &[]),
             Err(OutputError::IsDirectory { .. })
         ));
-        assert_eq!(std::fs::read_dir(&directory).unwrap().count(), 0);
-        std::fs::remove_dir_all(&directory).unwrap();
+        assert_eq!(std::fs::read_dir(directory).unwrap().count(), 0);
     }
 
     #[test]
     fn a_link_is_followed_and_its_target_replaced_and_devices_are_written_in_place() {
-        let directory = scratch("links");
+        let scratch = scratch("links");
+        let directory = scratch.path();
         let target = directory.join("target.csv");
         let link = directory.join("link.csv");
         std::fs::write(&target, "old").unwrap();
@@ -525,20 +529,19 @@ mod tests {
             check_writable(Path::new(""), &[]),
             Err(OutputError::EmptyName)
         ));
-        std::fs::remove_dir_all(&directory).unwrap();
     }
 
     #[test]
     fn an_unfinished_stream_leaves_the_old_file_and_no_temporary() {
-        let directory = scratch("unfinished");
+        let scratch = scratch("unfinished");
+        let directory = scratch.path();
         let target = directory.join("out.csv");
         std::fs::write(&target, "old").unwrap();
         let mut streamed = StreamedOutput::create(&target).unwrap();
         streamed.write_all(b"half").unwrap();
         drop(streamed);
         assert_eq!(std::fs::read_to_string(&target).unwrap(), "old");
-        assert_eq!(std::fs::read_dir(&directory).unwrap().count(), 1);
-        std::fs::remove_dir_all(&directory).unwrap();
+        assert_eq!(std::fs::read_dir(directory).unwrap().count(), 1);
     }
 
     #[test]
