@@ -6,6 +6,7 @@
 
 mod common;
 
+use common::PERSSON;
 use microslip::answer::dissipation::dissipation_answer;
 use microslip::answer::DissipationAnswerError;
 use microslip::answer::{Answer, Decimal, Provenance, Value};
@@ -53,8 +54,6 @@ fn case(p0: &str, p1: &str, q1: &str, phi: &str, friction: &str, spec: &str) -> 
         .compliance(spec)
         .text()
 }
-
-const PERSSON: &str = "persson:gamma=1,sigma=1";
 
 fn acceptance() -> Case {
     case("1", "0.4", "0.5", "0.4pi", "1", PERSSON)

@@ -16,7 +16,7 @@ use crate::admissibility::prove_admissible;
 use crate::answer::{Answer, DissipationAnswerError, Provenance, Value};
 use crate::case::{Case, CaseSpec, CaseText};
 use crate::digits::agreement::{agreeing_digits, agreement_radius, verify, TwoPrecisions, Verified, GUARD_DIGITS};
-use crate::dissipation::{dissipation, Dissipation, DissipationError, ExactZero, Method, Options, Rules, Segments};
+use crate::dissipation::{dissipation, Dissipation, DissipationError, ExactZero, Options, Rules, Segments};
 use crate::quad::{FixedRule, RuleError};
 use crate::real::{Precision, Real};
 
@@ -196,23 +196,9 @@ pub fn verified_dissipation_of(
     }
     if let Some(reason) = checked_exact_zero(case)? {
         let zero = Float::with_val(Precision::decimal_digits(digits).in_bits(), 0);
-        let segments = crate::dissipation::Segments {
-            eb: zero.clone(),
-            bc: zero.clone(),
-            ch: zero.clone(),
-            he: zero.clone(),
-        };
         return Ok(VerifiedDissipation {
             answer: Answer::exact_zero(reason, Some(digits)),
-            value: Dissipation {
-                total: zero.clone(),
-                segments,
-                error_estimate: zero,
-                evaluations: 0,
-                points: 0,
-                piece_points: Vec::new(),
-                method: Method::Exact(reason),
-            },
+            value: Dissipation::exact_zero(reason, &zero),
         });
     }
     let mut w = FourSegmentW {
@@ -246,6 +232,7 @@ pub fn verified_dissipation_of(
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::dissipation::Method;
 
     #[test]
     fn a_closed_form_zero_is_verified_as_exact() {

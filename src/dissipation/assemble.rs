@@ -132,6 +132,21 @@ pub struct Dissipation<R> {
     pub method: Method,
 }
 
+impl<R: Real> Dissipation<R> {
+    /// W exactly 0 for `reason`, decided from the input: no integral, no error.
+    pub fn exact_zero(reason: ExactZero, zero: &R) -> Self {
+        Dissipation {
+            total: zero.clone(),
+            segments: Segments::from_fn(|_| zero.clone()),
+            error_estimate: zero.clone(),
+            evaluations: 0,
+            points: 0,
+            piece_points: Vec::new(),
+            method: Method::Exact(reason),
+        }
+    }
+}
+
 /// What a formula computed, per unit λ: the four segment values (zero where it has none),
 /// the quadrature's error estimate and its cost.
 pub(crate) struct Parts<R> {
