@@ -4,7 +4,6 @@ use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
 use microslip::figures::output::DEFAULT_FORMATS;
-use microslip::figures::FiguresError;
 use microslip::plot::Format;
 
 use super::case::Jobs;
@@ -57,12 +56,7 @@ pub fn run(args: &FiguresArgs) -> Result<String, Failure> {
     let summary =
         microslip::figures::regenerate(&args.out, &formats, &|done, total| progress.at_of(done, total, "steps"));
     progress.finish();
-    // Only an unusable directory is refused input; anything failing after it was checked
-    // is a failed run.
-    let summary = summary.map_err(|error| match error {
-        FiguresError::Directory { .. } => Failure::refused(error.to_string()),
-        _ => Failure::failed(error.to_string()),
-    })?;
+    let summary = summary.map_err(|error| Failure::of(&error, false))?;
     let facts = microslip::figures::output::FactsJson::of(&summary.figures.facts);
     let mut text = format!(
         "{} files written to {}\n{}\n{}",

@@ -44,6 +44,14 @@ pub enum FiguresError {
     Plot(#[from] PlotError),
 }
 
+/// Only an unusable directory is refused input; anything failing after it was checked is
+/// a failed run.
+impl crate::answer::ExitStatus for FiguresError {
+    fn is_failure(&self) -> bool {
+        !matches!(self, FiguresError::Directory { .. })
+    }
+}
+
 /// What was written.
 #[derive(Debug)]
 pub struct Summary {
