@@ -659,7 +659,7 @@ fn a_path_column_names_a_path_file_relative_to_the_csv_and_a_bad_file_fails_its_
     }
     assert_eq!(lines[1]["W"].as_str(), Some(rows[1][w].as_str()));
     assert_eq!(lines[5]["method"], "path-displacement");
-    assert_eq!(lines[5]["provenance"], "agreement");
+    assert_eq!(lines[5]["provenance"], "certified");
 }
 
 /// A file's chunks of 256 rows are computed while the next is read, each thread taking the

@@ -1,23 +1,28 @@
 //! Proven W of a periodic path at constant normal load: the certified four-segment W for
 //! one harmonic (the same digits, overlapping enclosures), Masing's rule over rainflow
 //! cycles for two, invariance under a time shift, a shift of Q0 and zero harmonics, and
-//! the enclosures against W at 40 digits by agreement; paths it does not cover say why.
+//! the enclosures against W at 40 digits by agreement; under displacement driving the
+//! force-driven W at the resulting Q amplitude, gross slip, and the enclosures against
+//! agreement; paths it does not cover say why.
 #![cfg(feature = "certified")]
 
 mod common;
 
 use std::time::{Duration, Instant};
 
-use common::{microslip, PERSSON};
+use common::{microslip, Scratch, PERSSON};
 use microslip::answer::dissipation::dissipation_of;
 use microslip::answer::{path::path_answer, ExitStatus};
 use microslip::case::CaseText;
 use microslip::compliance::parse_spec;
 use microslip::path::displacement::rainflow_ranges;
-use microslip::path::input::read_harmonics;
+use microslip::path::input::{read_driven_harmonics, read_harmonics};
 use microslip::path::proven::{proven_w, NotProven, ProvenW};
-use microslip::path::{path_dissipation, Contact, Drive, PathFormat, PathRequest, RatioText};
+use microslip::path::{
+    displacement_dissipation, path_dissipation, Contact, Drive, MasingLaw, PathFormat, PathRequest, RatioText,
+};
 use microslip::real::Precision;
+use rug::ops::Pow;
 use rug::Float;
 use serde_json::Value;
 
@@ -32,12 +37,26 @@ fn constant_p_file(p0: &str, q0: &str, harmonics: &[(&str, &str)]) -> String {
     text
 }
 
-fn request(contents: &str, (friction, lambda, spec): (&str, &str, &str), digits: Option<u32>) -> PathRequest {
+/// The same at constant P with u = u0 + Σ uc_k cos kθ + us_k sin kθ, displacement-driven.
+fn displacement_file(p0: &str, u0: &str, harmonics: &[(&str, &str)]) -> String {
+    constant_p_file(p0, u0, harmonics).replacen("Q_cos,Q_sin", "u_cos,u_sin", 1)
+}
+
+fn request(contents: &str, contact: (&str, &str, &str), digits: Option<u32>) -> PathRequest {
+    driven_request(contents, contact, Drive::Force, digits)
+}
+
+fn driven_request(
+    contents: &str,
+    (friction, lambda, spec): (&str, &str, &str),
+    drive: Drive,
+    digits: Option<u32>,
+) -> PathRequest {
     PathRequest {
         file: "path.csv".to_string(),
         contents: contents.to_string(),
         format: PathFormat::Harmonics,
-        drive: Drive::Force,
+        drive,
         friction: friction.to_string(),
         ratio: RatioText::Lambda(lambda.to_string()),
         compliance: spec.to_string(),
@@ -50,6 +69,11 @@ fn request(contents: &str, (friction, lambda, spec): (&str, &str, &str), digits:
 
 fn proven(contents: &str, contact: (&str, &str, &str), digits: Option<u32>) -> ProvenW {
     proven_w(&request(contents, contact, digits)).unwrap_or_else(|why| panic!("{contents}: {why}"))
+}
+
+fn proven_by_displacement(contents: &str, contact: (&str, &str, &str), digits: Option<u32>) -> ProvenW {
+    proven_w(&driven_request(contents, contact, Drive::Displacement, digits))
+        .unwrap_or_else(|why| panic!("{contents}: {why}"))
 }
 
 /// The enclosure's ends, read exactly.
@@ -112,8 +136,7 @@ fn a_harmonic_path_at_constant_p_prints_the_certified_four_segment_digits() {
 
 #[test]
 fn the_command_line_prints_the_proven_w_with_its_provenance() {
-    let directory = std::env::temp_dir().join(format!("microslip-path-proven-{}", std::process::id()));
-    std::fs::create_dir_all(&directory).unwrap();
+    let directory = Scratch::new("cli");
     let file = directory.join("path.csv");
     std::fs::write(&file, constant_p_file("1", "0", &[("0.3", "0")])).unwrap();
     let contact = ["--friction", "1", "--lambda", "1", "--compliance", PERSSON];
@@ -155,16 +178,19 @@ fn the_command_line_prints_the_proven_w_with_its_provenance() {
         assert_eq!(path_json["provenance"], "certified");
         assert!(path_json["no_enclosure"].is_null());
     }
-    let _ = std::fs::remove_dir_all(&directory);
 }
 
 #[test]
-fn a_batch_row_naming_a_constant_p_path_reports_the_proven_w_and_its_enclosure() {
-    let directory = std::env::temp_dir().join(format!("microslip-path-proven-batch-{}", std::process::id()));
-    std::fs::create_dir_all(&directory).unwrap();
+fn batch_rows_naming_constant_p_paths_report_the_proven_w_and_its_enclosure() {
+    let directory = Scratch::new("batch");
     std::fs::write(
         directory.join("constant.csv"),
         constant_p_file("1", "0.05", &[("0.3", "0"), ("0.1", "-0.15")]),
+    )
+    .unwrap();
+    std::fs::write(
+        directory.join("driven.csv"),
+        displacement_file("1", "0.02", &[("0.3", "0"), ("0.1", "-0.15")]),
     )
     .unwrap();
     std::fs::write(
@@ -175,9 +201,10 @@ fn a_batch_row_naming_a_constant_p_path_reports_the_proven_w_and_its_enclosure()
     let input = directory.join("in.csv");
     std::fs::write(
         &input,
-        "id,friction,lambda,compliance,path\n\
-         constant,0.8,1.2,\"persson:gamma=1,sigma=1\",constant.csv\n\
-         varying,0.8,1.2,\"persson:gamma=1,sigma=1\",varying.csv\n",
+        "id,friction,lambda,compliance,path,drive\n\
+         constant,0.8,1.2,\"persson:gamma=1,sigma=1\",constant.csv,\n\
+         varying,0.8,1.2,\"persson:gamma=1,sigma=1\",varying.csv,\n\
+         driven,0.8,1.2,\"persson:gamma=1,sigma=1\",driven.csv,displacement\n",
     )
     .unwrap();
     let output = directory.join("out.jsonl");
@@ -205,16 +232,19 @@ fn a_batch_row_naming_a_constant_p_path_reports_the_proven_w_and_its_enclosure()
         .flat_map(|row| row_schema.iter_errors(row).map(move |e| format!("{e} in {row}")))
         .collect();
     assert!(invalid.is_empty(), "{invalid:?}");
-    let (constant, varying) = (&rows[0], &rows[1]);
-    assert_eq!(constant["provenance"], "certified");
-    assert_eq!(constant["arithmetic"], "f64 intervals");
-    assert!(constant["digits_certified"].as_u64().unwrap() >= 12, "{constant}");
-    let (lower, upper) = (
-        constant["enclosure"][0].as_str().unwrap().parse::<f64>().unwrap(),
-        constant["enclosure"][1].as_str().unwrap().parse::<f64>().unwrap(),
-    );
-    let w = constant["W_f64"].as_f64().unwrap();
-    assert!(lower <= w && w <= upper, "{constant}");
+    let (constant, varying, driven) = (&rows[0], &rows[1], &rows[2]);
+    assert_eq!(driven["method"], "path-displacement");
+    for proven in [constant, driven] {
+        assert_eq!(proven["provenance"], "certified");
+        assert_eq!(proven["arithmetic"], "f64 intervals");
+        assert!(proven["digits_certified"].as_u64().unwrap() >= 12, "{proven}");
+        let (lower, upper) = (
+            proven["enclosure"][0].as_str().unwrap().parse::<f64>().unwrap(),
+            proven["enclosure"][1].as_str().unwrap().parse::<f64>().unwrap(),
+        );
+        let w = proven["W_f64"].as_f64().unwrap();
+        assert!(lower <= w && w <= upper, "{proven}");
+    }
     assert_eq!(varying["provenance"], "agreement");
     assert_eq!(varying["digits_certified"], 0);
     assert!(
@@ -224,7 +254,6 @@ fn a_batch_row_naming_a_constant_p_path_reports_the_proven_w_and_its_enclosure()
             .contains("constant normal load"),
         "{varying}"
     );
-    let _ = std::fs::remove_dir_all(&directory);
 }
 
 /// Local extremes of dense samples of a periodic sequence, from its largest round to it
@@ -344,53 +373,83 @@ fn a_time_shift_a_shift_of_q0_and_zero_harmonics_give_overlapping_enclosures() {
     );
 }
 
-/// W at `bits` of MPFR by the event decomposition, as agreement computes it.
-fn w_at(contents: &str, contact: (&str, &str, &str), bits: u32) -> Float {
+/// W at `bits` of MPFR, as agreement computes it: by the event decomposition (force
+/// driving) or Masing over the rainflow cycles of u (displacement driving).
+fn w_at(contents: &str, contact: (&str, &str, &str), drive: Drive, bits: u32) -> Float {
     let precision = Precision::bits(bits);
     let read = |text: &str| Float::with_val(bits, Float::parse(text).unwrap());
-    let path = read_harmonics::<Float>(contents, precision).unwrap();
+    let path = read_driven_harmonics::<Float>(contents, precision, drive).unwrap();
     let compliance = parse_spec::<Float>(contact.2, precision).unwrap();
     let contact = Contact {
         friction: read(contact.0),
         compliance_ratio: read(contact.1),
     };
-    path_dissipation(&path, &contact, compliance.as_ref(), None)
-        .unwrap()
-        .total
+    let w = match drive {
+        Drive::Force => path_dissipation(&path, &contact, compliance.as_ref(), None),
+        Drive::Displacement => displacement_dissipation(&path, &contact, compliance.as_ref(), None),
+    };
+    w.unwrap().total
 }
 
-#[test]
-fn every_enclosure_holds_the_40_digit_agreement_value_on_random_two_harmonic_paths() {
-    // A fixed linear congruential sequence: the same "random" paths every run.
-    let mut state: u64 = 0x9e37_79b9_7f4a_7c15;
-    let mut uniform = move || {
+/// W at 256 bits, checked to agree with 192 bits to 41 digits.
+fn w_agreed_to_41_digits(contents: &str, contact: (&str, &str, &str), drive: Drive) -> Float {
+    let (low, high) = (w_at(contents, contact, drive, 192), w_at(contents, contact, drive, 256));
+    let agreed = Float::with_val(256, &high - &low).abs() / high.clone().abs();
+    assert!(agreed < 1e-41, "{contents}: the precisions agree only to {agreed:e}");
+    high
+}
+
+/// A fixed linear congruential sequence of uniform numbers in [0, 1): the same "random"
+/// paths every run.
+fn fixed_uniform(mut state: u64) -> impl FnMut() -> f64 {
+    move || {
         state = state
             .wrapping_mul(6_364_136_223_846_793_005)
             .wrapping_add(1_442_695_040_888_963_407);
         (state >> 11) as f64 / (1u64 << 53) as f64
-    };
-    let contact = ("0.9", "1.1", PERSSON);
+    }
+}
+
+/// A two-harmonic path file at P = 1 from the fixed sequence, written by `file`: its mean
+/// within ±0.1, each coefficient of harmonic k within ±`scales`[k − 1], to 4 decimals.
+fn random_two_harmonic_file(
+    uniform: &mut impl FnMut() -> f64,
+    scales: [f64; 2],
+    file: fn(&str, &str, &[(&str, &str)]) -> String,
+) -> String {
+    let mut coefficient = |scale: f64| format!("{:.4}", scale * (2.0 * uniform() - 1.0));
+    let (c1, s1, c2, s2, mean) = (
+        coefficient(scales[0]),
+        coefficient(scales[0]),
+        coefficient(scales[1]),
+        coefficient(scales[1]),
+        coefficient(0.1),
+    );
+    file("1", &mean, &[(&c1, &s1), (&c2, &s2)])
+}
+
+/// Every enclosure proven at 15, 20 and 40 digits holds W at 256 bits, which agrees with
+/// 192 bits to 41 digits.
+fn assert_enclosures_hold_the_agreement_value(file: &str, contact: (&str, &str, &str), drive: Drive) {
+    let agreed = w_agreed_to_41_digits(file, contact, drive);
+    for digits in [15, 20, 40] {
+        let proven =
+            proven_w(&driven_request(file, contact, drive, Some(digits))).unwrap_or_else(|why| panic!("{file}: {why}"));
+        let (lower, upper) = ends(&proven);
+        assert!(
+            lower <= agreed && agreed <= upper,
+            "{file} at {digits} digits: {agreed} outside [{lower}, {upper}]"
+        );
+    }
+}
+
+#[test]
+fn every_enclosure_holds_the_40_digit_agreement_value_on_random_two_harmonic_paths() {
+    let mut uniform = fixed_uniform(0x9e37_79b9_7f4a_7c15);
     for _ in 0..6 {
         // |Q − Q0| ≤ 0.45 + 0.25 < fP = 0.9·1.
-        let mut coefficient = |scale: f64| format!("{:.4}", scale * (2.0 * uniform() - 1.0));
-        let (q1c, q1s, q2c, q2s, q0) = (
-            coefficient(0.3),
-            coefficient(0.3),
-            coefficient(0.17),
-            coefficient(0.17),
-            coefficient(0.1),
-        );
-        let file = constant_p_file("1", &q0, &[(&q1c, &q1s), (&q2c, &q2s)]);
-        let (low, high) = (w_at(&file, contact, 192), w_at(&file, contact, 256));
-        let agreed = Float::with_val(256, &high - &low).abs() / high.clone().abs();
-        assert!(agreed < 1e-41, "{file}: the precisions agree only to {agreed:e}");
-        for digits in [15, 20, 40] {
-            let (lower, upper) = ends(&proven(&file, contact, Some(digits)));
-            assert!(
-                lower <= high && high <= upper,
-                "{file} at {digits} digits: {high} outside [{lower}, {upper}]"
-            );
-        }
+        let file = random_two_harmonic_file(&mut uniform, [0.3, 0.17], constant_p_file);
+        assert_enclosures_hold_the_agreement_value(&file, ("0.9", "1.1", PERSSON), Drive::Force);
     }
 }
 
@@ -428,5 +487,148 @@ fn a_proof_the_budget_cuts_short_fails_rather_than_falling_back_on_agreement() {
     assert!(
         error.message.contains("time budget ran out before the enclosure"),
         "{error}"
+    );
+}
+
+/// The amplitude g(Q_a) = λf (v(P) − v(P − Q_a/f)) of u whose cycle has Q amplitude Q_a,
+/// at 512 bits, as a 60-digit decimal.
+fn displacement_amplitude(load: &str, amplitude: &str, (friction, lambda, spec): (&str, &str, &str)) -> String {
+    let precision = Precision::bits(512);
+    let read = |text: &str| Float::with_val(512, Float::parse(text).unwrap());
+    let compliance = parse_spec::<Float>(spec, precision).unwrap();
+    let contact = Contact {
+        friction: read(friction),
+        compliance_ratio: read(lambda),
+    };
+    let law = MasingLaw::new(&read(load), &contact, compliance.as_ref());
+    law.initial_displacement(&read(amplitude)).to_string_radix(10, Some(60))
+}
+
+#[test]
+fn displacement_driving_at_constant_p_is_proven_and_equals_the_force_driven_w_at_its_q_amplitude() {
+    for (amplitude, contact) in [
+        ("0.3", ("0.8", "1.2", PERSSON)),
+        ("0.7", ("0.8", "1.2", PERSSON)),
+        ("0.45", ("0.9", "1.5", HERTZ)),
+    ] {
+        // u = g(Q_a) cos θ: one cycle of range 2g(Q_a), whose Q amplitude is Q_a.
+        let u = displacement_amplitude("1", amplitude, contact);
+        let by_u = displacement_file("1", "0.1", &[(&u, "0")]);
+        let by_q = constant_p_file("1", "0", &[(amplitude, "0")]);
+        for digits in [None, Some(25)] {
+            let (driven, forced) = (
+                proven_by_displacement(&by_u, contact, digits),
+                proven(&by_q, contact, digits),
+            );
+            assert!(driven.provenance.is_proven(), "{by_u}");
+            assert_eq!(driven.provenance, forced.provenance, "{by_u} {digits:?}");
+            assert_eq!(driven.cycles, 1);
+            assert!(overlap(ends(&driven), ends(&forced)), "{by_u} {digits:?}");
+            if digits.is_some() {
+                assert_eq!(
+                    driven.value.decimal.to_string(),
+                    forced.value.decimal.to_string(),
+                    "{by_u}"
+                );
+            } else {
+                // By default each prints the digits its own f64 intervals prove.
+                let (a, b) = (driven.value.binary64.unwrap(), forced.value.binary64.unwrap());
+                assert!(
+                    driven.value.digits() >= 12 && (a / b - 1.0).abs() < 1e-12,
+                    "{a:e} vs {b:e}"
+                );
+            }
+        }
+    }
+}
+
+#[test]
+fn every_displacement_enclosure_holds_the_40_digit_agreement_value_on_random_two_harmonic_u_paths() {
+    let mut uniform = fixed_uniform(0x2545_f491_4f6c_dd1d);
+    for contact in [("0.9", "1.1", PERSSON), ("0.7", "1.3", HERTZ)] {
+        for _ in 0..3 {
+            let file = random_two_harmonic_file(&mut uniform, [0.4, 0.25], displacement_file);
+            assert_enclosures_hold_the_agreement_value(&file, contact, Drive::Displacement);
+        }
+    }
+}
+
+#[test]
+fn displacement_cycles_in_gross_slip_are_proven_and_hold_the_agreement_value() {
+    // g(fP) = λf (v(P) − v(0)) is finite for these compliances; Persson's never slides.
+    let cases = [
+        (displacement_file("1", "0", &[("1.5", "0")]), ("0.8", "1.2", HERTZ), 1),
+        (
+            displacement_file("1.3", "0.1", &[("0.9", "0.4"), ("0.5", "-0.3")]),
+            ("0.8", "1.2", HERTZ),
+            2,
+        ),
+        (
+            displacement_file("1", "0", &[("1.2", "0.3"), ("0.2", "0")]),
+            ("0.8", "1.2", "rational:a=0.1,b=1,c=0.5"),
+            1,
+        ),
+        (displacement_file("1", "0", &[("3", "0")]), ("0.8", "1.2", PERSSON), 1),
+    ];
+    for (file, contact, cycles) in cases {
+        let agreed = w_agreed_to_41_digits(&file, contact, Drive::Displacement);
+        for digits in [None, Some(30)] {
+            let w = proven_by_displacement(&file, contact, digits);
+            assert_eq!(w.cycles, cycles, "{file}");
+            let (lower, upper) = ends(&w);
+            assert!(
+                lower <= agreed && agreed <= upper,
+                "{file} {digits:?}: {agreed} outside [{lower}, {upper}]"
+            );
+            assert!(w.value.digits() >= digits.unwrap_or(12), "{file}");
+        }
+    }
+}
+
+#[test]
+fn a_displacement_driven_path_reports_certified_on_the_command_line() {
+    let directory = Scratch::new("displacement");
+    let file = directory.join("displacement.csv");
+    std::fs::write(&file, displacement_file("1", "0.02", &[("0.3", "0"), ("0.1", "-0.15")])).unwrap();
+    let mut texts = Vec::new();
+    for (digits, arithmetic) in [(None, "f64 intervals"), (Some("30"), "arb balls")] {
+        let mut args = vec![
+            "path",
+            "--harmonics",
+            file.to_str().unwrap(),
+            "--drive",
+            "displacement",
+            "--friction",
+            "0.8",
+            "--lambda",
+            "1.2",
+            "--compliance",
+            PERSSON,
+            "--json",
+        ];
+        if let Some(digits) = digits {
+            args.extend(["--digits", digits]);
+        }
+        let (code, stdout, stderr) = microslip(&args);
+        assert_eq!(code, 0, "{stderr}");
+        let json: Value = serde_json::from_str(stdout.trim()).unwrap();
+        assert_eq!(json["provenance"], "certified", "{json}");
+        assert_eq!(json["arithmetic"], arithmetic, "{json}");
+        assert_eq!(json["drive"], "displacement");
+        assert!(json["no_enclosure"].is_null(), "{json}");
+        let certified = json["digits_certified"].as_u64().unwrap();
+        assert!(certified >= digits.map_or(12, |d| d.parse().unwrap()), "{json}");
+        texts.push(json["W"].as_str().unwrap().to_string());
+    }
+    // The default digits are those of the 30 proven, rounded: within half a unit of the
+    // default's last digit.
+    let (default, thirty) = (&texts[0], &texts[1]);
+    let (mantissa, exponent) = default.split_once('e').unwrap();
+    let last_digit = exponent.parse::<i32>().unwrap() - (mantissa.len() as i32 - 2);
+    let read = |text: &str| Float::with_val(256, Float::parse(text).unwrap());
+    let half_unit = Float::with_val(256, 10).pow(last_digit) / 2;
+    assert!(
+        Float::with_val(256, read(default) - read(thirty)).abs() <= half_unit,
+        "{default} vs {thirty}"
     );
 }

@@ -18,6 +18,7 @@
 use std::time::Instant;
 
 use crate::compliance::{check_admissible, Compliance};
+use crate::doubts::if_decided;
 use crate::quad::gauss_legendre::node_table;
 use crate::quad::{tanh_sinh, QuadError};
 use crate::real::{Precision, Real};
@@ -94,20 +95,19 @@ impl<'a, R: Real> MasingLaw<'a, R> {
         }
         let p = &self.normal_load;
         let excess = |drop: &R| self.initial_displacement(&(drop.clone() * &self.friction)) - displacement;
-        // A drop of P* = P − Q/f where the curve has passed u: P itself when g(fP) is
-        // finite, otherwise P(1 − 2⁻ᵏ) for the first k that passes.
-        let mut high = p.clone();
-        if self.gross_slip_displacement.is_none() {
-            let mut gap = p.clone() / &p.int(2);
-            high = p.clone() - &gap;
-            while excess(&high).partial_cmp(&zero) != Some(std::cmp::Ordering::Greater) {
-                gap /= &p.int(2);
-                let next = p.clone() - &gap;
-                if next >= *p {
-                    return self.friction_limit();
-                }
-                high = next;
+        // A drop P(1 − 2⁻ᵏ) of P* = P − Q/f, for the first k where the curve has passed u
+        // (below g(fP), some k does), decided on enclosures (one at the root itself is
+        // passed over). Not P itself: on enclosures its unloaded load P − (fP)/f
+        // straddles 0 unless P and f are exact, where v has no enclosure.
+        let mut gap = p.clone() / &p.int(2);
+        let mut high = p.clone() - &gap;
+        while !if_decided(|| excess(&high) > zero).unwrap_or(false) {
+            gap /= &p.int(2);
+            let next = p.clone() - &gap;
+            if next >= *p {
+                return self.friction_limit();
             }
+            high = next;
         }
         let drop = solve(
             |d: &R| {

@@ -20,9 +20,10 @@
 //! - [`dissipation`](mod@dissipation): W by the quadrature engine, in any [`Real`];
 //! - [`displacement`]: displacement driving at constant P (Masing's rules, rainflow W);
 //! - [`outputs`]: amplitudes, loss factor, the harmonics of Q and u, and the loop;
-//! - `proven` (feature `certified`): W of a force-driven path at constant P as a rigorous
-//!   enclosure (Masing over the rainflow cycles of Q, each cycle's W certified), up the
-//!   one ladder;
+//! - `proven` (feature `certified`): W of a path at constant P, force- or
+//!   displacement-driven, as a rigorous enclosure (Masing over the rainflow cycles of Q or
+//!   u, each cycle's W certified; under displacement driving its Q amplitude bracketed on
+//!   the initial loading curve, gross slip's sliding added), up the one ladder;
 //! - [`asked`]: a whole request as asked (file text, contact, drive, digits, budget), read
 //!   at any precision, and why it may have no answer;
 //!
@@ -37,6 +38,8 @@ pub mod input;
 pub mod outputs;
 #[cfg(feature = "certified")]
 pub mod proven;
+#[cfg(feature = "certified")]
+mod proven_displacement;
 
 pub use asked::{PathFormat, PathRequest, PathRequestError, RatioText};
 pub use displacement::{displacement_dissipation, displacement_outputs, DisplacementCycle, MasingLaw};

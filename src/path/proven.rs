@@ -1,14 +1,17 @@
-//! W of a force-driven path at constant normal load, proven: the rigorous enclosure that
-//! every printed digit rests on.
+//! W of a path at constant normal load, force- or displacement-driven, proven: the
+//! rigorous enclosure that every printed digit rests on.
 //!
 //! At constant P the contact is a Masing element, and W is the sum over the rainflow
-//! cycles of Q of the W of a constant-normal-load cycle of half the range
-//! (proofs/periodic-loading.md, "Proven W"). On enclosures (f64 intervals, then Arb balls
-//! at rising precision) the turning points of Q are the proven roots of Q'
-//! (`events::sign_changes`), the path's checks and the rainflow count compare enclosures that
-//! must be decided, and each cycle's W is the certified constant-normal-load enclosure
-//! ([`enclose_dissipation`]). A path whose P varies, or whose comparisons no precision
-//! decides (two turning values equal), is not proven here: its W rests on agreement.
+//! cycles of the driving quantity (Q, or u) of the W of a constant-normal-load cycle at
+//! each cycle's Q amplitude: half its range of Q, or g⁻¹ of half its range of u, g the
+//! initial loading curve (proofs/periodic-loading.md, "Proven W"). On enclosures (f64
+//! intervals, then Arb balls at rising precision) the turning points are the proven roots
+//! of the derivative (`events::sign_changes`), the path's checks, the rainflow count and
+//! g⁻¹'s bracket compare enclosures that must be decided, and each cycle's W is the
+//! certified constant-normal-load enclosure ([`enclose_dissipation`]), a cycle of u in
+//! gross slip adding its sliding to the loop at fP. A path whose P varies, or whose
+//! comparisons no precision decides (two turning values equal), is not proven here: its
+//! W rests on agreement.
 
 use std::time::Instant;
 
@@ -27,6 +30,7 @@ use super::asked::PathRequest;
 use super::displacement::rainflow_ranges;
 use super::events::{check_path, sign_changes};
 use super::input::{Drive, LoadPath, TrigPoly};
+use super::proven_displacement::{displacement_cycles, loop_at_friction_limit, ConstantLoadCycle};
 use super::Contact;
 
 /// W proven to the digits asked for.
@@ -36,18 +40,18 @@ pub struct ProvenW {
     pub value: Value,
     /// What vouches for it: an enclosure in f64 intervals or in Arb balls.
     pub provenance: Provenance,
-    /// The rainflow cycles of Q whose W were summed.
+    /// The rainflow cycles (of Q, or of u under displacement driving) whose W were summed.
     pub cycles: usize,
 }
 
 /// Why W could not be proven: the reason the answer rests on agreement instead.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum NotProven {
-    /// Only force driving at constant P is proven.
-    #[error("proven W covers force driving at constant normal load; this path's {0}")]
+    /// Only paths at constant P are proven.
+    #[error("proven W covers paths at constant normal load; this path's {0}")]
     NotCovered(&'static str),
-    /// Two enclosures overlapped at every precision tried (two turning values of Q equal,
-    /// a load on a boundary).
+    /// Two enclosures overlapped at every precision tried (two turning values equal, a
+    /// load on a boundary, half a range of u at gross slip).
     #[error("the path's turning points or rainflow cycles compare values that overlap up to {bits} bits")]
     Undecided {
         /// The highest working precision tried.
@@ -84,9 +88,6 @@ type Inputs<R> = (LoadPath<R>, Contact<R>, Box<dyn Compliance<R>>);
 /// [`crate::answer::dissipation::DEFAULT_DIGITS`]) the f64 intervals prove, where they prove at least
 /// [`DEFAULT_LEAST_DIGITS`].
 pub fn proven_w(request: &PathRequest) -> Result<ProvenW, NotProven> {
-    if request.drive != Drive::Force {
-        return Err(NotProven::NotCovered("loads are displacement-driven"));
-    }
     let digits = request.digits_asked().max(1);
     let read = |precision: Precision| -> Result<Inputs<_>, NotProven> {
         let inputs = request
@@ -98,7 +99,7 @@ pub fn proven_w(request: &PathRequest) -> Result<ProvenW, NotProven> {
     if !path.normal.is_constant() {
         return Err(NotProven::NotCovered("normal load varies"));
     }
-    let in_intervals = enclose_constant_load(&path, &contact, compliance.as_ref(), INTERVAL_GOAL_BITS);
+    let in_intervals = enclose_constant_load(&path, &contact, compliance.as_ref(), request.drive, INTERVAL_GOAL_BITS);
     if let Ok((total, cycles)) = &in_intervals {
         let value = total.decimal_value(digits);
         let least = match request.digits {
@@ -137,7 +138,13 @@ fn in_balls(request: &PathRequest, digits: u32) -> Result<ProvenW, NotProven> {
             Err(_) => return Rung::Final(NotProven::NotCovered("inputs are not read as balls")),
         };
         let goal = digit_bits + GUARD_BITS + (bits - first);
-        let enclosed = enclose_constant_load(&inputs.path, &inputs.contact, inputs.compliance.as_ref(), goal);
+        let enclosed = enclose_constant_load(
+            &inputs.path,
+            &inputs.contact,
+            inputs.compliance.as_ref(),
+            request.drive,
+            goal,
+        );
         // Digits that arrive after the deadline are out of time all the same.
         if Instant::now() >= request.deadline {
             return Rung::Final(NotProven::OutOfTime { asked: digits });
@@ -176,44 +183,81 @@ fn in_balls(request: &PathRequest, digits: u32) -> Result<ProvenW, NotProven> {
 }
 
 /// W at constant P as an enclosure, and the number of rainflow cycles: the turning
-/// values of Q (rotated to start and end at the largest) counted by the three-point rule,
-/// each cycle's W enclosed with the rung's own rule aiming at `goal_bits`.
+/// values of the driving quantity (Q, or u under displacement driving; rotated to start
+/// and end at the largest) counted by the three-point rule, each cycle's W enclosed with
+/// the rung's own rule aiming at `goal_bits`.
 fn enclose_constant_load<R: Enclosing>(
     path: &LoadPath<R>,
     contact: &Contact<R>,
     compliance: &dyn Compliance<R>,
+    drive: Drive,
     goal_bits: u32,
 ) -> Result<(R, usize), NotProven> {
     let load = path.normal.cos[0].clone();
     let bits = load.precision().in_bits();
-    let (ranges, doubts) = watch(|| {
-        check_path(path, contact)?;
-        Ok(rainflow_ranges(&turning_values(&path.tangential)))
+    let (cycles, doubts) = watch(|| {
+        if drive == Drive::Force {
+            check_path(path, contact).map_err(|_| NotProven::NotCovered("checks are not decided"))?;
+        }
+        let ranges = rainflow_ranges(&turning_values(&path.tangential));
+        match drive {
+            Drive::Force => Ok(ranges
+                .into_iter()
+                .map(|range| ConstantLoadCycle::Loop(range / &load.int(2)))
+                .collect()),
+            Drive::Displacement => displacement_cycles(&load, contact, compliance, &ranges),
+        }
     });
     if !doubts.none() {
         return Err(NotProven::Undecided { bits });
     }
-    let ranges: Vec<R> = ranges.map_err(|_: super::PathError| NotProven::NotCovered("checks are not decided"))?;
-    let zero = load.int(0);
-    let mut total = zero.clone();
-    for range in &ranges {
-        let cycle = LoadCycle {
-            mean_normal_load: load.clone(),
-            normal_amplitude: zero.clone(),
-            mean_tangential_load: zero.clone(),
-            tangential_amplitude: range.clone() / &load.int(2),
-            phase: zero.clone(),
-            friction: contact.friction.clone(),
-            compliance_ratio: contact.compliance_ratio.clone(),
+    let cycles: Vec<ConstantLoadCycle<R>> = cycles?;
+    let mut total = load.int(0);
+    // The loop at fP, shared by every cycle in gross slip.
+    let mut limit_loop: Option<R> = None;
+    for cycle in &cycles {
+        let w = match cycle {
+            ConstantLoadCycle::Loop(amplitude) => constant_load_w(&load, amplitude, contact, compliance, goal_bits)?,
+            ConstantLoadCycle::Sliding(slid) => {
+                let limit_w = match &limit_loop {
+                    Some(w) => w.clone(),
+                    None => limit_loop
+                        .insert(loop_at_friction_limit(&load, contact, compliance, goal_bits)?)
+                        .clone(),
+                };
+                limit_w + &(contact.friction.clone() * &load * &load.int(2) * slid)
+            }
         };
-        let enclosure = enclose_dissipation(&cycle, compliance, goal_bits).map_err(NotProven::Refused)?;
-        total += &enclosure.total;
+        total += &w;
     }
-    Ok((total, ranges.len()))
+    Ok((total, cycles.len()))
 }
 
-/// The values of Q at its turning points, from the largest round to it again: where
-/// the three-point rainflow count closes every cycle.
+/// The certified W of the closed Masing loop of Q amplitude `amplitude` (< fP) at
+/// constant normal load P: the constant-normal-load cycle P1 = 0, Q0 = 0.
+pub(super) fn constant_load_w<R: Enclosing>(
+    load: &R,
+    amplitude: &R,
+    contact: &Contact<R>,
+    compliance: &dyn Compliance<R>,
+    goal_bits: u32,
+) -> Result<R, NotProven> {
+    let zero = load.int(0);
+    let cycle = LoadCycle {
+        mean_normal_load: load.clone(),
+        normal_amplitude: zero.clone(),
+        mean_tangential_load: zero.clone(),
+        tangential_amplitude: amplitude.clone(),
+        phase: zero,
+        friction: contact.friction.clone(),
+        compliance_ratio: contact.compliance_ratio.clone(),
+    };
+    let enclosure = enclose_dissipation(&cycle, compliance, goal_bits).map_err(NotProven::Refused)?;
+    Ok(enclosure.total)
+}
+
+/// The values of the driving quantity (Q, or u) at its turning points, from the largest
+/// round to it again: where the three-point rainflow count closes every cycle.
 fn turning_values<R: Real>(tangential: &TrigPoly<R>) -> Vec<R> {
     let rate = tangential.derivative();
     let values: Vec<R> = sign_changes(&rate)
