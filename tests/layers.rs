@@ -47,12 +47,6 @@ const LAYERS: [&[&str]; 6] = [
     ],
 ];
 
-/// Files that still import from above their layer, each with the reason.
-const KNOWN: &[&str] = &[
-    // The proven path W runs the ladder and builds a provenance.
-    "src/path/proven.rs",
-];
-
 fn layer_of(module: &str) -> Option<usize> {
     LAYERS.iter().position(|layer| layer.contains(&module))
 }
@@ -119,7 +113,7 @@ fn no_file_imports_a_module_of_a_higher_layer() {
         let code = code_of(&std::fs::read_to_string(file).unwrap());
         for module in named_modules(&code) {
             match layer_of(&module) {
-                Some(layer) if layer > own && !KNOWN.contains(&relative.as_str()) => {
+                Some(layer) if layer > own => {
                     upward.push(format!("{relative} imports crate::{module}"));
                 }
                 Some(_) => {}
@@ -132,19 +126,4 @@ fn no_file_imports_a_module_of_a_higher_layer() {
     upward.sort();
     upward.dedup();
     assert!(upward.is_empty(), "imports that go up a layer:\n{}", upward.join("\n"));
-}
-
-#[test]
-fn the_known_exceptions_still_import_upward() {
-    // An exception that no longer imports from above is taken off the list.
-    let root = Path::new(env!("CARGO_MANIFEST_DIR"));
-    for known in KNOWN {
-        let code = code_of(&std::fs::read_to_string(root.join(known)).unwrap());
-        assert!(
-            named_modules(&code)
-                .iter()
-                .any(|module| layer_of(module).is_some_and(|layer| layer > 1)),
-            "{known}"
-        );
-    }
 }

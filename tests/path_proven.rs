@@ -12,12 +12,12 @@ use std::time::{Duration, Instant};
 
 use common::{microslip, Scratch, PERSSON};
 use microslip::answer::dissipation::dissipation_of;
+use microslip::answer::path::proven::{proven_w, NotProven, ProvenW};
 use microslip::answer::{path::path_answer, ExitStatus};
 use microslip::case::CaseText;
 use microslip::compliance::parse_spec;
 use microslip::path::displacement::rainflow_ranges;
 use microslip::path::input::{read_driven_harmonics, read_harmonics};
-use microslip::path::proven::{proven_w, NotProven, ProvenW};
 use microslip::path::{
     displacement_dissipation, path_dissipation, Contact, Drive, MasingLaw, PathFormat, PathRequest, RatioText,
 };

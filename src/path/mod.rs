@@ -36,10 +36,6 @@ pub mod dissipation;
 pub mod events;
 pub mod input;
 pub mod outputs;
-#[cfg(feature = "certified")]
-pub mod proven;
-#[cfg(feature = "certified")]
-mod proven_displacement;
 
 pub use asked::{PathFormat, PathRequest, PathRequestError, RatioText};
 pub use displacement::{displacement_dissipation, displacement_outputs, DisplacementCycle, MasingLaw};

@@ -109,9 +109,11 @@ def path(
     (``{'P': [...], 'Q': [...]}`` or a two-column table), taken as their trigonometric
     interpolant. Numbers are exact decimals: strings are read as written, floats as their
     ``repr``. ``drive='displacement'`` prescribes the tangential displacement u at constant
-    P (Masing's rules; Q saturates at ±fP). W carries the digits on which two working
-    precisions agree (15 without ``digits``; agreement, not a proof); the other outputs are
-    f64 estimates. Input the theory does not cover raises ``ValueError`` naming it.
+    P (Masing's rules; Q saturates at ±fP). At constant P, force- or displacement-driven,
+    W is proven (a rigorous enclosure: the 12–15 digits f64 intervals prove without
+    ``digits``); otherwise it carries the digits on which two working precisions agree (15
+    without ``digits``; agreement, not a proof, and the answer says why). The other outputs
+    are f64 estimates. Input the theory does not cover raises ``ValueError`` naming it.
     """
     if drive not in _DRIVEN:
         raise ValueError(f"drive '{drive}' is neither 'force' nor 'displacement'")

@@ -19,19 +19,18 @@ use crate::answer::dissipation::DEFAULT_LEAST_DIGITS;
 use crate::answer::{Arithmetic, Provenance, Value};
 use crate::ball::Ball;
 use crate::compliance::Compliance;
-use crate::cycle::LoadCycle;
-use crate::digits::enclosure::{enclose_dissipation, CertifiedError, Enclosing, INTERVAL_GOAL_BITS, MAX_BITS};
+use crate::digits::enclosure::{CertifiedError, Enclosing, INTERVAL_GOAL_BITS, MAX_BITS};
 use crate::digits::{doubled, Ladder, Rung, Stop};
 use crate::doubts::watch;
 use crate::interval::Interval;
 use crate::real::{Precision, Real};
 
-use super::asked::PathRequest;
-use super::displacement::rainflow_ranges;
-use super::events::{check_path, sign_changes};
-use super::input::{Drive, LoadPath, TrigPoly};
-use super::proven_displacement::{displacement_cycles, loop_at_friction_limit, ConstantLoadCycle};
-use super::Contact;
+use super::constant_load::{constant_load_w, displacement_cycles, loop_at_friction_limit, ConstantLoadCycle};
+pub use super::not_proven::NotProven;
+use crate::path::displacement::rainflow_ranges;
+use crate::path::events::{check_path, sign_changes};
+use crate::path::input::{Drive, LoadPath, TrigPoly};
+use crate::path::{Contact, PathRequest};
 
 /// W proven to the digits asked for.
 #[derive(Clone, Debug)]
@@ -42,40 +41,6 @@ pub struct ProvenW {
     pub provenance: Provenance,
     /// The rainflow cycles (of Q, or of u under displacement driving) whose W were summed.
     pub cycles: usize,
-}
-
-/// Why W could not be proven: the reason the answer rests on agreement instead.
-#[derive(Clone, Debug, PartialEq, thiserror::Error)]
-pub enum NotProven {
-    /// Only paths at constant P are proven.
-    #[error("proven W covers paths at constant normal load; this path's {0}")]
-    NotCovered(&'static str),
-    /// Two enclosures overlapped at every precision tried (two turning values equal, a
-    /// load on a boundary, half a range of u at gross slip).
-    #[error("the path's turning points or rainflow cycles compare values that overlap up to {bits} bits")]
-    Undecided {
-        /// The highest working precision tried.
-        bits: u32,
-    },
-    /// A cycle's enclosure was refused.
-    #[error("{0}")]
-    Refused(CertifiedError),
-    /// The enclosure at the highest precision tried was too wide for the digits.
-    #[error("the enclosure at {bits} bits settles {reached} of the {asked} digits asked")]
-    TooWide {
-        /// The digits asked for.
-        asked: u32,
-        /// The digits it settled.
-        reached: u32,
-        /// Its working precision.
-        bits: u32,
-    },
-    /// The deadline came first.
-    #[error("the time budget ran out before the enclosure settled {asked} digits")]
-    OutOfTime {
-        /// The digits asked for.
-        asked: u32,
-    },
 }
 
 /// The path, contact and compliance at one precision, as the rung reads them.
@@ -231,29 +196,6 @@ fn enclose_constant_load<R: Enclosing>(
         total += &w;
     }
     Ok((total, cycles.len()))
-}
-
-/// The certified W of the closed Masing loop of Q amplitude `amplitude` (< fP) at
-/// constant normal load P: the constant-normal-load cycle P1 = 0, Q0 = 0.
-pub(super) fn constant_load_w<R: Enclosing>(
-    load: &R,
-    amplitude: &R,
-    contact: &Contact<R>,
-    compliance: &dyn Compliance<R>,
-    goal_bits: u32,
-) -> Result<R, NotProven> {
-    let zero = load.int(0);
-    let cycle = LoadCycle {
-        mean_normal_load: load.clone(),
-        normal_amplitude: zero.clone(),
-        mean_tangential_load: zero.clone(),
-        tangential_amplitude: amplitude.clone(),
-        phase: zero,
-        friction: contact.friction.clone(),
-        compliance_ratio: contact.compliance_ratio.clone(),
-    };
-    let enclosure = enclose_dissipation(&cycle, compliance, goal_bits).map_err(NotProven::Refused)?;
-    Ok(enclosure.total)
 }
 
 /// The values of the driving quantity (Q, or u) at its turning points, from the largest

@@ -1,5 +1,6 @@
-//! The rainflow cycles of a displacement-driven path at constant P, proven: each cycle's
-//! Q amplitude from its range of u, and the W of a cycle that reaches gross slip.
+//! A rainflow cycle at constant P, proven: the certified W of a closed Masing loop, the Q
+//! amplitude of a range of u under displacement driving, and the W of a cycle that
+//! reaches gross slip.
 //!
 //! With g(Q) = λf (v(P) − v(P − Q/f)) the initial loading curve (increasing), a cycle of
 //! range Δu below gross slip (Δu/2 < g(fP)) is the closed Masing loop at Q amplitude
@@ -11,9 +12,10 @@ use crate::digits::enclosure::Enclosing;
 use crate::doubts::if_decided;
 use crate::real::Real;
 
-use super::displacement::MasingLaw;
-use super::proven::{constant_load_w, NotProven};
-use super::Contact;
+use super::not_proven::NotProven;
+use crate::cycle::LoadCycle;
+use crate::digits::enclosure::enclose_dissipation;
+use crate::path::{Contact, MasingLaw};
 
 /// A rainflow cycle at constant P by what its W is made of.
 #[derive(Clone, Debug)]
@@ -52,6 +54,29 @@ pub(super) fn displacement_cycles<R: Real>(
         }
     });
     Ok(cycles.collect())
+}
+
+/// The certified W of the closed Masing loop of Q amplitude `amplitude` (< fP) at
+/// constant normal load P: the constant-normal-load cycle P1 = 0, Q0 = 0.
+pub(super) fn constant_load_w<R: Enclosing>(
+    load: &R,
+    amplitude: &R,
+    contact: &Contact<R>,
+    compliance: &dyn Compliance<R>,
+    goal_bits: u32,
+) -> Result<R, NotProven> {
+    let zero = load.int(0);
+    let cycle = LoadCycle {
+        mean_normal_load: load.clone(),
+        normal_amplitude: zero.clone(),
+        mean_tangential_load: zero.clone(),
+        tangential_amplitude: amplitude.clone(),
+        phase: zero,
+        friction: contact.friction.clone(),
+        compliance_ratio: contact.compliance_ratio.clone(),
+    };
+    let enclosure = enclose_dissipation(&cycle, compliance, goal_bits).map_err(NotProven::Refused)?;
+    Ok(enclosure.total)
 }
 
 /// The most fourfold widenings of the bracket [`narrowed`] tries, from 4 ulps.

@@ -1,9 +1,17 @@
 //! A path request ([`PathRequest`]) answered: W proven by an enclosure where the path
-//! allows it, else on the digits two working precisions agree on, and the f64 outputs.
+//! allows it ([`proven`]: constant P, force- or displacement-driven), else on the digits
+//! two working precisions agree on, and the f64 outputs.
+
+#[cfg(feature = "certified")]
+mod constant_load;
+#[cfg(feature = "certified")]
+mod not_proven;
+#[cfg(feature = "certified")]
+pub mod proven;
 
 use rug::Float;
 
-use super::dissipation::DEFAULT_DIGITS;
+use crate::answer::dissipation::DEFAULT_DIGITS;
 use crate::decimal::printing::decimal_ball;
 use crate::digits::agreement::{agreement_radius, verify, TwoPrecisions, VerifyError};
 use crate::real::{Precision, Real};
@@ -63,7 +71,7 @@ impl PathRequest {
 }
 
 /// A failed run (the integrals, the budget) or refused input.
-impl super::ExitStatus for PathRequestError {
+impl crate::answer::ExitStatus for PathRequestError {
     fn is_failure(&self) -> bool {
         self.failure
     }
@@ -154,8 +162,8 @@ pub fn path_answer(request: &PathRequest) -> Result<PathAnswer, PathRequestError
 /// W proven by an enclosure, or why it is not (an error where the time budget ran out).
 #[cfg(feature = "certified")]
 fn proven_or_why(request: &PathRequest, estimate: f64) -> Result<Result<AgreedW, String>, PathRequestError> {
-    use crate::path::proven::NotProven;
-    let proven = match crate::path::proven::proven_w(request) {
+    use proven::NotProven;
+    let proven = match proven::proven_w(request) {
         Ok(proven) => proven,
         // A budget that runs out is a failure, not a reason to fall back on agreement.
         Err(out @ NotProven::OutOfTime { .. }) => {
@@ -172,7 +180,15 @@ fn proven_or_why(request: &PathRequest, estimate: f64) -> Result<Result<AgreedW,
             estimate
         }),
         provenance: proven.provenance.key(),
-        detail: format!("{} over {} rainflow cycles of Q", proven.provenance, proven.cycles),
+        detail: format!(
+            "{} over {} rainflow cycles of {}",
+            proven.provenance,
+            proven.cycles,
+            match request.drive {
+                Drive::Force => "Q",
+                Drive::Displacement => "u",
+            }
+        ),
         digits_agreed: digits,
         digits_certified: digits,
         precision_bits: proven.provenance.precision_bits().unwrap_or(53),
