@@ -1,5 +1,5 @@
 //! A path request ([`PathRequest`]) answered: W proven by an enclosure where the path
-//! allows it ([`proven`]: constant P, force- or displacement-driven), else on the digits
+//! allows it (`proven`, feature `certified`: constant P, force- or displacement-driven), else on the digits
 //! two working precisions agree on, and the f64 outputs.
 
 #[cfg(feature = "certified")]

@@ -8,7 +8,7 @@
 //! intervals, then Arb balls at rising precision) the turning points are the proven roots
 //! of the derivative (`events::sign_changes`), the path's checks, the rainflow count and
 //! g⁻¹'s bracket compare enclosures that must be decided, and each cycle's W is the
-//! certified constant-normal-load enclosure ([`enclose_dissipation`]), a cycle of u in
+//! certified constant-normal-load enclosure ([`crate::digits::enclosure::enclose_dissipation`]), a cycle of u in
 //! gross slip adding its sliding to the loop at fP. A path whose P varies, or whose
 //! comparisons no precision decides (two turning values equal), is not proven here: its
 //! W rests on agreement.
