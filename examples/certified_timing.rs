@@ -142,7 +142,7 @@ fn main() {
                 Ok(certified) => println!(
                     "{name} {digits} {:.3} ms  W = {}  ({} bits, {} pieces)",
                     best.as_secs_f64() * 1e3,
-                    certified.text,
+                    certified.value.decimal,
                     certified.enclosure.precision.in_bits(),
                     certified.enclosure.pieces
                 ),

@@ -297,7 +297,7 @@ mod enclosed {
             p1_over_p0: amplitude,
             true_relative_error: (error / &size).to_f64_lossy(),
             proven_relative_bound: span(&(bound.clone() / &size)).1,
-            w: certified.text,
+            w: certified.value.decimal.to_string(),
             cubic_law: cubic_law.to_scientific(20),
             remainder_bound: bound_span.1,
             precision_bits: certified.enclosure.precision.in_bits(),

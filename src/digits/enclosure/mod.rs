@@ -56,10 +56,8 @@ pub struct Enclosure<R = Ball> {
 pub struct Certified {
     /// The enclosure the digits come from.
     pub enclosure: Enclosure,
-    /// W rounded to the digits every number in the enclosure rounds to.
-    pub text: String,
-    /// How many significant digits `text` has.
-    pub digits: u32,
+    /// W by the one printing rule: the digits every number in the enclosure rounds to.
+    pub value: Value,
 }
 
 /// Why no enclosure (or none narrow enough) could be given.
@@ -209,14 +207,10 @@ where
                 return Rung::Final(CertifiedError::BeyondDecimalExponents);
             }
             Ok(enclosure) => {
-                let (settled, text) = settled_digits(&enclosure.total, bits, digits);
+                let (settled, value) = settled_digits(&enclosure.total, bits, digits);
                 // Digits that arrive after the deadline are out of time all the same.
                 if settled >= digits && !out_of_time() {
-                    return Rung::Reached(Certified {
-                        enclosure,
-                        text,
-                        digits: settled,
-                    });
+                    return Rung::Reached(Certified { enclosure, value });
                 }
                 reached = settled;
                 CertifiedError::TooWide {
@@ -269,13 +263,13 @@ where
 
 /// The digits of `digits` asked that the one printing rule settles for W's enclosure at
 /// `bits` (all of them for an exact zero), and W as printed with them.
-fn settled_digits(total: &Ball, bits: u32, digits: u32) -> (u32, String) {
+fn settled_digits(total: &Ball, bits: u32, digits: u32) -> (u32, Value) {
     let value = Value::of_ball(total, bits, digits);
     let settled = match value.decimal {
         Decimal::Zero => digits,
         _ => value.digits(),
     };
-    (settled, value.decimal.to_string())
+    (settled, value)
 }
 
 /// The bits a phase φ near a multiple of π costs beyond the digits asked: the angles of
