@@ -409,8 +409,14 @@ impl From<i32> for Number {
     }
 }
 
+impl From<&String> for Number {
+    fn from(text: &String) -> Number {
+        Number(text.clone())
+    }
+}
+
 /// A case put together field by field ([`CaseText::builder`]); Q0 is 0 unless given, and
-/// exactly one of λ and ν must be.
+/// of λ and ν the one given last counts (one must be).
 #[derive(Clone, Debug, Default)]
 pub struct CaseBuilder {
     p0: Option<String>,
@@ -449,17 +455,44 @@ impl CaseBuilder {
         /// (`"0.4pi"`, `"pi/2"`, `"72deg"`, `"pi-1e-100"`).
         phi,
         /// f, the friction coefficient (> 0).
-        friction,
-        /// λ, the compliance ratio, in [1, 2].
-        lambda,
-        /// ν, Poisson's ratio, in [0, 2/3], in place of λ.
-        nu
+        friction
     );
+
+    /// λ, the compliance ratio, in [1, 2] (in place of a ν given before).
+    pub fn lambda(mut self, value: impl Into<Number>) -> Self {
+        self.lambda = Some(value.into().0);
+        self.nu = None;
+        self
+    }
+
+    /// ν, Poisson's ratio, in [0, 2/3] (in place of a λ given before).
+    pub fn nu(mut self, value: impl Into<Number>) -> Self {
+        self.nu = Some(value.into().0);
+        self.lambda = None;
+        self
+    }
 
     /// The compliance SPEC (`"persson:gamma=1,sigma=1"`, `"table:FILE"`, …).
     pub fn compliance(mut self, spec: impl Into<String>) -> Self {
         self.compliance = Some(spec.into());
         self
+    }
+
+    /// The case as written, not yet read or checked (a field not given is empty, and
+    /// refused as such when the case is read): a case to hand to a command, or one a test
+    /// expects to be refused.
+    pub fn text(self) -> CaseText {
+        CaseText {
+            p0: self.p0.unwrap_or_default(),
+            p1: self.p1.unwrap_or_default(),
+            q0: self.q0.unwrap_or_else(zero_text),
+            q1: self.q1.unwrap_or_default(),
+            phi: self.phi.unwrap_or_default(),
+            friction: self.friction.unwrap_or_default(),
+            lambda: self.lambda,
+            nu: self.nu,
+            compliance: self.compliance.unwrap_or_default(),
+        }
     }
 
     /// The case, read and checked whole as [`CaseText::spec`] does, or why it is not one (a

@@ -1,6 +1,6 @@
 //! What several test files share.
 
-use microslip::case::CaseText;
+use microslip::case::{CaseBuilder, CaseText};
 use microslip::cycle::LoadCycle;
 use microslip::path::LoadPath;
 use microslip::real::Real;
@@ -25,82 +25,24 @@ pub fn acceptance_cycle<R: Real>(phase: R) -> LoadCycle<R> {
     }
 }
 
-/// A case as the library reads it, built from the acceptance case by naming what differs:
-/// `case().p1("0.6").phi("0.5pi").text()`.
-#[allow(dead_code)] // not every test binary builds cases
-#[derive(Clone, Debug)]
-pub struct CaseBuilder(CaseText);
-
 /// The acceptance case (P0 = f = λ = 1, P1 = 0.4, Q0 = 0, Q1 = 0.5, φ = 0.4π,
-/// v' = Persson with γ = σ = 1), to be changed where a test needs another.
+/// v' = Persson with γ = σ = 1) in the library's builder, to be changed where a test
+/// needs another: `case().p1("0.6").phi("0.5pi").text()`.
 #[allow(dead_code)] // not every test binary builds cases
 pub fn case() -> CaseBuilder {
-    CaseBuilder(CaseText {
-        p0: "1".into(),
-        p1: "0.4".into(),
-        q0: "0".into(),
-        q1: "0.5".into(),
-        phi: "0.4pi".into(),
-        friction: "1".into(),
-        lambda: Some("1".into()),
-        nu: None,
-        compliance: PERSSON.into(),
-    })
+    CaseText::builder()
+        .p0("1")
+        .p1("0.4")
+        .q1("0.5")
+        .phi("0.4pi")
+        .friction("1")
+        .lambda("1")
+        .compliance(PERSSON)
 }
 
 /// The acceptance case's compliance: Persson's v' with γ = σ = 1.
 #[allow(dead_code)] // not every test binary builds cases
 pub const PERSSON: &str = "persson:gamma=1,sigma=1";
-
-/// Setters of the builder's text fields, one per field, each taking anything printable.
-macro_rules! text_fields {
-    ($($(#[$doc:meta])* $field:ident),+) => {$(
-        $(#[$doc])*
-        pub fn $field(mut self, value: impl std::fmt::Display) -> Self {
-            self.0.$field = value.to_string();
-            self
-        }
-    )+};
-}
-
-#[allow(dead_code)] // not every test binary uses every field
-impl CaseBuilder {
-    text_fields!(
-        /// P0.
-        p0,
-        /// P1.
-        p1,
-        /// Q0.
-        q0,
-        /// Q1.
-        q1,
-        /// φ, in radians or as a multiple of π (`0.4pi`).
-        phi,
-        /// f.
-        friction,
-        /// The compliance SPEC.
-        compliance
-    );
-
-    /// λ (in place of ν).
-    pub fn lambda(mut self, value: impl std::fmt::Display) -> Self {
-        self.0.lambda = Some(value.to_string());
-        self.0.nu = None;
-        self
-    }
-
-    /// ν (in place of λ).
-    pub fn nu(mut self, value: impl std::fmt::Display) -> Self {
-        self.0.nu = Some(value.to_string());
-        self.0.lambda = None;
-        self
-    }
-
-    /// The case's text.
-    pub fn text(self) -> CaseText {
-        self.0
-    }
-}
 
 /// The acceptance case as command-line flags and their values (v' = 1/P).
 #[allow(dead_code)] // not every test binary runs the command line
