@@ -20,6 +20,7 @@ use rug::{Float, Rational};
 
 use crate::cycle::CycleError;
 use crate::phase::ReducedPhase;
+use crate::real::{Precision, Real};
 
 /// The most bits the enclosure of cos φ is carried to before a margin is called undecidable.
 pub const MAX_BITS: u32 = 1 << 14;
@@ -57,39 +58,37 @@ pub(crate) fn compliance_ratio_of_poisson(nu: &Rational, text: &str) -> Result<R
     Ok(Rational::from(&two - nu) / (two * Rational::from(1 - nu)))
 }
 
-/// The double nearest an exact value, for a refusal's message: `-1/5` reads `-2e-1`, where
-/// GMP's own conversion (towards zero) would print `-1.9999999999999998e-1`.
-fn nearest(value: &Rational) -> f64 {
-    Float::with_val(53, value).to_f64()
-}
-
 /// Whether the cycle is one the theory covers, decided exactly (see the module
 /// documentation); the first boundary crossed otherwise, in the order
 /// [`crate::cycle::LoadCycle::validate`] checks them.
 pub(crate) fn decide(cycle: &ExactCycle) -> Result<(), CycleError> {
+    // A refusal quotes the double nearest each exact value (`-1/5` reads `-2e-1`), not
+    // GMP's conversion towards zero.
     let p0 = cycle.mean_normal_load;
     if *p0 <= 0 {
-        return Err(CycleError::NonPositiveMeanLoad { p0: nearest(p0) });
+        return Err(CycleError::NonPositiveMeanLoad {
+            p0: f64::from_rational(p0, Precision::DOUBLE),
+        });
     }
     for (quantity, value) in [("P1", cycle.normal_amplitude), ("Q1", cycle.tangential_amplitude)] {
         if *value < 0 {
             return Err(CycleError::NegativeAmplitude {
                 quantity,
-                value: nearest(value),
+                value: f64::from_rational(value, Precision::DOUBLE),
             });
         }
     }
     let margin = Rational::from(p0 - cycle.normal_amplitude);
     if margin <= 0 {
         return Err(CycleError::Separation {
-            p0: nearest(p0),
-            p1: nearest(cycle.normal_amplitude),
-            margin: nearest(&margin),
+            p0: f64::from_rational(p0, Precision::DOUBLE),
+            p1: f64::from_rational(cycle.normal_amplitude, Precision::DOUBLE),
+            margin: f64::from_rational(&margin, Precision::DOUBLE),
         });
     }
     if *cycle.friction <= 0 {
         return Err(CycleError::NonPositiveFriction {
-            f: nearest(cycle.friction),
+            f: f64::from_rational(cycle.friction, Precision::DOUBLE),
         });
     }
     let lambda = cycle.compliance_ratio;

@@ -481,3 +481,12 @@ fn the_reproducers_give_proven_digits() {
     assert_eq!(code, 0, "{stderr}");
     assert!(stdout.contains("I_1   = -3.68157194030210e-6   (proven"), "{stdout}");
 }
+
+/// A refused ρ is quoted as the double nearest the exact decimal (−1/5 reads −2e-1), not
+/// rounded towards zero.
+#[test]
+fn a_refused_ratio_is_quoted_as_its_nearest_double() {
+    use microslip::answer::series::coefficient_answers;
+    let error = coefficient_answers("-0.2", "1", 2, None, std::time::Duration::from_secs(10)).unwrap_err();
+    assert!(error.to_string().ends_with("(got -2e-1)"), "{error}");
+}

@@ -254,7 +254,7 @@ pub fn coefficient_answers(
     let (exact_rho, exact_phase) = checked_shape(rho, phase)?;
     if exact_rho <= 0 {
         return Err(SeriesError::NonPositiveRatio {
-            rho: exact_rho.to_f64(),
+            rho: f64::from_rational(&exact_rho, Precision::DOUBLE),
         }
         .into());
     }

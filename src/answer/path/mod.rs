@@ -174,11 +174,7 @@ fn proven_or_why(request: &PathRequest, estimate: f64) -> Result<Result<AgreedW,
     let digits = proven.value.digits().min(request.digits_asked());
     Ok(Ok(AgreedW {
         text: proven.value.decimal.to_string(),
-        value: proven.value.binary64.unwrap_or(if proven.value.digits() == u32::MAX {
-            0.0
-        } else {
-            estimate
-        }),
+        value: proven.value.to_f64().unwrap_or(estimate),
         provenance: proven.provenance.key(),
         detail: format!(
             "{} over {} rainflow cycles of {}",
