@@ -19,6 +19,7 @@
 use std::any::{Any, TypeId};
 use std::cell::Cell;
 use std::collections::HashMap;
+use std::ops::RangeInclusive;
 use std::sync::atomic::{AtomicU64, Ordering};
 use std::sync::{Arc, Mutex, MutexGuard, OnceLock, TryLockError};
 
@@ -122,6 +123,12 @@ pub(crate) fn cached<T: Table>(
     shared().get(size, precision, compute)
 }
 
+/// The least size in `sizes` whose table of type `T` the shared cache holds at `precision`
+/// or above: see [`Cache::least_held`].
+pub(crate) fn least_held<T: Table>(sizes: RangeInclusive<usize>, precision: Precision) -> Option<usize> {
+    shared().least_held::<T>(sizes, precision)
+}
+
 /// Forgets every table of the shared cache (for measuring the cold cost).
 pub(crate) fn clear() {
     lock(&shared().entries).clear();
@@ -183,6 +190,25 @@ impl Cache {
         drop(slot);
         self.keep_within_bound(&entry);
         Some(table)
+    }
+
+    /// The least size in `sizes` whose table of type `T` is held at `precision` or above
+    /// (tables being computed are not counted): where a larger table than the one needed
+    /// would serve, it may spare computing another. It may be dropped before it is asked
+    /// for, and is then computed again.
+    pub(crate) fn least_held<T: Table>(&self, sizes: RangeInclusive<usize>, precision: Precision) -> Option<usize> {
+        let bits = precision.in_bits();
+        lock(&self.entries)
+            .iter()
+            .filter(|((kind, size), _)| *kind == TypeId::of::<T>() && sizes.contains(size))
+            .filter(|(_, entry)| {
+                entry
+                    .slot
+                    .try_lock()
+                    .is_ok_and(|slot| slot.best.as_ref().is_some_and(|best| best.bits >= bits))
+            })
+            .map(|((_, size), _)| *size)
+            .min()
     }
 
     /// Drops the entries used least recently, other than `keep`, until the cache holds at
@@ -283,6 +309,20 @@ mod tests {
             .get(8, Precision::bits(100), || -> Option<Fake> { None })
             .is_none());
         assert_eq!(cache.get(8, Precision::bits(100), fake(100, 1)).unwrap().made_at, 100);
+    }
+
+    #[test]
+    fn the_least_size_held_at_a_precision_is_found_in_a_range() {
+        let cache = Cache::new(1 << 20);
+        cache.get(40, Precision::bits(300), fake(300, 10)).unwrap();
+        cache.get(36, Precision::bits(100), fake(100, 10)).unwrap();
+        cache.get(48, Precision::bits(500), fake(500, 10)).unwrap();
+        // 36 is held below 200 bits; 40 and 48 at or above it.
+        assert_eq!(cache.least_held::<Fake>(32..=48, Precision::bits(200)), Some(40));
+        assert_eq!(cache.least_held::<Fake>(32..=48, Precision::bits(100)), Some(36));
+        assert_eq!(cache.least_held::<Fake>(41..=60, Precision::bits(400)), Some(48));
+        assert_eq!(cache.least_held::<Fake>(32..=39, Precision::bits(200)), None);
+        assert_eq!(cache.least_held::<Fake>(32..=48, Precision::bits(600)), None);
     }
 
     #[test]

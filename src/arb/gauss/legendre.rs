@@ -22,7 +22,7 @@ use rayon::prelude::*;
 
 use super::Mag;
 use crate::ball::Ball;
-use crate::quad::cache::{cached, Table};
+use crate::quad::cache::{cached, least_held, Table};
 use crate::real::{Precision, Real};
 
 /// The nodes x_k ≥ 0 (k < (n + 1)/2, decreasing) of an n-point Gauss–Legendre rule on
@@ -77,6 +77,12 @@ pub(crate) fn nodes(n: u64, bits: u32) -> Option<Arc<BallRule>> {
         };
         Some(BallRule { bits, nodes })
     })
+}
+
+/// The least degree in `degrees` whose rule is held at `bits` or above, if any.
+pub(crate) fn held_degree(degrees: std::ops::RangeInclusive<u64>, bits: u32) -> Option<u64> {
+    let (low, high) = (*degrees.start() as usize, *degrees.end() as usize);
+    least_held::<BallRule>(low..=high, Precision::bits(bits)).map(|n| n as u64)
 }
 
 /// Guard bits for P_n's rounding and conditioning: Arb's padding, and twice it for the

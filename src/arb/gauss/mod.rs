@@ -10,7 +10,9 @@
 //! 256 bits the X = 2 rectangle cut into cells; where that fails too, the interval is
 //! halved (so that the degrees of a case, and their node tables, stay few), and after
 //! [`OWN_DEPTH`] halvings what is left goes to Arb's bisection. The parts of one piece at
-//! one depth start from the bound that served the last of them.
+//! one depth start from the bound that served the last of them. Where a node table is
+//! costly (hundreds of digits), rules share tables: a rule takes a held table of up to a
+//! quarter more points, or a degree of a coarser grid ([`shared_degree`]).
 
 use flint_sys::acb::acb_init;
 use flint_sys::acb_types::acb_struct;
@@ -221,6 +223,32 @@ pub(crate) fn degree_at_least(n: u64) -> u64 {
     n.div_ceil(1 << shift) << shift
 }
 
+/// The least n² × bits of a node table that is shared between rules where it can be:
+/// about 4 ms of Arb's roots (proofs/certified-digits.md, "Shared node tables").
+const SHARED_WORK: u64 = 1 << 22;
+
+/// The degree of the table that serves a rule of `n` points at `bits`, at most `limit`:
+/// `n` where its table is cheap. Where it is not, a table already held of at most a
+/// quarter more points, else the least degree ≥ n on a grid of four steps an octave
+/// (m·2^k, 4 ≤ m ≤ 7), so that the rules of one computation share fewer tables: one
+/// costs about as many evaluations of P_n as it has points squared, and a rule with more
+/// points than it needs costs only the integrand at those points.
+pub(crate) fn shared_degree(n: u64, bits: u32, limit: u64) -> u64 {
+    if n <= 16 || n * n * u64::from(bits) < SHARED_WORK {
+        return n;
+    }
+    if let Some(held) = legendre::held_degree(n..=(n + n / 4).min(limit), bits) {
+        return held;
+    }
+    let shift = 64 - n.leading_zeros() - 3;
+    let coarse = n.div_ceil(1 << shift) << shift;
+    if coarse <= limit {
+        coarse
+    } else {
+        n
+    }
+}
+
 /// How an interval's integral is enclosed.
 pub(crate) struct Rule<'a> {
     /// `integrand(x, analytic)` encloses f on x (`analytic`: a complex ball on which f
@@ -362,6 +390,9 @@ impl Rule<'_> {
             }
             None => fallback()?,
         };
+        // A degree above the least keeps its error bound below `error` (the bound falls
+        // with n), so a table shared with other pieces serves as well.
+        let n = shared_degree(n, bits, self.degree_limit);
         let table = nodes(n, bits)?;
         let mut sum = start.int(0);
         for k in 0..n as usize {
@@ -647,5 +678,28 @@ mod tests {
             assert!(d >= n && (d as f64) <= 1.125 * n as f64 + 1.0);
             assert_eq!(degree_at_least(d), d);
         }
+    }
+
+    #[test]
+    fn a_costly_table_is_shared_with_rules_of_up_to_a_quarter_fewer_points() {
+        // Cheap tables are the degree asked for.
+        assert_eq!(shared_degree(100, 64, 1000), 100);
+        assert_eq!(shared_degree(16, 4000, 1000), 16);
+        // A costly one (200² × 304 bits): the coarse grid's 224 = 7·32, or 200 where the
+        // limit is below it. 304 bits and [200, 250] are used by no other test.
+        assert_eq!(shared_degree(200, 304, 210), 200);
+        assert_eq!(shared_degree(200, 304, 1000), 224);
+        let table = nodes(224, 304).expect("the rule");
+        // Held now: it serves every rule of 180 to 224 points, not 178 (224 > 178 + 44).
+        assert_eq!(shared_degree(180, 304, 1000), 224);
+        assert_eq!(shared_degree(178, 304, 1000), 192);
+        // And where a lower precision is asked for, rounded from it.
+        assert_eq!(shared_degree(190, 256, 1000), 224);
+        // The shared rule integrates exactly what the rule of fewer points does: ∫₋₁¹ x^300 dx.
+        let zero = table.nodes[0].0.int(0);
+        let half = table.nodes.iter().fold(zero, |sum, (x, w)| sum + x.powi(300) * w);
+        let sum = half.times_power_of_two(1);
+        let exact = Float::with_val(400, 2) / 301u32;
+        assert!(sum.contains(&exact) && sum.relative_radius() < 1e-80);
     }
 }
