@@ -1,5 +1,6 @@
 //! Admissibility proven: v' > 0 and v'' ≤ 0 on every load the cycle reaches, from the
-//! lowest slip load P_T (or P0 − P1 if lower) to P0 + P1.
+//! lowest slip load P_T (or P0 − P1 if lower) to P0 + P1 ([`prove_admissible`]), or on the
+//! loads a path reaches ([`prove_admissible_on`]).
 //!
 //! The theory needs both; without them W may come out negative, and a "proven" negative W
 //! would prove nothing. A compliance whose form decides it (a power law with C > 0 and
@@ -18,7 +19,7 @@
 use rug::Float;
 
 use crate::case::{Case, CaseSpec};
-use crate::compliance::{check_admissible, AdmissibilityError, Compliance};
+use crate::compliance::{check_admissible, AdmissibilityError, Compliance, ComplianceSpec};
 use crate::real::{Precision, Real};
 
 /// The most subintervals the ball check may cut the range into.
@@ -30,38 +31,61 @@ pub fn prove_admissible(case: &CaseSpec) -> Result<(), AdmissibilityError> {
     if by_form_in_f64(case) {
         return Ok(());
     }
-    let Some((compliance, low, high)) = load_range(case) else {
+    let Some((low, high)) = load_range(case) else {
         return Ok(());
     };
-    if compliance.admissible_by_form(&low, &high) {
+    prove_admissible_on(case.compliance(), &low, &high)
+}
+
+/// Checks that the compliance `spec` is admissible on [low, high] (0 < low ≤ high), the
+/// loads a cycle or a path reaches: by its form, else on Arb balls (in MPFR samples where
+/// built without them). A spec that cannot be read in MPFR was refused when it was read.
+///
+/// ```
+/// use microslip::admissibility::prove_admissible_on;
+/// use microslip::compliance::ComplianceSpec;
+/// use rug::Float;
+///
+/// let (low, high) = (Float::with_val(64, 0.5), Float::with_val(64, 1.5));
+/// let persson = ComplianceSpec::parse("persson:gamma=1,sigma=1")?;
+/// assert!(prove_admissible_on(&persson, &low, &high).is_ok());
+/// // Convex by 1e-40: refused, naming a load where v'' > 0.
+/// let convex = ComplianceSpec::parse("poly:p0=1,coeffs=2;1e-40")?;
+/// assert!(prove_admissible_on(&convex, &low, &high).is_err());
+/// # Ok::<(), microslip::compliance::SpecError>(())
+/// ```
+pub fn prove_admissible_on(spec: &ComplianceSpec, low: &Float, high: &Float) -> Result<(), AdmissibilityError> {
+    let Ok(compliance) = spec.build::<Float>(Precision::bits(low.prec().max(high.prec()))) else {
+        return Ok(());
+    };
+    if compliance.admissible_by_form(low, high) {
         return Ok(());
     }
     // v'' ≤ 0 from the exact form, after like terms cancel (v'' ≡ 0 for a constant v'):
-    // then v' > 0 throughout wherever v'(P0 + P1) > 0.
-    let spec = case.compliance();
+    // then v' > 0 throughout wherever v'(high) > 0.
     if spec.is_constant_slope() || spec.is_concave_by_form() {
-        return slope_positive_at_top(case, compliance.as_ref(), &low, &high);
+        return slope_positive_at_top(spec, compliance.as_ref(), low, high);
     }
-    by_balls(case, &low, &high).unwrap_or_else(|| check_admissible(compliance.as_ref(), &low, &high))
+    by_balls(spec, low, high).unwrap_or_else(|| check_admissible(compliance.as_ref(), low, high))
 }
 
-/// The compliance in MPFR and the range [min(P_T, P0 − P1), P0 + P1] of the loads the cycle
+/// The range [min(P_T, P0 − P1), P0 + P1] of the loads the cycle
 /// reaches. P_T > 0 for every cycle inside the theory (no gross slip means σ₊ + σ₋ < 2fP0), but
 /// near separation its formula cancels: the bits rise until its lower end is positive, and past
 /// [`MAX_RANGE_BITS`] the end is taken as 2^(−2^20) P0, below the true one. None where MPFR cannot
 /// read the case.
-fn load_range(case: &CaseSpec) -> Option<(Box<dyn Compliance<Float>>, Float, Float)> {
+fn load_range(case: &CaseSpec) -> Option<(Float, Float)> {
     let mut bits = 128;
     loop {
-        let Case { cycle, compliance } = case.at::<Float>(Precision::bits(bits)).ok()?;
+        let Case { cycle, .. } = case.at::<Float>(Precision::bits(bits)).ok()?;
         let low = (cycle.mean_normal_load.clone() - &cycle.normal_amplitude).min_of(&cycle.permanent_stick_load());
         let high = cycle.mean_normal_load.clone() + &cycle.normal_amplitude;
         if low > 0 {
-            return Some((compliance, low, high));
+            return Some((low, high));
         }
         if bits >= MAX_RANGE_BITS {
             let floor = cycle.mean_normal_load.clone() >> (1 << 20);
-            return Some((compliance, floor, high));
+            return Some((floor, high));
         }
         bits *= 8;
     }
@@ -74,17 +98,17 @@ const MAX_RANGE_BITS: u32 = 8192;
 /// them, else in MPFR.
 #[cfg(feature = "certified")]
 fn slope_positive_at_top(
-    case: &CaseSpec,
+    spec: &ComplianceSpec,
     _: &dyn Compliance<Float>,
     low: &Float,
     high: &Float,
 ) -> Result<(), AdmissibilityError> {
-    balls::slope_positive_at_top(case, low, high)
+    balls::slope_positive_at_top(spec, low, high)
 }
 
 #[cfg(not(feature = "certified"))]
 fn slope_positive_at_top(
-    _: &CaseSpec,
+    _: &ComplianceSpec,
     compliance: &dyn Compliance<Float>,
     low: &Float,
     high: &Float,
@@ -113,12 +137,12 @@ fn by_form_in_f64(case: &CaseSpec) -> bool {
 }
 
 #[cfg(feature = "certified")]
-fn by_balls(case: &CaseSpec, low: &Float, high: &Float) -> Option<Result<(), AdmissibilityError>> {
-    Some(balls::prove(case, low, high))
+fn by_balls(spec: &ComplianceSpec, low: &Float, high: &Float) -> Option<Result<(), AdmissibilityError>> {
+    Some(balls::prove(spec, low, high))
 }
 
 #[cfg(not(feature = "certified"))]
-fn by_balls(_: &CaseSpec, _: &Float, _: &Float) -> Option<Result<(), AdmissibilityError>> {
+fn by_balls(_: &ComplianceSpec, _: &Float, _: &Float) -> Option<Result<(), AdmissibilityError>> {
     None
 }
 
@@ -127,8 +151,7 @@ mod balls {
     use rug::Float;
 
     use crate::ball::{watch, Ball};
-    use crate::case::{Case, CaseSpec};
-    use crate::compliance::{AdmissibilityError, Compliance};
+    use crate::compliance::{AdmissibilityError, Compliance, ComplianceSpec};
     use crate::real::{Precision, Real};
 
     use super::MAX_INTERVALS;
@@ -172,8 +195,8 @@ mod balls {
         Ball::from_float(a, precision).union(&Ball::from_float(b, precision))
     }
 
-    pub(super) fn prove(case: &CaseSpec, low: &Float, high: &Float) -> Result<(), AdmissibilityError> {
-        let Ok(Case { compliance, .. }) = case.at::<Ball>(Precision::bits(BITS)) else {
+    pub(super) fn prove(spec: &ComplianceSpec, low: &Float, high: &Float) -> Result<(), AdmissibilityError> {
+        let Ok(compliance) = spec.build::<Ball>(Precision::bits(BITS)) else {
             return Err(undecidable(low, high, low));
         };
         let compliance = compliance.as_ref();
@@ -215,7 +238,7 @@ mod balls {
             pending.push((a, middle));
         }
         // v'' ≤ 0 throughout: v' is least at the top of the range.
-        slope_positive_at_top(case, low, high)
+        slope_positive_at_top(spec, low, high)
     }
 
     /// v'' ≤ 0 on [a, b], proven by its direct enclosure, or by its Taylor form about
@@ -248,11 +271,15 @@ mod balls {
     /// v'(high) > 0, proven (the least v' where v'' ≤ 0 on [low, high]) at a precision that
     /// rises while the terms of a sum cancel; a v' proven ≤ 0 is named, one not settled at
     /// [`MAX_SLOPE_BITS`] is undecidable.
-    pub(super) fn slope_positive_at_top(case: &CaseSpec, low: &Float, high: &Float) -> Result<(), AdmissibilityError> {
+    pub(super) fn slope_positive_at_top(
+        spec: &ComplianceSpec,
+        low: &Float,
+        high: &Float,
+    ) -> Result<(), AdmissibilityError> {
         let mut bits = BITS;
         loop {
             let precision = Precision::bits(bits);
-            let Ok(Case { compliance, .. }) = case.at::<Ball>(precision) else {
+            let Ok(compliance) = spec.build::<Ball>(precision) else {
                 return Err(undecidable(low, high, high));
             };
             let top = Ball::from_float(high, precision);

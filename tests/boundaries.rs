@@ -187,6 +187,55 @@ fn a_convex_compliance_is_refused_in_both_modes_naming_a_load() {
 }
 
 #[test]
+fn a_convex_compliance_is_refused_on_paths_and_by_the_simulation_however_small_its_convex_term() {
+    // Their f64 checks sample v'' with a tolerance of a few ulps of v'/P, which a convex
+    // term of 1e-40 passes: `path` printed W = -2.5e-42 "proven" and `simulate` blamed f64.
+    let scratch = common::Scratch::new("convex-paths");
+    let file = |name: &str, text: &str| {
+        let path = scratch.join(name);
+        std::fs::write(&path, text).unwrap();
+        path.to_str().unwrap().to_string()
+    };
+    let constant_q = file(
+        "q.csv",
+        "k,P_cos,P_sin,Q_cos,Q_sin\n0,1,0,0,0\n1,0,0,0.3,0\n2,0,0,0.1,0.05\n",
+    );
+    let varying = file(
+        "pq.csv",
+        "k,P_cos,P_sin,Q_cos,Q_sin\n0,1,0,0,0\n1,0.3,0,0.3,0.1\n2,0,0.1,0.1,0.05\n",
+    );
+    let sliding = file(
+        "u.csv",
+        "k,P_cos,P_sin,u_cos,u_sin\n0,1,0,0,0\n1,0,0,3,0\n2,0,0,1,0.5\n",
+    );
+    let contact = ["--friction", "1", "--lambda", "1", "--compliance"];
+    let runs: Vec<Vec<&str>> = vec![
+        vec!["path", "--harmonics", &constant_q],
+        vec!["path", "--harmonics", &constant_q, "--digits", "20"],
+        vec!["path", "--harmonics", &varying],
+        vec!["path", "--harmonics", &sliding, "--drive", "displacement"],
+        vec!["simulate", "--p0", "1", "--p1", "0.3", "--q1", "0.3", "--phi", "1"],
+    ];
+    for run in &runs {
+        for (spec, admissible) in [("poly:p0=1,coeffs=2;1e-40", false), ("poly:p0=1,coeffs=2;-1e-1", true)] {
+            let args: Vec<&str> = run.iter().chain(&contact).copied().chain([spec]).collect();
+            let (code, stdout, stderr) = common::microslip(&args);
+            if admissible {
+                assert_eq!(code, 0, "{args:?}: {stderr}");
+                assert!(!stdout.contains("W = -"), "{args:?}: {stdout}");
+            } else {
+                assert_eq!(code, 2, "{args:?}: {stdout}");
+                assert!(
+                    stdout.is_empty() && stderr.contains("v''(P) = 1.0000e-40 > 0 at P = "),
+                    "{args:?}: {stderr}"
+                );
+                assert_eq!(stderr.lines().count(), 1, "{stderr}");
+            }
+        }
+    }
+}
+
+#[test]
 fn a_cancelling_but_concave_sum_is_admissible_and_proven() {
     // v' = 1e-5/P², concave, written as a difference of two steep terms.
     let text = case().compliance("power:c=1,beta=-2+power:c=-0.99999,beta=-2").text();

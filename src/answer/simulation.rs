@@ -2,10 +2,11 @@
 //! f64 cycle or path it runs on, the tables it reads, a W of 0 it cannot vouch for —
 //! decided here, so that the command line and the bindings only format the result.
 
+use crate::admissibility::prove_admissible;
 use crate::answer::dissipation::tables_cover;
 use crate::answer::{Answer, ExitStatus, Provenance, Value};
 use crate::case::{Case, CaseSpec, InputError};
-use crate::compliance::TableError;
+use crate::compliance::{AdmissibilityError, TableError};
 use crate::cycle::{CycleError, LoadCycle};
 use crate::path::{Drive, PathRequest, PathRequestError};
 use crate::real::Precision;
@@ -49,6 +50,10 @@ pub enum SimulatedError {
     /// Rounded to f64, the cycle crosses a boundary the exact one keeps off.
     #[error("rounded to f64 the inputs cross a boundary that the exact cycle keeps off (in f64: {0}); the simulation runs in f64, `microslip dissipation` computes this cycle")]
     RoundedAcrossBoundary(CycleError),
+    /// The compliance is not admissible on the cycle's slip loads, proven as `microslip
+    /// dissipation` proves it.
+    #[error("{0} = [P_T, P0 + P1]: the slip loads of the cycle reach down to the permanent-stick load P_T")]
+    Compliance(AdmissibilityError),
     /// The cycle leaves a table of the compliance.
     #[error(transparent)]
     Table(#[from] TableError),
@@ -109,6 +114,9 @@ pub fn simulated_answer(case: &CaseSpec, options: &SimulationOptions) -> Result<
         cycle.mean_tangential_load = -cycle.mean_tangential_load;
     }
     tables_cover(&case.compliance().tables(), &cycle)?;
+    // Admissibility proven as `microslip dissipation` proves it: the simulation's own
+    // check samples v'' in f64, which a convex term below its rounding passes.
+    prove_admissible(case).map_err(SimulatedError::Compliance)?;
     let result = simulate(&cycle, compliance.as_ref(), options)?;
     // Only a W that is 0 by its reason is printed as 0.
     if result.w_work == 0.0 && result.w_friction == 0.0 && case.exact_zero().is_none() {

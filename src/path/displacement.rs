@@ -432,9 +432,8 @@ impl<'a, R: Real> DisplacementCycle<'a, R> {
             state.move_to(&law, value);
             states.push(state.clone());
         }
-        let lowest = law.normal_load.clone() - &(state_extreme_load(&states) / &law.friction);
-        let floor = law.normal_load.clone() / &zero.int(1024);
-        check_admissible(compliance, &lowest.max_of(&floor), &law.normal_load)?;
+        let (lowest, highest) = slip_load_range(&law, &states);
+        check_admissible(compliance, &lowest, &highest)?;
         Ok(DisplacementCycle {
             law,
             displacement,
@@ -442,6 +441,12 @@ impl<'a, R: Real> DisplacementCycle<'a, R> {
             turning_values,
             states,
         })
+    }
+
+    /// The loads the cycle's slip reaches, [P − max|Q|/f, P], its lower end at least P/1024
+    /// (in gross slip it reaches 0): where the compliance must be admissible.
+    pub fn slip_load_range(&self) -> (R, R) {
+        slip_load_range(&self.law, &self.states)
     }
 
     /// The Masing element.
@@ -518,6 +523,14 @@ impl<'a, R: Real> DisplacementCycle<'a, R> {
         }
         pieces
     }
+}
+
+/// [`DisplacementCycle::slip_load_range`] of a law and its states at the turning points.
+fn slip_load_range<R: Real>(law: &MasingLaw<'_, R>, states: &[MasingState<R>]) -> (R, R) {
+    let load = &law.normal_load;
+    let lowest = load.clone() - &(state_extreme_load(states) / &law.friction);
+    let floor = load.clone() / &load.int(1024);
+    (lowest.max_of(&floor), load.clone())
 }
 
 /// The largest |Q| the element reaches at a turning point.

@@ -134,7 +134,13 @@ pub fn path_answer(request: &PathRequest) -> Result<PathAnswer, PathRequestError
             (cycle.dissipation(Some(request.deadline))?, None, Some(cycle))
         }
     };
-    let w = match proven_or_why(request, f64_w.total)? {
+    let (low, high) = match (&force_cycle, &displacement_cycle) {
+        (Some(cycle), _) => (cycle.lowest_slip, cycle.highest_load),
+        (None, Some(cycle)) => cycle.slip_load_range(),
+        (None, None) => unreachable!("one drive's cycle is built"),
+    };
+    let admissible = prove_admissible_on_path_loads(request, low, high)?;
+    let w = match proven_or_why(request, f64_w.total, &admissible)? {
         Ok(w) => w,
         Err(why) => agreed_w(request, why)?,
     };
@@ -159,9 +165,55 @@ pub fn path_answer(request: &PathRequest) -> Result<PathAnswer, PathRequestError
     })
 }
 
+/// The least load, as a fraction 2⁻ᵏ of the highest, down to which admissibility is
+/// checked where the slip reaches load 0 (gross slip): as near 0 as a check can come.
+const FLOOR_BELOW_HIGHEST: u32 = 1024;
+
+/// How far beyond the f64 run's loads admissibility is checked, as a fraction 2⁻ᵏ of the
+/// highest load: far beyond the run's rounding (a few ulps of the highest load).
+const MARGIN_BELOW_HIGHEST: u32 = 40;
+
+/// The loads on which the compliance was proven admissible.
+struct AdmissibleLoads {
+    /// The lowest.
+    low: Float,
+    /// Whether the check reached down to the floor (the slip may reach load 0).
+    to_floor: bool,
+}
+
+/// The compliance proven admissible ([`crate::admissibility::prove_admissible_on`]: by its
+/// form, else v'' ≤ 0 and v' > 0 on Arb balls) on the loads the f64 run's slip reaches,
+/// [low, high], widened by 2⁻⁴⁰ of `high`; from 2⁻¹⁰²⁴ of `high` where the widened end is not
+/// positive or the run's lowest load is its floor `high`/1024 (gross slip reaches load 0).
+fn prove_admissible_on_path_loads(
+    request: &PathRequest,
+    low: f64,
+    high: f64,
+) -> Result<AdmissibleLoads, PathRequestError> {
+    let refused = |error: &dyn std::fmt::Display| PathRequestError::refused(error.to_string());
+    let spec = crate::compliance::ComplianceSpec::parse(&request.compliance).map_err(|error| refused(&error))?;
+    let top = Float::with_val(64, high);
+    let margin = top.clone() >> MARGIN_BELOW_HIGHEST;
+    let widened = Float::with_val(64, low) - &margin;
+    let to_floor = low <= high / 1024.0 || widened <= 0;
+    let low = if to_floor {
+        top.clone() >> FLOOR_BELOW_HIGHEST
+    } else {
+        widened
+    };
+    crate::admissibility::prove_admissible_on(&spec, &low, &(top + &margin)).map_err(|error| refused(&error))?;
+    Ok(AdmissibleLoads { low, to_floor })
+}
+
 /// W proven by an enclosure, or why it is not (an error where the time budget ran out).
+/// The loads its cycles slip down to must lie among those the compliance was proven
+/// admissible on.
 #[cfg(feature = "certified")]
-fn proven_or_why(request: &PathRequest, estimate: f64) -> Result<Result<AgreedW, String>, PathRequestError> {
+fn proven_or_why(
+    request: &PathRequest,
+    estimate: f64,
+    admissible: &AdmissibleLoads,
+) -> Result<Result<AgreedW, String>, PathRequestError> {
     use proven::NotProven;
     let proven = match proven::proven_w(request) {
         Ok(proven) => proven,
@@ -171,6 +223,15 @@ fn proven_or_why(request: &PathRequest, estimate: f64) -> Result<Result<AgreedW,
         }
         Err(why) => return Ok(Err(why.to_string())),
     };
+    let covered = match proven.lowest_slip_load {
+        Some(lowest) => admissible.low <= lowest,
+        None => admissible.to_floor,
+    };
+    if !covered {
+        return Ok(Err(
+            "its cycles slip below the loads on which the compliance was proven admissible".to_string(),
+        ));
+    }
     let digits = proven.value.digits().min(request.digits_asked());
     Ok(Ok(AgreedW {
         text: proven.value.decimal.to_string(),
@@ -196,7 +257,7 @@ fn proven_or_why(request: &PathRequest, estimate: f64) -> Result<Result<AgreedW,
 
 /// Without ball arithmetic there is no enclosure.
 #[cfg(not(feature = "certified"))]
-fn proven_or_why(_: &PathRequest, _: f64) -> Result<Result<AgreedW, String>, PathRequestError> {
+fn proven_or_why(_: &PathRequest, _: f64, _: &AdmissibleLoads) -> Result<Result<AgreedW, String>, PathRequestError> {
     Ok(Err("this build has no ball arithmetic".to_string()))
 }
 

@@ -41,6 +41,10 @@ pub struct ProvenW {
     pub provenance: Provenance,
     /// The rainflow cycles (of Q, or of u under displacement driving) whose W were summed.
     pub cycles: usize,
+    /// A lower bound of the lowest load that slips, P − (largest Q amplitude)/f, on which
+    /// the compliance must be admissible; `None` where a cycle slides (the slip then
+    /// reaches load 0).
+    pub lowest_slip_load: Option<f64>,
 }
 
 /// The path, contact and compliance at one precision, as the rung reads them.
@@ -65,7 +69,7 @@ pub fn proven_w(request: &PathRequest) -> Result<ProvenW, NotProven> {
         return Err(NotProven::NotCovered("normal load varies"));
     }
     let in_intervals = enclose_constant_load(&path, &contact, compliance.as_ref(), request.drive, INTERVAL_GOAL_BITS);
-    if let Ok((total, cycles)) = &in_intervals {
+    if let Ok((total, cycles, lowest_slip_load)) = &in_intervals {
         let value = total.decimal_value(digits);
         let least = match request.digits {
             None => DEFAULT_LEAST_DIGITS,
@@ -80,6 +84,7 @@ pub fn proven_w(request: &PathRequest) -> Result<ProvenW, NotProven> {
                     arithmetic: Arithmetic::F64Intervals,
                 },
                 cycles: *cycles,
+                lowest_slip_load: *lowest_slip_load,
             });
         }
     }
@@ -115,7 +120,7 @@ fn in_balls(request: &PathRequest, digits: u32) -> Result<ProvenW, NotProven> {
             return Rung::Final(NotProven::OutOfTime { asked: digits });
         }
         match enclosed {
-            Ok((total, cycles)) => {
+            Ok((total, cycles, lowest_slip_load)) => {
                 let value = total.decimal_value(digits);
                 if value.digits() >= digits {
                     Rung::Reached(ProvenW {
@@ -125,6 +130,7 @@ fn in_balls(request: &PathRequest, digits: u32) -> Result<ProvenW, NotProven> {
                             arithmetic: Arithmetic::ArbBalls,
                         },
                         cycles,
+                        lowest_slip_load,
                     })
                 } else {
                     Rung::Short(NotProven::TooWide {
@@ -147,17 +153,18 @@ fn in_balls(request: &PathRequest, digits: u32) -> Result<ProvenW, NotProven> {
     }
 }
 
-/// W at constant P as an enclosure, and the number of rainflow cycles: the turning
-/// values of the driving quantity (Q, or u under displacement driving; rotated to start
-/// and end at the largest) counted by the three-point rule, each cycle's W enclosed with
-/// the rung's own rule aiming at `goal_bits`.
+/// W at constant P as an enclosure, the number of rainflow cycles and a lower bound of
+/// the lowest load that slips (`None` where a cycle slides): the turning values of the
+/// driving quantity (Q, or u under displacement driving; rotated to start and end at the
+/// largest) counted by the three-point rule, each cycle's W enclosed with the rung's own
+/// rule aiming at `goal_bits`.
 fn enclose_constant_load<R: Enclosing>(
     path: &LoadPath<R>,
     contact: &Contact<R>,
     compliance: &dyn Compliance<R>,
     drive: Drive,
     goal_bits: u32,
-) -> Result<(R, usize), NotProven> {
+) -> Result<(R, usize, Option<f64>), NotProven> {
     let load = path.normal.cos[0].clone();
     let bits = load.precision().in_bits();
     let (cycles, doubts) = watch(|| {
@@ -177,6 +184,7 @@ fn enclose_constant_load<R: Enclosing>(
         return Err(NotProven::Undecided { bits });
     }
     let cycles: Vec<ConstantLoadCycle<R>> = cycles?;
+    let lowest_slip_load = lowest_slip_load(&load, contact, &cycles);
     let mut total = load.int(0);
     // The loop at fP, shared by every cycle in gross slip.
     let mut limit_loop: Option<R> = None;
@@ -195,7 +203,20 @@ fn enclose_constant_load<R: Enclosing>(
         };
         total += &w;
     }
-    Ok((total, cycles.len()))
+    Ok((total, cycles.len(), lowest_slip_load))
+}
+
+/// A lower bound of P − a/f over the cycles' Q amplitudes a (the load down to which a
+/// Masing loop of amplitude a slips); `None` where a cycle slides, or the bound is not a
+/// positive load.
+fn lowest_slip_load<R: Real>(load: &R, contact: &Contact<R>, cycles: &[ConstantLoadCycle<R>]) -> Option<f64> {
+    cycles.iter().try_fold(f64::INFINITY, |lowest, cycle| match cycle {
+        ConstantLoadCycle::Loop(amplitude) => {
+            let (below, _) = (load.clone() - &(amplitude.clone() / &contact.friction)).real_span()?;
+            (below > 0.0).then_some(lowest.min(below))
+        }
+        ConstantLoadCycle::Sliding(_) => None,
+    })
 }
 
 /// The values of the driving quantity (Q, or u) at its turning points, from the largest
