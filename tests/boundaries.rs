@@ -236,6 +236,81 @@ fn a_convex_compliance_is_refused_on_paths_and_by_the_simulation_however_small_i
 }
 
 #[test]
+fn a_paths_boundaries_are_decided_on_its_decimals_not_their_f64_copies() {
+    let scratch = common::Scratch::new("path-boundaries");
+    let harmonics = |name: &str, p1: &str, q1: &str| {
+        let path = scratch.join(name);
+        let text = format!("k,P_cos,P_sin,Q_cos,Q_sin\n0,1,0,0,0\n1,{p1},0,{q1},0\n");
+        std::fs::write(&path, text).unwrap();
+        path.to_str().unwrap().to_string()
+    };
+    let run = |file: &str, ratio: &[&str]| {
+        let mut args = vec!["path", "--harmonics", file, "--friction", "1"];
+        args.extend_from_slice(ratio);
+        args.extend_from_slice(&["--compliance", "persson:gamma=1,sigma=1"]);
+        common::microslip(&args)
+    };
+    let tiny = "0000000000000000000000000000000000000001";
+    let below_one = "0.9999999999999999999999999999999999999999";
+    let lambda = ["--lambda", "1"];
+    // Outside by 1e-40: refused (exit 2), quoting the exact margin.
+    for (file, quoted) in [
+        (
+            harmonics("separates.csv", &format!("1.{tiny}"), "0.1"),
+            "P = -1e-40 ≤ 0",
+        ),
+        (
+            harmonics("slides.csv", "0", &format!("1.{tiny}")),
+            "+Q − fP = 1e-40 ≥ 0",
+        ),
+    ] {
+        let (code, stdout, stderr) = run(&file, &lambda);
+        assert!(
+            code == 2 && stdout.is_empty() && stderr.contains(quoted),
+            "{file}: {code} {stderr}"
+        );
+    }
+    // Inside by 1e-40, where the f64 copy reaches the boundary: never refused as outside; the
+    // outputs, computed in f64, fail (exit 1) saying why.
+    for file in [
+        harmonics("keeps-contact.csv", below_one, "1e-50"),
+        harmonics("sticks.csv", "0", below_one),
+    ] {
+        let (code, stdout, stderr) = run(&file, &lambda);
+        assert!(code == 1 && stdout.is_empty(), "{file}: {code} {stderr}");
+        assert!(
+            stderr.contains("rounded to f64 the path crosses a boundary that its decimals keep off"),
+            "{stderr}"
+        );
+    }
+    // λ and ν: refused by their decimals, which the refusal quotes.
+    let ordinary = harmonics("ordinary.csv", "0.3", "0.2");
+    for ratio in [
+        ["--lambda", "2.0000000000000000000000000000000000000001"],
+        ["--lambda", below_one],
+        ["--nu", "0.66666666666666666667"],
+    ] {
+        let (code, stdout, stderr) = run(&ordinary, &ratio);
+        assert!(
+            code == 2 && stdout.is_empty() && stderr.contains(ratio[1]),
+            "{ratio:?}: {code} {stderr}"
+        );
+    }
+    // ν just below 2/3 (λ just below 2) is inside, and at constant P proven.
+    let constant_p = harmonics("constant-p.csv", "0", "0.3");
+    for nu in [
+        "0.66666666666666666666",
+        "0.6666666666666666666666666666666666666666666",
+    ] {
+        let (code, stdout, stderr) = run(&constant_p, &["--nu", nu]);
+        assert!(
+            code == 0 && stdout.contains("certified: proven"),
+            "{nu}: {code} {stdout} {stderr}"
+        );
+    }
+}
+
+#[test]
 fn a_cancelling_but_concave_sum_is_admissible_and_proven() {
     // v' = 1e-5/P², concave, written as a difference of two steep terms.
     let text = case().compliance("power:c=1,beta=-2+power:c=-0.99999,beta=-2").text();

@@ -632,3 +632,51 @@ fn a_displacement_driven_path_reports_certified_on_the_command_line() {
         "{default} vs {thirty}"
     );
 }
+
+#[test]
+fn samples_at_a_constant_load_that_is_no_double_are_proven_like_their_harmonics() {
+    // P = 1.3 in every sample: read as the decimal it is, a constant exactly. Its
+    // enclosures' sums of cosines would leave harmonics about 0 that no comparison decides,
+    // and the path was taken as one whose P varies.
+    let directory = Scratch::new("constant-samples");
+    let mut samples = String::from("P,Q\n");
+    for j in 0..12 {
+        let theta = std::f64::consts::TAU * f64::from(j) / 12.0;
+        samples.push_str(&format!("1.3,{:.17e}\n", 0.3 * theta.cos() + 0.1 * (2.0 * theta).sin()));
+    }
+    let sampled = directory.join("samples.csv");
+    let harmonics = directory.join("harmonics.csv");
+    std::fs::write(&sampled, samples).unwrap();
+    std::fs::write(
+        &harmonics,
+        "k,P_cos,P_sin,Q_cos,Q_sin\n0,1.3,0,0,0\n1,0,0,0.3,0\n2,0,0,0,0.1\n",
+    )
+    .unwrap();
+    let w = |format: &str, file: &std::path::Path| {
+        let args = [
+            "path",
+            format,
+            file.to_str().unwrap(),
+            "--friction",
+            "1",
+            "--lambda",
+            "1",
+            "--compliance",
+            PERSSON,
+            "--digits",
+            "20",
+            "--json",
+        ];
+        let (code, stdout, stderr) = microslip(&args);
+        assert_eq!(code, 0, "{stderr}");
+        let document: Value = serde_json::from_str(stdout.trim()).unwrap();
+        assert_eq!(document["provenance"], "certified", "{format}: {stdout}");
+        document["W_f64"].as_f64().unwrap()
+    };
+    let (from_samples, from_harmonics) = (w("--samples", &sampled), w("--harmonics", &harmonics));
+    // The samples are the path's values to 17 digits.
+    assert!(
+        (from_samples - from_harmonics).abs() < 1e-14 * from_harmonics,
+        "{from_samples} {from_harmonics}"
+    );
+}

@@ -5,7 +5,7 @@
 use std::time::Instant;
 
 use crate::compliance::{parse_spec, Compliance};
-use crate::cycle::compliance_ratio_from_poisson;
+use crate::cycle::{compliance_ratio_from_poisson, CycleError};
 use crate::real::{Precision, Real};
 
 use super::input::{read_driven_harmonics, read_driven_samples, Drive, LoadPath, PathError};
@@ -130,18 +130,33 @@ impl PathRequest {
                 .map_err(|_| PathRequestError::refused(format!("--{name} '{text}' is not a decimal number")))
         };
         let friction = number("friction", &self.friction)?;
+        // Refusals quote the decimals as written, not their copies at this precision.
         let compliance_ratio = match &self.ratio {
             RatioText::Lambda(lambda) => number("lambda", lambda)?,
-            RatioText::Poisson(nu) => compliance_ratio_from_poisson(&number("nu", nu)?)
-                .map_err(|error| PathRequestError::refused(error.to_string()))?,
+            RatioText::Poisson(nu) => compliance_ratio_from_poisson(&number("nu", nu)?).map_err(|error| {
+                let error = match error {
+                    CycleError::PoissonRatioOutOfRange { .. } => CycleError::PoissonRatioOutOfRange { nu: nu.clone() },
+                    other => other,
+                };
+                PathRequestError::refused(error.to_string())
+            })?,
         };
         let contact = Contact {
             friction,
             compliance_ratio,
         };
-        contact
-            .validate()
-            .map_err(|error| PathRequestError::refused(error.to_string()))?;
+        contact.validate().map_err(|_| {
+            let zero = contact.friction.int(0);
+            PathRequestError::refused(match &self.ratio {
+                _ if contact.friction <= zero => {
+                    format!("the friction coefficient f = {} must be positive", self.friction)
+                }
+                RatioText::Lambda(lambda) => format!("the compliance ratio λ = {lambda} lies outside [1, 2]"),
+                RatioText::Poisson(nu) => {
+                    format!("Poisson's ratio ν = {nu} gives λ outside [1, 2]; ν must lie in [0, 2/3]")
+                }
+            })
+        })?;
         let compliance = parse_spec::<R>(&self.compliance, precision)
             .map_err(|error| PathRequestError::refused(error.to_string()))?;
         Ok(Inputs {

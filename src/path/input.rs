@@ -1,7 +1,11 @@
 //! A periodic load path and how it is read: harmonics `k,P_cos,P_sin,Q_cos,Q_sin`, or one
 //! period of equally spaced samples `P,Q` taken as their trigonometric interpolant.
 
+use rug::Rational;
+
 use crate::compliance::AdmissibilityError;
+use crate::decimal::decimal;
+use crate::doubts::if_decided;
 use crate::quad::QuadError;
 use crate::real::{Precision, Real};
 
@@ -381,12 +385,20 @@ pub fn read_driven_samples<R: Real>(text: &str, precision: Precision, drive: Dri
     let at = columns(&header, header_line, &["P", tangential_name])?;
     let mut normal = Vec::new();
     let mut tangential = Vec::new();
+    // Whether every sample of a column is the first one's decimal value, exactly.
+    let (mut normal_equal, mut tangential_equal) = (true, true);
+    let mut first: Option<(Option<Rational>, Option<Rational>)> = None;
     for (line, cells) in lines {
         if normal.len() == MAX_SAMPLES {
             return Err(PathError::TooManySamples);
         }
         normal.push(number::<R>(&cells, at[0], line, "P", precision)?);
         tangential.push(number::<R>(&cells, at[1], line, tangential_name, precision)?);
+        let exact = |column: usize| cells.get(column).and_then(|text| decimal(text));
+        let (p, q) = (exact(at[0]), exact(at[1]));
+        let (first_p, first_q) = first.get_or_insert_with(|| (p.clone(), q.clone()));
+        normal_equal &= p.is_some() && p == *first_p;
+        tangential_equal &= q.is_some() && q == *first_q;
     }
     if normal.len() < 3 {
         return Err(PathError::Malformed(format!(
@@ -394,9 +406,20 @@ pub fn read_driven_samples<R: Real>(text: &str, precision: Precision, drive: Dri
             normal.len()
         )));
     }
+    let column = |samples: &[R], equal: bool| {
+        if equal {
+            // Equal decimals are a constant exactly, which the sums of cosines would leave
+            // only to within their rounding.
+            let mut poly = TrigPoly::zero((samples.len() / 2).min(MAX_HARMONICS), &samples[0]);
+            poly.cos[0] = samples[0].clone();
+            Ok(poly)
+        } else {
+            interpolant(samples)
+        }
+    };
     Ok(LoadPath {
-        normal: interpolant(&normal)?,
-        tangential: interpolant(&tangential)?,
+        normal: column(&normal, normal_equal)?,
+        tangential: column(&tangential, tangential_equal)?,
     })
 }
 
@@ -407,8 +430,9 @@ pub fn interpolant<R: Real>(samples: &[R]) -> Result<TrigPoly<R>, PathError> {
     let like = &samples[0];
     let highest = (n / 2).min(MAX_HARMONICS);
     let mut poly = TrigPoly::zero(highest, like);
-    // Equal samples are a constant exactly (their sums of cosines would leave rounding).
-    if samples.iter().all(|sample| sample == like) {
+    // Equal samples are a constant exactly (their sums of cosines would leave rounding);
+    // enclosures that overlap are not known equal, and the sums enclose the constant.
+    if samples.iter().all(|sample| if_decided(|| sample == like) == Some(true)) {
         poly.cos[0] = like.clone();
         return Ok(poly);
     }

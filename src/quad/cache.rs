@@ -125,6 +125,7 @@ pub(crate) fn cached<T: Table>(
 
 /// The least size in `sizes` whose table of type `T` the shared cache holds at `precision`
 /// or above: see [`Cache::least_held`].
+#[cfg(feature = "certified")]
 pub(crate) fn least_held<T: Table>(sizes: RangeInclusive<usize>, precision: Precision) -> Option<usize> {
     shared().least_held::<T>(sizes, precision)
 }
@@ -195,7 +196,8 @@ impl Cache {
     /// The least size in `sizes` whose table of type `T` is held at `precision` or above
     /// (tables being computed are not counted): where a larger table than the one needed
     /// would serve, it may spare computing another. It may be dropped before it is asked
-    /// for, and is then computed again.
+    /// for, and is then computed again. (Only the rules on Arb balls share tables.)
+    #[cfg_attr(not(feature = "certified"), allow(dead_code))]
     pub(crate) fn least_held<T: Table>(&self, sizes: RangeInclusive<usize>, precision: Precision) -> Option<usize> {
         let bits = precision.in_bits();
         lock(&self.entries)

@@ -4,6 +4,7 @@
 
 #[cfg(feature = "certified")]
 mod constant_load;
+mod decided;
 #[cfg(feature = "certified")]
 mod not_proven;
 #[cfg(feature = "certified")]
@@ -19,7 +20,7 @@ use crate::real::{Precision, Real};
 use crate::path::dissipation::dissipation_of;
 use crate::path::{
     displacement_dissipation, displacement_outputs, path_dissipation, path_outputs, DisplacementCycle, Drive,
-    PathOutputs, PathRequest, PathRequestError, SteadyCycle,
+    PathError, PathOutputs, PathRequest, PathRequestError, SteadyCycle,
 };
 
 /// W as printed: its digits, its value in f64 and what vouches for it (an enclosure or
@@ -120,12 +121,20 @@ impl TwoPrecisions for Agreement<'_> {
 /// agreement of two working precisions with the reason it is not proven (never the f64
 /// estimate), and the outputs.
 pub fn path_answer(request: &PathRequest) -> Result<PathAnswer, PathRequestError> {
-    let inputs = request.read::<f64>(Precision::DOUBLE)?;
+    decided::decide_boundaries(request)?;
+    // Read as written, the path was read at higher precisions above: an f64 copy that
+    // fails to read (λ from ν beyond 2) has crossed a boundary.
+    let inputs = request.read::<f64>(Precision::DOUBLE).map_err(rounded_across)?;
     let (path, contact, compliance) = (&inputs.path, &inputs.contact, inputs.compliance.as_ref());
-    // The f64 run checks the path (and counts its pieces) before the precisions are raised.
+    // The f64 run builds the cycle (and counts its pieces) for the outputs.
     let (f64_w, force_cycle, displacement_cycle) = match request.drive {
         Drive::Force => {
-            let cycle = SteadyCycle::new(path, contact)?;
+            let cycle = SteadyCycle::new(path, contact).map_err(|error| match error {
+                PathError::Separation { .. } | PathError::GrossSlip { .. } | PathError::Contact(_) => {
+                    rounded_across(error.into())
+                }
+                other => other.into(),
+            })?;
             let w = dissipation_of(&cycle, contact, compliance, Some(request.deadline))?;
             (w, Some(cycle), None)
         }
@@ -165,6 +174,17 @@ pub fn path_answer(request: &PathRequest) -> Result<PathAnswer, PathRequestError
     })
 }
 
+/// The f64 copy of a path decided inside the theory (separation, gross slip, λ) refused:
+/// the copy crossed a boundary the decimals keep off, and the f64 run, which builds the
+/// outputs, cannot follow it; a failure (exit 1), not a refusal.
+fn rounded_across(error: PathRequestError) -> PathRequestError {
+    PathRequestError::failed(format!(
+        "rounded to f64 the path crosses a boundary that its decimals keep off (in f64: {}); \
+         its outputs are computed in f64: move the path further from the boundary",
+        error.message
+    ))
+}
+
 /// The least load, as a fraction 2⁻ᵏ of the highest, down to which admissibility is
 /// checked where the slip reaches load 0 (gross slip): as near 0 as a check can come.
 const FLOOR_BELOW_HIGHEST: u32 = 1024;
@@ -173,7 +193,9 @@ const FLOOR_BELOW_HIGHEST: u32 = 1024;
 /// highest load: far beyond the run's rounding (a few ulps of the highest load).
 const MARGIN_BELOW_HIGHEST: u32 = 40;
 
-/// The loads on which the compliance was proven admissible.
+/// The loads on which the compliance was proven admissible (read where a W is proven:
+/// not built without ball arithmetic).
+#[cfg_attr(not(feature = "certified"), allow(dead_code))]
 struct AdmissibleLoads {
     /// The lowest.
     low: Float,

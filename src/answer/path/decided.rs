@@ -1,0 +1,81 @@
+//! A path's boundaries decided on enclosures of its decimals as written, never on their
+//! f64 copies: the contact (f > 0, λ ∈ [1, 2], from ν where ν is given), separation
+//! (P > 0 throughout) and, under force driving, gross slip (|Q| < fP throughout), each by
+//! the path's own checks run on f64 intervals, then on Arb balls at rising precision,
+//! until every comparison they make is decided (proofs/boundaries.md, "Paths").
+//!
+//! A decided refusal quotes the enclosure's middle; a path no precision up to
+//! [`MAX_BITS`] decides is refused as undecidable. A path decided inside whose f64 copy
+//! crosses a boundary is left to [`super::path_answer`], which says so.
+
+use crate::doubts::watch;
+use crate::interval::Interval;
+use crate::path::events::check_path;
+use crate::path::{Drive, PathError, PathRequest, PathRequestError};
+use crate::real::{Precision, Real};
+
+/// The most bits a path's boundaries are decided at.
+pub const MAX_BITS: u32 = 1 << 13;
+
+/// The bits the balls start with.
+#[cfg(feature = "certified")]
+const FIRST_BITS: u32 = 128;
+
+/// Whether the path of `request` is inside the theory, decided exactly: `Ok` where it is,
+/// its refusal where it is not, and "undecidable" where no precision settles it.
+pub(crate) fn decide_boundaries(request: &PathRequest) -> Result<(), PathRequestError> {
+    match decided_at::<Interval>(request, Precision::DOUBLE) {
+        Some(Ok(())) => return Ok(()),
+        // The margin quoted from balls, whose middle is the exact one to far below f64's
+        // rounding (the intervals' is off by their width); the intervals' where balls
+        // do not decide.
+        #[cfg(feature = "certified")]
+        Some(Err(refusal)) => {
+            let precise = decided_at::<crate::ball::Ball>(request, Precision::bits(FIRST_BITS));
+            return Err(precise.and_then(Result::err).unwrap_or(refusal));
+        }
+        #[cfg(not(feature = "certified"))]
+        Some(Err(refusal)) => return Err(refusal),
+        None => {}
+    }
+    #[cfg(feature = "certified")]
+    {
+        let mut bits = FIRST_BITS;
+        while bits <= MAX_BITS {
+            if let Some(decided) = decided_at::<crate::ball::Ball>(request, Precision::bits(bits)) {
+                return decided;
+            }
+            bits *= 4;
+        }
+    }
+    Err(PathRequestError::refused(format!(
+        "undecidable at this precision: whether the path separates, reaches gross slip or has λ outside [1, 2] \
+         is not settled at {MAX_BITS} bits; move the inputs off the boundary"
+    )))
+}
+
+/// The checks on the path read at `precision`; `None` where a comparison they made is
+/// undecided there.
+fn decided_at<R: Real>(request: &PathRequest, precision: Precision) -> Option<Result<(), PathRequestError>> {
+    let (result, doubts) = watch(|| -> Result<(), PathRequestError> {
+        let inputs = request.read::<R>(precision)?;
+        let (path, contact) = (&inputs.path, &inputs.contact);
+        match request.drive {
+            Drive::Force => check_path(path, contact)?,
+            // At constant P, P > 0; a varying P is refused by the displacement cycle.
+            Drive::Displacement => {
+                contact.validate()?;
+                let load = &path.normal.cos[0];
+                if path.normal.is_constant() && *load <= load.int(0) {
+                    return Err(PathError::Separation {
+                        theta: 0.0,
+                        load: load.to_f64_lossy(),
+                    }
+                    .into());
+                }
+            }
+        }
+        Ok(())
+    });
+    doubts.none().then_some(result)
+}
