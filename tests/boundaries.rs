@@ -244,12 +244,13 @@ fn a_paths_boundaries_are_decided_on_its_decimals_not_their_f64_copies() {
         std::fs::write(&path, text).unwrap();
         path.to_str().unwrap().to_string()
     };
-    let run = |file: &str, ratio: &[&str]| {
-        let mut args = vec!["path", "--harmonics", file, "--friction", "1"];
+    let run_as = |command: &str, file: &str, ratio: &[&str]| {
+        let mut args = vec![command, "--harmonics", file, "--friction", "1"];
         args.extend_from_slice(ratio);
         args.extend_from_slice(&["--compliance", "persson:gamma=1,sigma=1"]);
         common::microslip(&args)
     };
+    let run = |file: &str, ratio: &[&str]| run_as("path", file, ratio);
     let tiny = "0000000000000000000000000000000000000001";
     let below_one = "0.9999999999999999999999999999999999999999";
     let lambda = ["--lambda", "1"];
@@ -264,11 +265,14 @@ fn a_paths_boundaries_are_decided_on_its_decimals_not_their_f64_copies() {
             "+Q − fP = 1e-40 ≥ 0",
         ),
     ] {
-        let (code, stdout, stderr) = run(&file, &lambda);
-        assert!(
-            code == 2 && stdout.is_empty() && stderr.contains(quoted),
-            "{file}: {code} {stderr}"
-        );
+        // The simulation of a path file decides them alike.
+        for command in ["path", "simulate"] {
+            let (code, stdout, stderr) = run_as(command, &file, &lambda);
+            assert!(
+                code == 2 && stdout.is_empty() && stderr.contains(quoted),
+                "{command} {file}: {code} {stderr}"
+            );
+        }
     }
     // Inside by 1e-40, where the f64 copy reaches the boundary: never refused as outside; the
     // outputs, computed in f64, fail (exit 1) saying why.
@@ -276,12 +280,14 @@ fn a_paths_boundaries_are_decided_on_its_decimals_not_their_f64_copies() {
         harmonics("keeps-contact.csv", below_one, "1e-50"),
         harmonics("sticks.csv", "0", below_one),
     ] {
-        let (code, stdout, stderr) = run(&file, &lambda);
-        assert!(code == 1 && stdout.is_empty(), "{file}: {code} {stderr}");
-        assert!(
-            stderr.contains("rounded to f64 the path crosses a boundary that its decimals keep off"),
-            "{stderr}"
-        );
+        for command in ["path", "simulate"] {
+            let (code, stdout, stderr) = run_as(command, &file, &lambda);
+            assert!(code == 1 && stdout.is_empty(), "{command} {file}: {code} {stderr}");
+            assert!(
+                stderr.contains("rounded to f64 the path crosses a boundary that its decimals keep off"),
+                "{stderr}"
+            );
+        }
     }
     // λ and ν: refused by their decimals, which the refusal quotes.
     let ordinary = harmonics("ordinary.csv", "0.3", "0.2");

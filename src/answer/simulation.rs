@@ -4,11 +4,12 @@
 
 use crate::admissibility::prove_admissible;
 use crate::answer::dissipation::tables_cover;
+use crate::answer::path::decided::decide_boundaries;
 use crate::answer::{Answer, ExitStatus, Provenance, Value};
 use crate::case::{Case, CaseSpec, InputError};
 use crate::compliance::{AdmissibilityError, TableError};
 use crate::cycle::{CycleError, LoadCycle};
-use crate::path::{Drive, PathRequest, PathRequestError};
+use crate::path::{Drive, PathError, PathRequest, PathRequestError};
 use crate::real::Precision;
 use crate::simulate::{
     simulate, simulate_displacement_path, simulate_path, SimulationError, SimulationOptions, SimulationResult,
@@ -54,6 +55,9 @@ pub enum SimulatedError {
     /// dissipation` proves it.
     #[error("{0} = [P_T, P0 + P1]: the slip loads of the cycle reach down to the permanent-stick load P_T")]
     Compliance(AdmissibilityError),
+    /// Rounded to f64, the path crosses a boundary that its decimals keep off.
+    #[error("rounded to f64 the path crosses a boundary that its decimals keep off (in f64: {0}); the simulation runs in f64: move the path further from the boundary")]
+    PathRoundedAcrossBoundary(String),
     /// The cycle leaves a table of the compliance.
     #[error(transparent)]
     Table(#[from] TableError),
@@ -78,6 +82,7 @@ impl ExitStatus for SimulatedError {
         match self {
             SimulatedError::Path(error) => error.is_failure(),
             SimulatedError::RoundedAcrossBoundary(_)
+            | SimulatedError::PathRoundedAcrossBoundary(_)
             | SimulatedError::ZeroInF64
             | SimulatedError::PathZeroInF64
             | SimulatedError::Simulation(
@@ -139,12 +144,23 @@ pub fn simulated_path_answer(
     request: &PathRequest,
     options: &SimulationOptions,
 ) -> Result<SimulatedPathAnswer, SimulatedError> {
-    let inputs = request.read::<f64>(Precision::DOUBLE)?;
+    // The path's boundaries decided from its decimals, as `microslip path` decides them;
+    // its f64 copy may still round across one, and the simulation runs in f64.
+    decide_boundaries(request)?;
+    let inputs = request
+        .read::<f64>(Precision::DOUBLE)
+        .map_err(|error| rounded_across(&error))?;
     let (path, contact, compliance) = (&inputs.path, &inputs.contact, inputs.compliance.as_ref());
     let result = match request.drive {
         Drive::Force => simulate_path(path, contact, compliance, options),
         Drive::Displacement => simulate_displacement_path(path, contact, compliance, options),
-    }?;
+    }
+    .map_err(|error| match error {
+        SimulationError::Path(
+            boundary @ (PathError::Separation { .. } | PathError::GrossSlip { .. } | PathError::Contact(_)),
+        ) => rounded_across(&boundary),
+        other => other.into(),
+    })?;
     // Only a W that is 0 by its reason is printed as 0: loads that do not vary.
     let constant = inputs.path.normal.is_constant() && inputs.path.tangential.is_constant();
     if result.w_work == 0.0 && result.w_friction == 0.0 && !constant {
@@ -156,6 +172,11 @@ pub fn simulated_path_answer(
         friction,
         result,
     })
+}
+
+/// A boundary that the f64 copy of a path decided inside the theory crosses.
+fn rounded_across(error: &dyn std::fmt::Display) -> SimulatedError {
+    SimulatedError::PathRoundedAcrossBoundary(error.to_string())
 }
 
 /// W as the work of the load and as the frictional work, each with the bound the

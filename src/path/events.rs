@@ -447,18 +447,40 @@ pub(crate) fn check_path<R: Real>(path: &LoadPath<R>, contact: &Contact<R>) -> R
     validate(&loads).map(|_| ())
 }
 
+/// Checks that the contact is valid and the path stays in contact (P > 0), as the
+/// displacement-driven simulation needs (gross slip is allowed there): by the bound of
+/// [`clearly_inside`] on P where it decides it, else at P's lowest turning point.
+pub(crate) fn check_contact_and_separation<R: Real>(path: &LoadPath<R>, contact: &Contact<R>) -> Result<(), PathError> {
+    contact.validate()?;
+    let normal = &path.normal;
+    let zero = normal.cos[0].int(0);
+    if if_decided(|| normal.cos[0].clone() - &spread(normal) > zero) == Some(true) {
+        return Ok(());
+    }
+    let (theta, lowest) = extreme(normal, false);
+    if lowest <= zero {
+        return Err(PathError::Separation {
+            theta: theta.to_f64_lossy(),
+            load: lowest.to_f64_lossy(),
+        });
+    }
+    Ok(())
+}
+
+/// Σₖ (|aₖ| + |bₖ|) over k ≥ 1: a bound of how far the polynomial strays from c₀.
+fn spread<R: Real>(poly: &TrigPoly<R>) -> R {
+    let zero = poly.cos[0].int(0);
+    poly.cos[1..]
+        .iter()
+        .chain(&poly.sin[1..])
+        .fold(zero, |sum, c| sum + &c.abs())
+}
+
 /// Whether the path keeps clear of separation and gross slip by the bound of each
 /// polynomial's range c₀ ± Σₖ (|aₖ| + |bₖ|), decided without its turning points: a
 /// multiple root of a derivative, which no precision isolates, does not matter there.
 /// `false` where the bounds do not decide it.
 fn clearly_inside<R: Real>(loads: &Loads<R>) -> bool {
-    let spread = |poly: &TrigPoly<R>| {
-        let zero = poly.cos[0].int(0);
-        poly.cos[1..]
-            .iter()
-            .chain(&poly.sin[1..])
-            .fold(zero, |sum, c| sum + &c.abs())
-    };
     if_decided(|| {
         let zero = loads.normal.cos[0].int(0);
         let x = loads.tangential.combined(&loads.normal, -1);

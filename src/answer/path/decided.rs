@@ -1,6 +1,7 @@
 //! A path's boundaries decided on enclosures of its decimals as written, never on their
 //! f64 copies: the contact (f > 0, λ ∈ [1, 2], from ν where ν is given), separation
-//! (P > 0 throughout) and, under force driving, gross slip (|Q| < fP throughout), each by
+//! (P > 0 throughout) and, under force driving, gross slip (|Q| < fP throughout), for
+//! `microslip path` and the simulation of a path file alike, each by
 //! the path's own checks run on f64 intervals, then on Arb balls at rising precision,
 //! until every comparison they make is decided (proofs/boundaries.md, "Paths").
 //!
@@ -10,8 +11,8 @@
 
 use crate::doubts::watch;
 use crate::interval::Interval;
-use crate::path::events::check_path;
-use crate::path::{Drive, PathError, PathRequest, PathRequestError};
+use crate::path::events::{check_contact_and_separation, check_path};
+use crate::path::{Drive, PathRequest, PathRequestError};
 use crate::real::{Precision, Real};
 
 /// The most bits a path's boundaries are decided at.
@@ -62,18 +63,8 @@ fn decided_at<R: Real>(request: &PathRequest, precision: Precision) -> Option<Re
         let (path, contact) = (&inputs.path, &inputs.contact);
         match request.drive {
             Drive::Force => check_path(path, contact)?,
-            // At constant P, P > 0; a varying P is refused by the displacement cycle.
-            Drive::Displacement => {
-                contact.validate()?;
-                let load = &path.normal.cos[0];
-                if path.normal.is_constant() && *load <= load.int(0) {
-                    return Err(PathError::Separation {
-                        theta: 0.0,
-                        load: load.to_f64_lossy(),
-                    }
-                    .into());
-                }
-            }
+            // Gross slip is allowed under displacement driving.
+            Drive::Displacement => check_contact_and_separation(path, contact)?,
         }
         Ok(())
     });

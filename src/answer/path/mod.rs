@@ -4,7 +4,7 @@
 
 #[cfg(feature = "certified")]
 mod constant_load;
-mod decided;
+pub(crate) mod decided;
 #[cfg(feature = "certified")]
 mod not_proven;
 #[cfg(feature = "certified")]
