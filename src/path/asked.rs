@@ -120,11 +120,28 @@ pub(crate) struct Inputs<R: Real> {
 
 impl PathRequest {
     pub(crate) fn read<R: Real>(&self, precision: Precision) -> Result<Inputs<R>, PathRequestError> {
-        let path = match self.format {
+        let path = self.read_path::<R>(precision)?;
+        let contact = self.read_contact::<R>(precision)?;
+        let compliance = parse_spec::<R>(&self.compliance, precision)
+            .map_err(|error| PathRequestError::refused(error.to_string()))?;
+        Ok(Inputs {
+            path,
+            contact,
+            compliance,
+        })
+    }
+
+    /// The path of the file at `precision`.
+    pub(crate) fn read_path<R: Real>(&self, precision: Precision) -> Result<LoadPath<R>, PathRequestError> {
+        match self.format {
             PathFormat::Samples => read_driven_samples::<R>(&self.contents, precision, self.drive),
             PathFormat::Harmonics => read_driven_harmonics::<R>(&self.contents, precision, self.drive),
         }
-        .map_err(|error| PathRequestError::refused(format!("{}: {error}", self.file)))?;
+        .map_err(|error| PathRequestError::refused(format!("{}: {error}", self.file)))
+    }
+
+    /// f and λ (from ν where given) at `precision`, checked: f > 0 and λ ∈ [1, 2].
+    pub(crate) fn read_contact<R: Real>(&self, precision: Precision) -> Result<Contact<R>, PathRequestError> {
         let number = |name: &str, text: &str| {
             R::parse_decimal(text, precision)
                 .map_err(|_| PathRequestError::refused(format!("--{name} '{text}' is not a decimal number")))
@@ -157,12 +174,6 @@ impl PathRequest {
                 }
             })
         })?;
-        let compliance = parse_spec::<R>(&self.compliance, precision)
-            .map_err(|error| PathRequestError::refused(error.to_string()))?;
-        Ok(Inputs {
-            path,
-            contact,
-            compliance,
-        })
+        Ok(contact)
     }
 }

@@ -1,8 +1,6 @@
 //! A periodic load path and how it is read: harmonics `k,P_cos,P_sin,Q_cos,Q_sin`, or one
 //! period of equally spaced samples `P,Q` taken as their trigonometric interpolant.
 
-use rug::Rational;
-
 use crate::compliance::AdmissibilityError;
 use crate::decimal::decimal;
 use crate::doubts::if_decided;
@@ -385,20 +383,21 @@ pub fn read_driven_samples<R: Real>(text: &str, precision: Precision, drive: Dri
     let at = columns(&header, header_line, &["P", tangential_name])?;
     let mut normal = Vec::new();
     let mut tangential = Vec::new();
-    // Whether every sample of a column is the first one's decimal value, exactly.
-    let (mut normal_equal, mut tangential_equal) = (true, true);
-    let mut first: Option<(Option<Rational>, Option<Rational>)> = None;
+    // Whether every sample of a column is the first one's decimal value, exactly: the same
+    // text, or (rarely) another text of the same value.
+    let mut equal = [true, true];
+    let mut first: Option<[String; 2]> = None;
     for (line, cells) in lines {
         if normal.len() == MAX_SAMPLES {
             return Err(PathError::TooManySamples);
         }
         normal.push(number::<R>(&cells, at[0], line, "P", precision)?);
         tangential.push(number::<R>(&cells, at[1], line, tangential_name, precision)?);
-        let exact = |column: usize| cells.get(column).and_then(|text| decimal(text));
-        let (p, q) = (exact(at[0]), exact(at[1]));
-        let (first_p, first_q) = first.get_or_insert_with(|| (p.clone(), q.clone()));
-        normal_equal &= p.is_some() && p == *first_p;
-        tangential_equal &= q.is_some() && q == *first_q;
+        let texts = [0, 1].map(|i| cells.get(at[i]).copied().unwrap_or("").to_string());
+        let first = first.get_or_insert_with(|| texts.clone());
+        for i in 0..2 {
+            equal[i] = equal[i] && (texts[i] == first[i] || same_value(&texts[i], &first[i]));
+        }
     }
     if normal.len() < 3 {
         return Err(PathError::Malformed(format!(
@@ -418,9 +417,14 @@ pub fn read_driven_samples<R: Real>(text: &str, precision: Precision, drive: Dri
         }
     };
     Ok(LoadPath {
-        normal: column(&normal, normal_equal)?,
-        tangential: column(&tangential, tangential_equal)?,
+        normal: column(&normal, equal[0])?,
+        tangential: column(&tangential, equal[1])?,
     })
+}
+
+/// Whether two decimals denote the same number exactly.
+fn same_value(a: &str, b: &str) -> bool {
+    matches!((decimal(a), decimal(b)), (Some(a), Some(b)) if a == b)
 }
 
 /// The trigonometric interpolant of N equally spaced samples, its harmonics up to
@@ -438,11 +442,15 @@ pub fn interpolant<R: Real>(samples: &[R]) -> Result<TrigPoly<R>, PathError> {
     }
     let step = like.pi_like() * &like.int(2) / &like.int(n as i64);
     let count = like.int(n as i64);
+    // cos and sin of kθ_j = 2π·(jk mod N)/N from one table of the N angles, each formed
+    // once: a recurrence in k would compound its rounding (on enclosures, their widths)
+    // with every harmonic.
+    let table: Vec<(R, R)> = (0..n).map(|m| (step.clone() * &like.int(m as i64)).sin_cos()).collect();
     for (j, sample) in samples.iter().enumerate() {
-        let multiples = Multiples::of(&(step.clone() * &like.int(j as i64)), highest);
         for k in 0..=highest {
-            poly.cos[k] += sample.clone() * &multiples.cos[k];
-            poly.sin[k] += sample.clone() * &multiples.sin[k];
+            let (sin, cos) = &table[(j * k) % n];
+            poly.cos[k] += sample.clone() * cos;
+            poly.sin[k] += sample.clone() * sin;
         }
     }
     for k in 0..=highest {

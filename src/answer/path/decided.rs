@@ -23,8 +23,10 @@ pub const MAX_BITS: u32 = 1 << 13;
 const FIRST_BITS: u32 = 128;
 
 /// Whether the path of `request` is inside the theory, decided exactly: `Ok` where it is,
-/// its refusal where it is not, and "undecidable" where no precision settles it.
+/// its refusal where it is not, and "undecidable" where no precision settles it. A file
+/// that is not read in f64 is refused as that read says.
 pub(crate) fn decide_boundaries(request: &PathRequest) -> Result<(), PathRequestError> {
+    request.read_path::<f64>(Precision::DOUBLE)?;
     match decided_at::<Interval>(request, Precision::DOUBLE) {
         Some(Ok(())) => return Ok(()),
         // The margin quoted from balls, whose middle is the exact one to far below f64's
@@ -56,15 +58,16 @@ pub(crate) fn decide_boundaries(request: &PathRequest) -> Result<(), PathRequest
 }
 
 /// The checks on the path read at `precision`; `None` where a comparison they made is
-/// undecided there.
+/// undecided there, or where the path is not read there (the caller read it in f64: a
+/// failure here comes from the enclosures' width, as of a sum of many samples' cosines).
 fn decided_at<R: Real>(request: &PathRequest, precision: Precision) -> Option<Result<(), PathRequestError>> {
+    let path = request.read_path::<R>(precision).ok()?;
     let (result, doubts) = watch(|| -> Result<(), PathRequestError> {
-        let inputs = request.read::<R>(precision)?;
-        let (path, contact) = (&inputs.path, &inputs.contact);
+        let contact = request.read_contact::<R>(precision)?;
         match request.drive {
-            Drive::Force => check_path(path, contact)?,
+            Drive::Force => check_path(&path, &contact)?,
             // Gross slip is allowed under displacement driving.
-            Drive::Displacement => check_contact_and_separation(path, contact)?,
+            Drive::Displacement => check_contact_and_separation(&path, &contact)?,
         }
         Ok(())
     });
