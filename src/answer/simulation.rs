@@ -9,7 +9,7 @@ use crate::answer::{Answer, ExitStatus, Provenance, Value};
 use crate::case::{Case, CaseSpec, InputError};
 use crate::compliance::{AdmissibilityError, TableError};
 use crate::cycle::{CycleError, LoadCycle};
-use crate::path::{Drive, PathError, PathRequest, PathRequestError};
+use crate::path::{Drive, PathRequest, PathRequestError};
 use crate::real::Precision;
 use crate::simulate::{
     simulate, simulate_displacement_path, simulate_path, SimulationError, SimulationOptions, SimulationResult,
@@ -156,9 +156,7 @@ pub fn simulated_path_answer(
         Drive::Displacement => simulate_displacement_path(path, contact, compliance, options),
     }
     .map_err(|error| match error {
-        SimulationError::Path(
-            boundary @ (PathError::Separation { .. } | PathError::GrossSlip { .. } | PathError::Contact(_)),
-        ) => rounded_across(&boundary),
+        SimulationError::Path(boundary) if boundary.is_boundary() => rounded_across(&boundary),
         other => other.into(),
     })?;
     // Only a W that is 0 by its reason is printed as 0: loads that do not vary.

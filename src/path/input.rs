@@ -80,6 +80,17 @@ pub enum PathError {
     Quadrature(#[from] QuadError),
 }
 
+impl PathError {
+    /// Whether it is a boundary of the theory (separation, gross slip, f or λ), which
+    /// the path's decimals decide exactly and a rounded copy of them may cross.
+    pub fn is_boundary(&self) -> bool {
+        matches!(
+            self,
+            PathError::Separation { .. } | PathError::GrossSlip { .. } | PathError::Contact(_)
+        )
+    }
+}
+
 /// Σₖ cₖ cos kθ + sₖ sin kθ, k = 0 … K (s₀ unused).
 #[derive(Clone, Debug, PartialEq)]
 pub struct TrigPoly<R> {
@@ -405,20 +416,9 @@ pub fn read_driven_samples<R: Real>(text: &str, precision: Precision, drive: Dri
             normal.len()
         )));
     }
-    let column = |samples: &[R], equal: bool| {
-        if equal {
-            // Equal decimals are a constant exactly, which the sums of cosines would leave
-            // only to within their rounding.
-            let mut poly = TrigPoly::zero((samples.len() / 2).min(MAX_HARMONICS), &samples[0]);
-            poly.cos[0] = samples[0].clone();
-            Ok(poly)
-        } else {
-            interpolant(samples)
-        }
-    };
     Ok(LoadPath {
-        normal: column(&normal, equal[0])?,
-        tangential: column(&tangential, equal[1])?,
+        normal: interpolant_of(&normal, equal[0])?,
+        tangential: interpolant_of(&tangential, equal[1])?,
     })
 }
 
@@ -430,13 +430,19 @@ fn same_value(a: &str, b: &str) -> bool {
 /// The trigonometric interpolant of N equally spaced samples, its harmonics up to
 /// min(N/2, [`MAX_HARMONICS`]); refused when the samples need more.
 pub fn interpolant<R: Real>(samples: &[R]) -> Result<TrigPoly<R>, PathError> {
+    interpolant_of(samples, false)
+}
+
+/// [`interpolant`], the samples known `equal` (their decimals are one number) or not.
+fn interpolant_of<R: Real>(samples: &[R], equal: bool) -> Result<TrigPoly<R>, PathError> {
     let n = samples.len();
     let like = &samples[0];
     let highest = (n / 2).min(MAX_HARMONICS);
     let mut poly = TrigPoly::zero(highest, like);
     // Equal samples are a constant exactly (their sums of cosines would leave rounding);
-    // enclosures that overlap are not known equal, and the sums enclose the constant.
-    if samples.iter().all(|sample| if_decided(|| sample == like) == Some(true)) {
+    // enclosures that overlap are not known equal by comparing them, and the sums then
+    // enclose the constant.
+    if equal || samples.iter().all(|sample| if_decided(|| sample == like) == Some(true)) {
         poly.cos[0] = like.clone();
         return Ok(poly);
     }

@@ -20,7 +20,7 @@ use crate::real::{Precision, Real};
 use crate::path::dissipation::dissipation_of;
 use crate::path::{
     displacement_dissipation, displacement_outputs, path_dissipation, path_outputs, DisplacementCycle, Drive,
-    PathError, PathOutputs, PathRequest, PathRequestError, SteadyCycle,
+    PathOutputs, PathRequest, PathRequestError, SteadyCycle,
 };
 
 /// W as printed: its digits, its value in f64 and what vouches for it (an enclosure or
@@ -130,9 +130,7 @@ pub fn path_answer(request: &PathRequest) -> Result<PathAnswer, PathRequestError
     let (f64_w, force_cycle, displacement_cycle) = match request.drive {
         Drive::Force => {
             let cycle = SteadyCycle::new(path, contact).map_err(|error| match error {
-                PathError::Separation { .. } | PathError::GrossSlip { .. } | PathError::Contact(_) => {
-                    rounded_across(error.into())
-                }
+                boundary if boundary.is_boundary() => rounded_across(boundary.into()),
                 other => other.into(),
             })?;
             let w = dissipation_of(&cycle, contact, compliance, Some(request.deadline))?;
