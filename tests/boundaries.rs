@@ -189,7 +189,8 @@ fn a_convex_compliance_is_refused_in_both_modes_naming_a_load() {
 #[test]
 fn a_convex_compliance_is_refused_on_paths_and_by_the_simulation_however_small_its_convex_term() {
     // Their f64 checks sample v'' with a tolerance of a few ulps of v'/P, which a convex
-    // term of 1e-40 passes: `path` printed W = -2.5e-42 "proven" and `simulate` blamed f64.
+    // term of 1e-40 passes: `path` printed W = -2.5e-42 "proven" and `simulate` (of a case
+    // or of a path file) blamed f64.
     let scratch = common::Scratch::new("convex-paths");
     let file = |name: &str, text: &str| {
         let path = scratch.join(name);
@@ -215,6 +216,18 @@ fn a_convex_compliance_is_refused_on_paths_and_by_the_simulation_however_small_i
         vec!["path", "--harmonics", &varying],
         vec!["path", "--harmonics", &sliding, "--drive", "displacement"],
         vec!["simulate", "--p0", "1", "--p1", "0.3", "--q1", "0.3", "--phi", "1"],
+        // The simulation of a path file proves it on the loads its elements slip over.
+        vec!["simulate", "--harmonics", &constant_q, "--tolerance", "1e-2"],
+        vec!["simulate", "--harmonics", &varying, "--tolerance", "1e-2"],
+        vec![
+            "simulate",
+            "--harmonics",
+            &sliding,
+            "--drive",
+            "displacement",
+            "--tolerance",
+            "1e-2",
+        ],
     ];
     for run in &runs {
         for (spec, admissible) in [("poly:p0=1,coeffs=2;1e-40", false), ("poly:p0=1,coeffs=2;-1e-1", true)] {
@@ -349,6 +362,47 @@ fn a_budget_that_runs_out_is_a_failure_not_an_unproven_answer() {
             report.answer.provenance
         ),
     }
+}
+
+#[test]
+fn a_paths_boundaries_are_not_decided_on_balls_past_the_budget() {
+    // Kept off separation by 1e-60: f64 intervals cannot tell, balls can.
+    let scratch = common::Scratch::new("path-boundary-budget");
+    let file = scratch.join("near-separation.csv");
+    let p1 = format!("0.{}", "9".repeat(60));
+    std::fs::write(
+        &file,
+        format!("k,P_cos,P_sin,Q_cos,Q_sin\n0,1,0,0,0\n1,{p1},0,1e-70,0\n"),
+    )
+    .unwrap();
+    let file = file.to_str().unwrap();
+    let run = |budget: &str| {
+        common::microslip(&[
+            "path",
+            "--harmonics",
+            file,
+            "--friction",
+            "1",
+            "--lambda",
+            "1",
+            "--compliance",
+            "persson:gamma=1,sigma=1",
+            "--max-seconds",
+            budget,
+        ])
+    };
+    let (code, stdout, stderr) = run("0.000001");
+    assert!(code == 1 && stdout.is_empty(), "{code} {stderr}");
+    assert!(
+        stderr.contains("the time budget ran out before the path's boundaries were decided"),
+        "{stderr}"
+    );
+    // With time, balls decide it inside; its f64 copy separates, which the outputs cannot follow.
+    let (code, _, stderr) = run("60");
+    assert!(
+        code == 1 && stderr.contains("rounded to f64 the path crosses"),
+        "{code} {stderr}"
+    );
 }
 
 #[test]

@@ -5,6 +5,7 @@
 use crate::admissibility::prove_admissible;
 use crate::answer::dissipation::tables_cover;
 use crate::answer::path::decided::decide_boundaries;
+use crate::answer::path::prove_admissible_on_path_loads;
 use crate::answer::{Answer, ExitStatus, Provenance, Value};
 use crate::case::{Case, CaseSpec, InputError};
 use crate::compliance::{AdmissibilityError, TableError};
@@ -159,6 +160,11 @@ pub fn simulated_path_answer(
         SimulationError::Path(boundary) if boundary.is_boundary() => rounded_across(&boundary),
         other => other.into(),
     })?;
+    // Admissibility proven as `microslip path` proves it, on the loads the run's elements
+    // slip over: the simulation's own check samples v'' in f64, which a convex term below
+    // its rounding passes (and then leaves a W of 0).
+    let (lowest_slip, highest) = result.slip_loads;
+    prove_admissible_on_path_loads(request, lowest_slip, highest)?;
     // Only a W that is 0 by its reason is printed as 0: loads that do not vary.
     let constant = inputs.path.normal.is_constant() && inputs.path.tangential.is_constant();
     if result.w_work == 0.0 && result.w_friction == 0.0 && !constant {

@@ -126,6 +126,10 @@ pub struct SimulationResult {
     pub elements: usize,
     /// Steps per cycle of the finest run.
     pub steps: usize,
+    /// The loads the runs' elements slip over, from the lowest slipping load P_T (0 where
+    /// every element slips: gross slip) to the highest P, as found in f64: where the
+    /// compliance must be admissible.
+    pub slip_loads: (f64, f64),
 }
 
 impl SimulationResult {
@@ -373,7 +377,7 @@ fn simulate_history(
             limit: options.memory_limit,
         });
     }
-    let result = simulate_at(history, compliance, options, lowest_slip, elements, steps)?;
+    let result = simulate_at(history, compliance, options, (lowest_slip, highest), elements, steps)?;
     match options.tolerance {
         Some(tolerance) if result.estimated_rel_error > tolerance || result.estimated_rel_error.is_nan() => {
             Err(SimulationError::ToleranceNotReached {
@@ -404,10 +408,11 @@ fn simulate_at(
     history: &dyn LoadHistory,
     compliance: &dyn Compliance<f64>,
     options: &SimulationOptions,
-    lowest_slip: f64,
+    slip_loads: (f64, f64),
     elements: usize,
     steps: usize,
 ) -> Result<SimulationResult, SimulationError> {
+    let lowest_slip = slip_loads.0;
     if !options.extrapolate {
         let (w_work, w_friction, steady_loop) = run(
             history,
@@ -419,7 +424,7 @@ fn simulate_at(
             options.deadline,
         )?;
         if w_friction == 0.0 {
-            return Ok(stuck_throughout(steady_loop, elements, steps));
+            return Ok(stuck_throughout(steady_loop, elements, steps, slip_loads));
         }
         return Ok(SimulationResult {
             estimated_rel_error: (w_work - w_friction).abs() / w_work.abs().max(f64::MIN_POSITIVE),
@@ -428,6 +433,7 @@ fn simulate_at(
             steady_loop,
             elements,
             steps,
+            slip_loads,
         });
     }
     // Three resolutions, each doubling elements and steps: with the grids aligned to where
@@ -450,7 +456,7 @@ fn simulate_at(
         .collect::<Result<Vec<_>, _>>()?;
     if runs.iter().all(|(_, friction, _)| *friction == 0.0) {
         let (_, _, steady_loop) = runs.into_iter().last().unwrap_or_default();
-        return Ok(stuck_throughout(steady_loop, elements * 4, steps * 4));
+        return Ok(stuck_throughout(steady_loop, elements * 4, steps * 4, slip_loads));
     }
     let richardson = |coarse: f64, fine: f64| (4.0 * fine - coarse) / 3.0;
     let work = richardson(runs[1].0, runs[2].0);
@@ -468,13 +474,19 @@ fn simulate_at(
         steady_loop,
         elements: elements * 4,
         steps: steps * 4,
+        slip_loads,
     })
 }
 
 /// The result where no element slipped: the frictional work, a sum of non-negative terms
 /// f n_s |Δw_s|, is exactly 0, so the contact stuck throughout and W = 0 exactly (a constant
 /// v', say), whatever rounding left in ∮ Q du.
-fn stuck_throughout(steady_loop: Vec<LoopSample>, elements: usize, steps: usize) -> SimulationResult {
+fn stuck_throughout(
+    steady_loop: Vec<LoopSample>,
+    elements: usize,
+    steps: usize,
+    slip_loads: (f64, f64),
+) -> SimulationResult {
     SimulationResult {
         w_work: 0.0,
         w_friction: 0.0,
@@ -482,6 +494,7 @@ fn stuck_throughout(steady_loop: Vec<LoopSample>, elements: usize, steps: usize)
         steady_loop,
         elements,
         steps,
+        slip_loads,
     }
 }
 

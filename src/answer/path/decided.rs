@@ -24,7 +24,8 @@ const FIRST_BITS: u32 = 128;
 
 /// Whether the path of `request` is inside the theory, decided exactly: `Ok` where it is,
 /// its refusal where it is not, and "undecidable" where no precision settles it. A file
-/// that is not read in f64 is refused as that read says.
+/// that is not read in f64 is refused as that read says; a rung is not started after the
+/// request's deadline (a failure: the input was fine).
 pub(crate) fn decide_boundaries(request: &PathRequest) -> Result<(), PathRequestError> {
     request.read_path::<f64>(Precision::DOUBLE)?;
     match decided_at::<Interval>(request, Precision::DOUBLE) {
@@ -45,6 +46,11 @@ pub(crate) fn decide_boundaries(request: &PathRequest) -> Result<(), PathRequest
     {
         let mut bits = FIRST_BITS;
         while bits <= MAX_BITS {
+            if std::time::Instant::now() >= request.deadline {
+                return Err(PathRequestError::failed(
+                    "the time budget ran out before the path's boundaries were decided; raise --max-seconds",
+                ));
+            }
             if let Some(decided) = decided_at::<crate::ball::Ball>(request, Precision::bits(bits)) {
                 return decided;
             }

@@ -194,7 +194,7 @@ const MARGIN_BELOW_HIGHEST: u32 = 40;
 /// The loads on which the compliance was proven admissible (read where a W is proven:
 /// not built without ball arithmetic).
 #[cfg_attr(not(feature = "certified"), allow(dead_code))]
-struct AdmissibleLoads {
+pub(crate) struct AdmissibleLoads {
     /// The lowest.
     low: Float,
     /// Whether the check reached down to the floor (the slip may reach load 0).
@@ -205,7 +205,7 @@ struct AdmissibleLoads {
 /// form, else v'' ≤ 0 and v' > 0 on Arb balls) on the loads the f64 run's slip reaches,
 /// [low, high], widened by 2⁻⁴⁰ of `high`; from 2⁻¹⁰²⁴ of `high` where the widened end is not
 /// positive or the run's lowest load is its floor `high`/1024 (gross slip reaches load 0).
-fn prove_admissible_on_path_loads(
+pub(crate) fn prove_admissible_on_path_loads(
     request: &PathRequest,
     low: f64,
     high: f64,
