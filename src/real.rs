@@ -156,6 +156,28 @@ pub trait Real:
     fn to_f64_lossy(&self) -> f64 {
         self.to_f64().unwrap_or(f64::NAN)
     }
+    /// The f64 to quote in a message: a number is itself; an enclosure is its middle
+    /// rounded to the most significant digits (at most 15, which f64 keeps) to which both
+    /// ends of its [`real_span`](Real::real_span) round alike, so that every digit quoted
+    /// holds for every value it encloses; `None` where no digit does.
+    fn to_f64_quoted(&self) -> Option<f64> {
+        let Some((low, high)) = self.real_span() else {
+            return self.to_f64();
+        };
+        if low == high {
+            return Some(low);
+        }
+        if !(low.is_finite() && high.is_finite()) {
+            return None;
+        }
+        // Rounding is monotone: where both ends round to one decimal, everything between does.
+        (1..=15usize).rev().find_map(|digits| {
+            let decimal = format!("{low:.*e}", digits - 1);
+            (decimal == format!("{high:.*e}", digits - 1))
+                .then(|| decimal.parse().ok())
+                .flatten()
+        })
+    }
     /// The larger of two values.
     fn max_of(&self, other: &Self) -> Self {
         if *self >= *other {

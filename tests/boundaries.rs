@@ -365,6 +365,38 @@ fn a_budget_that_runs_out_is_a_failure_not_an_unproven_answer() {
 }
 
 #[test]
+fn a_paths_refusal_quotes_only_digits_that_its_enclosure_proves() {
+    // The margins of 128-bit balls, quoted by their middles, read 9.999999999999992e-24 for
+    // 1e-23 and 1.0999999999999997e-23 for 1.1e-23.
+    let scratch = common::Scratch::new("path-quotes");
+    for multiple in [1, 3, 7, 11, 13, 17, 123_456_789] {
+        let file = scratch.join(format!("slides-{multiple}.csv"));
+        let q1 = format!("1.{}{multiple}", "0".repeat(22));
+        std::fs::write(&file, format!("k,P_cos,P_sin,Q_cos,Q_sin\n0,1,0,0,0\n1,0,0,{q1},0\n")).unwrap();
+        let excess: f64 = format!("{multiple}e-{}", 22 + multiple.to_string().len())
+            .parse()
+            .unwrap();
+        for command in ["path", "simulate"] {
+            let (code, _, stderr) = common::microslip(&[
+                command,
+                "--harmonics",
+                file.to_str().unwrap(),
+                "--friction",
+                "1",
+                "--lambda",
+                "1",
+                "--compliance",
+                "persson:gamma=1,sigma=1",
+            ]);
+            assert!(
+                code == 2 && stderr.contains(&format!("+Q − fP = {excess:e} ≥ 0")),
+                "{command} {q1}: {code} {stderr}"
+            );
+        }
+    }
+}
+
+#[test]
 fn a_paths_boundaries_are_not_decided_on_balls_past_the_budget() {
     // Kept off separation by 1e-60: f64 intervals cannot tell, balls can.
     let scratch = common::Scratch::new("path-boundary-budget");

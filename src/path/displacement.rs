@@ -399,7 +399,7 @@ impl<'a, R: Real> DisplacementCycle<'a, R> {
         if load <= zero {
             return Err(PathError::Separation {
                 theta: 0.0,
-                load: load.to_f64_lossy(),
+                load: super::events::quoted(&load),
             });
         }
         let displacement = path.tangential.clone();

@@ -402,6 +402,16 @@ pub(crate) fn extreme<R: Real>(poly: &TrigPoly<R>, largest: bool) -> (R, R) {
     best.unwrap_or_else(|| (poly.cos[0].int(0), poly.cos[0].clone()))
 }
 
+/// A load or margin for a refusal's message: the digits its enclosure proves
+/// ([`Real::to_f64_quoted`]); where it proves none, an undecided comparison, so that a
+/// finer precision quotes it.
+pub(crate) fn quoted<R: Real>(value: &R) -> f64 {
+    value.to_f64_quoted().unwrap_or_else(|| {
+        undecided();
+        value.to_f64_lossy()
+    })
+}
+
 /// Checks that the path stays in contact (P > 0) and free of gross slip (|Q| < fP),
 /// naming the angle where it fails; returns the lowest slipping load
 /// s_T = [min(q + P) − max(q − P)]/2 and the midpoint c = [max x + min y]/2 of the
@@ -412,7 +422,7 @@ fn validate<R: Real>(loads: &Loads<R>) -> Result<(R, R), PathError> {
     if lowest <= zero {
         return Err(PathError::Separation {
             theta: theta.to_f64_lossy(),
-            load: lowest.to_f64_lossy(),
+            load: quoted(&lowest),
         });
     }
     let x = loads.tangential.combined(&loads.normal, -1);
@@ -424,7 +434,7 @@ fn validate<R: Real>(loads: &Loads<R>) -> Result<(R, R), PathError> {
             return Err(PathError::GrossSlip {
                 theta: theta.to_f64_lossy(),
                 sign,
-                excess: excess.to_f64_lossy(),
+                excess: quoted(&excess),
             });
         }
     }
@@ -461,7 +471,7 @@ pub(crate) fn check_contact_and_separation<R: Real>(path: &LoadPath<R>, contact:
     if lowest <= zero {
         return Err(PathError::Separation {
             theta: theta.to_f64_lossy(),
-            load: lowest.to_f64_lossy(),
+            load: quoted(&lowest),
         });
     }
     Ok(())
