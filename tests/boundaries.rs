@@ -364,6 +364,15 @@ fn a_budget_that_runs_out_is_a_failure_not_an_unproven_answer() {
     }
 }
 
+/// `command` (`path` or `simulate`) on the harmonics `file` with f = 1, λ = 1, Persson's
+/// compliance and `extra` options: exit code, stdout, stderr.
+fn persson_path_file(command: &str, file: &str, extra: &[&str]) -> (i32, String, String) {
+    let mut args = vec![command, "--harmonics", file, "--friction", "1", "--lambda", "1"];
+    args.extend_from_slice(&["--compliance", "persson:gamma=1,sigma=1"]);
+    args.extend_from_slice(extra);
+    common::microslip(&args)
+}
+
 #[test]
 fn a_paths_refusal_quotes_only_digits_that_its_enclosure_proves() {
     // The margins of 128-bit balls, quoted by their middles, read 9.999999999999992e-24 for
@@ -377,17 +386,7 @@ fn a_paths_refusal_quotes_only_digits_that_its_enclosure_proves() {
             .parse()
             .unwrap();
         for command in ["path", "simulate"] {
-            let (code, _, stderr) = common::microslip(&[
-                command,
-                "--harmonics",
-                file.to_str().unwrap(),
-                "--friction",
-                "1",
-                "--lambda",
-                "1",
-                "--compliance",
-                "persson:gamma=1,sigma=1",
-            ]);
+            let (code, _, stderr) = persson_path_file(command, file.to_str().unwrap(), &[]);
             assert!(
                 code == 2 && stderr.contains(&format!("+Q − fP = {excess:e} ≥ 0")),
                 "{command} {q1}: {code} {stderr}"
@@ -408,21 +407,7 @@ fn a_paths_boundaries_are_not_decided_on_balls_past_the_budget() {
     )
     .unwrap();
     let file = file.to_str().unwrap();
-    let run = |budget: &str| {
-        common::microslip(&[
-            "path",
-            "--harmonics",
-            file,
-            "--friction",
-            "1",
-            "--lambda",
-            "1",
-            "--compliance",
-            "persson:gamma=1,sigma=1",
-            "--max-seconds",
-            budget,
-        ])
-    };
+    let run = |budget: &str| persson_path_file("path", file, &["--max-seconds", budget]);
     let (code, stdout, stderr) = run("0.000001");
     assert!(code == 1 && stdout.is_empty(), "{code} {stderr}");
     assert!(
