@@ -364,10 +364,10 @@ fn a_budget_that_runs_out_is_a_failure_not_an_unproven_answer() {
     }
 }
 
-/// `command` (`path` or `simulate`) on the harmonics `file` with f = 1, λ = 1, Persson's
-/// compliance and `extra` options: exit code, stdout, stderr.
-fn persson_path_file(command: &str, file: &str, extra: &[&str]) -> (i32, String, String) {
-    let mut args = vec![command, "--harmonics", file, "--friction", "1", "--lambda", "1"];
+/// `command` (`path` or `simulate`) on the harmonics `file` with f = `friction`, λ = 1,
+/// Persson's compliance and `extra` options: exit code, stdout, stderr.
+fn persson_path_file(command: &str, file: &str, friction: &str, extra: &[&str]) -> (i32, String, String) {
+    let mut args = vec![command, "--harmonics", file, "--friction", friction, "--lambda", "1"];
     args.extend_from_slice(&["--compliance", "persson:gamma=1,sigma=1"]);
     args.extend_from_slice(extra);
     common::microslip(&args)
@@ -376,17 +376,30 @@ fn persson_path_file(command: &str, file: &str, extra: &[&str]) -> (i32, String,
 #[test]
 fn a_paths_refusal_quotes_only_digits_that_its_enclosure_proves() {
     // The margins of 128-bit balls, quoted by their middles, read 9.999999999999992e-24 for
-    // 1e-23 and 1.0999999999999997e-23 for 1.1e-23.
+    // 1e-23 and 1.0999999999999997e-23 for 1.1e-23; and they were of Q/f − P, not Q − fP.
     let scratch = common::Scratch::new("path-quotes");
-    for multiple in [1, 3, 7, 11, 13, 17, 123_456_789] {
+    let zeros = "0".repeat(22);
+    for (multiple, friction) in [
+        (1, "1"),
+        (3, "1"),
+        (7, "1"),
+        (11, "0.5"),
+        (13, "1"),
+        (17, "0.5"),
+        (123_456_789, "1"),
+    ] {
         let file = scratch.join(format!("slides-{multiple}.csv"));
-        let q1 = format!("1.{}{multiple}", "0".repeat(22));
+        // Q1 − f = `multiple` units of its last digit, at P = 1.
+        let (q1, places) = match friction {
+            "1" => (format!("1.{zeros}{multiple}"), 22),
+            _ => (format!("0.5{zeros}{multiple}"), 23),
+        };
         std::fs::write(&file, format!("k,P_cos,P_sin,Q_cos,Q_sin\n0,1,0,0,0\n1,0,0,{q1},0\n")).unwrap();
-        let excess: f64 = format!("{multiple}e-{}", 22 + multiple.to_string().len())
+        let excess: f64 = format!("{multiple}e-{}", places + multiple.to_string().len())
             .parse()
             .unwrap();
         for command in ["path", "simulate"] {
-            let (code, _, stderr) = persson_path_file(command, file.to_str().unwrap(), &[]);
+            let (code, _, stderr) = persson_path_file(command, file.to_str().unwrap(), friction, &[]);
             assert!(
                 code == 2 && stderr.contains(&format!("+Q − fP = {excess:e} ≥ 0")),
                 "{command} {q1}: {code} {stderr}"
@@ -407,7 +420,7 @@ fn a_paths_boundaries_are_not_decided_on_balls_past_the_budget() {
     )
     .unwrap();
     let file = file.to_str().unwrap();
-    let run = |budget: &str| persson_path_file("path", file, &["--max-seconds", budget]);
+    let run = |budget: &str| persson_path_file("path", file, "1", &["--max-seconds", budget]);
     let (code, stdout, stderr) = run("0.000001");
     assert!(code == 1 && stdout.is_empty(), "{code} {stderr}");
     assert!(

@@ -412,11 +412,12 @@ pub(crate) fn quoted<R: Real>(value: &R) -> f64 {
     })
 }
 
-/// Checks that the path stays in contact (P > 0) and free of gross slip (|Q| < fP),
-/// naming the angle where it fails; returns the lowest slipping load
+/// Checks that the path stays in contact (P > 0) and free of gross slip (|Q| < fP, decided on
+/// q ∓ P with q = Q/f and quoted as ±Q − fP), naming the angle where it fails; returns the
+/// lowest slipping load
 /// s_T = [min(q + P) − max(q − P)]/2 and the midpoint c = [max x + min y]/2 of the
 /// permanent stick band.
-fn validate<R: Real>(loads: &Loads<R>) -> Result<(R, R), PathError> {
+fn validate<R: Real>(loads: &Loads<R>, friction: &R) -> Result<(R, R), PathError> {
     let zero = loads.normal.cos[0].int(0);
     let (theta, lowest) = extreme(&loads.normal, false);
     if lowest <= zero {
@@ -434,7 +435,7 @@ fn validate<R: Real>(loads: &Loads<R>) -> Result<(R, R), PathError> {
             return Err(PathError::GrossSlip {
                 theta: theta.to_f64_lossy(),
                 sign,
-                excess: quoted(&excess),
+                excess: quoted(&(excess * friction)),
             });
         }
     }
@@ -454,7 +455,7 @@ pub(crate) fn check_path<R: Real>(path: &LoadPath<R>, contact: &Contact<R>) -> R
     if clearly_inside(&loads) {
         return Ok(());
     }
-    validate(&loads).map(|_| ())
+    validate(&loads, &contact.friction).map(|_| ())
 }
 
 /// Checks that the contact is valid and the path stays in contact (P > 0), as the
@@ -732,7 +733,7 @@ impl<R: Real> SteadyCycle<R> {
     pub fn new(path: &LoadPath<R>, contact: &Contact<R>) -> Result<Self, PathError> {
         contact.validate()?;
         let loads = Loads::new(path, &contact.friction);
-        let (lowest_slip, center) = validate(&loads)?;
+        let (lowest_slip, center) = validate(&loads, &contact.friction)?;
         let highest_load = extreme(&loads.normal, true).1;
         let like = lowest_slip.clone();
         let tau = like.pi_like() * &like.int(2);
