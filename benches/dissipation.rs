@@ -5,10 +5,13 @@
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion};
 use microslip::accuracy::standard_cases;
+use microslip::admissibility::prove_admissible;
 use microslip::answer::agreed::verified_dissipation;
 use microslip::answer::dissipation::dissipation_answer;
 use microslip::case::Case;
+use microslip::digits::enclosure::{enclose_dissipation_with_lowest_load, INTERVAL_GOAL_BITS};
 use microslip::dissipation::{dissipation, Options};
+use microslip::interval::Interval;
 use microslip::quad::gauss_legendre::{clear_node_cache, compute_node_table, node_table};
 use microslip::real::{Precision, Real};
 use microslip::simulate::{simulate, SimulationOptions};
@@ -239,6 +242,26 @@ fn bench_default_answer(c: &mut Criterion) {
         // The previous default: the Arb ladder to 15 digits, as `--digits 15` still runs.
         group.bench_function(format!("{name}/arb-15"), |b| {
             b.iter(|| dissipation_answer(&text, Some(15), budget).unwrap().digits())
+        });
+        // The proven default's parts: what the exact reading of the decimals (every boundary
+        // decided on them) and the proof of admissibility cost before any quadrature, and
+        // the enclosure in f64 intervals alone.
+        group.bench_function(format!("{name}/parts/read-decimals"), |b| {
+            b.iter(|| text.spec().unwrap())
+        });
+        let spec = text.spec().unwrap();
+        group.bench_function(format!("{name}/parts/prove-admissible"), |b| {
+            b.iter(|| prove_admissible(&spec).unwrap())
+        });
+        group.bench_function(format!("{name}/parts/interval-enclosure"), |b| {
+            b.iter(|| {
+                let Case { cycle, compliance } = spec.at::<Interval>(Precision::DOUBLE).unwrap();
+                let lowest = spec.lowest_normal_load::<Interval>(Precision::DOUBLE).unwrap();
+                let goal = INTERVAL_GOAL_BITS;
+                enclose_dissipation_with_lowest_load(&cycle, Some(&lowest), compliance.as_ref(), goal)
+                    .unwrap()
+                    .total
+            })
         });
     }
     group.finish();
