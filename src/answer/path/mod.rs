@@ -147,7 +147,10 @@ pub fn path_answer(request: &PathRequest) -> Result<PathAnswer, PathRequestError
         (None, None) => unreachable!("one drive's cycle is built"),
     };
     let admissible = prove_admissible_on_path_loads(request, low, high)?;
-    let w = match proven_or_why(request, f64_w.total, &admissible)? {
+    // A normal load whose f64 copy varies varies as written (equal decimals are equal
+    // doubles): W is not proven, and its enclosures are not read.
+    let varying = !path.normal.is_constant();
+    let w = match proven_or_why(request, f64_w.total, &admissible, varying)? {
         Ok(w) => w,
         Err(why) => agreed_w(request, why)?,
     };
@@ -225,16 +228,20 @@ pub(crate) fn prove_admissible_on_path_loads(
     Ok(AdmissibleLoads { low, to_floor })
 }
 
-/// W proven by an enclosure, or why it is not (an error where the time budget ran out).
-/// The loads its cycles slip down to must lie among those the compliance was proven
-/// admissible on.
+/// W proven by an enclosure, or why it is not (an error where the time budget ran out);
+/// not tried where the normal load is `varying` (which proven W does not cover). The loads
+/// its cycles slip down to must lie among those the compliance was proven admissible on.
 #[cfg(feature = "certified")]
 fn proven_or_why(
     request: &PathRequest,
     estimate: f64,
     admissible: &AdmissibleLoads,
+    varying: bool,
 ) -> Result<Result<AgreedW, String>, PathRequestError> {
     use proven::NotProven;
+    if varying {
+        return Ok(Err(NotProven::NotCovered("normal load varies").to_string()));
+    }
     let proven = match proven::proven_w(request) {
         Ok(proven) => proven,
         // A budget that runs out is a failure, not a reason to fall back on agreement.
@@ -277,7 +284,12 @@ fn proven_or_why(
 
 /// Without ball arithmetic there is no enclosure.
 #[cfg(not(feature = "certified"))]
-fn proven_or_why(_: &PathRequest, _: f64, _: &AdmissibleLoads) -> Result<Result<AgreedW, String>, PathRequestError> {
+fn proven_or_why(
+    _: &PathRequest,
+    _: f64,
+    _: &AdmissibleLoads,
+    _: bool,
+) -> Result<Result<AgreedW, String>, PathRequestError> {
     Ok(Err("this build has no ball arithmetic".to_string()))
 }
 
