@@ -140,13 +140,16 @@ fn surely_between<R: Real>(x: &R, a: &R, b: &R) -> bool {
 /// is counted as a doubt), the bracket shrinks only to points whose sign is decided, and
 /// the answer is the hull of the last bracket, which holds the root.
 pub(crate) fn solve<R: Real>(f: impl Fn(&R) -> (R, R), a: &R, b: &R) -> R {
+    solve_between(&f, (a, f(a).0), (b, f(b).0))
+}
+
+/// [`solve`] with f's values at the ends known already (an entry piece's memory values).
+pub(crate) fn solve_between<R: Real>(f: impl Fn(&R) -> (R, R), (a, at_low): (&R, R), (b, at_high): (&R, R)) -> R {
     let (mut low, mut high) = (a.clone(), b.clone());
-    let at_low = f(&low).0;
     let low_sign = sign(&at_low);
     if low_sign == 0 {
         return low;
     }
-    let at_high = f(&high).0;
     let high_sign = sign(&at_high);
     if high_sign == 0 {
         return high;
@@ -564,8 +567,11 @@ impl<R: Real> Piece<R> {
             }
             Shape::Entry { from, to } => {
                 let theta = if forward {
-                    solve(|t: &R| loads.at(t).x_and_rate(value), from, to)
+                    // F at the piece's ends is x there, computed from their angles as f is.
+                    let ends = (self.f_lo.clone() - value, self.f_hi.clone() - value);
+                    solve_between(|t: &R| loads.at(t).x_and_rate(value), (from, ends.0), (to, ends.1))
                 } else {
+                    // y = F + 2s at the ends, but not to the last bit as the angles give it.
                     solve(|t: &R| loads.at(t).y_and_rate(value), from, to)
                 };
                 loads.p(&theta)
