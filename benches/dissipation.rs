@@ -9,8 +9,10 @@ use microslip::admissibility::prove_admissible;
 use microslip::answer::agreed::verified_dissipation;
 use microslip::answer::dissipation::dissipation_answer;
 use microslip::case::Case;
+#[cfg(feature = "certified")]
 use microslip::digits::enclosure::{enclose_dissipation_with_lowest_load, INTERVAL_GOAL_BITS};
 use microslip::dissipation::{dissipation, Options};
+#[cfg(feature = "certified")]
 use microslip::interval::Interval;
 use microslip::quad::gauss_legendre::{clear_node_cache, compute_node_table, node_table};
 use microslip::real::{Precision, Real};
@@ -253,6 +255,7 @@ fn bench_default_answer(c: &mut Criterion) {
         group.bench_function(format!("{name}/parts/prove-admissible"), |b| {
             b.iter(|| prove_admissible(&spec).unwrap())
         });
+        #[cfg(feature = "certified")]
         group.bench_function(format!("{name}/parts/interval-enclosure"), |b| {
             b.iter(|| {
                 let Case { cycle, compliance } = spec.at::<Interval>(Precision::DOUBLE).unwrap();
