@@ -42,19 +42,23 @@ pub(crate) fn decide_boundaries(request: &PathRequest) -> Result<(), PathRequest
         Some(Err(refusal)) => return Err(refusal),
         None => {}
     }
+    // The one ladder: balls at four times the bits each rung, none started past the deadline.
     #[cfg(feature = "certified")]
     {
-        let mut bits = FIRST_BITS;
-        while bits <= MAX_BITS {
-            if std::time::Instant::now() >= request.deadline {
+        use crate::digits::{Ladder, Rung, Stop};
+        let ladder = Ladder::new(Precision::bits(FIRST_BITS), Precision::bits(MAX_BITS)).until(Some(request.deadline));
+        let rung = |precision| match decided_at::<crate::ball::Ball>(request, precision) {
+            Some(decided) => Rung::Reached(decided),
+            None => Rung::Short(()),
+        };
+        match ladder.climb(rung, |precision, _| Precision::bits(precision.in_bits() * 4)) {
+            Ok((decided, _)) => return decided,
+            Err(Stop::OutOfTime { .. }) => {
                 return Err(PathRequestError::failed(
                     "the time budget ran out before the path's boundaries were decided; raise --max-seconds",
-                ));
+                ))
             }
-            if let Some(decided) = decided_at::<crate::ball::Ball>(request, Precision::bits(bits)) {
-                return decided;
-            }
-            bits *= 4;
+            Err(Stop::Final(()) | Stop::Exhausted(())) => {}
         }
     }
     Err(PathRequestError::refused(format!(
