@@ -163,10 +163,11 @@ pub(crate) fn solve_between<R: Real>(f: impl Fn(&R) -> (R, R), (a, at_low): (&R,
     let middle = (low.clone() + &high) / &two;
     // A number starts Newton from the chord's root, nearer than the middle for the smooth
     // monotone functions solved here; an enclosure from the middle, as proven roots always did.
-    let chord = low.clone() - &(at_low.clone() * &(high.clone() - &low) / &(at_high - &at_low));
     let start = match middle.real_span() {
-        None if chord.is_finite() && surely_between(&chord, &low, &high) => chord,
-        _ => middle,
+        None => Some(low.clone() - &(at_low.clone() * &(high.clone() - &low) / &(at_high - &at_low)))
+            .filter(|chord| chord.is_finite() && surely_between(chord, &low, &high))
+            .unwrap_or(middle),
+        Some(_) => middle,
     };
     let mut x = start.midpoint_value();
     let mut candidate = None;
