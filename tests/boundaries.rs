@@ -258,10 +258,7 @@ fn a_paths_boundaries_are_decided_on_its_decimals_not_their_f64_copies() {
         path.to_str().unwrap().to_string()
     };
     let run_as = |command: &str, file: &str, ratio: &[&str]| {
-        let mut args = vec![command, "--harmonics", file, "--friction", "1"];
-        args.extend_from_slice(ratio);
-        args.extend_from_slice(&["--compliance", "persson:gamma=1,sigma=1"]);
-        common::microslip(&args)
+        persson_path_file(command, file, &[&["--friction", "1"], ratio].concat())
     };
     let run = |file: &str, ratio: &[&str]| run_as("path", file, ratio);
     let tiny = "0000000000000000000000000000000000000001";
@@ -364,12 +361,11 @@ fn a_budget_that_runs_out_is_a_failure_not_an_unproven_answer() {
     }
 }
 
-/// `command` (`path` or `simulate`) on the harmonics `file` with f = `friction`, λ = 1,
-/// Persson's compliance and `extra` options: exit code, stdout, stderr.
-fn persson_path_file(command: &str, file: &str, friction: &str, extra: &[&str]) -> (i32, String, String) {
-    let mut args = vec![command, "--harmonics", file, "--friction", friction, "--lambda", "1"];
-    args.extend_from_slice(&["--compliance", "persson:gamma=1,sigma=1"]);
-    args.extend_from_slice(extra);
+/// `command` (`path` or `simulate`) on the harmonics `file` with Persson's compliance and
+/// `options` (the contact's among them): exit code, stdout, stderr.
+fn persson_path_file(command: &str, file: &str, options: &[&str]) -> (i32, String, String) {
+    let mut args = vec![command, "--harmonics", file, "--compliance", "persson:gamma=1,sigma=1"];
+    args.extend_from_slice(options);
     common::microslip(&args)
 }
 
@@ -399,7 +395,11 @@ fn a_paths_refusal_quotes_only_digits_that_its_enclosure_proves() {
             .parse()
             .unwrap();
         for command in ["path", "simulate"] {
-            let (code, _, stderr) = persson_path_file(command, file.to_str().unwrap(), friction, &[]);
+            let (code, _, stderr) = persson_path_file(
+                command,
+                file.to_str().unwrap(),
+                &["--friction", friction, "--lambda", "1"],
+            );
             assert!(
                 code == 2 && stderr.contains(&format!("+Q − fP = {excess:e} ≥ 0")),
                 "{command} {q1}: {code} {stderr}"
@@ -420,7 +420,13 @@ fn a_paths_boundaries_are_not_decided_on_balls_past_the_budget() {
     )
     .unwrap();
     let file = file.to_str().unwrap();
-    let run = |budget: &str| persson_path_file("path", file, "1", &["--max-seconds", budget]);
+    let run = |budget: &str| {
+        persson_path_file(
+            "path",
+            file,
+            &["--friction", "1", "--lambda", "1", "--max-seconds", budget],
+        )
+    };
     let (code, stdout, stderr) = run("0.000001");
     assert!(code == 1 && stdout.is_empty(), "{code} {stderr}");
     assert!(
