@@ -8,19 +8,16 @@
 //! through the memory left at the interval's start. Their formula changes only where a
 //! front crosses the end of one of its pieces (a flat piece crossed at once is a
 //! wipe-out), where P crosses one, or where a front meets the top of the contact; the
-//! cycle is split there, so that every piece's integrand is smooth.
-//!
-//! The memory's pieces are F = a + b s (b = 0 after forward slip, −2 after backward slip,
-//! −1 for the elements that never slip) and entry pieces F(P(θ)) = x(θ), elements that
-//! entered while the contact stuck with P rising. A front in an affine piece lies at a
-//! load affine in x or y; in an entry piece, at P(θₑ) of the earlier angle θₑ where x (or
-//! y) had its current value.
+//! cycle is split there, so that every piece's integrand is smooth, and each segment's
+//! fronts take one formula (a piece of the memory, or the top of the contact) throughout.
+//! The memory itself, its pieces and its update are `super::memory`.
 
 use crate::compliance::Compliance;
 use crate::doubts::{if_decided, undecided};
 use crate::real::Real;
 
 use super::input::{padded, LoadPath, Multiples, PathError, TrigPoly};
+use super::memory::{Break, Known, Memory, Origin, Piece, Position, Shape, Signs};
 use super::Contact;
 
 /// Sample points per harmonic when isolating the roots of a trigonometric polynomial.
@@ -33,6 +30,9 @@ pub(crate) struct Loads<R> {
     tangential: TrigPoly<R>,
     normal_rate: TrigPoly<R>,
     tangential_rate: TrigPoly<R>,
+    /// The same loads in f64 where the precision is higher: where Newton's steps on them,
+    /// at a few nanoseconds each, end is where a root's steps at the working precision start.
+    guide: Option<Box<Loads<f64>>>,
 }
 
 /// P, q and their rates at one angle.
@@ -58,15 +58,15 @@ impl<R: Real> Point<R> {
         self.dq.clone() + &self.dp
     }
     /// (x − value, x').
-    fn x_and_rate(&self, value: &R) -> (R, R) {
+    pub(crate) fn x_and_rate(&self, value: &R) -> (R, R) {
         (self.x() - value, self.dx())
     }
     /// (y − value, y').
-    fn y_and_rate(&self, value: &R) -> (R, R) {
+    pub(crate) fn y_and_rate(&self, value: &R) -> (R, R) {
         (self.y() - value, self.dy())
     }
     /// (P − value, P').
-    fn p_and_rate(&self, value: &R) -> (R, R) {
+    pub(crate) fn p_and_rate(&self, value: &R) -> (R, R) {
         (self.p.clone() - value, self.dp.clone())
     }
 }
@@ -76,12 +76,37 @@ impl<R: Real> Loads<R> {
         let path = padded(path);
         let inverse = friction.int(1) / friction;
         let tangential = path.tangential.scaled(&inverse);
+        let guide = (friction.precision().in_bits() > f64::MANTISSA_DIGITS).then(|| {
+            let rough = |poly: &TrigPoly<R>| TrigPoly {
+                cos: poly.cos.iter().map(Real::to_f64_lossy).collect(),
+                sin: poly.sin.iter().map(Real::to_f64_lossy).collect(),
+            };
+            let rough_path = LoadPath {
+                normal: rough(&path.normal),
+                tangential: rough(&path.tangential),
+            };
+            Box::new(Loads::new(&rough_path, &friction.to_f64_lossy()))
+        });
         Loads {
             normal_rate: path.normal.derivative(),
             tangential_rate: tangential.derivative(),
             normal: path.normal,
             tangential,
+            guide,
         }
+    }
+
+    /// Where Newton's steps for `load`(θ) = `value` on [a, b] start: the f64 root of the
+    /// guide, where there is one (the solver keeps it only inside its bracket).
+    pub(crate) fn start_for(&self, load: fn(&Point<f64>, &f64) -> (f64, f64), value: &R, a: &R, b: &R) -> Option<R> {
+        let guide = self.guide.as_ref()?;
+        let value = value.to_f64_lossy();
+        let root = solve(
+            |t: &f64| load(&guide.at(t), &value),
+            &a.to_f64_lossy(),
+            &b.to_f64_lossy(),
+        );
+        root.is_finite().then(|| R::from_f64(root, a.precision()))
     }
 
     pub fn at(&self, theta: &R) -> Point<R> {
@@ -94,10 +119,10 @@ impl<R: Real> Loads<R> {
         }
     }
 
-    fn p(&self, theta: &R) -> R {
+    pub(crate) fn p(&self, theta: &R) -> R {
         self.normal.value(theta)
     }
-    fn x(&self, theta: &R) -> R {
+    pub(crate) fn x(&self, theta: &R) -> R {
         self.at(theta).x()
     }
 }
@@ -140,11 +165,17 @@ fn surely_between<R: Real>(x: &R, a: &R, b: &R) -> bool {
 /// is counted as a doubt), the bracket shrinks only to points whose sign is decided, and
 /// the answer is the hull of the last bracket, which holds the root.
 pub(crate) fn solve<R: Real>(f: impl Fn(&R) -> (R, R), a: &R, b: &R) -> R {
-    solve_between(&f, (a, f(a).0), (b, f(b).0))
+    solve_between(&f, (a, f(a).0), (b, f(b).0), None)
 }
 
-/// [`solve`] with f's values at the ends known already (an entry piece's memory values).
-pub(crate) fn solve_between<R: Real>(f: impl Fn(&R) -> (R, R), (a, at_low): (&R, R), (b, at_high): (&R, R)) -> R {
+/// [`solve`] with f's values at the ends known already (an entry piece's memory values),
+/// and Newton's steps started at `start` where it lies inside the bracket.
+pub(crate) fn solve_between<R: Real>(
+    f: impl Fn(&R) -> (R, R),
+    (a, at_low): (&R, R),
+    (b, at_high): (&R, R),
+    start: Option<R>,
+) -> R {
     let (mut low, mut high) = (a.clone(), b.clone());
     let low_sign = sign(&at_low);
     if low_sign == 0 {
@@ -163,11 +194,13 @@ pub(crate) fn solve_between<R: Real>(f: impl Fn(&R) -> (R, R), (a, at_low): (&R,
     let middle = (low.clone() + &high) / &two;
     // A number starts Newton from the chord's root, nearer than the middle for the smooth
     // monotone functions solved here; an enclosure from the middle, as proven roots always did.
-    let start = match middle.real_span() {
-        None => Some(low.clone() - &(at_low.clone() * &(high.clone() - &low) / &(at_high - &at_low)))
-            .filter(|chord| chord.is_finite() && surely_between(chord, &low, &high))
+    let inside = |x: &R| x.is_finite() && surely_between(x, &low, &high);
+    let start = match (start.filter(inside), middle.real_span()) {
+        (Some(start), _) => start,
+        (None, None) => Some(low.clone() - &(at_low.clone() * &(high.clone() - &low) / &(at_high - &at_low)))
+            .filter(inside)
             .unwrap_or(middle),
-        Some(_) => middle,
+        (None, Some(_)) => middle,
     };
     let mut x = start.midpoint_value();
     let mut candidate = None;
@@ -282,7 +315,9 @@ fn sample_offset<R: Real>(like: &R) -> R {
 /// polynomial is proven monotone. On enclosures each root is an enclosure, and every
 /// question left undecided is counted as a doubt.
 pub(crate) fn sign_changes<R: Real>(poly: &TrigPoly<R>) -> Vec<R> {
-    if poly.is_constant() {
+    // A coefficient whose enclosure holds 0 and others leaves the polynomial to the search,
+    // which proves where it has no root.
+    if if_decided(|| poly.is_constant()).unwrap_or(false) {
         return Vec::new();
     }
     let like = &poly.cos[0];
@@ -428,10 +463,8 @@ pub(crate) fn quoted<R: Real>(value: &R) -> f64 {
 
 /// Checks that the path stays in contact (P > 0) and free of gross slip (|Q| < fP, decided on
 /// q ∓ P with q = Q/f and quoted as ±Q − fP), naming the angle where it fails; returns the
-/// lowest slipping load
-/// s_T = [min(q + P) − max(q − P)]/2 and the midpoint c = [max x + min y]/2 of the
-/// permanent stick band.
-fn validate<R: Real>(loads: &Loads<R>, friction: &R) -> Result<(R, R), PathError> {
+/// lowest slipping load s_T = [min(q + P) − max(q − P)]/2.
+fn validate<R: Real>(loads: &Loads<R>, friction: &R) -> Result<R, PathError> {
     let zero = loads.normal.cos[0].int(0);
     let (theta, lowest) = extreme(&loads.normal, false);
     if lowest <= zero {
@@ -453,11 +486,24 @@ fn validate<R: Real>(loads: &Loads<R>, friction: &R) -> Result<(R, R), PathError
             });
         }
     }
-    let two = zero.int(2);
-    Ok((
-        (smallest_y.clone() - &largest_x) / &two,
-        (largest_x + &smallest_y) / &two,
-    ))
+    Ok((smallest_y - &largest_x) / &zero.int(2))
+}
+
+/// The index of the largest (or smallest) of the values at the breaks: the first of
+/// equal numbers; on enclosures an undecided comparison is counted as a doubt.
+fn extreme_break<R: Real>(values: &[R], largest: bool) -> usize {
+    let mut best = 0;
+    for (index, value) in values.iter().enumerate().skip(1) {
+        let better = if largest {
+            *value > values[best]
+        } else {
+            *value < values[best]
+        };
+        if better {
+            best = index;
+        }
+    }
+    best
 }
 
 /// Checks that the path stays in contact and free of gross slip, as [`SteadyCycle::new`]
@@ -516,198 +562,6 @@ fn clearly_inside<R: Real>(loads: &Loads<R>) -> bool {
     }) == Some(true)
 }
 
-/// How a piece of the memory depends on the load s.
-#[derive(Clone, Debug)]
-enum Shape<R> {
-    /// F = a + b s.
-    Affine { a: R, b: i64 },
-    /// F(P(θ)) = x(θ) for θ in [from, to], P rising there.
-    Entry { from: R, to: R },
-}
-
-/// One piece of the memory over loads [lo, hi], with F at both ends.
-#[derive(Clone, Debug)]
-struct Piece<R> {
-    lo: R,
-    hi: R,
-    f_lo: R,
-    f_hi: R,
-    shape: Shape<R>,
-}
-
-impl<R: Real> Piece<R> {
-    fn affine(lo: R, hi: R, a: R, b: i64) -> Self {
-        let at = |s: &R| a.clone() + &(s.clone() * &a.int(b));
-        Piece {
-            f_lo: at(&lo),
-            f_hi: at(&hi),
-            lo,
-            hi,
-            shape: Shape::Affine { a, b },
-        }
-    }
-
-    /// G = F + 2s at the ends.
-    fn g_lo(&self) -> R {
-        self.f_lo.clone() + &(self.lo.clone() * &self.lo.int(2))
-    }
-    fn g_hi(&self) -> R {
-        self.f_hi.clone() + &(self.hi.clone() * &self.hi.int(2))
-    }
-
-    /// The load in the piece where F = x (`forward`) or F + 2s = y, the value lying
-    /// between the piece's end values.
-    fn load_where(&self, loads: &Loads<R>, value: &R, forward: bool) -> R {
-        match &self.shape {
-            Shape::Affine { a, b } => {
-                let slope = if forward { *b } else { b + 2 };
-                if slope == 0 {
-                    return self.lo.clone();
-                }
-                (value.clone() - a) / &a.int(slope)
-            }
-            Shape::Entry { from, to } => {
-                let theta = if forward {
-                    // F at the piece's ends is x there, computed from their angles as f is.
-                    let ends = (self.f_lo.clone() - value, self.f_hi.clone() - value);
-                    solve_between(|t: &R| loads.at(t).x_and_rate(value), (from, ends.0), (to, ends.1))
-                } else {
-                    // y = F + 2s at the ends, but not to the last bit as the angles give it.
-                    solve(|t: &R| loads.at(t).y_and_rate(value), from, to)
-                };
-                loads.p(&theta)
-            }
-        }
-    }
-
-    /// The piece cut to end at load `s` inside it.
-    fn cut_at(&mut self, loads: &Loads<R>, s: &R) {
-        match &mut self.shape {
-            Shape::Affine { a, b } => {
-                self.f_hi = a.clone() + &(s.clone() * &a.int(*b));
-            }
-            Shape::Entry { from, to } => {
-                let theta = solve(|t: &R| loads.at(t).p_and_rate(s), from, to);
-                self.f_hi = loads.x(&theta);
-                *to = theta;
-            }
-        }
-        self.hi = s.clone();
-    }
-}
-
-/// The memory F(s) over [floor, P], pieces in increasing s.
-#[derive(Clone, Debug)]
-pub(crate) struct Memory<R> {
-    pieces: Vec<Piece<R>>,
-}
-
-impl<R: Real> Memory<R> {
-    /// The state where every element holds Φ_s = c (F = c − s) clamped to the current
-    /// bounds [x, y − 2s]: the elements below s_T then never slip.
-    fn initial(floor: &R, point: &Point<R>, center: &R) -> Self {
-        let (x, y, top) = (point.x(), point.y(), point.p.clone());
-        let lower_meets = center.clone() - &x; // c − s = x
-        let upper_meets = y.clone() - center; // c − s = y − 2s
-        let mut pieces = Vec::new();
-        let held = lower_meets.min_of(&upper_meets).min_of(&top);
-        pieces.push(Piece::affine(floor.clone(), held.clone(), center.clone(), -1));
-        if held < top {
-            if lower_meets <= upper_meets {
-                pieces.push(Piece::affine(held, top, x, 0));
-            } else {
-                pieces.push(Piece::affine(held, top, y, -2));
-            }
-        }
-        Memory { pieces }
-    }
-
-    fn top(&self) -> R {
-        self.pieces
-            .last()
-            .map(|p| p.hi.clone())
-            .unwrap_or_else(|| unreachable!("a memory has pieces"))
-    }
-
-    /// inf{s : F(s) ≤ x} (`forward`) or inf{s : F(s) + 2s ≥ y}; `None` when empty.
-    fn front(&self, loads: &Loads<R>, value: &R, forward: bool) -> Option<R> {
-        let reached = |end: &R| if forward { *end <= *value } else { *end >= *value };
-        let piece = self
-            .pieces
-            .iter()
-            .find(|p| reached(&if forward { p.f_hi.clone() } else { p.g_hi() }))?;
-        let low_end = if forward { piece.f_lo.clone() } else { piece.g_lo() };
-        if reached(&low_end) {
-            Some(piece.lo.clone())
-        } else {
-            Some(piece.load_where(loads, value, forward))
-        }
-    }
-
-    /// Forgets every element above load `s`.
-    fn truncate(&mut self, loads: &Loads<R>, s: &R) {
-        while self.pieces.len() > 1 && self.pieces.last().is_some_and(|p| p.lo >= *s) {
-            self.pieces.pop();
-        }
-        if let Some(last) = self.pieces.last_mut() {
-            if last.hi > *s && last.lo < *s {
-                last.cut_at(loads, s);
-            }
-        }
-    }
-
-    /// The memory at the end of a monotone interval [a, b] from the memory at its start.
-    fn advance(&mut self, loads: &Loads<R>, a: &R, b: &R, signs: Signs) {
-        let (start, end) = (loads.at(a), loads.at(b));
-        let top = self.top();
-        if end.p > top {
-            let piece = if signs.x < 0 && signs.y > 0 {
-                Piece {
-                    lo: top.clone(),
-                    hi: end.p.clone(),
-                    f_lo: start.x(),
-                    f_hi: end.x(),
-                    shape: Shape::Entry {
-                        from: a.clone(),
-                        to: b.clone(),
-                    },
-                }
-            } else if signs.x >= 0 && signs.y > 0 {
-                Piece::affine(top.clone(), end.p.clone(), end.x(), 0)
-            } else {
-                Piece::affine(top.clone(), end.p.clone(), end.y(), -2)
-            };
-            self.pieces.push(piece);
-        } else if end.p < top {
-            self.truncate(loads, &end.p);
-        }
-        if signs.x > 0 {
-            if let Some(front) = self.front(loads, &end.x(), true) {
-                self.truncate(loads, &front);
-                self.pieces.push(Piece::affine(front, end.p.clone(), end.x(), 0));
-            }
-        }
-        if signs.y < 0 {
-            if let Some(front) = self.front(loads, &end.y(), false) {
-                self.truncate(loads, &front);
-                self.pieces.push(Piece::affine(front, end.p.clone(), end.y(), -2));
-            }
-        }
-        self.pieces.retain(|p| p.hi > p.lo);
-        if self.pieces.is_empty() {
-            unreachable!("the permanent stick piece stays below every front");
-        }
-    }
-}
-
-/// The directions of P, x and y over a monotone interval.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub(crate) struct Signs {
-    pub p: i8,
-    pub x: i8,
-    pub y: i8,
-}
-
 /// A piece of the steady cycle on which the slip fronts are smooth functions of θ.
 #[derive(Clone, Debug)]
 pub struct Segment<R> {
@@ -715,17 +569,30 @@ pub struct Segment<R> {
     pub start: R,
     /// The last angle.
     pub end: R,
-    /// The monotone interval it lies in (its memory and directions).
-    interval: usize,
+    /// Where the forward front s₋ lies over the segment.
+    forward: FrontFormula<R>,
+    /// Where the backward front s₊ lies.
+    backward: FrontFormula<R>,
 }
 
-/// The steady cycle of a path: its monotone intervals with the memory at each one's
-/// start, and the smooth segments they split into.
+/// Where a slip front lies over a segment, as a function of the angle: chosen once, at
+/// the segment's middle, since the segment ends wherever it would change.
+#[derive(Clone, Debug)]
+enum FrontFormula<R> {
+    /// Its slip is not under way, or the front is at the top of the contact: s = P, and
+    /// this slip adds nothing to the displacement.
+    AtTop,
+    /// At a fixed load: the end of a piece that the front has not left.
+    AtLoad(R),
+    /// Inside this piece of the memory at the interval's start.
+    InPiece(Piece<R>),
+}
+
+/// The steady cycle of a path: its smooth segments, each with the formulas of its slip
+/// fronts.
 #[derive(Clone, Debug)]
 pub struct SteadyCycle<R> {
     pub(crate) loads: Loads<R>,
-    memories: Vec<Memory<R>>,
-    signs: Vec<Signs>,
     /// The segments, covering [start, start + 2π] in order.
     pub segments: Vec<Segment<R>>,
     /// The angle where the cycle is taken to start (a turning point).
@@ -750,12 +617,12 @@ impl<R: Real> SteadyCycle<R> {
     pub fn new(path: &LoadPath<R>, contact: &Contact<R>) -> Result<Self, PathError> {
         contact.validate()?;
         let loads = Loads::new(path, &contact.friction);
-        let (lowest_slip, center) = validate(&loads, &contact.friction)?;
+        let lowest_slip = validate(&loads, &contact.friction)?;
         let highest_load = extreme(&loads.normal, true).1;
         let like = lowest_slip.clone();
         let tau = like.pi_like() * &like.int(2);
         // At constant P, x' = y' = q': their turning points are found once.
-        let rates = if loads.normal_rate.is_constant() {
+        let rates = if if_decided(|| loads.normal_rate.is_constant()).unwrap_or(false) {
             vec![loads.tangential_rate.clone()]
         } else {
             vec![
@@ -771,24 +638,39 @@ impl<R: Real> SteadyCycle<R> {
             // Neither P nor Q varies: nothing moves.
             breaks.push(like.int(0));
         }
+        let count = breaks.len();
         let start = breaks[0].clone();
         let mut bounds = breaks.clone();
         bounds.push(start.clone() + &tau);
-        let signs: Vec<Signs> = bounds
+        // Each monotone interval with the indices of its breaks, modulo the period.
+        let intervals: Vec<(Break<'_, R>, Break<'_, R>, Signs)> = bounds
             .windows(2)
-            .map(|w| {
+            .enumerate()
+            .map(|(i, w)| {
                 let middle = loads.at(&((w[0].clone() + &w[1]) / &like.int(2)));
-                Signs {
+                let signs = Signs {
                     p: sign(&middle.dp),
                     x: sign(&middle.dx()),
                     y: sign(&middle.dy()),
-                }
+                };
+                ((&w[0], i), (&w[1], (i + 1) % count), signs)
             })
             .collect();
+        // From the break where x is largest, one period reaches the steady state; the
+        // intervals up to the period's end then bring it to the cycle's start.
         let floor = lowest_slip.clone() / &like.int(2);
-        let mut memory = Memory::initial(&floor, &loads.at(&start), &center);
-        for (w, s) in bounds.windows(2).zip(&signs) {
-            memory.advance(&loads, &w[0], &w[1], *s);
+        let values = |value: &dyn Fn(&Point<R>) -> R| breaks.iter().map(|b| value(&loads.at(b))).collect::<Vec<R>>();
+        let largest_x = extreme_break(&values(&Point::x), true);
+        let smallest_y = extreme_break(&values(&Point::y), false);
+        let at_largest_x = loads.at(&breaks[largest_x]);
+        let mut memory = Memory::at_largest_x(
+            &floor,
+            Known::exactly(at_largest_x.x(), Origin::X(largest_x)),
+            Known::exactly(loads.at(&breaks[smallest_y]).y(), Origin::Y(smallest_y)),
+            Known::exactly(at_largest_x.p.clone(), Origin::P(largest_x)),
+        );
+        for (a, b, signs) in intervals[largest_x..].iter().chain(&intervals) {
+            memory.advance(&loads, *a, *b, *signs);
         }
         // Where x' or y' is smallest between sign changes, a front in an entry piece moves
         // fastest: its formula is split there too.
@@ -797,23 +679,22 @@ impl<R: Real> SteadyCycle<R> {
             backward: sign_changes(&loads.tangential_rate.combined(&loads.normal_rate, 1).derivative()),
             period: tau.clone(),
         };
-        let mut memories = Vec::new();
         let mut segments = Vec::new();
-        for (i, (w, s)) in bounds.windows(2).zip(&signs).enumerate() {
-            memories.push(memory.clone());
-            for (a, b) in split(&loads, &memory, &inflections, &w[0], &w[1], *s) {
+        for (a, b, signs) in &intervals {
+            for (start, end) in split(&loads, &memory, &inflections, *a, *b, *signs) {
+                let middle = ((start.clone() + &end) / &like.int(2)).midpoint_value();
+                let point = loads.at(&middle);
                 segments.push(Segment {
-                    start: a,
-                    end: b,
-                    interval: i,
+                    forward: front_formula(&loads, &memory, signs.x > 0, &point, true),
+                    backward: front_formula(&loads, &memory, signs.y < 0, &point, false),
+                    start,
+                    end,
                 });
             }
-            memory.advance(&loads, &w[0], &w[1], *s);
+            memory.advance(&loads, *a, *b, *signs);
         }
         Ok(SteadyCycle {
             loads,
-            memories,
-            signs,
             segments,
             start,
             lowest_slip,
@@ -823,19 +704,21 @@ impl<R: Real> SteadyCycle<R> {
 
     /// The slip fronts at θ in `segment`.
     pub(crate) fn fronts(&self, segment: &Segment<R>, point: &Point<R>) -> Fronts<R> {
-        let memory = &self.memories[segment.interval];
-        let signs = self.signs[segment.interval];
-        let front = |active: bool, value: R, forward: bool| {
-            if !active {
-                return point.p.clone();
-            }
-            memory
-                .front(&self.loads, &value, forward)
-                .map_or_else(|| point.p.clone(), |s| s.min_of(&point.p))
-        };
         Fronts {
-            forward: front(signs.x > 0, point.x(), true),
-            backward: front(signs.y < 0, point.y(), false),
+            forward: self.front_load(&segment.forward, point, true),
+            backward: self.front_load(&segment.backward, point, false),
+        }
+    }
+
+    /// The load of a front by its formula at `point`.
+    fn front_load(&self, formula: &FrontFormula<R>, point: &Point<R>, forward: bool) -> R {
+        match formula {
+            FrontFormula::AtTop => point.p.clone(),
+            FrontFormula::AtLoad(s) => s.clone(),
+            FrontFormula::InPiece(piece) => {
+                let value = if forward { point.x() } else { point.y() };
+                piece.load_where(&self.loads, &value, forward)
+            }
         }
     }
 
@@ -848,11 +731,16 @@ impl<R: Real> SteadyCycle<R> {
 
     /// The part of dU/dθ that slip adds, (v'(s₋) − v'(P)) x' + (v'(s₊) − v'(P)) y'.
     pub(crate) fn slip_rate(&self, segment: &Segment<R>, point: &Point<R>, compliance: &dyn Compliance<R>) -> R {
-        let fronts = self.fronts(segment, point);
-        let change = |s: &R| compliance.slope_change(&point.p, &(s.clone() - &point.p));
-        let forward = change(&fronts.forward) * &point.dx();
-        let backward = change(&fronts.backward) * &point.dy();
-        forward + &backward
+        let mut rate = point.p.int(0);
+        for (formula, forward) in [(&segment.forward, true), (&segment.backward, false)] {
+            if let FrontFormula::AtTop = formula {
+                continue;
+            }
+            let front = self.front_load(formula, point, forward);
+            let change = compliance.slope_change(&point.p, &(front - &point.p));
+            rate += &(change * &if forward { point.dx() } else { point.dy() });
+        }
+        rate
     }
 
     /// The mean of q = Q/f over the cycle.
@@ -863,6 +751,33 @@ impl<R: Real> SteadyCycle<R> {
     /// P, q = Q/f and their rates at θ.
     pub(crate) fn point(&self, theta: &R) -> Point<R> {
         self.loads.at(theta)
+    }
+}
+
+/// The formula of a front over a segment, read at the segment's middle `point` from the
+/// memory at its interval's start: `active` where its slip is under way there.
+fn front_formula<R: Real>(
+    loads: &Loads<R>,
+    memory: &Memory<R>,
+    active: bool,
+    point: &Point<R>,
+    forward: bool,
+) -> FrontFormula<R> {
+    if !active {
+        return FrontFormula::AtTop;
+    }
+    let value = Known::plain(if forward { point.x() } else { point.y() });
+    let Some(front) = memory.front(loads, &value, forward) else {
+        return FrontFormula::AtTop;
+    };
+    if memory.load_of(&front).value >= point.p {
+        return FrontFormula::AtTop;
+    }
+    let piece = &memory.pieces[front.piece];
+    match front.position {
+        Position::Low => FrontFormula::AtLoad(piece.lo.value.clone()),
+        Position::High => FrontFormula::AtLoad(piece.hi.value.clone()),
+        Position::Inside(_) => FrontFormula::InPiece(piece.clone()),
     }
 }
 
@@ -902,18 +817,20 @@ fn split<R: Real>(
     loads: &Loads<R>,
     memory: &Memory<R>,
     inflections: &Inflections<R>,
-    a: &R,
-    b: &R,
+    (a, first): Break<'_, R>,
+    (b, last): Break<'_, R>,
     signs: Signs,
 ) -> Vec<(R, R)> {
     let mut nodes = vec![a.clone()];
-    nodes.extend(crossings(loads, memory, inflections, a, b, signs));
+    nodes.extend(crossings(loads, memory, inflections, (a, first), (b, last), signs));
     nodes.push(b.clone());
     // Where a front meets the top of the contact (P falling onto it, or it onto P).
     let capped = |t: &R, forward: bool| {
         let point = loads.at(t);
         let value = if forward { point.x() } else { point.y() };
-        memory.front(loads, &value, forward).is_none_or(|s| s >= point.p)
+        memory
+            .front(loads, &Known::plain(value), forward)
+            .is_none_or(|front| memory.load_of(&front).value >= point.p)
     };
     let mut pieces = Vec::new();
     for w in nodes.windows(2) {
@@ -946,51 +863,70 @@ fn split<R: Real>(
 }
 
 /// The angles in (a, b), in order, where a front crosses an end of a piece of the memory
-/// or P crosses one: where the front's formula changes.
+/// or P crosses one: where the front's formula changes. F and G are continuous, so one
+/// piece's upper end is the next one's lower end: each join is taken once.
 fn crossings<R: Real>(
     loads: &Loads<R>,
     memory: &Memory<R>,
     inflections: &Inflections<R>,
-    a: &R,
-    b: &R,
+    (a, first): Break<'_, R>,
+    (b, last): Break<'_, R>,
     signs: Signs,
 ) -> Vec<R> {
     let (start, end) = (loads.at(a), loads.at(b));
     let mut cuts: Vec<R> = Vec::new();
-    let between = |v: &R, u: &R, w: &R| (*v > *u && *v < *w) || (*v > *w && *v < *u);
-    let mut add_crossings = |values: Vec<R>, low: R, high: R, f: &Offset<R>| {
+    let between = |v: &Known<R>, u: &Known<R>, w: &Known<R>| (v.gt(u) && v.lt(w)) || (v.gt(w) && v.lt(u));
+    let mut add_crossings = |values: Vec<Known<R>>, low: Known<R>, high: Known<R>, f: &Offset<R>| {
         for v in values {
             if between(&v, &low, &high) {
-                cuts.push(solve(|t: &R| f(&loads.at(t), &v), a, b));
+                cuts.push(solve(|t: &R| f(&loads.at(t), &v.value), a, b));
             }
         }
     };
-    if signs.x > 0 {
-        let mut values: Vec<R> = memory
+    let ends = |low: &dyn Fn(&Piece<R>) -> Known<R>, high: &dyn Fn(&Piece<R>) -> Known<R>| -> Vec<Known<R>> {
+        memory
             .pieces
-            .iter()
-            .flat_map(|p| [p.f_lo.clone(), p.f_hi.clone()])
-            .collect();
-        values.extend(inflections.inside_entries(memory, true).iter().map(|t| loads.at(t).x()));
-        add_crossings(values, start.x(), end.x(), &Point::x_and_rate);
+            .first()
+            .map(low)
+            .into_iter()
+            .chain(memory.pieces.iter().map(high))
+            .collect()
+    };
+    if signs.x > 0 {
+        let mut values = ends(&|p| p.f_lo.clone(), &|p| p.f_hi.clone());
+        values.extend(
+            inflections
+                .inside_entries(memory, true)
+                .iter()
+                .map(|t| Known::plain(loads.at(t).x())),
+        );
+        let (low, high) = (
+            Known::exactly(start.x(), Origin::X(first)),
+            Known::exactly(end.x(), Origin::X(last)),
+        );
+        add_crossings(values, low, high, &Point::x_and_rate);
     }
     if signs.y < 0 {
-        let mut values: Vec<R> = memory.pieces.iter().flat_map(|p| [p.g_lo(), p.g_hi()]).collect();
+        let mut values = ends(&|p| p.g_lo.clone(), &|p| p.g_hi.clone());
         values.extend(
             inflections
                 .inside_entries(memory, false)
                 .iter()
-                .map(|t| loads.at(t).y()),
+                .map(|t| Known::plain(loads.at(t).y())),
         );
-        add_crossings(values, start.y(), end.y(), &Point::y_and_rate);
+        let (low, high) = (
+            Known::exactly(start.y(), Origin::Y(first)),
+            Known::exactly(end.y(), Origin::Y(last)),
+        );
+        add_crossings(values, low, high, &Point::y_and_rate);
     }
     if signs.p < 0 {
-        let values = memory
-            .pieces
-            .iter()
-            .flat_map(|p| [p.lo.clone(), p.hi.clone()])
-            .collect();
-        add_crossings(values, start.p.clone(), end.p.clone(), &Point::p_and_rate);
+        let values = ends(&|p| p.lo.clone(), &|p| p.hi.clone());
+        let (low, high) = (
+            Known::exactly(start.p.clone(), Origin::P(first)),
+            Known::exactly(end.p.clone(), Origin::P(last)),
+        );
+        add_crossings(values, low, high, &Point::p_and_rate);
     }
     cuts.sort_by(|u, v| u.partial_cmp(v).unwrap_or(std::cmp::Ordering::Equal));
     cuts.dedup();

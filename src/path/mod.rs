@@ -15,8 +15,10 @@
 //! Masing's rule and an independent spring-bed simulation.
 //!
 //! - [`input`]: the path from harmonics or from equally spaced samples, and its limits;
-//! - [`events`]: the turning points of P, ξ₋ and ξ₊, the memory, and the slip fronts over
-//!   the steady cycle, split where any of them stops being smooth;
+//! - [`events`]: the turning points of P, ξ₋ and ξ₊ and the steady cycle, split where a
+//!   slip front's formula changes, each segment with its fronts' formulas;
+//! - `memory`: the memory F(s) as pieces, its update over a monotone interval, and the
+//!   fronts it places; values equal by construction carry their origin;
 //! - [`dissipation`](mod@dissipation): W by the quadrature engine, in any [`Real`];
 //! - [`displacement`]: displacement driving at constant P (Masing's rules, rainflow W);
 //! - [`outputs`]: amplitudes, loss factor, the harmonics of Q and u, and the loop;
@@ -35,6 +37,7 @@ pub mod displacement;
 pub mod dissipation;
 pub mod events;
 pub mod input;
+mod memory;
 pub mod outputs;
 
 pub use asked::{PathFormat, PathRequest, PathRequestError, RatioText};
