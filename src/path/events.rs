@@ -832,11 +832,24 @@ fn split<R: Real>(
             .front(loads, &Known::plain(value), forward)
             .is_none_or(|front| memory.load_of(&front).value >= point.p)
     };
+    // Where P rises a front lies at or below P(a) < P (F(P(a)) = x(a) ≤ x forward,
+    // G(P(a)) = y(a) ≥ y backward), and where P falls through an affine piece the front
+    // meets the top only where x or y crosses its level, a cut already: only where P falls
+    // through an entry piece is the window searched.
+    let through_entry = |u: &R, v: &R| {
+        let load = loads.p(&((u.clone() + v) / &u.int(2)));
+        signs.p < 0
+            && memory
+                .pieces
+                .iter()
+                .find(|p| p.hi.value >= load)
+                .is_some_and(|p| matches!(p.shape, Shape::Entry { .. }))
+    };
     let mut pieces = Vec::new();
     for w in nodes.windows(2) {
         let mut inner = Vec::new();
         for (active, forward) in [(signs.x > 0, true), (signs.y < 0, false)] {
-            if !active {
+            if !active || !through_entry(&w[0], &w[1]) {
                 continue;
             }
             let quarter = |k: i64| w[0].clone() + &((w[1].clone() - &w[0]) * &w[0].ratio(k, 4));
@@ -892,7 +905,19 @@ fn crossings<R: Real>(
             .chain(memory.pieces.iter().map(high))
             .collect()
     };
-    if signs.x > 0 {
+    // Where P falls through a piece F = a (flat) or G = a (left by backward slip), a front
+    // meets the top where x = a or y = a (F(P) = x or G(P) = y there): a forward front's
+    // own values hold the first, a backward front's the second, and a falling P with one
+    // front under way needs the other's too.
+    let falling = signs.p < 0;
+    let levels = |b: i64| -> Vec<Known<R>> {
+        let level = |p: &Piece<R>| match p.shape {
+            Shape::Affine { b: shape, .. } if shape == b => Some(if b == 0 { p.f_lo.clone() } else { p.g_lo.clone() }),
+            _ => None,
+        };
+        memory.pieces.iter().filter_map(level).collect()
+    };
+    let x_values = if signs.x > 0 {
         let mut values = ends(&|p| p.f_lo.clone(), &|p| p.f_hi.clone());
         values.extend(
             inflections
@@ -900,13 +925,20 @@ fn crossings<R: Real>(
                 .iter()
                 .map(|t| Known::plain(loads.at(t).x())),
         );
+        values
+    } else if falling && signs.y < 0 {
+        levels(0)
+    } else {
+        Vec::new()
+    };
+    if !x_values.is_empty() {
         let (low, high) = (
             Known::exactly(start.x(), Origin::X(first)),
             Known::exactly(end.x(), Origin::X(last)),
         );
-        add_crossings(values, low, high, &Point::x_and_rate);
+        add_crossings(x_values, low, high, &Point::x_and_rate);
     }
-    if signs.y < 0 {
+    let y_values = if signs.y < 0 {
         let mut values = ends(&|p| p.g_lo.clone(), &|p| p.g_hi.clone());
         values.extend(
             inflections
@@ -914,11 +946,18 @@ fn crossings<R: Real>(
                 .iter()
                 .map(|t| Known::plain(loads.at(t).y())),
         );
+        values
+    } else if falling && signs.x > 0 {
+        levels(-2)
+    } else {
+        Vec::new()
+    };
+    if !y_values.is_empty() {
         let (low, high) = (
             Known::exactly(start.y(), Origin::Y(first)),
             Known::exactly(end.y(), Origin::Y(last)),
         );
-        add_crossings(values, low, high, &Point::y_and_rate);
+        add_crossings(y_values, low, high, &Point::y_and_rate);
     }
     if signs.p < 0 {
         let values = ends(&|p| p.lo.clone(), &|p| p.hi.clone());
@@ -1030,5 +1069,53 @@ mod tests {
             watch(|| extreme(&poly::<Ball>(&["0", "0", "1"], &["0", "0", "0"], precision), true));
         assert!(doubts.none(), "{doubts:?}");
         assert!(largest.contains(&Float::with_val(64, 1)), "{largest:?}");
+    }
+
+    /// In the steady cycle some memory values are equal by construction (a turning value
+    /// met again one period later, F = x at the top, one value at each join): on f64
+    /// intervals and on 128-bit balls the memory's update answers every comparison, its
+    /// ties by the values' origins, for paths of two and three harmonics in P and Q.
+    #[test]
+    fn the_memory_update_of_a_varying_load_decides_every_comparison_on_enclosures() {
+        fn check<R: Real>(precision: Precision) {
+            let paths: [(&[&str], &[&str], &[&str], &[&str]); 2] = [
+                (
+                    &["1", "0.3", "0"],
+                    &["0", "0", "0.1"],
+                    &["0", "0.3", "0.1"],
+                    &["0", "0.1", "0.05"],
+                ),
+                (
+                    &["1", "0.25", "-0.05", "0.02"],
+                    &["0", "0.1", "0.08", "0"],
+                    &["0.05", "0.2", "0.07", "-0.03"],
+                    &["0", "-0.15", "0.06", "0.02"],
+                ),
+            ];
+            for (p_cos, p_sin, q_cos, q_sin) in paths {
+                let path = LoadPath {
+                    normal: poly::<R>(p_cos, p_sin, precision),
+                    tangential: poly::<R>(q_cos, q_sin, precision),
+                };
+                let one = R::from_i64(1, precision);
+                let contact = Contact {
+                    friction: one.clone(),
+                    compliance_ratio: one,
+                };
+                let (cycle, _, sites) = crate::doubts::locate_doubts(|| SteadyCycle::new(&path, &contact));
+                assert!(cycle.is_ok(), "{p_cos:?}: {cycle:?}");
+                let in_memory: Vec<&String> = sites
+                    .iter()
+                    .filter(|site| site.contains("Memory<R>::advance") || site.contains("Memory<R>::at_largest_x"))
+                    .collect();
+                assert!(
+                    in_memory.is_empty(),
+                    "{p_cos:?} at {} bits: {in_memory:?}",
+                    precision.in_bits()
+                );
+            }
+        }
+        check::<Interval>(Precision::DOUBLE);
+        check::<Ball>(Precision::bits(128));
     }
 }

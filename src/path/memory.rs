@@ -334,6 +334,7 @@ impl<R: Real> Memory<R> {
                     below.f_hi = end_x.clone();
                 }
                 self.pieces.push(Piece::affine(load, end_p.clone(), end_x.clone(), 0));
+                self.pin_top(&end_x, &end_y);
             }
         }
         if signs.y < 0 {
@@ -344,16 +345,25 @@ impl<R: Real> Memory<R> {
                     below.g_hi = end_y.clone();
                 }
                 self.pieces.push(Piece::affine(load, end_p, end_y.clone(), -2));
+                self.pin_top(&end_x, &end_y);
             }
         }
         self.pieces.retain(|p| p.hi.gt(&p.lo));
-        // The clamp pinches at the top: F(P) = x and G(P) = y, whichever piece holds P.
-        let Some(top) = self.pieces.last_mut() else {
+        if self.pieces.is_empty() {
             unreachable!("the permanent stick piece stays below every front");
-        };
-        top.f_hi = end_x;
-        top.g_hi = end_y;
+        }
+        self.pin_top(&end_x, &end_y);
         self.join();
+    }
+
+    /// F = x and G = y at the top of the contact once the clamp of the interval is done
+    /// (it pinches there), whichever piece holds the top: after a front's slip, and at
+    /// the interval's end.
+    fn pin_top(&mut self, x: &Known<R>, y: &Known<R>) {
+        if let Some(top) = self.pieces.last_mut() {
+            top.f_hi = x.clone();
+            top.g_hi = y.clone();
+        }
     }
 
     /// One value at each join of two pieces: F and G are continuous, and a piece's upper
