@@ -1078,21 +1078,22 @@ mod tests {
     #[test]
     fn the_memory_update_of_a_varying_load_decides_every_comparison_on_enclosures() {
         fn check<R: Real>(precision: Precision) {
-            let paths: [(&[&str], &[&str], &[&str], &[&str]); 2] = [
-                (
+            // P's cosines and sines, then Q's.
+            let paths: [[&[&str]; 4]; 2] = [
+                [
                     &["1", "0.3", "0"],
                     &["0", "0", "0.1"],
                     &["0", "0.3", "0.1"],
                     &["0", "0.1", "0.05"],
-                ),
-                (
+                ],
+                [
                     &["1", "0.25", "-0.05", "0.02"],
                     &["0", "0.1", "0.08", "0"],
                     &["0.05", "0.2", "0.07", "-0.03"],
                     &["0", "-0.15", "0.06", "0.02"],
-                ),
+                ],
             ];
-            for (p_cos, p_sin, q_cos, q_sin) in paths {
+            for [p_cos, p_sin, q_cos, q_sin] in paths {
                 let path = LoadPath {
                     normal: poly::<R>(p_cos, p_sin, precision),
                     tangential: poly::<R>(q_cos, q_sin, precision),
