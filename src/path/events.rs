@@ -97,15 +97,19 @@ impl<R: Real> Loads<R> {
     }
 
     /// Where Newton's steps for `load`(θ) = `value` on [a, b] start: the f64 root of the
-    /// guide, where there is one (the solver keeps it only inside its bracket).
+    /// guide, where f64 brackets one (the solver keeps it only inside its own bracket). A
+    /// bracket that f64's rounding loses is no doubt about the working precision's root.
     pub(crate) fn start_for(&self, load: fn(&Point<f64>, &f64) -> (f64, f64), value: &R, a: &R, b: &R) -> Option<R> {
         let guide = self.guide.as_ref()?;
         let value = value.to_f64_lossy();
-        let root = solve(
-            |t: &f64| load(&guide.at(t), &value),
-            &a.to_f64_lossy(),
-            &b.to_f64_lossy(),
-        );
+        let solved = || {
+            solve(
+                |t: &f64| load(&guide.at(t), &value),
+                &a.to_f64_lossy(),
+                &b.to_f64_lossy(),
+            )
+        };
+        let root = if_decided(solved)?;
         root.is_finite().then(|| R::from_f64(root, a.precision()))
     }
 
