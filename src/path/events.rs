@@ -900,14 +900,17 @@ fn crossings<R: Real>(
             }
         }
     };
+    // A flat piece's two ends are one value: each value once, or its crossing is found twice.
     let ends = |low: &dyn Fn(&Piece<R>) -> Known<R>, high: &dyn Fn(&Piece<R>) -> Known<R>| -> Vec<Known<R>> {
-        memory
+        let mut values: Vec<Known<R>> = memory
             .pieces
             .first()
             .map(low)
             .into_iter()
             .chain(memory.pieces.iter().map(high))
-            .collect()
+            .collect();
+        values.dedup_by(|next, previous| next.same(previous));
+        values
     };
     // Where P falls through a piece F = a (flat) or G = a (left by backward slip), a front
     // meets the top where x = a or y = a (F(P) = x or G(P) = y there): a forward front's

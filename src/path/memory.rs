@@ -50,7 +50,8 @@ impl<R: Real> Known<R> {
         Known { value, origin: None }
     }
 
-    fn same(&self, other: &Known<R>) -> bool {
+    /// Whether both are one break value (so one number).
+    pub fn same(&self, other: &Known<R>) -> bool {
         self.origin.is_some() && self.origin == other.origin
     }
 
