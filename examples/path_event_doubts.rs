@@ -1,7 +1,7 @@
 //! How far the event decomposition of a varying-P path runs on enclosures:
 //! `cargo run --release --example path_event_doubts [PATHS]` builds the steady cycle of
 //! PATHS random force-driven paths (default 80; 2–5 harmonics in P and Q, P0 = 1, f from
-//! 0.3 to 1.5, λ from 1 to 2, drawn by a fixed generator) in f64 intervals and on 128-bit
+//! 0.3 to 1.5, λ from 1 to 2, drawn from seed 2026) in f64 intervals and on 128-bit
 //! Arb balls, and counts the comparisons it could not decide, by where they were asked:
 //! the memory's update, the test of where a front meets the top (`split`), the crossings.
 //! proofs/periodic-loading.md ("Why a varying P is not proven yet") quotes its output.
@@ -12,31 +12,16 @@ use microslip::interval::Interval;
 use microslip::path::input::read_harmonics;
 use microslip::path::{Contact, SteadyCycle};
 use microslip::real::{Precision, Real};
-
-/// A fixed generator of numbers in [0, 1) (64-bit linear congruential, top 53 bits).
-struct Draws(u64);
-
-impl Draws {
-    fn next(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn within(&mut self, low: f64, high: f64) -> f64 {
-        low + (high - low) * self.next()
-    }
-}
+use microslip::verify::generators::Draw;
 
 /// One random path's file text and its f and λ.
-fn random_path(draws: &mut Draws) -> (String, String, String) {
-    let harmonics = 2 + (draws.next() * 4.0) as usize;
-    let (normal, tangential) = (draws.within(0.05, 0.6), draws.within(0.05, 0.5));
-    let mut text = format!("k,P_cos,P_sin,Q_cos,Q_sin\n0,1,0,{:.4},0\n", draws.within(-0.1, 0.1));
+fn random_path(draws: &mut Draw) -> (String, String, String) {
+    let harmonics = 2 + draws.below(4);
+    let (normal, tangential) = (draws.uniform(0.05, 0.6), draws.uniform(0.05, 0.5));
+    let mut text = format!("k,P_cos,P_sin,Q_cos,Q_sin\n0,1,0,{:.4},0\n", draws.uniform(-0.1, 0.1));
     for k in 1..=harmonics {
         let size = 1.0 / (k * harmonics) as f64;
-        let mut coefficient = |scale: f64| draws.within(-1.0, 1.0) * scale * size;
+        let mut coefficient = |scale: f64| draws.uniform(-1.0, 1.0) * scale * size;
         let row = [
             coefficient(normal),
             coefficient(normal),
@@ -45,8 +30,8 @@ fn random_path(draws: &mut Draws) -> (String, String, String) {
         ];
         text += &format!("{k},{:.4},{:.4},{:.4},{:.4}\n", row[0], row[1], row[2], row[3]);
     }
-    let friction = ["0.3", "0.5", "0.8", "1", "1.5"][(draws.next() * 5.0) as usize];
-    let lambda = ["1", "1.2", "1.5", "2"][(draws.next() * 4.0) as usize];
+    let friction = ["0.3", "0.5", "0.8", "1", "1.5"][draws.below(5)];
+    let lambda = ["1", "1.2", "1.5", "2"][draws.below(4)];
     (text, friction.to_string(), lambda.to_string())
 }
 
@@ -71,7 +56,7 @@ fn doubts<R: Real>(text: &str, friction: &str, lambda: &str, precision: Precisio
 
 fn main() {
     let paths: usize = std::env::args().nth(1).and_then(|n| n.parse().ok()).unwrap_or(80);
-    let mut draws = Draws(2026);
+    let mut draws = Draw::new(2026);
     // Per arithmetic: paths built, paths without a doubt, then the counts by place.
     let mut totals = [[0usize; 5]; 2];
     for _ in 0..paths {
