@@ -567,6 +567,12 @@ fn a_path_column_names_a_path_file_relative_to_the_csv_and_a_bad_file_fails_its_
     std::fs::write(paths.join("force.csv"), force).unwrap();
     std::fs::write(paths.join("u.csv"), displacement).unwrap();
     std::fs::write(paths.join("bad.csv"), "k,P_cos,P_sin,Q_cos,Q_sin\n0,1,0,0,zero\n").unwrap();
+    // Q constant under a varying P: W is exactly 0.
+    std::fs::write(
+        paths.join("still-q.csv"),
+        "k,P_cos,P_sin,Q_cos,Q_sin\n0,1,0,0.1,0\n1,0.3,0.1,0,0\n",
+    )
+    .unwrap();
     let input = dir.join("in.csv");
     std::fs::write(
         &input,
@@ -577,7 +583,8 @@ fn a_path_column_names_a_path_file_relative_to_the_csv_and_a_bad_file_fails_its_
          bad,,,,,,0.8,1.2,,persson:gamma=1,sigma=1,paths/bad.csv,force\n\
          both,1,0.4,,,,0.8,1.2,,persson:gamma=1,sigma=1,paths/force.csv,\n\
          displacement,,,,,,0.8,1.2,,persson:gamma=1,sigma=1,paths/u.csv,displacement\n\
-         no-drive,,,,,,0.8,1.2,,persson:gamma=1,sigma=1,paths/u.csv,sideways\n"
+         no-drive,,,,,,0.8,1.2,,persson:gamma=1,sigma=1,paths/u.csv,sideways\n\
+         still-q,,,,,,0.8,1.2,,persson:gamma=1,sigma=1,paths/still-q.csv,\n"
             .replace("persson:gamma=1,sigma=1", "\"persson:gamma=1,sigma=1\""),
     )
     .unwrap();
@@ -592,7 +599,7 @@ fn a_path_column_names_a_path_file_relative_to_the_csv_and_a_bad_file_fails_its_
         .records()
         .map(|r| r.unwrap().iter().map(str::to_string).collect())
         .collect();
-    assert_eq!(rows.len(), 7);
+    assert_eq!(rows.len(), 8);
     let (w, error, method, provenance) = (column("W"), column("error"), column("method"), column("provenance"));
     // The cycle's row is as it always was.
     assert_eq!(rows[0][method], "four-segment");
@@ -660,6 +667,21 @@ fn a_path_column_names_a_path_file_relative_to_the_csv_and_a_bad_file_fails_its_
     assert_eq!(lines[1]["W"].as_str(), Some(rows[1][w].as_str()));
     assert_eq!(lines[5]["method"], "path-displacement");
     assert_eq!(lines[5]["provenance"], "certified");
+    // An exact W: every digit asked, the reason, no working precision.
+    assert_eq!(
+        (
+            lines[7]["W"].as_str(),
+            lines[7]["provenance"].as_str(),
+            lines[7]["digits"].as_u64()
+        ),
+        (Some("0"), Some("exact"), Some(15)),
+        "{}",
+        lines[7]
+    );
+    assert!(lines[7]["exact"]
+        .as_str()
+        .is_some_and(|why| why.contains("Q is constant")));
+    assert_eq!(rows[7][provenance], "exact");
 }
 
 /// A file's chunks of 256 rows are computed while the next is read, each thread taking the

@@ -15,9 +15,14 @@ const TWO_HARMONICS: &str = "k,P_cos,P_sin,Q_cos,Q_sin\n0,1,0,0.05,0\n1,0.25,0.0
 /// `microslip path --harmonics FILE --friction 0.8 --lambda 1.2 --compliance persson extra…`
 /// with `contents` in FILE.
 fn path_run(directory: &std::path::Path, contents: &str, extra: &[&str]) -> (i32, String, String) {
+    path_file_run(directory, "--harmonics", contents, extra)
+}
+
+/// [`path_run`] with the file given as `kind` (`--harmonics` or `--samples`).
+fn path_file_run(directory: &std::path::Path, kind: &str, contents: &str, extra: &[&str]) -> (i32, String, String) {
     let file = directory.join("path.csv");
     std::fs::write(&file, contents).unwrap();
-    let mut args: Vec<String> = ["path", "--harmonics", file.to_str().unwrap()]
+    let mut args: Vec<String> = ["path", kind, file.to_str().unwrap()]
         .iter()
         .chain(&["--friction", "0.8", "--lambda", "1.2", "--compliance", PERSSON])
         .map(|s| s.to_string())
@@ -234,4 +239,62 @@ fn displacement_driving_refuses_a_varying_normal_load_and_force_columns() {
         assert!(stderr.contains(expected), "{stderr}");
         assert!(!out.exists());
     }
+}
+
+/// A force-driven path whose Q is constant dissipates nothing, whatever P does: W = Q ∮ du
+/// = 0 over the closed loop. It is printed as exactly 0 (JSON provenance `exact`, every
+/// digit asked), from harmonics and from samples, where agreement of two precisions could
+/// never settle a digit of 0; the library's W is 0 in f64 and in MPFR. A Q harmonic that is
+/// not exactly 0 is not taken for one.
+#[test]
+fn a_constant_q_under_a_varying_normal_load_dissipates_exactly_nothing() {
+    let directory = Scratch::new("constant-q");
+    let validator = schema();
+    let constant_q = "k,P_cos,P_sin,Q_cos,Q_sin\n0,1,0,0.1,0\n1,0.3,0.1,0,0\n2,0.05,0,0.0000,0\n";
+    for (extra, digits) in [(&["--json"][..], 15), (&["--json", "--digits", "30"][..], 30)] {
+        let (code, stdout, stderr) = path_run(&directory, constant_q, extra);
+        assert_eq!(code, 0, "{stderr}");
+        let document: Value = serde_json::from_str(stdout.trim()).unwrap();
+        let problems: Vec<String> = validator.iter_errors(&document).map(|e| e.to_string()).collect();
+        assert!(problems.is_empty(), "{problems:?}\n{document}");
+        assert_eq!(document["W"], "0", "{document}");
+        assert_eq!(document["provenance"], "exact", "{document}");
+        assert_eq!(document["digits_certified"], digits, "{document}");
+        assert_eq!(document["W_f64"], 0.0, "{document}");
+    }
+    let (code, stdout, stderr) = path_run(&directory, constant_q, &[]);
+    assert_eq!(code, 0, "{stderr}");
+    assert!(stdout.starts_with("W = 0 (exact: Q is constant"), "{stdout}");
+    let samples = "P,Q\n1.3,0.1\n1,0.1\n0.7,0.1\n1,0.1\n";
+    let (code, stdout, stderr) = path_file_run(&directory, "--samples", samples, &["--json"]);
+    assert_eq!(code, 0, "{stderr}");
+    assert_eq!(
+        serde_json::from_str::<Value>(stdout.trim()).unwrap()["provenance"],
+        "exact"
+    );
+    let contact = Contact {
+        friction: 0.8,
+        compliance_ratio: 1.2,
+    };
+    let compliance = parse_spec::<f64>(PERSSON, Precision::DOUBLE).unwrap();
+    let path = read_harmonics::<f64>(constant_q, Precision::DOUBLE).unwrap();
+    let w = path_dissipation(&path, &contact, compliance.as_ref(), None).unwrap();
+    assert_eq!(w.total, 0.0);
+    let precision = Precision::bits(128);
+    let read = |text: &str| rug::Float::with_val(128, rug::Float::parse(text).unwrap());
+    let path = read_harmonics::<rug::Float>(constant_q, precision).unwrap();
+    let contact = Contact {
+        friction: read("0.8"),
+        compliance_ratio: read("1.2"),
+    };
+    let compliance = parse_spec::<rug::Float>(PERSSON, precision).unwrap();
+    let w = path_dissipation(&path, &contact, compliance.as_ref(), None).unwrap();
+    assert!(w.total.is_zero(), "{}", w.total);
+    // Q's first harmonic 1e-6, not 0: W by agreement, and positive.
+    let nearly = "k,P_cos,P_sin,Q_cos,Q_sin\n0,1,0,0.1,0\n1,0.3,0.1,1e-6,0\n";
+    let (code, stdout, stderr) = path_run(&directory, nearly, &["--json"]);
+    assert_eq!(code, 0, "{stderr}");
+    let document: Value = serde_json::from_str(stdout.trim()).unwrap();
+    assert_eq!(document["provenance"], "agreement", "{document}");
+    assert!(document["W_f64"].as_f64().unwrap() > 0.0, "{document}");
 }

@@ -128,7 +128,11 @@ impl RowResult {
         let w = answer.w;
         RowResult {
             total: w.text.clone(),
-            digits: Some(significant_digits(&w.text)),
+            // An exact 0 shows every digit asked.
+            digits: Some(match w.exact {
+                Some(_) => w.digits_certified,
+                None => significant_digits(&w.text),
+            }),
             digits_certified: Some(w.digits_certified),
             enclosure: w.enclosure.clone(),
             provenance: w.provenance.to_string(),

@@ -141,9 +141,10 @@ impl DissipationFields {
                 digits_verified: digits,
                 digits_certified: Some(w.digits_certified),
                 provenance: Some(w.provenance),
-                precision_bits: Some(w.precision_bits),
+                // An exact W has no working precision.
+                precision_bits: w.exact.is_none().then_some(w.precision_bits),
                 enclosure: w.enclosure.clone(),
-                ..ValueEnvelope::default()
+                exact: w.exact,
             },
             no_enclosure: w.no_enclosure.clone(),
             arithmetic: w.arithmetic,

@@ -8,6 +8,7 @@
 use std::time::Instant;
 
 use crate::compliance::{check_admissible, Compliance};
+use crate::doubts::if_decided;
 use crate::quad::{integrate, Piece, QuadError, Settings};
 use crate::real::Real;
 
@@ -68,6 +69,17 @@ pub fn dissipation_of<R: Real>(
 ) -> Result<PathDissipation<R>, PathError> {
     check_admissible(compliance, &cycle.lowest_slip, &cycle.highest_load)?;
     let like = cycle.lowest_slip.clone();
+    // Q constant (every harmonic k ≥ 1 exactly 0): q̃ ≡ 0, and W = Q ∮ du = 0 exactly
+    // over the closed loop, whatever P does.
+    if if_decided(|| cycle.loads.tangential_is_constant()) == Some(true) {
+        let zero = like.int(0);
+        return Ok(PathDissipation {
+            total: zero.clone(),
+            error_estimate: zero,
+            segments: cycle.segments.len(),
+            evaluations: 0,
+        });
+    }
     let mean = cycle.mean_tangential();
     let half = like.ratio(1, 2);
     let pieces: Vec<Piece<'_, R>> = cycle

@@ -123,6 +123,11 @@ impl<R: Real> Loads<R> {
         }
     }
 
+    /// Whether q = Q/f is constant: every harmonic k ≥ 1 zero.
+    pub(crate) fn tangential_is_constant(&self) -> bool {
+        self.tangential.is_constant()
+    }
+
     pub(crate) fn p(&self, theta: &R) -> R {
         self.normal.value(theta)
     }

@@ -31,8 +31,9 @@ pub struct AgreedW {
     pub text: String,
     /// The value in f64.
     pub value: f64,
-    /// `certified`: a rigorous enclosure proves every printed digit; `agreement`: two
-    /// working precisions agree, not a proof (the keys `microslip dissipation` uses).
+    /// `certified`: a rigorous enclosure proves every printed digit; `exact`: W is exactly
+    /// the value printed (0, for a constant Q); `agreement`: two working precisions agree,
+    /// not a proof (the keys `microslip dissipation` uses).
     pub provenance: &'static str,
     /// What the provenance rests on, in words.
     pub detail: String,
@@ -48,6 +49,8 @@ pub struct AgreedW {
     pub no_enclosure: Option<String>,
     /// Decimal ends, rounded outwards, of the enclosure W was read from; `None` by agreement.
     pub enclosure: Option<(String, String)>,
+    /// Why W is exactly the value printed, where it is (provenance `exact`).
+    pub exact: Option<&'static str>,
 }
 
 /// The answer to a [`PathRequest`].
@@ -150,9 +153,14 @@ pub fn path_answer(request: &PathRequest) -> Result<PathAnswer, PathRequestError
     // A normal load whose f64 copy varies varies as written (equal decimals are equal
     // doubles): W is not proven, and its enclosures are not read.
     let varying = !path.normal.is_constant();
-    let w = match proven_or_why(request, f64_w.total, &admissible, varying)? {
-        Ok(w) => w,
-        Err(why) => agreed_w(request, why)?,
+    let w = if request.drive == Drive::Force && path.tangential.is_constant() && tangential_constant_as_written(request)
+    {
+        exact_zero_w(request)
+    } else {
+        match proven_or_why(request, f64_w.total, &admissible, varying)? {
+            Ok(w) => w,
+            Err(why) => agreed_w(request, why)?,
+        }
     };
     let outputs = match (&force_cycle, &displacement_cycle) {
         (Some(cycle), _) => path_outputs(
@@ -174,6 +182,37 @@ pub fn path_answer(request: &PathRequest) -> Result<PathAnswer, PathRequestError
         drive: request.drive,
     })
 }
+
+/// Whether Q is constant as written: every harmonic k ≥ 1 of the file exactly 0 (a
+/// decimal too small for f64, zero in its f64 copy, is not), or a column of samples all
+/// one decimal. Asked only where the f64 copy is constant, which it then is.
+fn tangential_constant_as_written(request: &PathRequest) -> bool {
+    request
+        .read_path::<crate::interval::Interval>(Precision::DOUBLE)
+        .is_ok_and(|path| crate::doubts::if_decided(|| path.tangential.is_constant()) == Some(true))
+}
+
+/// W = 0 exactly for a force-driven path whose Q is constant: W = Q ∮ du, and u returns
+/// to itself over the steady cycle, whatever P does.
+fn exact_zero_w(request: &PathRequest) -> AgreedW {
+    let digits = request.digits_asked();
+    AgreedW {
+        text: "0".to_string(),
+        value: 0.0,
+        provenance: "exact",
+        detail: CONSTANT_Q.to_string(),
+        digits_agreed: digits,
+        digits_certified: digits,
+        precision_bits: 53,
+        arithmetic: None,
+        no_enclosure: None,
+        enclosure: None,
+        exact: Some(CONSTANT_Q),
+    }
+}
+
+/// Why a constant Q dissipates nothing.
+const CONSTANT_Q: &str = "Q is constant, so W = Q ∮ du = 0 over the closed loop";
 
 /// The f64 copy of a path decided inside the theory (separation, gross slip, λ) refused:
 /// the copy crossed a boundary the decimals keep off, and the f64 run, which builds the
@@ -279,6 +318,7 @@ fn proven_or_why(
         arithmetic: proven.provenance.arithmetic().map(crate::answer::Arithmetic::key),
         no_enclosure: None,
         enclosure: proven.value.enclosure.clone(),
+        exact: None,
     }))
 }
 
@@ -320,5 +360,6 @@ fn agreed_w(request: &PathRequest, why: String) -> Result<AgreedW, PathRequestEr
         arithmetic: None,
         no_enclosure: Some(why),
         enclosure: None,
+        exact: None,
     })
 }
