@@ -57,6 +57,14 @@ impl<R: Real> Point<R> {
     pub fn dy(&self) -> R {
         self.dq.clone() + &self.dp
     }
+    /// x = q − P, against which the forward front moves (`forward`), or y = q + P.
+    pub fn slip_variable(&self, forward: bool) -> R {
+        if forward {
+            self.x()
+        } else {
+            self.y()
+        }
+    }
     /// (x − value, x').
     pub(crate) fn x_and_rate(&self, value: &R) -> (R, R) {
         (self.x() - value, self.dx())
@@ -725,7 +733,7 @@ impl<R: Real> SteadyCycle<R> {
             FrontFormula::AtTop => point.p.clone(),
             FrontFormula::AtLoad(s) => s.clone(),
             FrontFormula::InPiece(piece) => {
-                let value = if forward { point.x() } else { point.y() };
+                let value = point.slip_variable(forward);
                 piece.load_where(&self.loads, &value, forward)
             }
         }
@@ -775,7 +783,7 @@ fn front_formula<R: Real>(
     if !active {
         return FrontFormula::AtTop;
     }
-    let value = Known::plain(if forward { point.x() } else { point.y() });
+    let value = Known::plain(point.slip_variable(forward));
     let Some(front) = memory.front(loads, &value, forward) else {
         return FrontFormula::AtTop;
     };
@@ -836,7 +844,7 @@ fn split<R: Real>(
     // Where a front meets the top of the contact (P falling onto it, or it onto P).
     let capped = |t: &R, forward: bool| {
         let point = loads.at(t);
-        let value = if forward { point.x() } else { point.y() };
+        let value = point.slip_variable(forward);
         memory
             .front(loads, &Known::plain(value), forward)
             .is_none_or(|front| memory.load_of(&front).value >= point.p)
@@ -857,8 +865,9 @@ fn split<R: Real>(
     let mut pieces = Vec::new();
     for w in nodes.windows(2) {
         let mut inner = Vec::new();
+        let searched = through_entry(&w[0], &w[1]);
         for (active, forward) in [(signs.x > 0, true), (signs.y < 0, false)] {
-            if !active || !through_entry(&w[0], &w[1]) {
+            if !active || !searched {
                 continue;
             }
             let quarter = |k: i64| w[0].clone() + &((w[1].clone() - &w[0]) * &w[0].ratio(k, 4));
@@ -917,59 +926,46 @@ fn crossings<R: Real>(
         values.dedup_by(|next, previous| next.same(previous));
         values
     };
-    // Where P falls through a piece F = a (flat) or G = a (left by backward slip), a front
-    // meets the top where x = a or y = a (F(P) = x or G(P) = y there): a forward front's
-    // own values hold the first, a backward front's the second, and a falling P with one
-    // front under way needs the other's too.
-    let falling = signs.p < 0;
-    let levels = |b: i64| -> Vec<Known<R>> {
-        let level = |p: &Piece<R>| match p.shape {
-            Shape::Affine { b: shape, .. } if shape == b => Some(if b == 0 { p.f_lo.clone() } else { p.g_lo.clone() }),
-            _ => None,
+    // Each active front crosses its own values: F's (forward, against x) or G's (backward,
+    // against y) at the pieces' ends, and at the inflections inside entry pieces. Where P
+    // falls through a piece F = a (flat) or G = a (left by backward slip), a front meets
+    // the top where x = a or y = a (F(P) = x or G(P) = y there): a front's own values hold
+    // its kind of level, and with one front under way a falling P needs the other's too.
+    for forward in [true, false] {
+        let active = |forward: bool| if forward { signs.x > 0 } else { signs.y < 0 };
+        let values = if active(forward) {
+            let mut values = match forward {
+                true => ends(&|p| p.f_lo.clone(), &|p| p.f_hi.clone()),
+                false => ends(&|p| p.g_lo.clone(), &|p| p.g_hi.clone()),
+            };
+            values.extend(
+                inflections
+                    .inside_entries(memory, forward)
+                    .iter()
+                    .map(|t| Known::plain(loads.at(t).slip_variable(forward))),
+            );
+            values
+        } else if signs.p < 0 && active(!forward) {
+            let level = |p: &Piece<R>| match (&p.shape, forward) {
+                (Shape::Affine { b: 0, .. }, true) => Some(p.f_lo.clone()),
+                (Shape::Affine { b: -2, .. }, false) => Some(p.g_lo.clone()),
+                _ => None,
+            };
+            memory.pieces.iter().filter_map(level).collect()
+        } else {
+            continue;
         };
-        memory.pieces.iter().filter_map(level).collect()
-    };
-    let x_values = if signs.x > 0 {
-        let mut values = ends(&|p| p.f_lo.clone(), &|p| p.f_hi.clone());
-        values.extend(
-            inflections
-                .inside_entries(memory, true)
-                .iter()
-                .map(|t| Known::plain(loads.at(t).x())),
-        );
-        values
-    } else if falling && signs.y < 0 {
-        levels(0)
-    } else {
-        Vec::new()
-    };
-    if !x_values.is_empty() {
+        let origin = if forward { Origin::X } else { Origin::Y };
         let (low, high) = (
-            Known::exactly(start.x(), Origin::X(first)),
-            Known::exactly(end.x(), Origin::X(last)),
+            Known::exactly(start.slip_variable(forward), origin(first)),
+            Known::exactly(end.slip_variable(forward), origin(last)),
         );
-        add_crossings(x_values, low, high, &Point::x_and_rate);
-    }
-    let y_values = if signs.y < 0 {
-        let mut values = ends(&|p| p.g_lo.clone(), &|p| p.g_hi.clone());
-        values.extend(
-            inflections
-                .inside_entries(memory, false)
-                .iter()
-                .map(|t| Known::plain(loads.at(t).y())),
-        );
-        values
-    } else if falling && signs.x > 0 {
-        levels(-2)
-    } else {
-        Vec::new()
-    };
-    if !y_values.is_empty() {
-        let (low, high) = (
-            Known::exactly(start.y(), Origin::Y(first)),
-            Known::exactly(end.y(), Origin::Y(last)),
-        );
-        add_crossings(y_values, low, high, &Point::y_and_rate);
+        let rate: &Offset<R> = if forward {
+            &Point::x_and_rate
+        } else {
+            &Point::y_and_rate
+        };
+        add_crossings(values, low, high, rate);
     }
     if signs.p < 0 {
         let values = ends(&|p| p.lo.clone(), &|p| p.hi.clone());
