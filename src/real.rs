@@ -206,6 +206,25 @@ pub trait Real:
         let _ = other;
         self.clone()
     }
+    /// Whether every number `self` holds lies in the interior of `outer`: the real parts
+    /// strictly inside, and the imaginary parts strictly inside or both exactly zero (a
+    /// real enclosure inside a real one). What Krawczyk's test of a root asks; `false`
+    /// for a number, which holds no interior.
+    fn lies_inside(&self, outer: &Self) -> bool {
+        let _ = outer;
+        false
+    }
+    /// The ends of the real part as values with no width, rounded outward at the working
+    /// precision: the points just outside an enclosure on either side; a number is both.
+    fn real_ends(&self) -> (Self, Self) {
+        (self.clone(), self.clone())
+    }
+    /// The box [−m, m] + i[−m, m] about zero, m an upper bound of |`self`| (the interval
+    /// [−m, m] where `self` is real): a neighbourhood of zero reaching as far in every
+    /// direction as `self` does, as Krawczyk's box about a root needs; a number is itself.
+    fn centred_square(&self) -> Self {
+        self.clone()
+    }
     /// A number of the value, with no width: for an enclosure the midpoint of its real
     /// part (Newton's steps on enclosures start from such points, or their widths grow
     /// with every step); a number is itself.

@@ -603,7 +603,7 @@ fn a_path_column_names_a_path_file_relative_to_the_csv_and_a_bad_file_fails_its_
     let (w, error, method, provenance) = (column("W"), column("error"), column("method"), column("provenance"));
     // The cycle's row is as it always was.
     assert_eq!(rows[0][method], "four-segment");
-    // A path row's W is `microslip path`'s, to its 15 digits by agreement.
+    // A path row's W is `microslip path`'s, proven where P varies too.
     let single = |file: &str, drive: &str| -> String {
         let out = common::run([
             "path",
@@ -626,7 +626,7 @@ fn a_path_column_names_a_path_file_relative_to_the_csv_and_a_bad_file_fails_its_
     assert_eq!(rows[1][w], single("force.csv", "force"));
     assert_eq!(
         (rows[1][method].as_str(), rows[1][provenance].as_str()),
-        ("path-force", "agreement")
+        ("path-force", "certified")
     );
     assert_eq!(rows[5][w], single("u.csv", "displacement"));
     assert_eq!(rows[5][method], "path-displacement");

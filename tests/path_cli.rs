@@ -1,5 +1,5 @@
 //! `microslip path`: its JSON against docs/schema/path.schema.json, the loop file, the
-//! agreement of two precisions, and one-line refusals that leave nothing behind.
+//! proven W where P varies too, and one-line refusals that leave nothing behind.
 
 mod common;
 
@@ -76,8 +76,8 @@ fn the_json_conforms_to_its_schema_and_carries_the_library_w() {
     }
     let (_, stdout, _) = path_run(&directory, TWO_HARMONICS, &["--json", "--digits", "20"]);
     let document: Value = serde_json::from_str(stdout.trim()).unwrap();
-    assert_eq!(document["provenance"], "agreement");
-    assert!(document["digits_agreed"].as_u64().unwrap() >= 20);
+    assert_eq!(document["provenance"], "certified", "{document}");
+    assert_eq!(document["digits_certified"], 20, "{document}");
     assert_eq!(
         document["W"]
             .as_str()

@@ -12,7 +12,7 @@ use std::time::{Duration, Instant};
 
 use common::{microslip, Scratch, PERSSON};
 use microslip::answer::dissipation::dissipation_of;
-use microslip::answer::path::proven::{proven_w, NotProven, ProvenW};
+use microslip::answer::path::proven::{proven_w, ProvenW, SummedOver};
 use microslip::answer::{path::path_answer, ExitStatus};
 use microslip::case::CaseText;
 use microslip::compliance::parse_spec;
@@ -135,6 +135,91 @@ fn a_harmonic_path_at_constant_p_prints_the_certified_four_segment_digits() {
 }
 
 #[test]
+fn a_harmonic_path_whose_normal_load_varies_is_proven_and_prints_the_four_segment_digits() {
+    // P = P0 + P1 cos θ and Q = Q0 + Q1 sin θ: the four-segment cycle at φ = π/2, every
+    // coefficient as written.
+    let cases = [
+        ("1", "0.4", "0", "0.5", "1", "1", PERSSON),
+        ("1", "0.3", "0.1", "0.35", "0.8", "1.2", PERSSON),
+        ("1", "0.3", "0", "0.4", "1", "1", HERTZ),
+        ("2", "0.5", "-0.2", "0.7", "0.9", "1.5", HERTZ),
+    ];
+    for (p0, p1, q0, q1, friction, lambda, spec) in cases {
+        let file = format!("k,P_cos,P_sin,Q_cos,Q_sin\n0,{p0},0,{q0},0\n1,{p1},0,0,{q1}\n");
+        let case = CaseText::builder()
+            .p0(p0)
+            .p1(p1)
+            .q0(q0)
+            .q1(q1)
+            .phi("pi/2")
+            .friction(friction)
+            .lambda(lambda)
+            .compliance(spec)
+            .build()
+            .unwrap();
+        for digits in [None, Some(25)] {
+            let path = proven(&file, (friction, lambda, spec), digits);
+            assert!(matches!(path.summed, SummedOver::Segments(n) if n >= 4), "{file}");
+            let certified = dissipation_of(&case, digits, Duration::from_secs(60)).unwrap();
+            assert!(certified.answer.provenance.is_proven() && path.provenance.is_proven());
+            let (lower, upper) = certified.answer.value.enclosure.clone().unwrap();
+            let read = |text: &str| Float::with_val(512, Float::parse(text).unwrap());
+            assert!(overlap(ends(&path), (read(&lower), read(&upper))), "{file} {digits:?}");
+            if digits.is_some() {
+                assert_eq!(
+                    path.value.decimal.to_string(),
+                    certified.answer.value.decimal.to_string(),
+                    "{file}"
+                );
+            } else {
+                assert!(path.value.digits() >= 12, "{file}");
+            }
+        }
+    }
+}
+
+#[test]
+fn every_enclosure_holds_the_agreement_value_on_random_paths_whose_normal_load_varies() {
+    let mut uniform = fixed_uniform(0x2545_f491_4f6c_dd1d);
+    let mut covered = 0;
+    for _ in 0..6 {
+        let mut coefficient = |scale: f64| format!("{:.4}", scale * (2.0 * uniform() - 1.0));
+        // |Q| ≤ 0.1 + 0.45 + 0.25 < f·min P = 1.1·0.72.
+        let (mean, qc1, qs1, qc2, qs2) = (
+            coefficient(0.1),
+            coefficient(0.3),
+            coefficient(0.3),
+            coefficient(0.17),
+            coefficient(0.17),
+        );
+        let (pc1, ps1, pc2, ps2) = (
+            coefficient(0.13),
+            coefficient(0.13),
+            coefficient(0.06),
+            coefficient(0.06),
+        );
+        let file = format!(
+            "k,P_cos,P_sin,Q_cos,Q_sin\n0,1,0,{mean},0\n1,{pc1},{ps1},{qc1},{qs1}\n2,{pc2},{ps2},{qc2},{qs2}\n"
+        );
+        let contact = ("1.1", "1.3", PERSSON);
+        let agreed = w_agreed_to_41_digits(&file, contact, Drive::Force);
+        for digits in [None, Some(30)] {
+            let Ok(proven) = proven_w(&request(&file, contact, digits)) else {
+                continue;
+            };
+            covered += usize::from(digits.is_none());
+            let (lower, upper) = ends(&proven);
+            assert!(
+                lower <= agreed && agreed <= upper,
+                "{file} at {digits:?} digits: {agreed} outside [{lower}, {upper}]"
+            );
+            assert!(proven.value.digits() >= digits.unwrap_or(12), "{file}");
+        }
+    }
+    assert!(covered >= 4, "only {covered} of 6 paths proven");
+}
+
+#[test]
 fn the_command_line_prints_the_proven_w_with_its_provenance() {
     let directory = Scratch::new("cli");
     let file = directory.join("path.csv");
@@ -234,9 +319,11 @@ fn batch_rows_naming_constant_p_paths_report_the_proven_w_and_its_enclosure() {
     assert!(invalid.is_empty(), "{invalid:?}");
     let (constant, varying, driven) = (&rows[0], &rows[1], &rows[2]);
     assert_eq!(driven["method"], "path-displacement");
-    for proven in [constant, driven] {
+    for proven in [constant, varying, driven] {
         assert_eq!(proven["provenance"], "certified");
-        assert_eq!(proven["arithmetic"], "f64 intervals");
+        if proven != varying {
+            assert_eq!(proven["arithmetic"], "f64 intervals");
+        }
         assert!(proven["digits_certified"].as_u64().unwrap() >= 12, "{proven}");
         let (lower, upper) = (
             proven["enclosure"][0].as_str().unwrap().parse::<f64>().unwrap(),
@@ -245,15 +332,6 @@ fn batch_rows_naming_constant_p_paths_report_the_proven_w_and_its_enclosure() {
         let w = proven["W_f64"].as_f64().unwrap();
         assert!(lower <= w && w <= upper, "{proven}");
     }
-    assert_eq!(varying["provenance"], "agreement");
-    assert_eq!(varying["digits_certified"], 0);
-    assert!(
-        varying["no_enclosure"]
-            .as_str()
-            .unwrap()
-            .contains("constant normal load"),
-        "{varying}"
-    );
 }
 
 /// Local extremes of dense samples of a periodic sequence, from its largest round to it
@@ -278,7 +356,7 @@ fn constant_p_with_two_harmonics_in_q_is_proven_and_masing_over_rainflow_cycles(
     for harmonics in [[("0.3", "0"), ("0.1", "-0.15")], [("0.25", "0.05"), ("0.2", "0.1")]] {
         let file = constant_p_file("1", "0.05", &harmonics);
         let w = proven(&file, contact, Some(20));
-        assert!(w.cycles >= 1, "{file}");
+        assert!(matches!(w.summed, SummedOver::RainflowCycles(n) if n >= 1), "{file}");
         // Masing over the rainflow cycles of dense samples of Q, each the f64 four-segment W.
         let path = read_harmonics::<f64>(&file, Precision::DOUBLE).unwrap();
         let samples: Vec<f64> = (0..200_000)
@@ -456,20 +534,6 @@ fn every_enclosure_holds_the_40_digit_agreement_value_on_random_two_harmonic_pat
 #[test]
 fn paths_it_does_not_cover_rest_on_agreement_and_say_why() {
     let contact = ("1", "1", PERSSON);
-    let varying = "k,P_cos,P_sin,Q_cos,Q_sin\n0,1,0,0,0\n1,0.3,0,0.2,0.3\n";
-    assert!(matches!(
-        proven_w(&request(varying, contact, Some(12))),
-        Err(NotProven::NotCovered(_))
-    ));
-    let answer = path_answer(&request(varying, contact, Some(12))).unwrap();
-    assert_eq!(answer.w.provenance, "agreement");
-    assert_eq!(answer.w.digits_certified, 0);
-    assert!(answer
-        .w
-        .no_enclosure
-        .as_deref()
-        .unwrap()
-        .contains("constant normal load"));
     // Q = 0.4 cos θ + 0.1 cos 2θ: Q' has a triple root at π, which no precision isolates.
     let triple = constant_p_file("1", "0", &[("0.4", "0"), ("0.1", "0")]);
     let answer = path_answer(&request(&triple, contact, Some(12))).unwrap();
@@ -522,7 +586,7 @@ fn displacement_driving_at_constant_p_is_proven_and_equals_the_force_driven_w_at
             );
             assert!(driven.provenance.is_proven(), "{by_u}");
             assert_eq!(driven.provenance, forced.provenance, "{by_u} {digits:?}");
-            assert_eq!(driven.cycles, 1);
+            assert_eq!(driven.summed, SummedOver::RainflowCycles(1));
             assert!(overlap(ends(&driven), ends(&forced)), "{by_u} {digits:?}");
             if digits.is_some() {
                 assert_eq!(
@@ -574,7 +638,7 @@ fn displacement_cycles_in_gross_slip_are_proven_and_hold_the_agreement_value() {
         let agreed = w_agreed_to_41_digits(&file, contact, Drive::Displacement);
         for digits in [None, Some(30)] {
             let w = proven_by_displacement(&file, contact, digits);
-            assert_eq!(w.cycles, cycles, "{file}");
+            assert_eq!(w.summed, SummedOver::RainflowCycles(cycles), "{file}");
             let (lower, upper) = ends(&w);
             assert!(
                 lower <= agreed && agreed <= upper,

@@ -33,7 +33,7 @@ impl PyPath {
         self.answer.w.value
     }
 
-    /// W as printed: the digits two working precisions agree on.
+    /// W as printed: the digits its enclosure proves, or that two working precisions agree on.
     #[getter]
     fn text(&self) -> &str {
         &self.answer.w.text
@@ -59,8 +59,9 @@ impl PyPath {
         self.answer.w.digits_certified
     }
 
-    /// What vouches for W: ``"certified"`` (a rigorous enclosure: force-driven at constant P)
-    /// or ``"agreement"`` (two working precisions agree; not a proof).
+    /// What vouches for W: ``"certified"`` (a rigorous enclosure), ``"exact"`` (a constant Q
+    /// dissipates nothing) or ``"agreement"`` (two working precisions agree; not a proof,
+    /// with the reason in the text).
     #[getter]
     fn provenance(&self) -> &str {
         self.answer.w.provenance

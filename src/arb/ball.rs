@@ -1084,6 +1084,44 @@ impl Real for Ball {
             Some(span)
         }
     }
+    fn lies_inside(&self, outer: &Ball) -> bool {
+        // SAFETY: initialised balls, read only.
+        unsafe {
+            let real = arb_contains_interior(&outer.raw.real, &self.raw.real) != 0;
+            let imaginary = arb_contains_interior(&outer.raw.imag, &self.raw.imag) != 0;
+            real && (imaginary || (self.is_real() && outer.is_real()))
+        }
+    }
+    fn real_ends(&self) -> (Ball, Ball) {
+        let (mut lower, mut upper) = (Ball::zero(self.precision), Ball::zero(self.precision));
+        let bits = self.slong_precision();
+        // SAFETY: initialised; each end is rounded outward to the working precision and
+        // set as an exact midpoint, the radius left zero.
+        unsafe {
+            let (mut low, mut high) = (arf_struct::default(), arf_struct::default());
+            arf_init(&mut low);
+            arf_init(&mut high);
+            arb_get_lbound_arf(&mut low, self.real_part(), bits);
+            arb_get_ubound_arf(&mut high, self.real_part(), bits);
+            arb_set_arf(lower.real_mut(), &low);
+            arb_set_arf(upper.real_mut(), &high);
+            arf_clear(&mut low);
+            arf_clear(&mut high);
+        }
+        (lower, upper)
+    }
+    fn centred_square(&self) -> Ball {
+        let reach = self.magnitude();
+        let mut result = Ball::zero(self.precision);
+        // SAFETY: initialised; each part gets the radius |self| about a zero midpoint.
+        unsafe {
+            arb_add_error_mag(&mut result.raw.real, &reach.0);
+            if !self.is_real() {
+                arb_add_error_mag(&mut result.raw.imag, &reach.0);
+            }
+        }
+        result
+    }
     fn midpoint_value(&self) -> Ball {
         let mut result = Ball::zero(self.precision);
         // SAFETY: initialised; the midpoint is copied exactly, the radius left zero.

@@ -97,10 +97,11 @@ The path must keep P > 0 and |Q| < fP at every θ (force driving); it is refused
 it does not. Under --drive displacement P must be constant and u is in the units of the outputs' u \
 (λf times the approach); Q follows by Masing's rules and saturates at ±fP (gross slip): the contact \
 starts unloaded, is loaded monotonically to the extreme of u of largest magnitude, and the steady \
-loop is the period that starts there. Force-driven at constant P, W is proven (a rigorous enclosure, \
-provenance certified): the 12 to 15 digits f64 intervals prove without --digits, N with --digits N. \
-Otherwise W is printed with the digits on which two working precisions agree (agreement, not a \
-proof; no_enclosure says why): 15 without --digits, N with --digits N.")]
+loop is the period that starts there. W is proven (a rigorous enclosure, provenance certified), at \
+constant P and where P varies: the 12 to 15 digits f64 intervals prove without --digits (else 15 \
+on Arb balls), N with --digits N. Where the proof does not reach, W is printed with the digits on \
+which two working precisions agree (agreement, not a proof; no_enclosure says why): 15 without \
+--digits, N with --digits N.")]
 pub struct PathArgs {
     #[command(flatten)]
     pub file: PathFileArgs,

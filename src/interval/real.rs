@@ -248,6 +248,25 @@ impl Real for Interval {
         }
         Some((self.re.lo, self.re.hi))
     }
+    fn lies_inside(&self, outer: &Self) -> bool {
+        let strictly = |inner: Span, outer: Span| outer.lo < inner.lo && inner.hi < outer.hi;
+        strictly(self.re, outer.re) && (strictly(self.im, outer.im) || (self.im.is_zero() && outer.im.is_zero()))
+    }
+    fn real_ends(&self) -> (Self, Self) {
+        (
+            Interval::real(Span::point(self.re.lo)),
+            Interval::real(Span::point(self.re.hi)),
+        )
+    }
+    fn centred_square(&self) -> Self {
+        let reach = self.re.magnitude().max(self.im.magnitude());
+        let around = Span::new(-reach, reach);
+        if self.im.is_zero() {
+            Interval::real(around)
+        } else {
+            Interval::from_parts(around, around)
+        }
+    }
     fn midpoint_value(&self) -> Self {
         Interval::real(Span::point(self.midpoint()))
     }

@@ -12,9 +12,76 @@ use crate::doubts::if_decided;
 use crate::quad::{integrate, Piece, QuadError, Settings};
 use crate::real::Real;
 
-use super::events::SteadyCycle;
+use super::events::{Point, Segment, SteadyCycle};
 use super::input::{LoadPath, PathError};
 use super::Contact;
+
+/// The integrand of W/(λf²) at θ in `segment`: q̃ [(v'(s₋) − v'(P)) x' + (v'(s₊) − v'(P)) y']
+/// − ½ v''(P) q̃² P', with q̃ = q − q̄. Analytic in θ over a segment, whose front formulas
+/// are fixed: what both the quadrature and the enclosure integrate.
+pub fn work_rate<R: Real>(
+    cycle: &SteadyCycle<R>,
+    segment: &Segment<R>,
+    theta: &R,
+    compliance: &dyn Compliance<R>,
+) -> R {
+    work_rate_at(cycle, segment, &cycle.point(theta), compliance, None, SlopeChanges::Own)
+}
+
+/// How the integrand forms the slope changes v'(s) − v'(P): by the compliance's own form,
+/// free of cancellation at real points, or as the plain difference of two slopes, the
+/// same analytic function, which widens less on the complex boxes a rule's bound takes.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SlopeChanges {
+    /// [`Compliance::slope_change`].
+    Own,
+    /// v'(s) − v'(P).
+    Plain,
+}
+
+/// [`work_rate`] with the slope changes formed as `changes` says.
+pub fn work_rate_with<R: Real>(
+    cycle: &SteadyCycle<R>,
+    segment: &Segment<R>,
+    theta: &R,
+    compliance: &dyn Compliance<R>,
+    changes: SlopeChanges,
+) -> R {
+    work_rate_at(cycle, segment, &cycle.point(theta), compliance, None, changes)
+}
+
+/// The same integrand in the entry angle θₑ of the segment's front (`forward` or not)
+/// inside an entry piece: at θ(θₑ), where that front is at the load P(θₑ), times
+/// dθ/dθₑ = −∂D/∂θₑ / ∂D/∂θ, D the divided difference (v(θ) − v(θₑ))/(θ − θₑ) of the slip
+/// variable, finite where θ and θₑ meet at a turning point of v.
+pub fn work_rate_in_entry_angle<R: Real>(
+    cycle: &SteadyCycle<R>,
+    segment: &Segment<R>,
+    entered: &R,
+    forward: bool,
+    compliance: &dyn Compliance<R>,
+    changes: SlopeChanges,
+) -> R {
+    let theta = cycle.current_angle(segment, entered, forward);
+    let point = cycle.point(&theta);
+    let load = cycle.point(entered).p;
+    let rate = work_rate_at(cycle, segment, &point, compliance, Some((forward, &load)), changes);
+    rate * &cycle.current_angle_rate(&theta, entered, forward)
+}
+
+/// [`work_rate`] at a point, one front's load `known` where given.
+fn work_rate_at<R: Real>(
+    cycle: &SteadyCycle<R>,
+    segment: &Segment<R>,
+    point: &Point<R>,
+    compliance: &dyn Compliance<R>,
+    known: Option<(bool, &R)>,
+    changes: SlopeChanges,
+) -> R {
+    let q = point.q.clone() - &cycle.mean_tangential();
+    let slip = cycle.slip_rate_with(segment, point, compliance, known, changes == SlopeChanges::Plain);
+    q.clone() * &slip - &(compliance.curvature(&point.p) * &q.square() * &point.dp * &q.ratio(1, 2))
+}
 
 /// W of a path, with its quadrature's error estimate.
 #[derive(Clone, Debug)]
@@ -80,23 +147,15 @@ pub fn dissipation_of<R: Real>(
             evaluations: 0,
         });
     }
-    let mean = cycle.mean_tangential();
-    let half = like.ratio(1, 2);
     let pieces: Vec<Piece<'_, R>> = cycle
         .segments
         .iter()
         .map(|segment| {
-            let (mean, half) = (mean.clone(), half.clone());
             Piece::new(
                 "path segment",
                 segment.start.clone(),
                 segment.end.clone(),
-                move |theta: &R| {
-                    let point = cycle.point(theta);
-                    let q = point.q.clone() - &mean;
-                    let slip = cycle.slip_rate(segment, &point, compliance);
-                    q.clone() * &slip - &(compliance.curvature(&point.p) * &q.square() * &point.dp * &half)
-                },
+                move |theta: &R| work_rate(cycle, segment, theta, compliance),
             )
         })
         .collect();

@@ -18,6 +18,7 @@ use crate::real::Real;
 
 use super::input::{padded, LoadPath, Multiples, PathError, TrigPoly};
 use super::memory::{Break, Known, Memory, Origin, Piece, Position, Shape, Signs};
+use super::top::TopSearch;
 use super::Contact;
 
 /// Sample points per harmonic when isolating the roots of a trigonometric polynomial.
@@ -30,6 +31,8 @@ pub(crate) struct Loads<R> {
     tangential: TrigPoly<R>,
     normal_rate: TrigPoly<R>,
     tangential_rate: TrigPoly<R>,
+    /// x = q − P and y = q + P, whose level sets hold the slip fronts.
+    slip_variables: [TrigPoly<R>; 2],
     /// The same loads in f64 where the precision is higher: where Newton's steps on them,
     /// at a few nanoseconds each, end is where a root's steps at the working precision start.
     guide: Option<Box<Loads<f64>>>,
@@ -38,6 +41,7 @@ pub(crate) struct Loads<R> {
 /// P, q and their rates at one angle.
 #[derive(Clone, Debug)]
 pub(crate) struct Point<R> {
+    pub theta: R,
     pub p: R,
     pub q: R,
     pub dp: R,
@@ -65,6 +69,14 @@ impl<R: Real> Point<R> {
             self.y()
         }
     }
+    /// x' (`forward`) or y'.
+    pub fn slip_rate_of(&self, forward: bool) -> R {
+        if forward {
+            self.dx()
+        } else {
+            self.dy()
+        }
+    }
     /// (x − value, x').
     pub(crate) fn x_and_rate(&self, value: &R) -> (R, R) {
         (self.x() - value, self.dx())
@@ -84,20 +96,25 @@ impl<R: Real> Loads<R> {
         let path = padded(path);
         let inverse = friction.int(1) / friction;
         let tangential = path.tangential.scaled(&inverse);
-        let guide = (friction.precision().in_bits() > f64::MANTISSA_DIGITS).then(|| {
-            let rough = |poly: &TrigPoly<R>| TrigPoly {
-                cos: poly.cos.iter().map(Real::to_f64_lossy).collect(),
-                sin: poly.sin.iter().map(Real::to_f64_lossy).collect(),
-            };
-            let rough_path = LoadPath {
-                normal: rough(&path.normal),
-                tangential: rough(&path.tangential),
-            };
-            Box::new(Loads::new(&rough_path, &friction.to_f64_lossy()))
-        });
+        let guide =
+            (friction.precision().in_bits() > f64::MANTISSA_DIGITS || friction.real_span().is_some()).then(|| {
+                let rough = |poly: &TrigPoly<R>| TrigPoly {
+                    cos: poly.cos.iter().map(Real::to_f64_lossy).collect(),
+                    sin: poly.sin.iter().map(Real::to_f64_lossy).collect(),
+                };
+                let rough_path = LoadPath {
+                    normal: rough(&path.normal),
+                    tangential: rough(&path.tangential),
+                };
+                Box::new(Loads::new(&rough_path, &friction.to_f64_lossy()))
+            });
         Loads {
             normal_rate: path.normal.derivative(),
             tangential_rate: tangential.derivative(),
+            slip_variables: [
+                tangential.combined(&path.normal, -1),
+                tangential.combined(&path.normal, 1),
+            ],
             normal: path.normal,
             tangential,
             guide,
@@ -121,9 +138,16 @@ impl<R: Real> Loads<R> {
         root.is_finite().then(|| R::from_f64(root, a.precision()))
     }
 
+    /// The divided difference (x(a) − x(b))/(a − b) (`forward`) or (y(a) − y(b))/(a − b),
+    /// and its derivative in a.
+    pub(crate) fn slip_variable_difference(&self, a: &R, b: &R, forward: bool) -> (R, R) {
+        self.slip_variables[usize::from(!forward)].divided_difference(a, b)
+    }
+
     pub fn at(&self, theta: &R) -> Point<R> {
         let multiples = Multiples::of(theta, self.normal.highest());
         Point {
+            theta: theta.clone(),
             p: self.normal.at(&multiples),
             q: self.tangential.at(&multiples),
             dp: self.normal_rate.at(&multiples),
@@ -159,7 +183,7 @@ fn sign<R: Real>(value: &R) -> i8 {
 
 /// The sign of a value where it is decided, `None` for an enclosure that holds zero and
 /// other numbers (not counted as a doubt: the caller stops or subdivides there).
-fn decided_sign<R: Real>(value: &R) -> Option<i8> {
+pub(crate) fn decided_sign<R: Real>(value: &R) -> Option<i8> {
     if_decided(|| sign(value))
 }
 
@@ -261,6 +285,76 @@ pub(crate) fn solve_between<R: Real>(
     let (low, high) = tightened(&f, &candidate, (low, high), low_sign, &tolerance);
     low.union(&high)
 }
+
+/// The root θ near the point `root` of g(θ) = 0, for every g of a family at once (g
+/// depends on a value that is real, or a complex box of a quadrature's ellipse), by
+/// Krawczyk's test: with Y = 1/g'(root) and a box Θ around the root,
+/// K = root − Y g(root) + (1 − Y g'(Θ))(Θ − root) inside Θ's interior proves that Θ holds
+/// one root for each g, and K holds them (proofs/periodic-loading.md, "The entry front on
+/// complex boxes"). `at_root` encloses g(root) over the family and `slope` is g'(root) at
+/// a point; `rate` encloses g' over a box for the whole family. A box that no widening
+/// proves is a doubt.
+pub(crate) fn krawczyk_root<R: Real>(rate: impl Fn(&R) -> R, at_root: &R, slope: &R, root: &R) -> R {
+    let inverse = (slope.int(1) / slope).midpoint_value();
+    let step = -(at_root.clone() * &inverse);
+    // A box symmetric about the root, twice Newton's step and a few ulps of the root wide.
+    let slack = (root.abs() + &root.int(1)) * &root.epsilon_like() * &root.int(64);
+    let mut radius = (step.clone() * &root.int(2))
+        .centred_square()
+        .union(&slack.centred_square());
+    for _ in 0..KRAWCZYK_WIDENINGS {
+        let theta = root.clone() + &radius;
+        let offset = theta.clone() - root;
+        let contraction = root.int(1) - &(inverse.clone() * &rate(&theta));
+        let enclosure = root.clone() + &step + &(contraction * &offset);
+        if enclosure.lies_inside(&theta) {
+            return enclosure;
+        }
+        radius *= &root.int(4);
+    }
+    undecided();
+    root.clone() + &radius
+}
+
+/// The angle t ≠ θ (modulo the period) where the slip variable (x `forward`, else y)
+/// takes its value at θ, near the point `root`, for every θ in `other` at once (real, or
+/// a complex box of a quadrature's ellipse): Krawczyk's test on the divided difference
+/// D(t, θ) = (v(t) − v(θ))/(t − θ), θ moved by whole periods to `root`'s, whose root stays
+/// simple where t and θ meet at a turning point of v. D(root, θ) is taken in the
+/// mean-value form about θ's midpoint m, D(root, m) + ∂D/∂θ(root, θ)·(θ − m), which a
+/// box of θ widens far less than D itself (∂D/∂θ(a, b) is ∂D/∂a(b, a): D is symmetric).
+pub(crate) fn same_level_angle<R: Real>(loads: &Loads<R>, other: &R, root: &R, forward: bool) -> R {
+    let period = other.pi_like() * &other.int(2);
+    let periods = ((root.to_f64_lossy() - other.midpoint_value().to_f64_lossy()) / period.to_f64_lossy()).round();
+    let moved = other.clone() + &(period * &other.int(periods as i64));
+    let middle = moved.midpoint_value();
+    // Newton's steps on points from a root good to f64 to about the working precision:
+    // Krawczyk's step then doubles its digits once more.
+    let mut root = root.midpoint_value();
+    let mut digits = f64::MANTISSA_DIGITS;
+    while digits < root.precision().in_bits() / 2 {
+        let (value, slope) = loads.slip_variable_difference(&root, &middle, forward);
+        let next = (root.clone() - &(value / &slope)).midpoint_value();
+        if !next.is_finite() {
+            break;
+        }
+        root = next;
+        digits *= 2;
+    }
+    let root = &root;
+    let (at_middle, slope) = loads.slip_variable_difference(root, &middle, forward);
+    let (_, along_other) = loads.slip_variable_difference(&moved, root, forward);
+    let at_root = at_middle + &(along_other * &(moved.clone() - &middle));
+    krawczyk_root(
+        |t: &R| loads.slip_variable_difference(t, &moved, forward).1,
+        &at_root,
+        &slope,
+        root,
+    )
+}
+
+/// Fourfold widenings of Krawczyk's box before its root is counted undecided.
+const KRAWCZYK_WIDENINGS: usize = 3;
 
 /// A bracket (low < high, f of sign `low_sign` at low and of the other at high) shrunk to
 /// points just either side of `x` where f's sign is decided and right: Newton approaches
@@ -618,6 +712,11 @@ pub struct SteadyCycle<R> {
     pub lowest_slip: R,
     /// The highest normal load of the path.
     pub highest_load: R,
+    /// The windows where P falls through a piece of elements that entered in stick with a
+    /// front under way, searched for where the front meets the top of the contact: the
+    /// cuts that are found by sampling, and proven afterwards ([`SteadyCycle::sampled_cut_error`]).
+    #[cfg_attr(not(feature = "certified"), allow(dead_code))]
+    pub(crate) top_searches: Vec<TopSearch<R>>,
 }
 
 /// The slip fronts at one angle: (s₋, s₊), each at the top of the contact when its slip
@@ -697,8 +796,11 @@ impl<R: Real> SteadyCycle<R> {
             period: tau.clone(),
         };
         let mut segments = Vec::new();
+        let mut top_searches = Vec::new();
         for (a, b, signs) in &intervals {
-            for (start, end) in split(&loads, &memory, &inflections, *a, *b, *signs) {
+            let (pieces, searches) = split(&loads, &memory, &inflections, *a, *b, *signs);
+            top_searches.extend(searches);
+            for (start, end) in pieces {
                 let middle = ((start.clone() + &end) / &like.int(2)).midpoint_value();
                 let point = loads.at(&middle);
                 segments.push(Segment {
@@ -716,6 +818,7 @@ impl<R: Real> SteadyCycle<R> {
             start,
             lowest_slip,
             highest_load,
+            top_searches,
         })
     }
 
@@ -734,7 +837,7 @@ impl<R: Real> SteadyCycle<R> {
             FrontFormula::AtLoad(s) => s.clone(),
             FrontFormula::InPiece(piece) => {
                 let value = point.slip_variable(forward);
-                piece.load_where(&self.loads, &value, forward)
+                piece.front_at(&self.loads, &point.theta, &value, forward)
             }
         }
     }
@@ -748,16 +851,139 @@ impl<R: Real> SteadyCycle<R> {
 
     /// The part of dU/dθ that slip adds, (v'(s₋) − v'(P)) x' + (v'(s₊) − v'(P)) y'.
     pub(crate) fn slip_rate(&self, segment: &Segment<R>, point: &Point<R>, compliance: &dyn Compliance<R>) -> R {
+        self.slip_rate_with(segment, point, compliance, None, false)
+    }
+
+    /// [`SteadyCycle::slip_rate`] with one front's load `known` (forward or not, and the
+    /// load) rather than found from the memory; with each slope change a `plain`
+    /// difference of slopes v'(s) − v'(P) where asked, the same function, whose enclosure
+    /// on a complex box a compliance's own form of the change (a root raised to powers
+    /// and divided, for Hertz) can widen far more.
+    pub(crate) fn slip_rate_with(
+        &self,
+        segment: &Segment<R>,
+        point: &Point<R>,
+        compliance: &dyn Compliance<R>,
+        known: Option<(bool, &R)>,
+        plain: bool,
+    ) -> R {
         let mut rate = point.p.int(0);
         for (formula, forward) in [(&segment.forward, true), (&segment.backward, false)] {
             if let FrontFormula::AtTop = formula {
                 continue;
             }
-            let front = self.front_load(formula, point, forward);
-            let change = compliance.slope_change(&point.p, &(front - &point.p));
-            rate += &(change * &if forward { point.dx() } else { point.dy() });
+            let front = match known {
+                Some((which, load)) if which == forward => load.clone(),
+                _ => self.front_load(formula, point, forward),
+            };
+            let difference = || compliance.slope(&front) - &compliance.slope(&point.p);
+            // The compliance's own form asks where the gap lies (a series near 0): on an
+            // enclosure that straddles 0 (a front at the top) the plain difference, an
+            // enclosure of the same value, serves.
+            let change = if plain {
+                difference()
+            } else {
+                if_decided(|| compliance.slope_change(&point.p, &(front.clone() - &point.p))).unwrap_or_else(difference)
+            };
+            rate += &(change * &point.slip_rate_of(forward));
         }
         rate
+    }
+
+    /// The front of `segment` inside a piece of elements that entered in stick that, at
+    /// the point `middle` of it, moves faster than θ (|v'(θ)| > |v'(θₑ)|), if one does:
+    /// forward or not. Near it the segment is integrated in the entry angle θₑ, in which
+    /// the fold where v'(θₑ) vanishes is no singularity. Asked on enclosures; the choice
+    /// does not bear on rigour.
+    #[cfg_attr(not(feature = "certified"), allow(dead_code))]
+    pub(crate) fn racing_entry_front(&self, segment: &Segment<R>, middle: &R) -> Option<bool> {
+        let middle = middle.midpoint_value();
+        let now = self.loads.at(&middle);
+        for (formula, forward) in [(&segment.forward, true), (&segment.backward, false)] {
+            let FrontFormula::InPiece(piece) = formula else {
+                continue;
+            };
+            if !matches!(piece.shape, Shape::Entry { .. }) {
+                continue;
+            }
+            let value = now.slip_variable(forward);
+            let Some(entered) = if_decided(|| piece.entry_angle_at(&self.loads, &middle, &value, forward)) else {
+                continue;
+            };
+            let then = self.loads.at(&entered);
+            let rate = |point: &Point<R>| point.slip_rate_of(forward).abs().to_f64_lossy();
+            if rate(&now) > rate(&then) {
+                return Some(forward);
+            }
+        }
+        None
+    }
+
+    /// The entry angle θₑ of the front (`forward` or not) of `segment` at `theta` (a
+    /// segment's end), where its formula puts it inside an entry piece
+    /// ([`Piece::entry_angle_at`]), or the piece's end angle where the front reaches it
+    /// there ([`Piece::end_angle_at`]); undecided otherwise.
+    #[cfg_attr(not(feature = "certified"), allow(dead_code))]
+    pub(crate) fn entry_angle(&self, segment: &Segment<R>, theta: &R, forward: bool) -> R {
+        let formula = if forward { &segment.forward } else { &segment.backward };
+        match formula {
+            FrontFormula::InPiece(piece) => {
+                let value = self.loads.at(theta).slip_variable(forward);
+                if_decided(|| piece.entry_angle_at(&self.loads, theta, &value, forward))
+                    .or_else(|| piece.end_angle_at(&value, forward))
+                    .unwrap_or_else(|| {
+                        undecided();
+                        theta.clone()
+                    })
+            }
+            _ => theta.clone(),
+        }
+    }
+
+    /// The angle θ of `segment` at which the front (`forward` or not) reaches the
+    /// element that entered at `entered`: v(θ) = v(θₑ), for every θₑ in `entered` at once
+    /// ([`same_level_angle`]), from the root at the middle bracketed by the segment's ends
+    /// (the nearer end where the signs there are not decided).
+    pub(crate) fn current_angle(&self, segment: &Segment<R>, entered: &R, forward: bool) -> R {
+        let level = self.loads.at(&entered.midpoint_value()).slip_variable(forward);
+        let (start, end) = (segment.start.midpoint_value(), segment.end.midpoint_value());
+        let offset = |t: &R| {
+            let point = self.loads.at(t);
+            (point.slip_variable(forward) - &level, point.slip_rate_of(forward))
+        };
+        let guided = self.loads.start_for(
+            if forward { Point::x_and_rate } else { Point::y_and_rate },
+            &level,
+            &start,
+            &end,
+        );
+        let root = guided
+            .or_else(|| if_decided(|| solve(offset, &start, &end)))
+            .unwrap_or_else(|| {
+                let off = |t: &R| offset(t).0.abs().to_f64_lossy();
+                if off(&start) <= off(&end) {
+                    start.clone()
+                } else {
+                    end.clone()
+                }
+            })
+            .midpoint_value();
+        same_level_angle(&self.loads, entered, &root, forward)
+    }
+
+    /// dθ/dθₑ at [`SteadyCycle::current_angle`] `theta`: with D(a, b) the divided
+    /// difference of the slip variable, D(θ, θₑ) = 0 gives −∂D/∂b / ∂D/∂a, which stays
+    /// finite where both v'(θ) and v'(θₑ) vanish (θ and θₑ meeting at a turning point),
+    /// unlike v'(θₑ)/v'(θ).
+    pub(crate) fn current_angle_rate(&self, theta: &R, entered: &R, forward: bool) -> R {
+        let period = theta.pi_like() * &theta.int(2);
+        let periods = ((theta.midpoint_value().to_f64_lossy() - entered.midpoint_value().to_f64_lossy())
+            / period.to_f64_lossy())
+        .round();
+        let moved = entered.clone() + &(period * &theta.int(periods as i64));
+        let (_, along_entry) = self.loads.slip_variable_difference(&moved, theta, forward);
+        let (_, along_current) = self.loads.slip_variable_difference(theta, &moved, forward);
+        -(along_entry / &along_current)
     }
 
     /// The mean of q = Q/f over the cycle.
@@ -829,7 +1055,9 @@ impl<R: Real> Inflections<R> {
 }
 
 /// The interval [a, b] split where a front's formula changes: a front crossing an end of a
-/// piece of the memory, P crossing one, and a front meeting the top of the contact.
+/// piece of the memory, P crossing one, and a front meeting the top of the contact; and
+/// the windows searched for the top (P falling through an entry piece with a front under
+/// way), whose cuts are found by sampling and proven afterwards ([`TopSearch`]).
 fn split<R: Real>(
     loads: &Loads<R>,
     memory: &Memory<R>,
@@ -837,7 +1065,7 @@ fn split<R: Real>(
     (a, first): Break<'_, R>,
     (b, last): Break<'_, R>,
     signs: Signs,
-) -> Vec<(R, R)> {
+) -> (Vec<(R, R)>, Vec<TopSearch<R>>) {
     let mut nodes = vec![a.clone()];
     nodes.extend(crossings(loads, memory, inflections, (a, first), (b, last), signs));
     nodes.push(b.clone());
@@ -855,31 +1083,47 @@ fn split<R: Real>(
     // through an entry piece is the window searched.
     let through_entry = |u: &R, v: &R| {
         let load = loads.p(&((u.clone() + v) / &u.int(2)));
-        signs.p < 0
-            && memory
-                .pieces
-                .iter()
-                .find(|p| p.hi.value >= load)
-                .is_some_and(|p| matches!(p.shape, Shape::Entry { .. }))
+        if signs.p >= 0 {
+            return None;
+        }
+        let piece = memory.pieces.iter().find(|p| p.hi.value >= load)?;
+        matches!(piece.shape, Shape::Entry { .. }).then(|| piece.clone())
     };
     let mut pieces = Vec::new();
+    let mut searches = Vec::new();
     for w in nodes.windows(2) {
         let mut inner = Vec::new();
-        let searched = through_entry(&w[0], &w[1]);
+        let entered = through_entry(&w[0], &w[1]);
         for (active, forward) in [(signs.x > 0, true), (signs.y < 0, false)] {
-            if !active || !searched {
+            let (true, Some(entered)) = (active, &entered) else {
                 continue;
-            }
+            };
+            let mut search = TopSearch {
+                window: (w[0].clone(), w[1].clone()),
+                cut: None,
+                forward,
+                entered: entered.clone(),
+            };
             let quarter = |k: i64| w[0].clone() + &((w[1].clone() - &w[0]) * &w[0].ratio(k, 4));
             // Tested just inside the ends: at an end the front may sit exactly at the top.
             let (first, last) = (
                 quarter(0) + &((w[1].clone() - &w[0]) * &w[0].ratio(1, 1 << 20)),
                 quarter(4) - &((w[1].clone() - &w[0]) * &w[0].ratio(1, 1 << 20)),
             );
-            let (at_first, at_last) = (capped(&first, forward), capped(&last, forward));
-            if at_first != at_last {
-                inner.push(bisect_predicate(|t: &R| capped(t, forward) == at_last, &first, &last));
+            // Undecided samples leave the window to the proof after it, which then fails
+            // wherever the front does meet the top.
+            let sampled = (
+                if_decided(|| capped(&first, forward)),
+                if_decided(|| capped(&last, forward)),
+            );
+            if let (Some(at_first), Some(at_last)) = sampled {
+                if at_first != at_last {
+                    let cut = bisect_predicate(|t: &R| capped(t, forward) == at_last, &first, &last);
+                    search.cut = Some(cut.clone());
+                    inner.push(cut);
+                }
             }
+            searches.push(search);
         }
         inner.sort_by(|u, v| u.partial_cmp(v).unwrap_or(std::cmp::Ordering::Equal));
         let mut previous = w[0].clone();
@@ -890,7 +1134,7 @@ fn split<R: Real>(
         pieces.push((previous, w[1].clone()));
     }
     pieces.retain(|(u, v)| v > u);
-    pieces
+    (pieces, searches)
 }
 
 /// The angles in (a, b), in order, where a front crosses an end of a piece of the memory
@@ -1010,6 +1254,85 @@ mod tests {
     /// The roots at 256 bits of MPFR, the reference the enclosures must hold.
     fn reference_roots(cos: &[&str], sin: &[&str]) -> Vec<Float> {
         sign_changes(&poly::<Float>(cos, sin, Precision::bits(256)))
+    }
+
+    #[test]
+    fn the_divided_difference_is_the_difference_quotient_and_the_slope_where_its_ends_meet() {
+        let precision = Precision::bits(256);
+        let p = poly::<Float>(&COS, &SIN, precision);
+        let read = |text: &str| Float::with_val(256, Float::parse(text).unwrap());
+        for (a, b) in [("0.7", "2.1"), ("1.3", "1.30001"), ("2.5", "2.5"), ("0.2", "-3.9")] {
+            let (a, b) = (read(a), read(b));
+            let (value, rate) = p.divided_difference(&a, &b);
+            let expected = if a == b {
+                p.derivative().value(&a)
+            } else {
+                (p.value(&a) - p.value(&b)) / (a.clone() - &b)
+            };
+            assert!(Float::with_val(256, &value - &expected).abs() < 1e-70, "{a} {b}");
+            // The rate against a central difference in a.
+            let h = read("1e-25");
+            let ahead = p.divided_difference(&(a.clone() + &h), &b).0;
+            let behind = p.divided_difference(&(a.clone() - &h), &b).0;
+            let slope = (ahead - behind) / (h * 2u32);
+            let off = Float::with_val(256, &rate - &slope).abs();
+            assert!(off < 1e-40, "{a} {b}: {off}");
+        }
+        // On balls: the series near a = b and the quotient apart both hold the MPFR values.
+        let q = poly::<Ball>(&COS, &SIN, Precision::bits(128));
+        for (a, b) in [("1.3", "1.30001"), ("0.7", "2.1")] {
+            let (ball_a, ball_b) = (
+                Ball::parse_decimal(a, Precision::bits(128)).unwrap(),
+                Ball::parse_decimal(b, Precision::bits(128)).unwrap(),
+            );
+            let ((value, rate), doubts) = watch(|| q.divided_difference(&ball_a, &ball_b));
+            assert!(doubts.none());
+            let (reference, reference_rate) = p.divided_difference(&read(a), &read(b));
+            assert!(value.contains(&reference) && rate.contains(&reference_rate), "{a} {b}");
+            assert!(value.relative_radius() < 1e-30, "{a} {b}: {value:?}");
+        }
+    }
+
+    #[test]
+    fn a_fronts_angle_is_enclosed_by_krawczyk_on_points_complex_boxes_and_at_a_turning_point() {
+        // One harmonic, f = 1: x = q − P = 0.2 cos θ − 1, so x(t) = x(θ) at t = 2π − θ.
+        let loads_in = |precision: Precision| -> Loads<Ball> {
+            let path = LoadPath {
+                normal: poly(&["1", "0.3"], &["0", "0"], precision),
+                tangential: poly(&["0", "0.5"], &["0", "0"], precision),
+            };
+            Loads::new(&path, &Ball::from_i64(1, precision))
+        };
+        let precision = Precision::bits(128);
+        let loads = loads_in(precision);
+        let tau = Ball::pi(precision) * &Ball::from_i64(2, precision);
+        // 3.1415 lies 9.3e-5 before π, where x turns: t and θ meet there.
+        for theta in ["0.7", "3.1415", "5.9"] {
+            let theta = Ball::parse_decimal(theta, precision).unwrap();
+            let exact = tau.clone() - &theta;
+            let near = exact.midpoint_value() + &Ball::parse_decimal("1e-12", precision).unwrap();
+            let (angle, doubts) = watch(|| same_level_angle(&loads, &theta, &near, true));
+            assert!(doubts.none(), "{theta:?}");
+            assert!((angle.clone() - &exact).contains_zero(), "{theta:?}: {angle:?}");
+            assert!(angle.relative_radius() < 1e-30, "{theta:?}: {angle:?}");
+        }
+        // A complex box of θ in f64 intervals: its enclosure holds 2π − θ at every corner.
+        let path = LoadPath {
+            normal: poly::<Interval>(&["1", "0.3"], &["0", "0"], Precision::DOUBLE),
+            tangential: poly(&["0", "0.5"], &["0", "0"], Precision::DOUBLE),
+        };
+        let loads = Loads::new(&path, &Interval::new(1.0, 1.0));
+        let theta = Interval::rectangle((0.69, 0.71), (-0.01, 0.01));
+        let near = Interval::new(5.583, 5.583);
+        let (angle, doubts) = crate::doubts::watch(|| {
+            crate::doubts::with_analytic(true, || same_level_angle(&loads, &theta, &near, true))
+        });
+        assert!(doubts.none(), "{angle:?}");
+        let (re, im) = (angle.real_bounds(), angle.imaginary_bounds());
+        let tau = 2.0 * std::f64::consts::PI;
+        assert!(re.0 <= tau - 0.71 && tau - 0.69 <= re.1, "{angle:?}");
+        assert!(im.0 <= -0.01 && 0.01 <= im.1, "{angle:?}");
+        assert!(re.1 - re.0 < 0.1 && im.1 - im.0 < 0.1, "{angle:?}");
     }
 
     #[test]

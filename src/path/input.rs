@@ -131,6 +131,68 @@ impl<R: Real> Multiples<R> {
     }
 }
 
+/// sinc z = sin z / z and its derivative (z cos z − sin z)/z², given sin z and cos z.
+/// Where z lies in the square |Re z|, |Im z| ≤ m ≤ 1 (both are analytic at 0, where the
+/// quotients are not) by their Taylor series to the precision's ε, each tail enclosed in
+/// a square of twice its first term's bound at |w| ≤ √2·m, where the terms fall at least
+/// fourfold.
+fn sinc_and_rate<R: Real>(z: &R, sin: &R, cos: &R) -> (R, R) {
+    let reach = z.centred_square();
+    let most = match reach.real_span() {
+        Some((_, most)) => most,
+        None => z.abs().to_f64_lossy(),
+    };
+    if most.is_nan() || most > 1.0 {
+        return (sin.clone() / z, (z.clone() * cos - sin) / &z.square());
+    }
+    if most == 0.0 {
+        return (z.int(1), z.int(0));
+    }
+    // log2 of a bound of |w|² on the square.
+    let log2_square = (2.0 * most * most).log2() + 1e-9;
+    let goal = -f64::from(z.precision().in_bits()) - 10.0;
+    let square = z.square();
+    let (mut sinc, mut rate) = (z.int(1), z.int(0));
+    // (−1)^j z^(2j)/(2j+1)!, and (−1)^j z^(2j−1)/(2j+1)!, whose 2j-fold is the rate's term.
+    let (mut term, mut odd) = (z.int(1), z.int(0));
+    // log2 (2j+1)!.
+    let mut log2_factorial = 0.0;
+    let mut j: i64 = 0;
+    loop {
+        let next = j + 1;
+        let grows = ((2 * next) * (2 * next + 1)) as f64;
+        if next as f64 * log2_square - (log2_factorial + grows.log2()) < goal || next > MOST_SINC_TERMS {
+            break;
+        }
+        let divisor = z.int((2 * next) * (2 * next + 1));
+        term = -(term * &square) / &divisor;
+        odd = if next == 1 {
+            -(z.clone() / &divisor)
+        } else {
+            -(odd * &square) / &divisor
+        };
+        sinc += &term;
+        rate += &(odd.clone() * &z.int(2 * next));
+        log2_factorial += grows.log2();
+        j = next;
+    }
+    // The tails from N = j + 1 on: 2·|w|^(2N)/(2N+1)! and 2·2N·|w|^(2N−1)/(2N+1)!, each
+    // as a square about zero (the unit square, doubled for the rounding of m).
+    let n = (j + 1) as f64;
+    let log2_tail_factorial = log2_factorial + ((2.0 * n) * (2.0 * n + 1.0)).log2();
+    let unit = reach / &R::from_f64(most, z.precision());
+    let bound = |log2: f64| {
+        unit.clone()
+            .times_power_of_two((log2 + 2.0).ceil().clamp(-1e9, 1e9) as i32)
+    };
+    sinc += &bound(1.0 + n * log2_square - log2_tail_factorial);
+    rate += &bound(1.0 + (2.0 * n).log2() + (n - 0.5) * log2_square - log2_tail_factorial);
+    (sinc, rate)
+}
+
+/// The most terms of a sinc series: enough for 2^−1000000 at |z| ≤ 1.
+const MOST_SINC_TERMS: i64 = 60_000;
+
 impl<R: Real> TrigPoly<R> {
     /// The zero polynomial with harmonics up to `highest`.
     pub fn zero(highest: usize, like: &R) -> Self {
@@ -168,6 +230,30 @@ impl<R: Real> TrigPoly<R> {
             result.sin[k] = -(self.cos[k].clone() * &kk);
         }
         result
+    }
+
+    /// The divided difference D(a, b) = (p(a) − p(b))/(a − b) and its derivative in a,
+    /// analytic in both, a = b included (D(a, a) = p'(a)): with σ = (a + b)/2 and
+    /// δ = (a − b)/2, D = Σ k·sinc(kδ)·(s_k cos kσ − c_k sin kσ). Where p(a) = p(b) has a
+    /// root a other than b near a turning point of p, D has a simple one, which Krawczyk's
+    /// test encloses where p' vanishes beside it.
+    pub fn divided_difference(&self, a: &R, b: &R) -> (R, R) {
+        let half = a.ratio(1, 2);
+        let (middle, offset) = ((a.clone() + b) * &half, (a.clone() - b) * &half);
+        let highest = self.highest();
+        let (around, apart) = (Multiples::of(&middle, highest), Multiples::of(&offset, highest));
+        let mut value = a.int(0);
+        let mut rate = a.int(0);
+        for k in 1..=highest {
+            let factor = a.int(k as i64);
+            let (sinc, sinc_rate) = sinc_and_rate(&(offset.clone() * &factor), &apart.sin(k), &apart.cos(k));
+            let along = self.sin[k].clone() * &around.cos(k) - &(self.cos[k].clone() * &around.sin(k));
+            let along_rate =
+                -(self.cos[k].clone() * &around.cos(k) + &(self.sin[k].clone() * &around.sin(k))) * &factor;
+            value += &(sinc.clone() * &along * &factor);
+            rate += &((sinc_rate * &along * &factor + &(sinc * &along_rate)) * &factor * &half);
+        }
+        (value, rate)
     }
 
     /// `self + sign · other` (same highest harmonic).

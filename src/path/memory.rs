@@ -15,9 +15,10 @@
 //! carry that [`Origin`], and two values of one origin compare equal without their
 //! enclosures, which overlap, being asked.
 
+use crate::doubts::if_decided;
 use crate::real::Real;
 
-use super::events::{solve, solve_between, Loads, Point};
+use super::events::{decided_sign, same_level_angle, solve, solve_between, Loads, Point};
 
 /// Which of the path's values at a break a memory value is exactly: x, y or P at the
 /// break of that index (modulo the number of breaks: the path is periodic).
@@ -144,25 +145,93 @@ impl<R: Real> Piece<R> {
                 }
                 (value.clone() - a) / &a.int(slope)
             }
-            Shape::Entry { from, to } => {
-                let theta = if forward {
-                    // F at the piece's ends is x there, computed from their angles as f is.
-                    let ends = (self.f_lo.value.clone() - value, self.f_hi.value.clone() - value);
-                    let start = loads.start_for(Point::x_and_rate, value, from, to);
-                    solve_between(
-                        |t: &R| loads.at(t).x_and_rate(value),
-                        (from, ends.0),
-                        (to, ends.1),
-                        start,
-                    )
+            Shape::Entry { from, to } => loads.p(&self.load_angle(loads, (from, to), value, forward)),
+        }
+    }
+
+    /// In an entry piece, the angle θₑ at which the element entered whose memory the
+    /// slip variable's `value` reaches: x(θₑ) = x (`forward`) or y(θₑ) = y, bracketed by
+    /// the piece's angles.
+    fn load_angle(&self, loads: &Loads<R>, (from, to): (&R, &R), value: &R, forward: bool) -> R {
+        if forward {
+            // F at the piece's ends is x there, computed from their angles as f is.
+            let ends = (self.f_lo.value.clone() - value, self.f_hi.value.clone() - value);
+            let start = loads.start_for(Point::x_and_rate, value, from, to);
+            solve_between(
+                |t: &R| loads.at(t).x_and_rate(value),
+                (from, ends.0),
+                (to, ends.1),
+                start,
+            )
+        } else {
+            // y = F + 2s at the ends, but not to the last bit as the angles give it.
+            let rate = |t: &R| loads.at(t).y_and_rate(value);
+            let start = loads.start_for(Point::y_and_rate, value, from, to);
+            solve_between(rate, (from, rate(from).0), (to, rate(to).0), start)
+        }
+    }
+
+    /// The load of a front in the piece at angle `theta`, where the slip variable (x
+    /// `forward`, else y) has `value`: [`Piece::load_where`] on numbers; on enclosures,
+    /// real or the complex boxes of a quadrature's ellipse, inside an entry piece the load
+    /// at [`Piece::entry_angle_at`].
+    pub fn front_at(&self, loads: &Loads<R>, theta: &R, value: &R, forward: bool) -> R {
+        match (&self.shape, value.real_span()) {
+            (Shape::Entry { .. }, Some(_)) => loads.p(&self.entry_angle_at(loads, theta, value, forward)),
+            _ => self.load_where(loads, value, forward),
+        }
+    }
+
+    /// In an entry piece, on enclosures, the angle θₑ ≠ θ at which the slip variable had
+    /// its `value` at `theta`, for every θ in `theta` at once ([`same_level_angle`]), from
+    /// the root at the middle: bracketed where the signs at the piece's ends are decided;
+    /// at a value that is an end's to the working precision (a segment's end) that end's
+    /// angle.
+    pub fn entry_angle_at(&self, loads: &Loads<R>, theta: &R, value: &R, forward: bool) -> R {
+        let Shape::Entry { from, to } = &self.shape else {
+            return theta.clone();
+        };
+        let level = value.midpoint_value();
+        let rate = if forward { Point::x_and_rate } else { Point::y_and_rate };
+        let root = loads
+            .start_for(rate, &level, from, to)
+            .or_else(|| if_decided(|| self.load_angle(loads, (from, to), &level, forward)))
+            .unwrap_or_else(|| {
+                let off = |end: &Known<R>| (end.value.clone() - &level).abs().to_f64_lossy();
+                let (low, high) = if forward {
+                    (&self.f_lo, &self.f_hi)
                 } else {
-                    // y = F + 2s at the ends, but not to the last bit as the angles give it.
-                    let rate = |t: &R| loads.at(t).y_and_rate(value);
-                    let start = loads.start_for(Point::y_and_rate, value, from, to);
-                    solve_between(rate, (from, rate(from).0), (to, rate(to).0), start)
+                    (&self.g_lo, &self.g_hi)
                 };
-                loads.p(&theta)
-            }
+                if off(low) <= off(high) {
+                    from.clone()
+                } else {
+                    to.clone()
+                }
+            })
+            .midpoint_value();
+        same_level_angle(loads, theta, &root, forward)
+    }
+
+    /// In an entry piece, the angle of its end (`from` at its lower load, `to` at its
+    /// upper) whose slip variable's value may be `value`: where a segment ends as its
+    /// front reaches the piece's end, the front's entry angle there is that end's exactly,
+    /// also where v' vanishes at it and no Krawczyk box about it is proven.
+    #[cfg_attr(not(feature = "certified"), allow(dead_code))]
+    pub(crate) fn end_angle_at(&self, value: &R, forward: bool) -> Option<R> {
+        let Shape::Entry { from, to } = &self.shape else {
+            return None;
+        };
+        let (low, high) = if forward {
+            (&self.f_lo, &self.f_hi)
+        } else {
+            (&self.g_lo, &self.g_hi)
+        };
+        let touches = |end: &Known<R>| !matches!(decided_sign(&(end.value.clone() - value)), Some(-1 | 1));
+        match (touches(low), touches(high)) {
+            (true, false) => Some(from.clone()),
+            (false, true) => Some(to.clone()),
+            _ => None,
         }
     }
 

@@ -19,13 +19,16 @@
 //!   slip front's formula changes, each segment with its fronts' formulas;
 //! - `memory`: the memory F(s) as pieces, its update over a monotone interval, and the
 //!   fronts it places; values equal by construction carry their origin;
-//! - [`dissipation`](mod@dissipation): W by the quadrature engine, in any [`Real`];
+//! - [`dissipation`](mod@dissipation): W by the quadrature engine, in any [`Real`], and
+//!   the integrand every segment's enclosure takes, in θ or a racing front's entry angle;
+//! - `top`: where a front meets the top of the contact as P falls through elements that
+//!   entered in stick, proven after the sampling that finds it;
 //! - [`displacement`]: displacement driving at constant P (Masing's rules, rainflow W);
 //! - [`outputs`]: amplitudes, loss factor, the harmonics of Q and u, and the loop;
-//! - `proven` (feature `certified`): W of a path at constant P, force- or
-//!   displacement-driven, as a rigorous enclosure (Masing over the rainflow cycles of Q or
-//!   u, each cycle's W certified; under displacement driving its Q amplitude bracketed on
-//!   the initial loading curve, gross slip's sliding added), up the one ladder;
+//! - `proven` (feature `certified`, in `answer::path`): W as a rigorous enclosure up the one
+//!   ladder: at constant P Masing over the rainflow cycles of Q or u, each cycle's W
+//!   certified; where P varies the steady cycle's segments, each enclosed on the rule's
+//!   complex boxes (`digits::enclosure::enclose_path_dissipation`);
 //! - [`asked`]: a whole request as asked (file text, contact, drive, digits, budget), read
 //!   at any precision, and why it may have no answer;
 //!
@@ -39,6 +42,7 @@ pub mod events;
 pub mod input;
 mod memory;
 pub mod outputs;
+mod top;
 
 pub use asked::{PathFormat, PathRequest, PathRequestError, RatioText};
 pub use displacement::{displacement_dissipation, displacement_outputs, DisplacementCycle, MasingLaw};

@@ -38,7 +38,7 @@ pub(super) fn displacement_cycles<R: Real>(
     ranges: &[R],
 ) -> Result<Vec<ConstantLoadCycle<R>>, NotProven> {
     if *load <= load.int(0) {
-        return Err(NotProven::NotCovered("normal load is not positive"));
+        return Err(NotProven::NotCovered("its normal load is not positive"));
     }
     let law = MasingLaw::new(load, contact, compliance);
     // g'(Q) = λ v'(P − Q/f).
@@ -137,7 +137,9 @@ pub(super) fn loop_at_friction_limit<R: Enclosing>(
     let at_load = compliance.approach(load);
     let scale = load.clone() * &(at_load.clone() - &at_zero);
     if !scale.is_finite() {
-        return Err(NotProven::NotCovered("compliance has no finite approach at zero load"));
+        return Err(NotProven::NotCovered(
+            "its compliance has no finite approach at zero load",
+        ));
     }
     let deepest = bits.saturating_sub(CUT_BELOW_PRECISION).max(1);
     let first = ((goal_bits + TAIL_GUARD_BITS) / 2).min(deepest);

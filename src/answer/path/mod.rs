@@ -1,5 +1,6 @@
 //! A path request ([`PathRequest`]) answered: W proven by an enclosure where the path
-//! allows it (`proven`, feature `certified`: constant P, force- or displacement-driven), else on the digits
+//! allows it (`proven`, feature `certified`: force- or displacement-driven at constant P,
+//! force-driven where P varies), else on the digits
 //! two working precisions agree on, and the f64 outputs.
 
 #[cfg(feature = "certified")]
@@ -120,7 +121,7 @@ impl TwoPrecisions for Agreement<'_> {
     }
 }
 
-/// W proven by an enclosure (`proven`: force driving at constant P), else by
+/// W proven by an enclosure (`proven`), else by
 /// agreement of two working precisions with the reason it is not proven (never the f64
 /// estimate), and the outputs.
 pub fn path_answer(request: &PathRequest) -> Result<PathAnswer, PathRequestError> {
@@ -150,14 +151,11 @@ pub fn path_answer(request: &PathRequest) -> Result<PathAnswer, PathRequestError
         (None, None) => unreachable!("one drive's cycle is built"),
     };
     let admissible = prove_admissible_on_path_loads(request, low, high)?;
-    // A normal load whose f64 copy varies varies as written (equal decimals are equal
-    // doubles): W is not proven, and its enclosures are not read.
-    let varying = !path.normal.is_constant();
     let w = if request.drive == Drive::Force && path.tangential.is_constant() && tangential_constant_as_written(request)
     {
         exact_zero_w(request)
     } else {
-        match proven_or_why(request, f64_w.total, &admissible, varying)? {
+        match proven_or_why(request, f64_w.total, &admissible)? {
             Ok(w) => w,
             Err(why) => agreed_w(request, why)?,
         }
@@ -239,6 +237,8 @@ const MARGIN_BELOW_HIGHEST: u32 = 40;
 pub(crate) struct AdmissibleLoads {
     /// The lowest.
     low: Float,
+    /// The highest.
+    high: Float,
     /// Whether the check reached down to the floor (the slip may reach load 0).
     to_floor: bool,
 }
@@ -263,24 +263,21 @@ pub(crate) fn prove_admissible_on_path_loads(
     } else {
         widened
     };
-    crate::admissibility::prove_admissible_on(&spec, &low, &(top + &margin)).map_err(|error| refused(&error))?;
-    Ok(AdmissibleLoads { low, to_floor })
+    let high = top + &margin;
+    crate::admissibility::prove_admissible_on(&spec, &low, &high).map_err(|error| refused(&error))?;
+    Ok(AdmissibleLoads { low, high, to_floor })
 }
 
-/// W proven by an enclosure, or why it is not (an error where the time budget ran out);
-/// not tried where the normal load is `varying` (which proven W does not cover). The loads
-/// its cycles slip down to must lie among those the compliance was proven admissible on.
+/// W proven by an enclosure, or why it is not (an error where the time budget ran out).
+/// The loads its cycles or segments reach must lie among those the compliance was proven
+/// admissible on.
 #[cfg(feature = "certified")]
 fn proven_or_why(
     request: &PathRequest,
     estimate: f64,
     admissible: &AdmissibleLoads,
-    varying: bool,
 ) -> Result<Result<AgreedW, String>, PathRequestError> {
     use proven::NotProven;
-    if varying {
-        return Ok(Err(NotProven::NotCovered("normal load varies").to_string()));
-    }
     let proven = match proven::proven_w(request) {
         Ok(proven) => proven,
         // A budget that runs out is a failure, not a reason to fall back on agreement.
@@ -293,9 +290,9 @@ fn proven_or_why(
         Some(lowest) => admissible.low <= lowest,
         None => admissible.to_floor,
     };
-    if !covered {
+    if !covered || admissible.high < proven.highest_load {
         return Ok(Err(
-            "its cycles slip below the loads on which the compliance was proven admissible".to_string(),
+            "its loads reach beyond those on which the compliance was proven admissible".to_string(),
         ));
     }
     let digits = proven.value.digits().min(request.digits_asked());
@@ -304,12 +301,14 @@ fn proven_or_why(
         value: proven.value.to_f64().unwrap_or(estimate),
         provenance: proven.provenance.key(),
         detail: format!(
-            "{} over {} rainflow cycles of {}",
+            "{} over {}",
             proven.provenance,
-            proven.cycles,
-            match request.drive {
-                Drive::Force => "Q",
-                Drive::Displacement => "u",
+            match (proven.summed, request.drive) {
+                (proven::SummedOver::RainflowCycles(cycles), Drive::Force) => format!("{cycles} rainflow cycles of Q"),
+                (proven::SummedOver::RainflowCycles(cycles), Drive::Displacement) =>
+                    format!("{cycles} rainflow cycles of u"),
+                (proven::SummedOver::Segments(segments), _) =>
+                    format!("{segments} smooth segments of the steady cycle"),
             }
         ),
         digits_agreed: digits,
@@ -324,12 +323,7 @@ fn proven_or_why(
 
 /// Without ball arithmetic there is no enclosure.
 #[cfg(not(feature = "certified"))]
-fn proven_or_why(
-    _: &PathRequest,
-    _: f64,
-    _: &AdmissibleLoads,
-    _: bool,
-) -> Result<Result<AgreedW, String>, PathRequestError> {
+fn proven_or_why(_: &PathRequest, _: f64, _: &AdmissibleLoads) -> Result<Result<AgreedW, String>, PathRequestError> {
     Ok(Err("this build has no ball arithmetic".to_string()))
 }
 

@@ -5,12 +5,12 @@ use crate::digits::enclosure::CertifiedError;
 /// Why W could not be proven: the reason the answer rests on agreement instead.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum NotProven {
-    /// Only paths at constant P are proven.
-    #[error("proven W covers paths at constant normal load; this path's {0}")]
+    /// A path the proof does not reach, at any precision.
+    #[error("proven W does not cover this path: {0}")]
     NotCovered(&'static str),
     /// Two enclosures overlapped at every precision tried (two turning values equal, a
     /// load on a boundary, half a range of u at gross slip).
-    #[error("the path's turning points or rainflow cycles compare values that overlap up to {bits} bits")]
+    #[error("the path's turning points, events or rainflow cycles compare values that overlap up to {bits} bits")]
     Undecided {
         /// The highest working precision tried.
         bits: u32,

@@ -1,5 +1,5 @@
-//! W of a path at constant normal load, force- or displacement-driven, proven: the
-//! rigorous enclosure that every printed digit rests on.
+//! W of a path proven: the rigorous enclosure that every printed digit rests on, at
+//! constant normal load (force- or displacement-driven) and at a varying one (force-driven).
 //!
 //! At constant P the contact is a Masing element, and W is the sum over the rainflow
 //! cycles of the driving quantity (Q, or u) of the W of a constant-normal-load cycle at
@@ -9,9 +9,12 @@
 //! of the derivative (`events::sign_changes`), the path's checks, the rainflow count and
 //! g⁻¹'s bracket compare enclosures that must be decided, and each cycle's W is the
 //! certified constant-normal-load enclosure ([`crate::digits::enclosure::enclose_dissipation`]), a cycle of u in
-//! gross slip adding its sliding to the loop at fP. A path whose P varies, or whose
-//! comparisons no precision decides (two turning values equal), is not proven here: its
-//! W rests on agreement.
+//! gross slip adding its sliding to the loop at fP. Where P varies, the steady cycle's
+//! segments are built on the enclosures and each is integrated by the rung's rule
+//! ([`crate::digits::enclosure::enclose_path_dissipation`]). A path whose comparisons no
+//! precision decides (two turning values equal), or one where a front meets the top of the
+//! contact where P falls through elements that entered in stick (found by sampling, not
+//! proven), is not proven here: its W rests on agreement.
 
 use std::time::Instant;
 
@@ -19,7 +22,7 @@ use crate::answer::dissipation::DEFAULT_LEAST_DIGITS;
 use crate::answer::{Arithmetic, Provenance, Value};
 use crate::ball::Ball;
 use crate::compliance::Compliance;
-use crate::digits::enclosure::{CertifiedError, Enclosing, INTERVAL_GOAL_BITS, MAX_BITS};
+use crate::digits::enclosure::{enclose_path_dissipation, CertifiedError, Enclosing, INTERVAL_GOAL_BITS, MAX_BITS};
 use crate::digits::{doubled, Ladder, Rung, Stop};
 use crate::doubts::watch;
 use crate::interval::Interval;
@@ -28,7 +31,7 @@ use crate::real::{Precision, Real};
 use super::constant_load::{constant_load_w, displacement_cycles, loop_at_friction_limit, ConstantLoadCycle};
 pub use super::not_proven::NotProven;
 use crate::path::displacement::rainflow_ranges;
-use crate::path::events::{check_path, sign_changes};
+use crate::path::events::{check_path, sign_changes, SteadyCycle};
 use crate::path::input::{Drive, LoadPath, TrigPoly};
 use crate::path::{Contact, PathRequest};
 
@@ -39,12 +42,31 @@ pub struct ProvenW {
     pub value: Value,
     /// What vouches for it: an enclosure in f64 intervals or in Arb balls.
     pub provenance: Provenance,
-    /// The rainflow cycles (of Q, or of u under displacement driving) whose W were summed.
-    pub cycles: usize,
-    /// A lower bound of the lowest load that slips, P − (largest Q amplitude)/f, on which
-    /// the compliance must be admissible; `None` where a cycle slides (the slip then
-    /// reaches load 0).
+    /// What W is the sum of.
+    pub summed: SummedOver,
+    /// A lower bound of the lowest load that slips (at constant P, P − (largest Q
+    /// amplitude)/f), on which the compliance must be admissible; `None` where a cycle
+    /// slides (the slip then reaches load 0).
     pub lowest_slip_load: Option<f64>,
+    /// An upper bound of the highest normal load, up to which it must be admissible too.
+    pub highest_load: f64,
+}
+
+/// What a proven W is the sum of.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SummedOver {
+    /// The W of the rainflow cycles of Q (or of u under displacement driving), at constant P.
+    RainflowCycles(usize),
+    /// The integrals over the smooth segments of the steady cycle, where P varies.
+    Segments(usize),
+}
+
+/// W as one rung encloses it, with what it is the sum of and the loads it reaches.
+struct Enclosed<R> {
+    total: R,
+    summed: SummedOver,
+    lowest_slip_load: Option<f64>,
+    highest_load: f64,
 }
 
 /// The path, contact and compliance at one precision, as the rung reads them.
@@ -61,19 +83,19 @@ pub fn proven_w(request: &PathRequest) -> Result<ProvenW, NotProven> {
     let read = |precision: Precision| -> Result<Inputs<_>, NotProven> {
         let inputs = request
             .read::<Interval>(precision)
-            .map_err(|_| NotProven::NotCovered("inputs are not read as f64 intervals"))?;
+            .map_err(|_| NotProven::NotCovered("its inputs are not read as f64 intervals"))?;
         Ok((inputs.path, inputs.contact, inputs.compliance))
     };
     // Inputs that f64 intervals do not read inside the theory (λ from ν near 2) go to balls.
     let Ok((path, contact, compliance)) = read(Precision::DOUBLE) else {
         return in_balls(request, digits);
     };
-    if !path.normal.is_constant() {
-        return Err(NotProven::NotCovered("normal load varies"));
+    let in_intervals = enclose_path(&path, &contact, compliance.as_ref(), request.drive, INTERVAL_GOAL_BITS);
+    if let Err(not_covered @ NotProven::NotCovered(_)) = in_intervals {
+        return Err(not_covered);
     }
-    let in_intervals = enclose_constant_load(&path, &contact, compliance.as_ref(), request.drive, INTERVAL_GOAL_BITS);
-    if let Ok((total, cycles, lowest_slip_load)) = &in_intervals {
-        let value = total.decimal_value(digits);
+    if let Ok(enclosed) = &in_intervals {
+        let value = enclosed.total.decimal_value(digits);
         let least = match request.digits {
             None => DEFAULT_LEAST_DIGITS,
             Some(_) => digits,
@@ -86,8 +108,9 @@ pub fn proven_w(request: &PathRequest) -> Result<ProvenW, NotProven> {
                     bits: 53,
                     arithmetic: Arithmetic::F64Intervals,
                 },
-                cycles: *cycles,
-                lowest_slip_load: *lowest_slip_load,
+                summed: enclosed.summed,
+                lowest_slip_load: enclosed.lowest_slip_load,
+                highest_load: enclosed.highest_load,
             });
         }
     }
@@ -110,13 +133,11 @@ fn in_balls(request: &PathRequest, digits: u32) -> Result<ProvenW, NotProven> {
             Ok(inputs) => inputs,
             // Decided inside the theory already: a comparison undecided at this precision
             // (λ from ν near 2) may be decided at the next.
-            Err(_) => return Rung::Short(NotProven::NotCovered("inputs are not read as balls")),
+            Err(_) => return Rung::Short(NotProven::NotCovered("its inputs are not read as balls")),
         };
-        if !inputs.path.normal.is_constant() {
-            return Rung::Final(NotProven::NotCovered("normal load varies"));
-        }
+        let varying = !inputs.path.normal.is_constant();
         let goal = digit_bits + GUARD_BITS + (bits - first);
-        let enclosed = enclose_constant_load(
+        let enclosed = enclose_path(
             &inputs.path,
             &inputs.contact,
             inputs.compliance.as_ref(),
@@ -128,8 +149,8 @@ fn in_balls(request: &PathRequest, digits: u32) -> Result<ProvenW, NotProven> {
             return Rung::Final(NotProven::OutOfTime { asked: digits });
         }
         match enclosed {
-            Ok((total, cycles, lowest_slip_load)) => {
-                let value = total.decimal_value(digits);
+            Ok(enclosed) => {
+                let value = enclosed.total.decimal_value(digits);
                 if value.digits() >= digits {
                     Rung::Reached(ProvenW {
                         value,
@@ -137,8 +158,9 @@ fn in_balls(request: &PathRequest, digits: u32) -> Result<ProvenW, NotProven> {
                             bits,
                             arithmetic: Arithmetic::ArbBalls,
                         },
-                        cycles,
-                        lowest_slip_load,
+                        summed: enclosed.summed,
+                        lowest_slip_load: enclosed.lowest_slip_load,
+                        highest_load: enclosed.highest_load,
                     })
                 } else {
                     Rung::Short(NotProven::TooWide {
@@ -148,9 +170,14 @@ fn in_balls(request: &PathRequest, digits: u32) -> Result<ProvenW, NotProven> {
                     })
                 }
             }
-            Err(error @ NotProven::Refused(CertifiedError::Cycle(_) | CertifiedError::TooSteep { .. })) => {
-                Rung::Final(error)
-            }
+            Err(
+                error @ (NotProven::NotCovered(_)
+                | NotProven::Refused(CertifiedError::Cycle(_) | CertifiedError::TooSteep { .. })),
+            ) => Rung::Final(error),
+            // Where P varies, a segment the rule could not enclose within its evaluations
+            // (a front racing near a fold), or a comparison 128 bits left open, is not
+            // settled by doubling the precision: one rung past the first, then agreement.
+            Err(error) if varying && bits > first => Rung::Final(error),
             Err(error) => Rung::Short(error),
         }
     };
@@ -159,6 +186,63 @@ fn in_balls(request: &PathRequest, digits: u32) -> Result<ProvenW, NotProven> {
         Err(Stop::Final(error) | Stop::Exhausted(error)) => Err(error),
         Err(Stop::OutOfTime { .. }) => Err(NotProven::OutOfTime { asked: digits }),
     }
+}
+
+/// W of the path as the rung encloses it: at constant P over its rainflow cycles, else
+/// over the steady cycle's segments (force driving only: a displacement-driven path
+/// whose P varies is refused before it is read here).
+fn enclose_path<R: Enclosing>(
+    path: &LoadPath<R>,
+    contact: &Contact<R>,
+    compliance: &dyn Compliance<R>,
+    drive: Drive,
+    goal_bits: u32,
+) -> Result<Enclosed<R>, NotProven> {
+    if path.normal.is_constant() {
+        let (total, cycles, lowest_slip_load) = enclose_constant_load(path, contact, compliance, drive, goal_bits)?;
+        let highest_load = path.normal.cos[0].real_span().map_or(f64::INFINITY, |(_, high)| high);
+        return Ok(Enclosed {
+            total,
+            summed: SummedOver::RainflowCycles(cycles),
+            lowest_slip_load,
+            highest_load,
+        });
+    }
+    if drive == Drive::Displacement {
+        return Err(NotProven::NotCovered(
+            "its normal load varies under displacement driving",
+        ));
+    }
+    enclose_varying_load(path, contact, compliance, goal_bits)
+}
+
+/// W where P varies, over the steady cycle built on the rung's enclosures (every
+/// comparison decided, every cut a proven root), each segment enclosed by the rung's rule.
+fn enclose_varying_load<R: Enclosing>(
+    path: &LoadPath<R>,
+    contact: &Contact<R>,
+    compliance: &dyn Compliance<R>,
+    goal_bits: u32,
+) -> Result<Enclosed<R>, NotProven> {
+    let bits = contact.friction.precision().in_bits();
+    let (cycle, doubts) = watch(|| SteadyCycle::new(path, contact));
+    if !doubts.none() {
+        return Err(NotProven::Undecided { bits });
+    }
+    let cycle = cycle.map_err(|_| NotProven::Undecided { bits })?;
+    let total = enclose_path_dissipation(&cycle, contact, compliance, goal_bits).map_err(NotProven::Refused)?;
+    let lowest_slip_load = cycle
+        .lowest_slip
+        .real_span()
+        .map(|(low, _)| low)
+        .filter(|low| *low > 0.0);
+    let highest_load = cycle.highest_load.real_span().map_or(f64::INFINITY, |(_, high)| high);
+    Ok(Enclosed {
+        total,
+        summed: SummedOver::Segments(cycle.segments.len()),
+        lowest_slip_load,
+        highest_load,
+    })
 }
 
 /// W at constant P as an enclosure, the number of rainflow cycles and a lower bound of
@@ -177,7 +261,7 @@ fn enclose_constant_load<R: Enclosing>(
     let bits = load.precision().in_bits();
     let (cycles, doubts) = watch(|| {
         if drive == Drive::Force {
-            check_path(path, contact).map_err(|_| NotProven::NotCovered("checks are not decided"))?;
+            check_path(path, contact).map_err(|_| NotProven::Undecided { bits })?;
         }
         let ranges = rainflow_ranges(&turning_values(&path.tangential));
         match drive {

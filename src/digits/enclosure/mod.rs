@@ -15,6 +15,7 @@
 mod arb;
 mod enclosing;
 mod intervals;
+mod path;
 mod pieces;
 pub mod series;
 
@@ -33,6 +34,7 @@ use crate::phase::ReducedPhase;
 use crate::real::{Precision, Real};
 
 pub use enclosing::Enclosing;
+pub use path::enclose_path_dissipation;
 pub use pieces::{enclose_dissipation, enclose_dissipation_with_lowest_load, MOST_DECAY_FOLDS};
 
 /// W and its segments as enclosures (Arb balls, f64 intervals) that contain the exact
@@ -82,6 +84,16 @@ pub enum CertifiedError {
         bits: u32,
         /// How many comparisons overlapped.
         undecided: u64,
+    },
+    /// A path's steady cycle (varying P) left something open on the enclosures: a slip
+    /// front's angle, the order of two angles, or where a front meets the top of the
+    /// contact, which its sampling found but the proof after it did not bound.
+    #[error("at {bits} bits the slip fronts of the path's steady cycle are not enclosed: {what}")]
+    PathFronts {
+        /// The working precision.
+        bits: u32,
+        /// What stayed open.
+        what: &'static str,
     },
     /// A piece's enclosure is not finite (the integrand is singular on the piece, or
     /// Arb's subdivision gave up: an exponential at 10¹² decay loads whose bound on the

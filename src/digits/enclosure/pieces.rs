@@ -431,7 +431,7 @@ fn change_at_load<'a, R: Enclosing>(compliance: &'a dyn Compliance<R>, mean_load
 
 /// The pieces' enclosures summed per group (a segment, or a closed form's term), and
 /// how many pieces there were.
-fn integrate_pieces<R: Enclosing>(
+pub(super) fn integrate_pieces<R: Enclosing>(
     pieces: &[CertifiedPiece<'_, R>],
     groups: usize,
     goal_bits: u32,
