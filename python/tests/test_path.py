@@ -50,9 +50,12 @@ def test_two_harmonics_equal_the_cli(tmp_path):
 def test_one_harmonic_gives_the_four_segment_w_and_samples_give_the_harmonics():
     """P = 1 + 0.4 cos θ, Q = 0.5 cos(θ − π/2) = 0.5 sin θ: the README's first cycle at φ = π/2."""
     one = {"P": [(0, 1, 0), (1, "0.4", 0)], "Q": [(1, 0, "0.5")]}
-    by_path = microslip.path(harmonics=one, friction=1, lam=1, compliance=FIRST["compliance"])
+    by_path = microslip.path(
+        harmonics=one, friction=1, lam=1, compliance=FIRST["compliance"], digits=15
+    )
     case = case_of({**FIRST, "phi": "0.5pi"})
     assert by_path.text == microslip.dissipation(case, digits=15).text
+    assert by_path.provenance == "certified"
     theta = 2 * np.pi * np.arange(16) / 16
     samples = {"P": 1 + 0.4 * np.cos(theta), "Q": 0.5 * np.sin(theta)}
     by_samples = microslip.path(samples=samples, friction=1, lam=1, compliance=FIRST["compliance"])

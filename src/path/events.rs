@@ -144,6 +144,12 @@ impl<R: Real> Loads<R> {
         self.slip_variables[usize::from(!forward)].divided_difference(a, b)
     }
 
+    /// The highest harmonic of the loads.
+    #[cfg_attr(not(feature = "certified"), allow(dead_code))]
+    pub(crate) fn highest_harmonic(&self) -> usize {
+        self.normal.highest().max(self.tangential.highest())
+    }
+
     pub fn at(&self, theta: &R) -> Point<R> {
         let multiples = Multiples::of(theta, self.normal.highest());
         Point {

@@ -184,9 +184,11 @@ impl<R: Real> Piece<R> {
 
     /// In an entry piece, on enclosures, the angle θₑ ≠ θ at which the slip variable had
     /// its `value` at `theta`, for every θ in `theta` at once ([`same_level_angle`]), from
-    /// the root at the middle: bracketed where the signs at the piece's ends are decided;
-    /// at a value that is an end's to the working precision (a segment's end) that end's
-    /// angle.
+    /// a root at the middle: f64's, bracketed in the piece; else bracketed at the working
+    /// precision where the signs at the piece's ends are decided; else, at a value that is
+    /// an end's to the working precision (a segment's end), that end's angle. Each is the
+    /// front's angle at the middle, so the one root the test proves in its box is the
+    /// front's (proofs/periodic-loading.md, "Proven W at varying P", the branch).
     pub fn entry_angle_at(&self, loads: &Loads<R>, theta: &R, value: &R, forward: bool) -> R {
         let Shape::Entry { from, to } = &self.shape else {
             return theta.clone();
@@ -215,8 +217,10 @@ impl<R: Real> Piece<R> {
 
     /// In an entry piece, the angle of its end (`from` at its lower load, `to` at its
     /// upper) whose slip variable's value may be `value`: where a segment ends as its
-    /// front reaches the piece's end, the front's entry angle there is that end's exactly,
-    /// also where v' vanishes at it and no Krawczyk box about it is proven.
+    /// front reaches the piece's end (the cut solves v = the end's value, v at the end's
+    /// angle), the front's entry angle there is that end's exactly, also where v' vanishes
+    /// at it and no Krawczyk box about it is proven. Asked only where that box is not: a
+    /// fold of θₑ(θ) lies only at a turning point of v, a break, which ends the piece.
     #[cfg_attr(not(feature = "certified"), allow(dead_code))]
     pub(crate) fn end_angle_at(&self, value: &R, forward: bool) -> Option<R> {
         let Shape::Entry { from, to } = &self.shape else {

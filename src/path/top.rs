@@ -38,7 +38,7 @@ pub(crate) struct TopSearch<R> {
 }
 
 /// The halvings a sub-interval may take before h's sign on it is given up.
-const MOST_HALVINGS: u32 = 14;
+const MOST_HALVINGS: u32 = 10;
 
 /// The fourfold steps by which a region around an end grows until h's sign is decided
 /// beside it, from 2⁸ ε of the window's length.

@@ -172,7 +172,9 @@ fn in_balls(request: &PathRequest, digits: u32) -> Result<ProvenW, NotProven> {
             }
             Err(
                 error @ (NotProven::NotCovered(_)
-                | NotProven::Refused(CertifiedError::Cycle(_) | CertifiedError::TooSteep { .. })),
+                | NotProven::Refused(
+                    CertifiedError::Cycle(_) | CertifiedError::TooSteep { .. } | CertifiedError::PathEffort { .. },
+                )),
             ) => Rung::Final(error),
             // Where P varies, a segment the rule could not enclose within its evaluations
             // (a front racing near a fold), or a comparison 128 bits left open, is not

@@ -95,6 +95,15 @@ pub enum CertifiedError {
         /// What stayed open.
         what: &'static str,
     },
+    /// A path's segments took more integrand evaluations than its enclosure is given
+    /// (fronts racing near folds, where Krawczyk's boxes must be small).
+    #[error("at {bits} bits the path's segments took more than the {evaluations} integrand evaluations its enclosure is given (slip fronts racing near a fold need small boxes)")]
+    PathEffort {
+        /// The working precision.
+        bits: u32,
+        /// The evaluations given.
+        evaluations: i64,
+    },
     /// A piece's enclosure is not finite (the integrand is singular on the piece, or
     /// Arb's subdivision gave up: an exponential at 10¹² decay loads whose bound on the
     /// boxes near its slip peak outgrows the evaluations allowed).

@@ -12,7 +12,7 @@ use super::enclosing::{CertifiedPiece, Enclosing, PieceIntegrand};
 use super::pieces::integrate_pieces;
 use super::CertifiedError;
 use crate::compliance::Compliance;
-use crate::doubts::watch;
+use crate::doubts::{undecided, watch};
 use crate::path::dissipation::{work_rate_in_entry_angle, work_rate_with, SlopeChanges};
 use crate::path::events::Segment;
 use crate::path::{Contact, SteadyCycle};
@@ -26,6 +26,7 @@ fn segment_pieces<'a, R: Enclosing>(
     cycle: &'a SteadyCycle<R>,
     segment: &'a Segment<R>,
     compliance: &'a dyn Compliance<R>,
+    left: &'a Cell<i64>,
 ) -> Vec<CertifiedPiece<'a, R>> {
     let (start, end) = (segment.start.midpoint_value(), segment.end.midpoint_value());
     let at = |share: f64| start.clone() + &((end.clone() - &start) * &R::from_f64(share, start.precision()));
@@ -46,31 +47,43 @@ fn segment_pieces<'a, R: Enclosing>(
     }
     cuts.push(segment.end.clone());
     cuts.windows(2)
-        .map(|part| part_piece(cycle, segment, compliance, &part[0], &part[1]))
+        .map(|part| part_piece(cycle, segment, compliance, (&part[0], &part[1]), left))
         .collect()
 }
 
 /// The bisections that place a cut where a segment's front changes over from racing θ.
 const CHANGE_OVER_BISECTIONS: usize = 20;
 
-/// One part [`start`, `end`] of a segment, in θ or in the racing front's entry angle.
+/// One part [`start`, `end`] of a segment, in θ or in the racing front's entry angle; its
+/// evaluations drawn from the path's `left` (none past it: the evaluation is undecided).
 fn part_piece<'a, R: Enclosing>(
     cycle: &'a SteadyCycle<R>,
     segment: &'a Segment<R>,
     compliance: &'a dyn Compliance<R>,
-    start: &R,
-    end: &R,
+    (start, end): (&R, &R),
+    left: &'a Cell<i64>,
 ) -> CertifiedPiece<'a, R> {
     // The integrand at real points, and for the rule's bound on complex boxes with the
     // slope changes as plain differences ([`SlopeChanges`]).
-    let piece = |start: R, end: R, integrand: &dyn Fn(SlopeChanges) -> PieceIntegrand<'a, R>| CertifiedPiece {
-        group: 0,
-        label: "path segment",
-        start,
-        end,
-        integrand: integrand(SlopeChanges::Own),
-        bound: Some(integrand(SlopeChanges::Plain)),
-        evaluations: Cell::new(0),
+    let piece = |start: R, end: R, integrand: &dyn Fn(SlopeChanges) -> PieceIntegrand<'a, R>| {
+        let counted = |integrand: PieceIntegrand<'a, R>| -> PieceIntegrand<'a, R> {
+            Box::new(move |x: &R| {
+                left.set(left.get() - 1);
+                if left.get() < 0 {
+                    undecided();
+                }
+                integrand(x)
+            })
+        };
+        CertifiedPiece {
+            group: 0,
+            label: "path segment",
+            start,
+            end,
+            integrand: counted(integrand(SlopeChanges::Own)),
+            bound: Some(counted(integrand(SlopeChanges::Plain))),
+            evaluations: Cell::new(0),
+        }
     };
     let middle = (start.clone() + end) / &start.int(2);
     let Some(forward) = cycle.racing_entry_front(segment, &middle) else {
@@ -95,6 +108,12 @@ fn part_piece<'a, R: Enclosing>(
     }
 }
 
+/// The integrand evaluations one enclosure of a path's W may spend over all its
+/// segments, times the path's highest harmonic (an evaluation's cost grows with it): the
+/// cost of a proof stays bounded by work, whatever the clock, and a path that needs more
+/// rests on agreement, saying so (about 15 s on 128-bit balls).
+const MOST_PATH_WORK: i64 = 120_000;
+
 /// W of the steady cycle `cycle`, enclosed with the rung's rule aiming at `goal_bits`
 /// relative to a rough W; an error where a segment's integral has no enclosure.
 pub fn enclose_path_dissipation<R: Enclosing>(
@@ -104,11 +123,13 @@ pub fn enclose_path_dissipation<R: Enclosing>(
     goal_bits: u32,
 ) -> Result<R, CertifiedError> {
     let bits = cycle.lowest_slip.precision().in_bits();
+    let given = MOST_PATH_WORK / i64::try_from(cycle.loads.highest_harmonic().max(1)).unwrap_or(i64::MAX);
+    let left = Cell::new(given);
     let (pieces, doubts) = watch(|| {
         cycle
             .segments
             .iter()
-            .flat_map(|segment| segment_pieces(cycle, segment, compliance))
+            .flat_map(|segment| segment_pieces(cycle, segment, compliance, &left))
             .collect::<Vec<CertifiedPiece<'_, R>>>()
     });
     if !doubts.none() {
@@ -128,7 +149,16 @@ pub fn enclose_path_dissipation<R: Enclosing>(
             })
         }
     };
-    let (sums, _) = integrate_pieces(&pieces, 1, goal_bits, bits, None)?;
+    let (sums, _) = integrate_pieces(&pieces, 1, goal_bits, bits, None).map_err(|error| {
+        if left.get() < 0 {
+            CertifiedError::PathEffort {
+                bits,
+                evaluations: given,
+            }
+        } else {
+            error
+        }
+    })?;
     let scale = contact.compliance_ratio.clone() * &contact.friction.square();
     Ok((sums[0].clone() + &error.centred_square()) * &scale)
 }
