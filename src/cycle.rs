@@ -16,6 +16,7 @@
 
 use std::ops::Deref;
 
+use crate::doubts::if_decided;
 use crate::real::Real;
 
 /// The loads of one harmonic cycle, with the friction coefficient and the
@@ -426,10 +427,12 @@ impl<R: Real> LoadCycle<R> {
 }
 
 /// Whether `phase` is an offset ψ ∈ [−π/2, 0) from π: the form in which a case read from
-/// text carries a phase just below a multiple of π (see [`crate::phase`]).
+/// text carries a phase just below a multiple of π (see [`crate::phase`]). At ψ = −π/2
+/// itself (3π/2 as written) both readings give π + ψ (φ − kπ with k = −1 otherwise), so
+/// an enclosure of ψ that straddles −π/2 takes this one without a doubt.
 fn below_pi<R: Real>(phase: &R) -> bool {
     let zero = phase.int(0);
-    *phase < zero && -phase.clone() * &zero.int(2) <= phase.pi_like()
+    *phase < zero && if_decided(|| -phase.clone() * &zero.int(2) <= phase.pi_like()).unwrap_or(true)
 }
 
 /// φ reduced to [0, π), rounded.

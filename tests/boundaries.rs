@@ -87,6 +87,25 @@ fn separation_is_decided_on_the_decimals_not_their_f64_copies() {
 }
 
 #[test]
+fn a_phase_at_the_edge_of_its_reading_below_a_multiple_of_pi_is_proven() {
+    // 3π/2 is read as the offset −π/2 below 2π, the edge of the offsets [−π/2, 0) read below
+    // π: both readings give π/2 there. Each of these cycles mirrors the one at π/2 (Q at −θ),
+    // with the same W.
+    let [_, mirrored] = both_modes(&case().phi("pi/2").text());
+    let mirrored = mirrored.unwrap().0;
+    for phi in ["3pi/2", "-pi/2", "1.5pi", "7pi/2", "-5pi/2"] {
+        let [default, digits] = both_modes(&case().phi(phi).text());
+        let (default, digits) = (default.unwrap(), digits.unwrap());
+        assert!(default.1 && digits.1, "{phi}: {default:?} {digits:?}");
+        assert_eq!(digits.0, mirrored, "{phi}");
+        assert!(
+            rounds_to(&default.0, &digits.0),
+            "{phi}: {default:?} against {digits:?}"
+        );
+    }
+}
+
+#[test]
 fn a_refusal_quotes_the_exact_margin_not_one_rounded_towards_zero() {
     // 1 − 1.2 = −1/5 exactly: the message reads −2e-1 (the double nearest), in both modes.
     let text = case().p1("1.2").text();

@@ -330,9 +330,7 @@ pub(crate) fn krawczyk_root<R: Real>(rate: impl Fn(&R) -> R, at_root: &R, slope:
 /// mean-value form about θ's midpoint m, D(root, m) + ∂D/∂θ(root, θ)·(θ − m), which a
 /// box of θ widens far less than D itself (∂D/∂θ(a, b) is ∂D/∂a(b, a): D is symmetric).
 pub(crate) fn same_level_angle<R: Real>(loads: &Loads<R>, other: &R, root: &R, forward: bool) -> R {
-    let period = other.pi_like() * &other.int(2);
-    let periods = ((root.to_f64_lossy() - other.midpoint_value().to_f64_lossy()) / period.to_f64_lossy()).round();
-    let moved = other.clone() + &(period * &other.int(periods as i64));
+    let moved = moved_next_to(other, root);
     let middle = moved.midpoint_value();
     // Newton's steps on points from a root good to f64 to about the working precision:
     // Krawczyk's step then doubles its digits once more.
@@ -357,6 +355,14 @@ pub(crate) fn same_level_angle<R: Real>(loads: &Loads<R>, other: &R, root: &R, f
         &slope,
         root,
     )
+}
+
+/// `angle` moved by the whole periods that bring it nearest `toward` (counted on doubles:
+/// any whole number of periods leaves the loads as they are).
+fn moved_next_to<R: Real>(angle: &R, toward: &R) -> R {
+    let period = angle.pi_like() * &angle.int(2);
+    let periods = ((toward.to_f64_lossy() - angle.midpoint_value().to_f64_lossy()) / period.to_f64_lossy()).round();
+    angle.clone() + &(period * &angle.int(periods as i64))
 }
 
 /// Fourfold widenings of Krawczyk's box before its root is counted undecided.
@@ -982,11 +988,7 @@ impl<R: Real> SteadyCycle<R> {
     /// finite where both v'(θ) and v'(θₑ) vanish (θ and θₑ meeting at a turning point),
     /// unlike v'(θₑ)/v'(θ).
     pub(crate) fn current_angle_rate(&self, theta: &R, entered: &R, forward: bool) -> R {
-        let period = theta.pi_like() * &theta.int(2);
-        let periods = ((theta.midpoint_value().to_f64_lossy() - entered.midpoint_value().to_f64_lossy())
-            / period.to_f64_lossy())
-        .round();
-        let moved = entered.clone() + &(period * &theta.int(periods as i64));
+        let moved = moved_next_to(entered, theta);
         let (_, along_entry) = self.loads.slip_variable_difference(&moved, theta, forward);
         let (_, along_current) = self.loads.slip_variable_difference(theta, &moved, forward);
         -(along_entry / &along_current)

@@ -12,9 +12,9 @@
 //! gross slip adding its sliding to the loop at fP. Where P varies, the steady cycle's
 //! segments are built on the enclosures and each is integrated by the rung's rule
 //! ([`crate::digits::enclosure::enclose_path_dissipation`]). A path whose comparisons no
-//! precision decides (two turning values equal), or one where a front meets the top of the
-//! contact where P falls through elements that entered in stick (found by sampling, not
-//! proven), is not proven here: its W rests on agreement.
+//! precision tried decides (two turning values equal), whose fronts or meetings with the
+//! top of the contact are not enclosed there, or whose segments need more evaluations
+//! than an enclosure is given, is not proven here: its W rests on agreement, saying why.
 
 use std::time::Instant;
 
@@ -88,7 +88,7 @@ pub fn proven_w(request: &PathRequest) -> Result<ProvenW, NotProven> {
     };
     // Inputs that f64 intervals do not read inside the theory (λ from ν near 2) go to balls.
     let Ok((path, contact, compliance)) = read(Precision::DOUBLE) else {
-        return in_balls(request, digits);
+        return in_balls(request, digits, false);
     };
     let in_intervals = enclose_path(&path, &contact, compliance.as_ref(), request.drive, INTERVAL_GOAL_BITS);
     if let Err(not_covered @ NotProven::NotCovered(_)) = in_intervals {
@@ -114,8 +114,11 @@ pub fn proven_w(request: &PathRequest) -> Result<ProvenW, NotProven> {
             });
         }
     }
-    in_balls(request, digits)
+    in_balls(request, digits, !path.normal.is_constant())
 }
+
+/// The least working precision of the Arb ladder where P varies.
+const LEAST_VARYING_BITS: u32 = 128;
 
 /// The bits that the enclosure's rounding and the sum of the cycles need beyond the
 /// digits' own.
@@ -123,9 +126,14 @@ const GUARD_BITS: u32 = 12;
 
 /// W by the Arb ladder: balls at the digits' bits and guard bits, doubled until the
 /// enclosure settles the digits or the deadline comes.
-fn in_balls(request: &PathRequest, digits: u32) -> Result<ProvenW, NotProven> {
+fn in_balls(request: &PathRequest, digits: u32, varying: bool) -> Result<ProvenW, NotProven> {
     let digit_bits = Precision::decimal_digits(digits).in_bits();
-    let first = (digit_bits + GUARD_BITS).next_multiple_of(64);
+    let mut first = (digit_bits + GUARD_BITS).next_multiple_of(64);
+    if varying {
+        // The segments' cancellation leaves 64-bit balls short of 15 digits on most paths
+        // whose P varies: their ladder starts where it would end.
+        first = first.max(LEAST_VARYING_BITS);
+    }
     let ladder = Ladder::new(Precision::bits(first), Precision::bits(MAX_BITS)).until(Some(request.deadline));
     let rung = |precision: Precision| {
         let bits = precision.in_bits();

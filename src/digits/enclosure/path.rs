@@ -111,8 +111,8 @@ fn part_piece<'a, R: Enclosing>(
 /// The integrand evaluations one enclosure of a path's W may spend over all its
 /// segments, times the path's highest harmonic (an evaluation's cost grows with it): the
 /// cost of a proof stays bounded by work, whatever the clock, and a path that needs more
-/// rests on agreement, saying so (about 15 s on 128-bit balls).
-const MOST_PATH_WORK: i64 = 120_000;
+/// rests on agreement, saying so (about 10 s on 128-bit balls).
+const MOST_PATH_WORK: i64 = 100_000;
 
 /// W of the steady cycle `cycle`, enclosed with the rung's rule aiming at `goal_bits`
 /// relative to a rough W; an error where a segment's integral has no enclosure.
