@@ -79,6 +79,18 @@ impl<R: Real> TopSearch<R> {
             above[gap] = from;
             below[gap + 1] = to;
         }
+        // Each segment's front formula was read at its middle: one inside a region could
+        // carry that region's other formula into the stretch beyond it, where h keeps the
+        // sign proven, so no middle may lie in a region.
+        for segment in &cycle.segments {
+            let middle = ((segment.start.clone() + &segment.end) / &segment.start.int(2)).midpoint_value();
+            for (low, high) in below.iter().zip(&above) {
+                let apart = if_decided(|| middle < *low || middle > *high)?;
+                if !apart {
+                    return None;
+                }
+            }
+        }
         let mut error = start.int(0);
         for (low, high) in below.iter().zip(&above) {
             error += &self.region_bound(cycle, compliance, low, high);
