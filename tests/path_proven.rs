@@ -87,6 +87,26 @@ fn overlap(a: (Float, Float), b: (Float, Float)) -> bool {
     a.0 <= b.1 && b.0 <= a.1
 }
 
+/// The path's proven W and the certified four-segment W of `case`, the same cycle: both
+/// proven, their enclosures overlapping.
+fn proven_beside_four_segments(
+    file: &str,
+    contact: (&str, &str, &str),
+    case: &microslip::case::CaseSpec,
+    digits: Option<u32>,
+) -> (ProvenW, microslip::answer::Answer) {
+    let path = proven(file, contact, digits);
+    let certified = dissipation_of(case, digits, Duration::from_secs(60)).unwrap().answer;
+    assert!(
+        certified.provenance.is_proven() && path.provenance.is_proven(),
+        "{file}"
+    );
+    let (lower, upper) = certified.value.enclosure.clone().unwrap();
+    let read = |text: &str| Float::with_val(512, Float::parse(text).unwrap());
+    assert!(overlap(ends(&path), (read(&lower), read(&upper))), "{file} {digits:?}");
+    (path, certified)
+}
+
 #[test]
 fn a_harmonic_path_at_constant_p_prints_the_certified_four_segment_digits() {
     let cases = [
@@ -118,18 +138,13 @@ fn a_harmonic_path_at_constant_p_prints_the_certified_four_segment_digits() {
             .build()
             .unwrap();
         for digits in [None, Some(25)] {
-            let path = proven(&file, (friction, lambda, spec), digits);
-            let certified = dissipation_of(&case, digits, Duration::from_secs(60)).unwrap();
-            assert!(certified.answer.provenance.is_proven() && path.provenance.is_proven());
-            assert_eq!(path.provenance, certified.answer.provenance, "{file}");
+            let (path, certified) = proven_beside_four_segments(&file, (friction, lambda, spec), &case, digits);
+            assert_eq!(path.provenance, certified.provenance, "{file}");
             assert_eq!(
                 path.value.decimal.to_string(),
-                certified.answer.value.decimal.to_string(),
+                certified.value.decimal.to_string(),
                 "{file}"
             );
-            let (lower, upper) = certified.answer.value.enclosure.clone().unwrap();
-            let read = |text: &str| Float::with_val(512, Float::parse(text).unwrap());
-            assert!(overlap(ends(&path), (read(&lower), read(&upper))), "{file} {digits:?}");
         }
     }
 }
@@ -158,17 +173,12 @@ fn a_harmonic_path_whose_normal_load_varies_is_proven_and_prints_the_four_segmen
             .build()
             .unwrap();
         for digits in [None, Some(25)] {
-            let path = proven(&file, (friction, lambda, spec), digits);
+            let (path, certified) = proven_beside_four_segments(&file, (friction, lambda, spec), &case, digits);
             assert!(matches!(path.summed, SummedOver::Segments(n) if n >= 4), "{file}");
-            let certified = dissipation_of(&case, digits, Duration::from_secs(60)).unwrap();
-            assert!(certified.answer.provenance.is_proven() && path.provenance.is_proven());
-            let (lower, upper) = certified.answer.value.enclosure.clone().unwrap();
-            let read = |text: &str| Float::with_val(512, Float::parse(text).unwrap());
-            assert!(overlap(ends(&path), (read(&lower), read(&upper))), "{file} {digits:?}");
             if digits.is_some() {
                 assert_eq!(
                     path.value.decimal.to_string(),
-                    certified.answer.value.decimal.to_string(),
+                    certified.value.decimal.to_string(),
                     "{file}"
                 );
             } else {

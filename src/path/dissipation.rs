@@ -12,6 +12,7 @@ use crate::doubts::if_decided;
 use crate::quad::{integrate, Piece, QuadError, Settings};
 use crate::real::Real;
 
+pub use super::events::SlopeChanges;
 use super::events::{Point, Segment, SteadyCycle};
 use super::input::{LoadPath, PathError};
 use super::Contact;
@@ -26,17 +27,6 @@ pub fn work_rate<R: Real>(
     compliance: &dyn Compliance<R>,
 ) -> R {
     work_rate_at(cycle, segment, &cycle.point(theta), compliance, None, SlopeChanges::Own)
-}
-
-/// How the integrand forms the slope changes v'(s) − v'(P): by the compliance's own form,
-/// free of cancellation at real points, or as the plain difference of two slopes, the
-/// same analytic function, which widens less on the complex boxes a rule's bound takes.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum SlopeChanges {
-    /// [`Compliance::slope_change`].
-    Own,
-    /// v'(s) − v'(P).
-    Plain,
 }
 
 /// [`work_rate`] with the slope changes formed as `changes` says.
@@ -79,7 +69,7 @@ fn work_rate_at<R: Real>(
     changes: SlopeChanges,
 ) -> R {
     let q = point.q.clone() - &cycle.mean_tangential();
-    let slip = cycle.slip_rate_with(segment, point, compliance, known, changes == SlopeChanges::Plain);
+    let slip = cycle.slip_rate_with(segment, point, compliance, known, changes);
     q.clone() * &slip - &(compliance.curvature(&point.p) * &q.square() * &point.dp * &q.ratio(1, 2))
 }
 

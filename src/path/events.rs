@@ -685,6 +685,18 @@ fn clearly_inside<R: Real>(loads: &Loads<R>) -> bool {
     }) == Some(true)
 }
 
+/// How the slip terms form the slope changes v'(s) − v'(P): by the compliance's own form,
+/// free of cancellation at real points, or as the plain difference of two slopes, the
+/// same analytic function, whose enclosure on a complex box a compliance's own form (a
+/// root raised to powers and divided, for Hertz) can widen far more.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum SlopeChanges {
+    /// [`Compliance::slope_change`].
+    Own,
+    /// v'(s) − v'(P).
+    Plain,
+}
+
 /// A piece of the steady cycle on which the slip fronts are smooth functions of θ.
 #[derive(Clone, Debug)]
 pub struct Segment<R> {
@@ -863,21 +875,18 @@ impl<R: Real> SteadyCycle<R> {
 
     /// The part of dU/dθ that slip adds, (v'(s₋) − v'(P)) x' + (v'(s₊) − v'(P)) y'.
     pub(crate) fn slip_rate(&self, segment: &Segment<R>, point: &Point<R>, compliance: &dyn Compliance<R>) -> R {
-        self.slip_rate_with(segment, point, compliance, None, false)
+        self.slip_rate_with(segment, point, compliance, None, SlopeChanges::Own)
     }
 
     /// [`SteadyCycle::slip_rate`] with one front's load `known` (forward or not, and the
-    /// load) rather than found from the memory; with each slope change a `plain`
-    /// difference of slopes v'(s) − v'(P) where asked, the same function, whose enclosure
-    /// on a complex box a compliance's own form of the change (a root raised to powers
-    /// and divided, for Hertz) can widen far more.
+    /// load) rather than found from the memory, the slope changes formed as `changes` says.
     pub(crate) fn slip_rate_with(
         &self,
         segment: &Segment<R>,
         point: &Point<R>,
         compliance: &dyn Compliance<R>,
         known: Option<(bool, &R)>,
-        plain: bool,
+        changes: SlopeChanges,
     ) -> R {
         let mut rate = point.p.int(0);
         for (formula, forward) in [(&segment.forward, true), (&segment.backward, false)] {
@@ -892,7 +901,7 @@ impl<R: Real> SteadyCycle<R> {
             // The compliance's own form asks where the gap lies (a series near 0): on an
             // enclosure that straddles 0 (a front at the top) the plain difference, an
             // enclosure of the same value, serves.
-            let change = if plain {
+            let change = if changes == SlopeChanges::Plain {
                 difference()
             } else {
                 if_decided(|| compliance.slope_change(&point.p, &(front.clone() - &point.p))).unwrap_or_else(difference)

@@ -200,11 +200,7 @@ impl<R: Real> Piece<R> {
             .or_else(|| if_decided(|| self.load_angle(loads, (from, to), &level, forward)))
             .unwrap_or_else(|| {
                 let off = |end: &Known<R>| (end.value.clone() - &level).abs().to_f64_lossy();
-                let (low, high) = if forward {
-                    (&self.f_lo, &self.f_hi)
-                } else {
-                    (&self.g_lo, &self.g_hi)
-                };
+                let (low, high) = self.slip_ends(forward);
                 if off(low) <= off(high) {
                     from.clone()
                 } else {
@@ -226,16 +222,22 @@ impl<R: Real> Piece<R> {
         let Shape::Entry { from, to } = &self.shape else {
             return None;
         };
-        let (low, high) = if forward {
-            (&self.f_lo, &self.f_hi)
-        } else {
-            (&self.g_lo, &self.g_hi)
-        };
+        let (low, high) = self.slip_ends(forward);
         let touches = |end: &Known<R>| !matches!(decided_sign(&(end.value.clone() - value)), Some(-1 | 1));
         match (touches(low), touches(high)) {
             (true, false) => Some(from.clone()),
             (false, true) => Some(to.clone()),
             _ => None,
+        }
+    }
+
+    /// The values at the piece's lower and upper ends that the slip variable meets: F
+    /// (against x, `forward`) or G = F + 2s (against y).
+    fn slip_ends(&self, forward: bool) -> (&Known<R>, &Known<R>) {
+        if forward {
+            (&self.f_lo, &self.f_hi)
+        } else {
+            (&self.g_lo, &self.g_hi)
         }
     }
 

@@ -209,14 +209,7 @@ fn enclose_path<R: Enclosing>(
     goal_bits: u32,
 ) -> Result<Enclosed<R>, NotProven> {
     if path.normal.is_constant() {
-        let (total, cycles, lowest_slip_load) = enclose_constant_load(path, contact, compliance, drive, goal_bits)?;
-        let highest_load = path.normal.cos[0].real_span().map_or(f64::INFINITY, |(_, high)| high);
-        return Ok(Enclosed {
-            total,
-            summed: SummedOver::RainflowCycles(cycles),
-            lowest_slip_load,
-            highest_load,
-        });
+        return enclose_constant_load(path, contact, compliance, drive, goal_bits);
     }
     if drive == Drive::Displacement {
         return Err(NotProven::NotCovered(
@@ -255,8 +248,8 @@ fn enclose_varying_load<R: Enclosing>(
     })
 }
 
-/// W at constant P as an enclosure, the number of rainflow cycles and a lower bound of
-/// the lowest load that slips (`None` where a cycle slides): the turning values of the
+/// W at constant P as an enclosure over its rainflow cycles, with a lower bound of the
+/// lowest load that slips (`None` where a cycle slides) and P: the turning values of the
 /// driving quantity (Q, or u under displacement driving; rotated to start and end at the
 /// largest) counted by the three-point rule, each cycle's W enclosed with the rung's own
 /// rule aiming at `goal_bits`.
@@ -266,7 +259,7 @@ fn enclose_constant_load<R: Enclosing>(
     compliance: &dyn Compliance<R>,
     drive: Drive,
     goal_bits: u32,
-) -> Result<(R, usize, Option<f64>), NotProven> {
+) -> Result<Enclosed<R>, NotProven> {
     let load = path.normal.cos[0].clone();
     let bits = load.precision().in_bits();
     let (cycles, doubts) = watch(|| {
@@ -305,7 +298,12 @@ fn enclose_constant_load<R: Enclosing>(
         };
         total += &w;
     }
-    Ok((total, cycles.len(), lowest_slip_load))
+    Ok(Enclosed {
+        total,
+        summed: SummedOver::RainflowCycles(cycles.len()),
+        lowest_slip_load,
+        highest_load: load.real_span().map_or(f64::INFINITY, |(_, high)| high),
+    })
 }
 
 /// A lower bound of P − a/f over the cycles' Q amplitudes a (the load down to which a
